@@ -1,0 +1,2 @@
+//! The `haphe` command.
+fn main() {}

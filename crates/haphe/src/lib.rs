@@ -1,0 +1,35 @@
+//! # haphe — haptic rendering against triangle meshes
+//!
+//! haphe answers, every servo tick (1 kHz and faster), where a point haptic device touches a
+//! triangle mesh, where the surface contact point (proxy) is, and what force to render.
+//!
+//! ## Conventions (stated once, holding everywhere)
+//!
+//! - **Units** are SI: metres, seconds, newtons, N/m, N·s/m, radians. A file in millimetres
+//!   or inches is scaled once, when it is read ([`mesh::Units`]).
+//! - **Precision**: all geometry is `f64` ([`glam::DVec3`]).
+//! - **Axes** are right-handed. **Winding**: triangles are counter-clockwise seen from
+//!   outside, so `(b − a) × (c − a)` points out of a solid.
+//! - **Frames**: *object* (the mesh as read and scaled), *world* (the scene) and *device*.
+//!   Names carry their frame (`p_object`, `world_from_object`).
+//!
+//! ## The pipeline
+//!
+//! Data flows one way; each stage hands the next a validated type.
+//!
+//! 1. [`mesh`] — read OBJ/STL/PLY/OFF bytes into a [`mesh::Mesh`], weld duplicate
+//!    vertices, validate into a [`mesh::MeshReport`], and build the topology of a
+//!    [`mesh::Surface`] (neighbours, vertex fans, barycentric frames, shading normals).
+//!    Procedural test shapes live in [`mesh::shapes`].
+//!
+//! Stages up to the proxy touch no files, threads, clocks or globals: readers take bytes,
+//! so they can be fuzzed, and only the command-line tool opens paths.
+#![cfg_attr(
+    not(test),
+    warn(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+#![deny(missing_docs)]
+
+pub mod mesh;
+
+pub use glam::DVec3;

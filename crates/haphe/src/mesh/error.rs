@@ -1,0 +1,110 @@
+//! Errors of the readers: every one names the file and the place.
+
+use std::fmt;
+
+/// Where in a file a problem is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Place {
+    /// A line of a text file, counted from 1.
+    Line(usize),
+    /// A byte offset in a binary file, counted from 0.
+    Byte(u64),
+    /// A face (polygon or triangle) as numbered in the file, counted from 0.
+    Face(usize),
+    /// A vertex as numbered in the file, counted from 0.
+    Vertex(usize),
+    /// The file header (STL's 84 bytes, PLY's header, OFF's first line).
+    Header,
+}
+
+impl fmt::Display for Place {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Place::Line(n) => write!(f, "line {n}"),
+            Place::Byte(n) => write!(f, "byte {n}"),
+            Place::Face(n) => write!(f, "face {n}"),
+            Place::Vertex(n) => write!(f, "vertex {n}"),
+            Place::Header => f.write_str("header"),
+        }
+    }
+}
+
+/// What went wrong while reading a mesh, and where.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ReadErrorKind {
+    /// The file has no bytes, or only white space and comments.
+    #[error("the file is empty")]
+    Empty,
+    /// The content is not one of the supported formats.
+    #[error("not a mesh file haphe can read (OBJ, STL, PLY or OFF): {reason}")]
+    UnknownFormat {
+        /// Why detection failed.
+        reason: String,
+    },
+    /// A malformed statement, number or header.
+    #[error("{at}: {message}")]
+    Syntax {
+        /// Where.
+        at: Place,
+        /// What was expected and what was found.
+        message: String,
+    },
+    /// The file ends before the data its header announces.
+    #[error("{at}: the file ends early: {message}")]
+    Truncated {
+        /// Where the missing data should start.
+        at: Place,
+        /// What is missing.
+        message: String,
+    },
+    /// A face refers to a vertex that does not exist.
+    #[error("{at}: vertex index {index} is out of range (the file has {count} vertices)")]
+    IndexOutOfRange {
+        /// The face (or its line).
+        at: Place,
+        /// The index as written in the file.
+        index: i64,
+        /// How many vertices there are.
+        count: usize,
+    },
+    /// A vertex coordinate is NaN or infinite.
+    #[error("{at}: a vertex coordinate is not a finite number")]
+    NonFinite {
+        /// The vertex (or its line).
+        at: Place,
+    },
+    /// A face with fewer than three corners.
+    #[error("{at}: a face has {corners} corner(s); a face needs at least 3")]
+    TooFewCorners {
+        /// The face (or its line).
+        at: Place,
+        /// How many corners it has.
+        corners: usize,
+    },
+    /// The file holds vertices (a point cloud, a wireframe) but no faces.
+    #[error("no faces: the file holds {vertices} vertices but no triangles or polygons")]
+    NoFaces {
+        /// How many vertices were read.
+        vertices: usize,
+    },
+    /// More vertices or faces than haphe's 32-bit indices hold.
+    #[error("{at}: too large: {message}")]
+    TooLarge {
+        /// Where.
+        at: Place,
+        /// What overflowed.
+        message: String,
+    },
+}
+
+/// A mesh file could not be read: the file's name and what went wrong where.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{file}: {kind}")]
+pub struct ReadError {
+    /// The name the caller gave for the bytes (usually the path).
+    pub file: String,
+    /// What went wrong, and where.
+    pub kind: ReadErrorKind,
+}

@@ -1,0 +1,97 @@
+//! Stage 1 — meshes: read files, weld vertices, validate, build the topology.
+//!
+//! ```text
+//! bytes ──read──▶ Mesh ──weld──▶ Mesh ──validate──▶ MeshReport
+//!                                   └──Surface::new──▶ Surface (neighbours, fans, frames, normals)
+//! ```
+//!
+//! - [`read_mesh`] turns the bytes of an OBJ, STL, PLY or OFF file into a [`Mesh`]: polygons
+//!   are triangulated, coordinates scaled to metres ([`Units`]) and duplicate vertices welded
+//!   ([`Weld`]). Bad input gives a [`ReadError`] naming the file and the place.
+//! - [`MeshReport::of`] lists every defect of a mesh with where it is.
+//! - [`Surface`] is the validated, navigable form every later stage uses.
+//! - [`shapes`] makes procedural meshes for tests, benchmarks and the demo.
+
+mod error;
+mod frame;
+mod ids;
+mod normals;
+pub mod read;
+mod report;
+pub mod shapes;
+mod topology;
+mod weld;
+
+pub use error::{Place, ReadError, ReadErrorKind};
+pub use frame::TriFrame;
+pub use ids::{NONE, TriId, VertId};
+pub use normals::DEFAULT_CREASE_ANGLE_RAD;
+pub use read::{Format, ReadOptions, Units, read_mesh};
+pub use report::{ComponentReport, EdgeUse, MeshReport, Usability};
+pub use topology::{Surface, SurfaceError, SurfaceOptions};
+pub use weld::{Weld, WeldStats, weld};
+
+use glam::DVec3;
+
+/// An indexed triangle mesh: positions in metres (object frame) and vertex triples.
+///
+/// This is plain data with no invariant beyond what [`read_mesh`] guarantees: every index is
+/// in range and every coordinate is finite. It may be open, non-manifold, inconsistently
+/// oriented or degenerate; [`MeshReport::of`] says which, and [`Surface::new`] turns it into
+/// the navigable form.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions, metres, object frame.
+    pub vertices: Vec<DVec3>,
+    /// Triangles as vertex indices, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl Mesh {
+    /// The three corner positions of triangle `t` (metres, object frame).
+    ///
+    /// # Panics
+    /// If `t` or one of its indices is out of range (never for a mesh from [`read_mesh`]).
+    #[inline]
+    pub fn corners(&self, t: usize) -> [DVec3; 3] {
+        let [a, b, c] = self.triangles[t];
+        [
+            self.vertices[a as usize],
+            self.vertices[b as usize],
+            self.vertices[c as usize],
+        ]
+    }
+
+    /// Axis-aligned bounding box `(min, max)` of the vertices, metres; `None` when empty.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let first = *self.vertices.first()?;
+        Some(
+            self.vertices
+                .iter()
+                .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))),
+        )
+    }
+
+    /// Checks the invariants a reader guarantees: indices in range, coordinates finite.
+    ///
+    /// # Errors
+    /// The first vertex with a non-finite coordinate or triangle with an index out of range.
+    pub fn check_indices_and_finite(&self) -> Result<(), ReadErrorKind> {
+        if let Some(v) = self.vertices.iter().position(|p| !p.is_finite()) {
+            return Err(ReadErrorKind::NonFinite {
+                at: Place::Vertex(v),
+            });
+        }
+        let count = self.vertices.len();
+        for (face, tri) in self.triangles.iter().enumerate() {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= count) {
+                return Err(ReadErrorKind::IndexOutOfRange {
+                    at: Place::Face(face),
+                    index: i64::from(index),
+                    count,
+                });
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,218 @@
+//! Readers: OBJ, STL (ASCII and binary), PLY (ASCII and binary) and OFF, from bytes.
+//!
+//! [`read_mesh`] detects the format from the content (the file name is only a hint),
+//! triangulates polygons, scales to metres and welds duplicate vertices. Every error names
+//! the file and the place ([`ReadError`]).
+
+mod obj;
+mod off;
+mod ply;
+pub(crate) mod polygon;
+mod stl;
+
+use std::str::FromStr;
+
+use super::{Mesh, ReadError, ReadErrorKind, Weld, weld};
+
+/// A mesh file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Format {
+    /// Wavefront OBJ (text): `v` and `f` statements, polygons, negative indices, groups.
+    Obj,
+    /// STL, ASCII or binary (told apart by content, not by the first word).
+    Stl,
+    /// PLY, ASCII or binary little/big endian; faces as index lists or triangle strips.
+    Ply,
+    /// Object File Format (text), with or without counts on the `OFF` line.
+    Off,
+}
+
+impl Format {
+    /// Detects the format from the content, using the file name's extension only to break a
+    /// tie (an OBJ and an OFF file can both start with a comment).
+    ///
+    /// # Errors
+    /// [`ReadErrorKind::Empty`] for no bytes, [`ReadErrorKind::UnknownFormat`] when nothing
+    /// matches.
+    pub fn detect(name: &str, bytes: &[u8]) -> Result<Format, ReadErrorKind> {
+        let text_start = skip_ascii_whitespace(bytes);
+        if text_start.is_empty() {
+            return Err(ReadErrorKind::Empty);
+        }
+        if stl::looks_binary(bytes) || starts_with_word(text_start, b"solid") {
+            return Ok(Format::Stl);
+        }
+        if text_start.starts_with(b"ply") {
+            return Ok(Format::Ply);
+        }
+        if text_start.starts_with(b"OFF") || text_start.starts_with(b"off") {
+            return Ok(Format::Off);
+        }
+        let extension = name
+            .rsplit_once('.')
+            .map(|(_, e)| e.to_ascii_lowercase())
+            .unwrap_or_default();
+        match extension.as_str() {
+            "obj" => Ok(Format::Obj),
+            "stl" => Ok(Format::Stl),
+            "ply" => Ok(Format::Ply),
+            "off" => Ok(Format::Off),
+            _ if obj::looks_like_obj(bytes) => Ok(Format::Obj),
+            _ => Err(ReadErrorKind::UnknownFormat {
+                reason: format!(
+                    "no STL, PLY or OFF signature and no OBJ statements (extension '{extension}')"
+                ),
+            }),
+        }
+    }
+}
+
+fn skip_ascii_whitespace(bytes: &[u8]) -> &[u8] {
+    let start = bytes
+        .iter()
+        .position(|b| !b.is_ascii_whitespace())
+        .unwrap_or(bytes.len());
+    &bytes[start..]
+}
+
+fn starts_with_word(bytes: &[u8], word: &[u8]) -> bool {
+    bytes.starts_with(word)
+        && bytes
+            .get(word.len())
+            .is_none_or(|b| b.is_ascii_whitespace())
+}
+
+/// The length unit of the numbers in a file; haphe works in metres.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Units {
+    /// The file is in metres (the default).
+    #[default]
+    Metres,
+    /// The file is in millimetres (most CAD and 3D-printing STL files).
+    Millimetres,
+    /// The file is in centimetres.
+    Centimetres,
+    /// The file is in inches.
+    Inches,
+    /// Metres per file unit, finite and positive.
+    Factor(f64),
+}
+
+impl Units {
+    /// Metres per unit of the file.
+    pub fn metres_per_unit(self) -> f64 {
+        match self {
+            Units::Metres => 1.0,
+            Units::Millimetres => 1e-3,
+            Units::Centimetres => 1e-2,
+            Units::Inches => 0.0254,
+            Units::Factor(f) => f,
+        }
+    }
+}
+
+impl FromStr for Units {
+    type Err = String;
+
+    /// Parses `m`, `mm`, `cm`, `in` (and their long names) or a positive factor in metres
+    /// per file unit such as `0.001`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "m" | "metre" | "metres" | "meter" | "meters" => Ok(Units::Metres),
+            "mm" | "millimetre" | "millimetres" | "millimeter" | "millimeters" => {
+                Ok(Units::Millimetres)
+            }
+            "cm" | "centimetre" | "centimetres" | "centimeter" | "centimeters" => {
+                Ok(Units::Centimetres)
+            }
+            "in" | "inch" | "inches" => Ok(Units::Inches),
+            other => match other.parse::<f64>() {
+                Ok(f) if f.is_finite() && f > 0.0 => Ok(Units::Factor(f)),
+                _ => Err(format!(
+                    "unknown unit '{s}': use m, mm, cm, in or a positive factor (metres per file unit)"
+                )),
+            },
+        }
+    }
+}
+
+/// How to read a mesh file.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ReadOptions {
+    /// The file's length unit; coordinates are scaled to metres once, here.
+    pub units: Units,
+    /// How duplicate vertices are merged after reading.
+    pub weld: Weld,
+    /// The format, or `None` to detect it from the content.
+    pub format: Option<Format>,
+}
+
+/// Reads a mesh from the bytes of a file named `file` (the name is used in errors and as a
+/// hint for the format).
+///
+/// Polygons are triangulated, coordinates are scaled to metres and vertices welded as
+/// `options` say; vertices no face uses are dropped.
+///
+/// # Errors
+/// A [`ReadError`] naming `file` and the place (line, byte, face or vertex) of the first
+/// problem: unknown format, syntax, truncation, indices out of range, non-finite
+/// coordinates, faces with fewer than three corners, or no faces at all.
+///
+/// # Examples
+/// ```
+/// use haphe::mesh::{read_mesh, ReadOptions};
+/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+/// let mesh = read_mesh("tri.obj", obj, &ReadOptions::default()).unwrap();
+/// assert_eq!(mesh.triangles.len(), 1);
+///
+/// let err = read_mesh("bad.obj", b"v 0 0 0\nf 1 2 9\n", &ReadOptions::default()).unwrap_err();
+/// assert_eq!(err.to_string(), "bad.obj: line 2: vertex index 9 is out of range (the file has 1 vertices)");
+/// ```
+pub fn read_mesh(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<Mesh, ReadError> {
+    read_unwelded(file, bytes, options).map(|mesh| weld(&mesh, options.weld).0)
+}
+
+/// Like [`read_mesh`] but without welding: the mesh exactly as the file indexes it (scaled
+/// to metres, vertices no face uses kept).
+///
+/// # Errors
+/// As [`read_mesh`].
+pub fn read_unwelded(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<Mesh, ReadError> {
+    let fail = |kind| ReadError {
+        file: file.to_owned(),
+        kind,
+    };
+    let scale = options.units.metres_per_unit();
+    if !(scale.is_finite() && scale > 0.0) {
+        return Err(fail(ReadErrorKind::Syntax {
+            at: super::Place::Header,
+            message: format!("the unit factor {scale} is not a positive finite number"),
+        }));
+    }
+    let format = match options.format {
+        Some(f) => f,
+        None => Format::detect(file, bytes).map_err(fail)?,
+    };
+    let mut mesh = match format {
+        Format::Obj => obj::read_obj(bytes),
+        Format::Stl => stl::read_stl(bytes),
+        Format::Ply => ply::read_ply(bytes),
+        Format::Off => off::read_off(bytes),
+    }
+    .map_err(fail)?;
+    if mesh.triangles.is_empty() {
+        return Err(fail(ReadErrorKind::NoFaces {
+            vertices: mesh.vertices.len(),
+        }));
+    }
+    if scale != 1.0 {
+        for p in &mut mesh.vertices {
+            *p *= scale;
+        }
+    }
+    // Readers check as they go, with lines; this is the backstop (a scaled huge value can
+    // overflow to infinity).
+    mesh.check_indices_and_finite().map_err(fail)?;
+    Ok(mesh)
+}

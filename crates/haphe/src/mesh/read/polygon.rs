@@ -1,0 +1,1 @@
+//! Triangulation of the polygons of OBJ, OFF and PLY faces (to be written).

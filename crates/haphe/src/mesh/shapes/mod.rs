@@ -1,0 +1,1 @@
+//! Procedural meshes for tests, benchmarks and the demo (to be written).
