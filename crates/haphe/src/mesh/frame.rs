@@ -12,7 +12,7 @@ use glam::DVec3;
 ///
 /// Invariant: for a non-degenerate triangle `dual_b · (b − a) = 1`, `dual_b · (c − a) = 0`,
 /// `dual_c · (b − a) = 0`, `dual_c · (c − a) = 1`, both duals lie in the plane, and `normal`
-/// has unit length. A degenerate (zero-area) triangle has all three vectors zero, so its
+/// has unit length. A degenerate (zero-area) triangle (see [`is_degenerate_triangle`]) has all three vectors zero, so its
 /// coordinates come out as `(1, 0, 0)` and it is never taken as a hit.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TriFrame {
@@ -32,7 +32,7 @@ impl TriFrame {
         let (e1, e2) = (b - a, c - a);
         let n = e1.cross(e2);
         let nn = n.length_squared();
-        if !(nn > 0.0 && nn.is_finite()) {
+        if is_degenerate_triangle(a, b, c) || !(nn > 0.0 && nn.is_finite()) {
             return TriFrame {
                 origin: a,
                 ..TriFrame::default()
@@ -95,4 +95,35 @@ mod tests {
         assert!(f.is_degenerate());
         assert_eq!(f.barycentric(DVec3::Y), [1.0, 0.0, 0.0]);
     }
+}
+
+/// A triangle whose smallest altitude is below this fraction of its longest edge is
+/// *degenerate* (zero area for practical purposes): its barycentric frame would keep fewer
+/// than about seven significant digits of an `f64`, so it is never used as a contact.
+pub const DEGENERATE_MAX_RELATIVE_HEIGHT: f64 = 1e-9;
+
+/// A non-degenerate triangle whose smallest altitude is below this fraction of its longest
+/// edge is a *sliver*: usable, but reported, since long thin triangles make shading and
+/// walking less even.
+pub const SLIVER_MAX_RELATIVE_HEIGHT: f64 = 1e-2;
+
+/// Smallest altitude over longest edge of triangle `(a, b, c)`, i.e. `2·area / longest²`:
+/// `√3/2 ≈ 0.866` for an equilateral triangle, 0 for a degenerate one (and for a point).
+pub fn relative_height(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let longest2 = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    let twice_area = (b - a).cross(c - a).length();
+    if longest2 > 0.0 && twice_area.is_finite() {
+        twice_area / longest2
+    } else {
+        0.0
+    }
+}
+
+/// Whether triangle `(a, b, c)` is degenerate (see [`DEGENERATE_MAX_RELATIVE_HEIGHT`]).
+#[inline]
+pub fn is_degenerate_triangle(a: DVec3, b: DVec3, c: DVec3) -> bool {
+    relative_height(a, b, c) <= DEGENERATE_MAX_RELATIVE_HEIGHT
 }

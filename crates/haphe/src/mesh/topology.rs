@@ -1,10 +1,368 @@
-//! Topology (stub).
-/// Surface.
-#[derive(Debug)]
-pub struct Surface;
-/// Error.
-#[derive(Debug)]
-pub struct SurfaceError;
-/// Options.
-#[derive(Debug)]
-pub struct SurfaceOptions;
+//! The topology of a mesh: the navigable, validated form every later stage uses.
+
+use glam::DVec3;
+
+use super::edges::{EdgeTable, has_distinct_corners};
+use super::frame::TriFrame;
+use super::ids::{NONE, TriId, VertId};
+use super::normals::{DEFAULT_CREASE_ANGLE_RAD, corner_normals};
+use super::{Mesh, MeshReport, Usability};
+
+/// How to build a [`Surface`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceOptions {
+    /// Faces meeting at a sharper angle than this (radians) keep separate shading normals.
+    pub crease_angle_rad: f64,
+}
+
+impl Default for SurfaceOptions {
+    fn default() -> Self {
+        SurfaceOptions {
+            crease_angle_rad: DEFAULT_CREASE_ANGLE_RAD,
+        }
+    }
+}
+
+/// Why a mesh cannot become a [`Surface`].
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SurfaceError {
+    /// No triangle has a usable area.
+    #[error("no triangle has a usable area ({triangles} triangles, all degenerate)")]
+    NoArea {
+        /// How many triangles the mesh has.
+        triangles: usize,
+    },
+    /// The mesh breaks an invariant of [`Mesh`] (hand-built meshes only).
+    #[error("invalid mesh: {0}")]
+    Invalid(#[from] super::ReadErrorKind),
+}
+
+/// A triangle mesh with its topology, ready for collision queries and haptic rendering.
+///
+/// Invariants (checked once in [`Surface::new`], trusted by every later stage):
+/// - every index is in range and every coordinate finite (metres, object frame);
+/// - `neighbour(t, i)` is the triangle across the edge opposite corner `i` of `t`, when
+///   exactly two triangles share that edge, else [`NONE`]; the relation is symmetric;
+/// - `fan(v)` lists every triangle with a corner at `v`, in rotational order where the
+///   vertex is manifold;
+/// - `frame(t)` gives barycentric coordinates in two dot products ([`TriFrame`]);
+///   degenerate triangles have a zero frame and are never a contact;
+/// - `corner_normals(t)` are unit shading normals respecting the crease angle.
+#[derive(Debug, Clone)]
+pub struct Surface {
+    vertices: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    neighbours: Vec<[u32; 3]>,
+    frames: Vec<TriFrame>,
+    corner_normals: Vec<[DVec3; 3]>,
+    fan_start: Vec<u32>,
+    fan_triangles: Vec<u32>,
+    report: MeshReport,
+}
+
+impl Surface {
+    /// Builds the topology of `mesh` and validates it.
+    ///
+    /// A mesh with defects still becomes a surface where that makes sense: an open or
+    /// non-manifold mesh is a two-sided surface (non-manifold edges act as boundaries for
+    /// navigation); [`Surface::is_solid`] says whether inside and outside are defined.
+    ///
+    /// # Errors
+    /// [`SurfaceError::NoArea`] when no triangle has area; [`SurfaceError::Invalid`] when an
+    /// index is out of range or a coordinate non-finite.
+    ///
+    /// # Examples
+    /// ```
+    /// use haphe::mesh::{shapes, Surface, SurfaceOptions};
+    /// let surface = Surface::new(shapes::sphere(0.1, 2), &SurfaceOptions::default()).unwrap();
+    /// assert!(surface.is_solid());
+    /// assert_eq!(surface.triangle_count(), 320);
+    /// ```
+    pub fn new(mesh: Mesh, options: &SurfaceOptions) -> Result<Surface, SurfaceError> {
+        mesh.check_indices_and_finite()?;
+        let report = MeshReport::of(&mesh);
+        if report.usable_as == Usability::Unusable {
+            return Err(SurfaceError::NoArea {
+                triangles: mesh.triangles.len(),
+            });
+        }
+        let Mesh {
+            vertices,
+            triangles,
+        } = mesh;
+        let neighbours = link_neighbours(&triangles);
+        let (fan_start, fan_triangles) = build_fans(vertices.len(), &triangles, &neighbours);
+        let frames: Vec<TriFrame> = triangles
+            .iter()
+            .map(|&[a, b, c]| {
+                TriFrame::new(
+                    vertices[a as usize],
+                    vertices[b as usize],
+                    vertices[c as usize],
+                )
+            })
+            .collect();
+        let fan = |v: u32| {
+            &fan_triangles[fan_start[v as usize] as usize..fan_start[v as usize + 1] as usize]
+        };
+        let corner_normals = corner_normals(
+            &vertices,
+            &triangles,
+            &frames,
+            fan,
+            options.crease_angle_rad,
+        );
+        Ok(Surface {
+            vertices,
+            triangles,
+            neighbours,
+            frames,
+            corner_normals,
+            fan_start,
+            fan_triangles,
+            report,
+        })
+    }
+
+    /// Number of triangles.
+    #[inline]
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Number of vertices.
+    #[inline]
+    pub fn vertex_count(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// All vertex positions, metres, object frame.
+    #[inline]
+    pub fn vertices(&self) -> &[DVec3] {
+        &self.vertices
+    }
+
+    /// All triangles as vertex index triples.
+    #[inline]
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// Position of vertex `v`, metres, object frame.
+    #[inline]
+    pub fn vertex(&self, v: VertId) -> DVec3 {
+        self.vertices[v.index()]
+    }
+
+    /// The vertex indices of triangle `t`.
+    #[inline]
+    pub fn triangle(&self, t: TriId) -> [u32; 3] {
+        self.triangles[t.index()]
+    }
+
+    /// The corner positions of triangle `t`, metres, object frame.
+    #[inline]
+    pub fn corners(&self, t: TriId) -> [DVec3; 3] {
+        self.triangles[t.index()].map(|v| self.vertices[v as usize])
+    }
+
+    /// The triangle across the edge opposite corner `corner` (0, 1 or 2) of `t`, or `None`
+    /// at a boundary or non-manifold edge.
+    #[inline]
+    pub fn neighbour(&self, t: TriId, corner: usize) -> Option<TriId> {
+        let n = self.neighbours[t.index()][corner];
+        (n != NONE).then_some(TriId(n))
+    }
+
+    /// The three neighbours of `t` as raw indices ([`NONE`] where there is none).
+    #[inline]
+    pub fn neighbours(&self, t: TriId) -> [u32; 3] {
+        self.neighbours[t.index()]
+    }
+
+    /// The triangles around vertex `v`, in rotational order where `v` is manifold.
+    #[inline]
+    pub fn fan(&self, v: VertId) -> &[u32] {
+        let (s, e) = (self.fan_start[v.index()], self.fan_start[v.index() + 1]);
+        &self.fan_triangles[s as usize..e as usize]
+    }
+
+    /// The precomputed barycentric frame of `t`.
+    #[inline]
+    pub fn frame(&self, t: TriId) -> &TriFrame {
+        &self.frames[t.index()]
+    }
+
+    /// The unit shading normals at the corners of `t` (object frame).
+    #[inline]
+    pub fn corner_normals(&self, t: TriId) -> &[DVec3; 3] {
+        &self.corner_normals[t.index()]
+    }
+
+    /// The shading normal at barycentric weights `w` of `t`: the corner normals blended
+    /// and normalised (object frame, unit length; the face normal if the blend vanishes).
+    #[inline]
+    pub fn shading_normal(&self, t: TriId, w: [f64; 3]) -> DVec3 {
+        let [n0, n1, n2] = self.corner_normals[t.index()];
+        (w[0] * n0 + w[1] * n1 + w[2] * n2)
+            .try_normalize()
+            .unwrap_or(self.frames[t.index()].normal)
+    }
+
+    /// Whether inside and outside are defined (a valid closed solid, see [`Usability`]).
+    #[inline]
+    pub fn is_solid(&self) -> bool {
+        self.report.usable_as == Usability::Solid
+    }
+
+    /// The validation report of the mesh this surface was built from.
+    pub fn report(&self) -> &MeshReport {
+        &self.report
+    }
+
+    /// Bytes of memory the surface holds (without the report).
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.vertices.capacity() * size_of::<DVec3>()
+            + self.triangles.capacity() * size_of::<[u32; 3]>()
+            + self.neighbours.capacity() * size_of::<[u32; 3]>()
+            + self.frames.capacity() * size_of::<TriFrame>()
+            + self.corner_normals.capacity() * size_of::<[DVec3; 3]>()
+            + (self.fan_start.capacity() + self.fan_triangles.capacity()) * size_of::<u32>()
+    }
+}
+
+/// Neighbours across each edge: set for edges used by exactly two distinct triangles.
+fn link_neighbours(triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
+    let mut neighbours = vec![[NONE; 3]; triangles.len()];
+    for group in EdgeTable::build(triangles).groups() {
+        if let [h0, h1] = group
+            && h0.tri != h1.tri
+        {
+            neighbours[h0.tri as usize][h0.corner as usize] = h1.tri;
+            neighbours[h1.tri as usize][h1.corner as usize] = h0.tri;
+        }
+    }
+    neighbours
+}
+
+/// The fans as compressed rows: triangles around vertex `v` are
+/// `triangles[start[v]..start[v + 1]]`, each fan sorted into rotational order.
+fn build_fans(
+    vertex_count: usize,
+    triangles: &[[u32; 3]],
+    neighbours: &[[u32; 3]],
+) -> (Vec<u32>, Vec<u32>) {
+    let mut start = vec![0u32; vertex_count + 1];
+    for tri in triangles.iter().filter(|t| has_distinct_corners(t)) {
+        for &v in tri {
+            start[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut fan = vec![0u32; start[vertex_count] as usize];
+    for (t, tri) in triangles.iter().enumerate() {
+        if has_distinct_corners(tri) {
+            for &v in tri {
+                fan[fill[v as usize] as usize] = t as u32;
+                fill[v as usize] += 1;
+            }
+        }
+    }
+    let mut scratch = FanScratch::default();
+    for v in 0..vertex_count {
+        let range = start[v] as usize..start[v + 1] as usize;
+        order_fan(
+            v as u32,
+            &mut fan[range],
+            triangles,
+            neighbours,
+            &mut scratch,
+        );
+    }
+    (start, fan)
+}
+
+/// Puts the triangles around `v` in rotational order: from a triangle at a boundary (if
+/// any), step across the edge at `v` not yet crossed, until the fan closes or ends. What is
+/// left (other fans of a non-manifold vertex) follows, each ordered the same way.
+/// `O(k log k)` for a fan of `k` triangles.
+fn order_fan(
+    v: u32,
+    fan: &mut [u32],
+    triangles: &[[u32; 3]],
+    neighbours: &[[u32; 3]],
+    scratch: &mut FanScratch,
+) {
+    if fan.len() < 3 {
+        return;
+    }
+    let FanScratch {
+        sorted,
+        visited,
+        ordered,
+    } = scratch;
+    sorted.clear();
+    sorted.extend_from_slice(fan);
+    sorted.sort_unstable();
+    visited.clear();
+    visited.resize(fan.len(), false);
+    ordered.clear();
+    let slot = |t: u32| sorted.binary_search(&t).ok();
+    let corner_of = |t: u32, w: u32| triangles[t as usize].iter().position(|&x| x == w);
+    let opens_at_v = |t: u32| {
+        let i = corner_of(t, v).unwrap_or(0);
+        neighbours[t as usize][(i + 1) % 3] == NONE
+    };
+    while ordered.len() < fan.len() {
+        // Prefer a start whose one edge at `v` is open, so an open fan is walked end to end.
+        let unvisited = |t: &&u32| slot(**t).is_some_and(|k| !visited[k]);
+        let start = fan
+            .iter()
+            .filter(unvisited)
+            .find(|&&t| opens_at_v(t))
+            .or_else(|| fan.iter().find(unvisited))
+            .copied();
+        let Some(mut t) = start else { break };
+        // Enter `t` as if across its edge opposite corner i+1, i.e. from vertex tri[i+2].
+        let i = corner_of(t, v).unwrap_or(0);
+        let mut came_from = triangles[t as usize][(i + 2) % 3];
+        loop {
+            if let Some(k) = slot(t) {
+                visited[k] = true;
+            }
+            ordered.push(t);
+            // Leave across the other edge at `v`: the one opposite the corner of `came_from`.
+            let Some(j) = corner_of(t, came_from) else {
+                break;
+            };
+            let next = neighbours[t as usize][j];
+            match slot(next) {
+                Some(k) if next != NONE && !visited[k] => {}
+                _ => break,
+            }
+            // The shared edge runs from `v` to the third vertex of `t`.
+            came_from = triangles[t as usize]
+                .iter()
+                .copied()
+                .find(|&x| x != v && x != came_from)
+                .unwrap_or(came_from);
+            t = next;
+        }
+    }
+    if ordered.len() == fan.len() {
+        fan.copy_from_slice(ordered);
+    }
+}
+
+/// Reused buffers of [`order_fan`].
+#[derive(Default)]
+struct FanScratch {
+    sorted: Vec<u32>,
+    visited: Vec<bool>,
+    ordered: Vec<u32>,
+}

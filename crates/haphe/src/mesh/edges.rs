@@ -1,0 +1,92 @@
+//! The edge table: every undirected edge with the triangles that use it.
+//!
+//! Shared by the validation report (which counts defects) and the topology (which links
+//! neighbours), so that both agree on what an edge is.
+
+use rayon::prelude::*;
+
+/// One use of an undirected edge by a triangle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct HalfEdge {
+    /// `(low vertex << 32) | high vertex`: the undirected edge.
+    pub key: u64,
+    /// The triangle using the edge.
+    pub tri: u32,
+    /// The triangle's corner opposite the edge (0, 1 or 2).
+    pub corner: u8,
+    /// Whether the triangle runs the edge from the low to the high vertex.
+    pub forward: bool,
+}
+
+impl HalfEdge {
+    /// The edge's two vertices, low first.
+    #[inline]
+    pub fn vertices(&self) -> [u32; 2] {
+        [(self.key >> 32) as u32, self.key as u32]
+    }
+}
+
+/// All half-edges sorted by edge, so the uses of one edge are adjacent.
+///
+/// Triangles with a repeated vertex index (`[a, a, b]`) have no area and no proper edges;
+/// they are left out of the table (the report counts them as degenerate).
+pub(crate) struct EdgeTable {
+    pub half_edges: Vec<HalfEdge>,
+}
+
+impl EdgeTable {
+    /// Builds the table (parallel sort; deterministic, since keys are unique per use).
+    pub fn build(triangles: &[[u32; 3]]) -> EdgeTable {
+        let mut half_edges: Vec<HalfEdge> = triangles
+            .par_iter()
+            .enumerate()
+            .filter(|(_, t)| has_distinct_corners(t))
+            .flat_map_iter(|(tri, t)| {
+                (0..3u8).map(move |corner| {
+                    let c = corner as usize;
+                    let (a, b) = (t[(c + 1) % 3], t[(c + 2) % 3]);
+                    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+                    HalfEdge {
+                        key: (u64::from(lo) << 32) | u64::from(hi),
+                        tri: tri as u32,
+                        corner,
+                        forward: a < b,
+                    }
+                })
+            })
+            .collect();
+        half_edges.par_sort_unstable();
+        EdgeTable { half_edges }
+    }
+
+    /// The uses of each undirected edge, one slice per edge, in edge order.
+    pub fn groups(&self) -> impl Iterator<Item = &[HalfEdge]> {
+        self.half_edges.chunk_by(|a, b| a.key == b.key)
+    }
+}
+
+/// Whether the three vertex indices of a triangle differ.
+#[inline]
+pub(crate) fn has_distinct_corners(t: &[u32; 3]) -> bool {
+    t[0] != t[1] && t[1] != t[2] && t[0] != t[2]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shared_edge_is_grouped_with_opposite_directions() {
+        let table = EdgeTable::build(&[[0, 1, 2], [2, 1, 3], [4, 4, 5]]);
+        let groups: Vec<_> = table.groups().collect();
+        assert_eq!(groups.len(), 5, "the repeated-index triangle has no edges");
+        let shared = groups
+            .iter()
+            .find(|g| g[0].vertices() == [1, 2])
+            .expect("edge 1-2 is listed");
+        assert_eq!(shared.len(), 2);
+        assert_ne!(shared[0].forward, shared[1].forward);
+        assert_eq!((shared[0].tri, shared[0].corner), (0, 0));
+        assert_eq!((shared[1].tri, shared[1].corner), (1, 2));
+    }
+}

@@ -1,0 +1,282 @@
+//! The analysis behind [`MeshReport::of`].
+
+use glam::DVec3;
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
+
+use super::{ComponentReport, Defects, EdgeUse, MeshReport, Usability, nesting};
+use crate::mesh::Mesh;
+use crate::mesh::edges::{EdgeTable, HalfEdge, has_distinct_corners};
+use crate::mesh::frame::{
+    DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT, relative_height,
+};
+use crate::mesh::weld::{find, union};
+
+/// Per-triangle measures: area (m²), signed volume of the tetrahedron with the origin (m³),
+/// relative height (see [`relative_height`]).
+struct TriMeasure {
+    area: f64,
+    volume: f64,
+    relative_height: f64,
+}
+
+pub(super) fn analyse(mesh: &Mesh) -> MeshReport {
+    let tris = &mesh.triangles;
+    // Measure relative to the box centre, so signed volumes of far-away meshes keep digits.
+    let (lo, hi) = mesh.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
+    let centre = 0.5 * (lo + hi);
+    let measures: Vec<TriMeasure> = (0..tris.len())
+        .into_par_iter()
+        .map(|t| {
+            let [a, b, c] = mesh.corners(t).map(|p| p - centre);
+            TriMeasure {
+                area: 0.5 * (b - a).cross(c - a).length(),
+                volume: a.dot(b.cross(c)) / 6.0,
+                relative_height: if has_distinct_corners(&tris[t]) {
+                    relative_height(a, b, c)
+                } else {
+                    0.0
+                },
+            }
+        })
+        .collect();
+
+    let mut defects = Defects::default();
+    for (t, m) in measures.iter().enumerate() {
+        if m.relative_height <= DEGENERATE_MAX_RELATIVE_HEIGHT {
+            defects.degenerate_triangles.push(t as u32);
+        } else if m.relative_height < SLIVER_MAX_RELATIVE_HEIGHT {
+            defects.sliver_triangles.push(t as u32);
+        }
+    }
+
+    let table = EdgeTable::build(tris);
+    let mut edges = 0;
+    // Triangles joined by any shared edge (components) ...
+    let mut component_parent: Vec<u32> = (0..tris.len() as u32).collect();
+    // ... and corners `3·t + i` joined across manifold edges around their shared vertex
+    // (fans: a vertex with more than one fan is non-manifold).
+    let mut corner_parent: Vec<u32> = (0..3 * tris.len() as u32).collect();
+    for group in table.groups() {
+        edges += 1;
+        let edge = group[0].vertices();
+        for pair in group.windows(2) {
+            union(&mut component_parent, pair[0].tri, pair[1].tri);
+        }
+        match group {
+            [_] => defects.boundary_edges.push(edge),
+            [h0, h1] => {
+                if h0.forward == h1.forward {
+                    defects.orientation_conflicts.push(edge_use(edge, group));
+                }
+                for v in edge {
+                    union(
+                        &mut corner_parent,
+                        corner_of(tris, h0.tri, v),
+                        corner_of(tris, h1.tri, v),
+                    );
+                }
+            }
+            _ => defects.nonmanifold_edges.push(edge_use(edge, group)),
+        }
+    }
+    defects.nonmanifold_vertices =
+        nonmanifold_vertices(tris, &mut corner_parent, mesh.vertices.len());
+    defects.duplicate_faces = duplicate_faces(tris);
+
+    let (mut component_list, component_of) =
+        components(mesh, &table, &measures, &mut component_parent, &defects);
+    nesting::mark_nesting(mesh, &component_of, &mut component_list);
+    defects.inverted_components = component_list
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.inverted)
+        .map(|(i, _)| i as u32)
+        .collect();
+
+    let closed = defects.boundary_edges.is_empty() && defects.nonmanifold_edges.is_empty();
+    let oriented = defects.orientation_conflicts.is_empty();
+    let has_area = defects.degenerate_triangles.len() < tris.len();
+    let usable_as = if !has_area {
+        Usability::Unusable
+    } else if closed
+        && oriented
+        && defects.nonmanifold_vertices.is_empty()
+        && defects.inverted_components.is_empty()
+        && defects.duplicate_faces.is_empty()
+    {
+        Usability::Solid
+    } else {
+        Usability::Surface
+    };
+    let genus = component_list
+        .iter()
+        .filter_map(|c| c.genus)
+        .reduce(|a, b| a + b);
+    MeshReport {
+        triangles: tris.len(),
+        vertices: mesh.vertices.len(),
+        edges,
+        components: component_list.len(),
+        closed,
+        boundary_edges: defects.boundary_edges.len(),
+        nonmanifold_edges: defects.nonmanifold_edges.len(),
+        nonmanifold_vertices: defects.nonmanifold_vertices.len(),
+        orientation_conflicts: defects.orientation_conflicts.len(),
+        inverted_components: defects.inverted_components.len(),
+        degenerate_triangles: defects.degenerate_triangles.len(),
+        sliver_triangles: defects.sliver_triangles.len(),
+        duplicate_faces: defects.duplicate_faces.len(),
+        genus,
+        bounds_min: lo.to_array(),
+        bounds_max: hi.to_array(),
+        area: measures.iter().map(|m| m.area).sum(),
+        volume: (closed && oriented).then(|| measures.iter().map(|m| m.volume).sum()),
+        usable_as,
+        component_list,
+        defects,
+    }
+}
+
+fn edge_use(edge: [u32; 2], group: &[HalfEdge]) -> EdgeUse {
+    EdgeUse {
+        edge,
+        triangles: group.iter().map(|h| h.tri).collect(),
+    }
+}
+
+/// The corner index `3·t + i` of vertex `v` in triangle `t`.
+fn corner_of(tris: &[[u32; 3]], t: u32, v: u32) -> u32 {
+    let i = tris[t as usize].iter().position(|&w| w == v).unwrap_or(0);
+    3 * t + i as u32
+}
+
+/// Vertices with more than one fan. Corners are only ever joined with corners of the same
+/// vertex, so each set of joined corners is one fan, and its root (the smallest corner, see
+/// [`union`]) is a corner of that vertex: a vertex has as many fans as it has root corners.
+fn nonmanifold_vertices(
+    tris: &[[u32; 3]],
+    corner_parent: &mut [u32],
+    vertex_count: usize,
+) -> Vec<u32> {
+    let mut fans = vec![0u32; vertex_count];
+    for (t, tri) in tris.iter().enumerate() {
+        if !has_distinct_corners(tri) {
+            continue;
+        }
+        for (i, &v) in tri.iter().enumerate() {
+            let corner = (3 * t + i) as u32;
+            if find(corner_parent, corner) == corner {
+                fans[v as usize] += 1;
+            }
+        }
+    }
+    (0..vertex_count as u32)
+        .filter(|&v| fans[v as usize] > 1)
+        .collect()
+}
+
+/// Pairs `[first, duplicate]` of triangles with the same vertex set (in any order).
+fn duplicate_faces(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
+    let mut first: FxHashMap<[u32; 3], u32> =
+        FxHashMap::with_capacity_and_hasher(tris.len(), Default::default());
+    let mut out = Vec::new();
+    for (t, tri) in tris.iter().enumerate() {
+        let mut key = *tri;
+        key.sort_unstable();
+        if let Some(&f) = first.get(&key) {
+            out.push([f, t as u32]);
+        } else {
+            first.insert(key, t as u32);
+        }
+    }
+    out
+}
+
+/// Per-component measures, and the component of each triangle (`usize::MAX` for triangles
+/// with a repeated vertex, which belong to none). Components are numbered in the order of
+/// their first triangle.
+fn components(
+    mesh: &Mesh,
+    table: &EdgeTable,
+    measures: &[TriMeasure],
+    parent: &mut [u32],
+    defects: &Defects,
+) -> (Vec<ComponentReport>, Vec<usize>) {
+    let tris = &mesh.triangles;
+    // Degenerate triangles with a repeated vertex have no edges: they are their own
+    // component of zero area, which would only confuse; fold them into no component.
+    let mut index_of_root: FxHashMap<u32, usize> = FxHashMap::default();
+    let mut component_of = vec![usize::MAX; tris.len()];
+    let mut list: Vec<ComponentReport> = Vec::new();
+    let mut counts = Vec::new(); // (vertices, edges, boundary, nonmanifold edges, conflicts)
+    for t in 0..tris.len() {
+        if !has_distinct_corners(&tris[t]) {
+            continue;
+        }
+        let root = find(parent, t as u32);
+        let c = *index_of_root.entry(root).or_insert_with(|| {
+            list.push(ComponentReport {
+                triangles: 0,
+                first_triangle: t as u32,
+                closed: true,
+                manifold_oriented: true,
+                genus: None,
+                volume: 0.0,
+                area: 0.0,
+                depth: None,
+                inverted: false,
+            });
+            counts.push([0usize; 5]);
+            list.len() - 1
+        });
+        component_of[t] = c;
+        list[c].triangles += 1;
+        list[c].volume += measures[t].volume;
+        list[c].area += measures[t].area;
+    }
+    // Vertices per component: each (vertex, component) pair once.
+    let mut seen: FxHashMap<(u32, usize), ()> = FxHashMap::default();
+    for (t, tri) in tris.iter().enumerate() {
+        if component_of[t] == usize::MAX {
+            continue;
+        }
+        for &v in tri {
+            if seen.insert((v, component_of[t]), ()).is_none() {
+                counts[component_of[t]][0] += 1;
+            }
+        }
+    }
+    for group in table.groups() {
+        let c = component_of[group[0].tri as usize];
+        counts[c][1] += 1;
+        match group.len() {
+            1 => counts[c][2] += 1,
+            2 if group[0].forward == group[1].forward => counts[c][4] += 1,
+            2 => {}
+            _ => counts[c][3] += 1,
+        }
+    }
+    let nonmanifold_vertex_components: Vec<bool> = {
+        let mut flag = vec![false; list.len()];
+        let is_nm: rustc_hash::FxHashSet<u32> =
+            defects.nonmanifold_vertices.iter().copied().collect();
+        for (t, tri) in tris.iter().enumerate() {
+            if component_of[t] != usize::MAX && tri.iter().any(|v| is_nm.contains(v)) {
+                flag[component_of[t]] = true;
+            }
+        }
+        flag
+    };
+    for (c, comp) in list.iter_mut().enumerate() {
+        let [v, e, boundary, nonmanifold, conflicts] = counts[c];
+        comp.closed = boundary == 0 && nonmanifold == 0;
+        comp.manifold_oriented = comp.closed && conflicts == 0 && !nonmanifold_vertex_components[c];
+        if comp.manifold_oriented {
+            // Euler: V − E + F = 2 − 2g for a closed orientable surface.
+            let chi = v as i64 - e as i64 + comp.triangles as i64;
+            comp.genus = u32::try_from((2 - chi) / 2).ok();
+        }
+    }
+    (list, component_of)
+}

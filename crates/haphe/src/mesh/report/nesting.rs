@@ -1,0 +1,91 @@
+//! Nesting of closed components: a closed component inside another is a cavity, whose
+//! normals rightly point into it (negative volume). Only with nesting known can "inside
+//! out" be told from "cavity".
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::ComponentReport;
+use crate::mesh::Mesh;
+
+/// Upper bound on (closed components) × (triangles) for which nesting is computed exactly
+/// with winding numbers; past it, a closed component is taken as inside out when its
+/// volume is negative (the usual case of one solid).
+pub const MAX_NESTING_WORK: usize = 200_000_000;
+
+/// Sets `depth` and `inverted` of every closed, oriented component.
+/// `component_of[t]` is the index in `list` of triangle `t`'s component, or `usize::MAX`.
+pub(super) fn mark_nesting(mesh: &Mesh, component_of: &[usize], list: &mut [ComponentReport]) {
+    let closed: Vec<usize> = (0..list.len())
+        .filter(|&c| list[c].manifold_oriented)
+        .collect();
+    if closed.len() <= 1 || closed.len().saturating_mul(mesh.triangles.len()) > MAX_NESTING_WORK {
+        for &c in &closed {
+            list[c].depth = (closed.len() <= 1).then_some(0);
+            list[c].inverted = list[c].volume < 0.0;
+        }
+        return;
+    }
+    // Triangles of each closed component, and one probe point per component: the centroid
+    // of its first triangle (on its own surface, so off every other disjoint component).
+    let component_of_first: Vec<u32> = closed.iter().map(|&c| list[c].first_triangle).collect();
+    let owner = triangle_owners(component_of, &closed);
+    let probes: Vec<DVec3> = component_of_first
+        .iter()
+        .map(|&t| {
+            let [a, b, c] = mesh.corners(t as usize);
+            (a + b + c) / 3.0
+        })
+        .collect();
+    let depths: Vec<u32> = (0..closed.len())
+        .into_par_iter()
+        .map(|i| {
+            // Winding number of the probe with respect to each other closed component.
+            let mut winding = vec![0.0f64; closed.len()];
+            for (t, &k) in owner.iter().enumerate() {
+                if k != u32::MAX && k as usize != i {
+                    winding[k as usize] += solid_angle(mesh.corners(t), probes[i]);
+                }
+            }
+            winding
+                .iter()
+                .filter(|w| (*w / (4.0 * std::f64::consts::PI)).abs() > 0.5)
+                .count() as u32
+        })
+        .collect();
+    for (i, &c) in closed.iter().enumerate() {
+        list[c].depth = Some(depths[i]);
+        // Even depth: a solid, normals out (positive volume); odd: a cavity, normals in.
+        list[c].inverted = (list[c].volume < 0.0) == (depths[i] % 2 == 0);
+    }
+}
+
+/// For each triangle, the position in `closed` of its component, or `u32::MAX`.
+fn triangle_owners(component_of: &[usize], closed: &[usize]) -> Vec<u32> {
+    let mut slot_of = vec![
+        u32::MAX;
+        component_of
+            .iter()
+            .filter(|&&c| c != usize::MAX)
+            .max()
+            .map_or(0, |&c| c + 1)
+    ];
+    for (slot, &c) in closed.iter().enumerate() {
+        slot_of[c] = slot as u32;
+    }
+    component_of
+        .iter()
+        .map(|&c| slot_of.get(c).copied().unwrap_or(u32::MAX))
+        .collect()
+}
+
+/// Signed solid angle (steradians) of triangle `[a, b, c]` seen from `p` (Van Oosterom and
+/// Strackee): positive when `p` lies behind the triangle (on the side its normal points
+/// away from), so a closed outward-oriented surface sums to 4π around a point inside it.
+pub(crate) fn solid_angle([a, b, c]: [DVec3; 3], p: DVec3) -> f64 {
+    let (a, b, c) = (a - p, b - p, c - p);
+    let (la, lb, lc) = (a.length(), b.length(), c.length());
+    let numerator = a.dot(b.cross(c));
+    let denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    2.0 * numerator.atan2(denominator)
+}

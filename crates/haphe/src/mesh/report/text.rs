@@ -1,0 +1,83 @@
+//! The human-readable form of a report (what `haphe validate` prints).
+
+use std::fmt;
+
+use super::{MeshReport, Usability};
+
+/// How many places of each defect the text lists before "… and N more".
+const LISTED: usize = 8;
+
+fn list<T: fmt::Debug>(f: &mut fmt::Formatter<'_>, what: &str, items: &[T]) -> fmt::Result {
+    if items.is_empty() {
+        return Ok(());
+    }
+    write!(f, "  {what} ({}):", items.len())?;
+    for item in items.iter().take(LISTED) {
+        write!(f, " {item:?}")?;
+    }
+    if items.len() > LISTED {
+        write!(f, " … and {} more", items.len() - LISTED)?;
+    }
+    writeln!(f)
+}
+
+impl fmt::Display for MeshReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let verdict = match self.usable_as {
+            Usability::Solid => "a valid closed solid",
+            Usability::Surface => "usable only as an open (two-sided) surface",
+            Usability::Unusable => "unusable",
+        };
+        writeln!(f, "  verdict: {verdict}")?;
+        writeln!(
+            f,
+            "  {} triangles, {} vertices, {} edges, {} component(s), {}",
+            self.triangles,
+            self.vertices,
+            self.edges,
+            self.components,
+            if self.closed { "closed" } else { "open" }
+        )?;
+        let [x0, y0, z0] = self.bounds_min;
+        let [x1, y1, z1] = self.bounds_max;
+        writeln!(
+            f,
+            "  bounds: [{x0:.6}, {y0:.6}, {z0:.6}] .. [{x1:.6}, {y1:.6}, {z1:.6}] m  (size {:.6} x {:.6} x {:.6} m)",
+            x1 - x0,
+            y1 - y0,
+            z1 - z0
+        )?;
+        write!(f, "  area: {:.6e} m²", self.area)?;
+        match self.volume {
+            Some(v) => write!(f, ", volume: {v:.6e} m³")?,
+            None => write!(f, ", volume: none (not a closed, oriented surface)")?,
+        }
+        match self.genus {
+            Some(g) => writeln!(f, ", genus: {g}")?,
+            None => writeln!(f)?,
+        }
+        let d = &self.defects;
+        list(f, "boundary edges", &d.boundary_edges)?;
+        let edges = |uses: &[super::EdgeUse]| {
+            uses.iter()
+                .map(|u| (u.edge, u.triangles.clone()))
+                .collect::<Vec<_>>()
+        };
+        list(
+            f,
+            "non-manifold edges [edge] [triangles]",
+            &edges(&d.nonmanifold_edges),
+        )?;
+        list(f, "non-manifold vertices", &d.nonmanifold_vertices)?;
+        list(
+            f,
+            "orientation conflicts [edge] [triangles]",
+            &edges(&d.orientation_conflicts),
+        )?;
+        list(f, "inside-out components", &d.inverted_components)?;
+        list(f, "degenerate triangles", &d.degenerate_triangles)?;
+        list(f, "sliver triangles", &d.sliver_triangles)?;
+        list(f, "duplicate faces [first, duplicate]", &d.duplicate_faces)?;
+        Ok(())
+    }
+}
