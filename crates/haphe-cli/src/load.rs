@@ -1,0 +1,76 @@
+//! Reading mesh files from disk: the only place the front end opens mesh paths.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use haphe::mesh::{Format, Mesh, ReadError, ReadOptions, Weld, WeldStats, read_unwelded, weld};
+
+/// A mesh read from a file, with what it took.
+pub struct Loaded {
+    /// The welded mesh.
+    pub mesh: Mesh,
+    /// The detected format.
+    pub format: Format,
+    /// What welding did.
+    pub weld: WeldStats,
+    /// Time to parse and weld.
+    pub elapsed: Duration,
+}
+
+/// Why a file could not be loaded.
+pub enum LoadFailure {
+    /// The file could not be opened or read.
+    Io(anyhow::Error),
+    /// The content is malformed.
+    Read(ReadError),
+}
+
+impl std::fmt::Display for LoadFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LoadFailure::Io(e) => write!(f, "{e:#}"),
+            LoadFailure::Read(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// Reads, parses and welds a mesh file.
+pub fn load(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
+    let bytes = std::fs::read(path)
+        .with_context(|| format!("cannot read {}", path.display()))
+        .map_err(LoadFailure::Io)?;
+    let name = path.display().to_string();
+    let start = Instant::now();
+    let format = match options.format {
+        Some(f) => f,
+        None => Format::detect(&name, &bytes).map_err(|kind| {
+            LoadFailure::Read(ReadError {
+                file: name.clone(),
+                kind,
+            })
+        })?,
+    };
+    let options = ReadOptions {
+        format: Some(format),
+        ..*options
+    };
+    let raw = read_unwelded(&name, &bytes, &options).map_err(LoadFailure::Read)?;
+    let (mesh, weld) = weld(&raw, options.weld);
+    Ok(Loaded {
+        mesh,
+        format,
+        weld,
+        elapsed: start.elapsed(),
+    })
+}
+
+/// The weld mode from the command line's `--weld-tolerance` (metres; 0 means exact).
+pub fn weld_mode(tolerance_m: Option<f64>) -> anyhow::Result<Weld> {
+    match tolerance_m {
+        None => Ok(Weld::Exact),
+        Some(t) if t == 0.0 => Ok(Weld::Exact),
+        Some(t) if t.is_finite() && t > 0.0 => Ok(Weld::Tolerance(t)),
+        Some(t) => anyhow::bail!("--weld-tolerance must be a non-negative distance in metres, not {t}"),
+    }
+}
