@@ -69,6 +69,53 @@ def counts(path):
     degenerate = int((rel <= 1e-9).sum())
     duplicates = len(f) - len(np.unique(np.sort(f, axis=1), axis=0))
     volume = float((A * np.cross(B, C)).sum() / 6.0)
+    # Non-manifold vertices: the triangles around a vertex, joined where they share one of
+    # its edges used by exactly two triangles, form more than one fan.
+    manifold_edge = uses[inv] == 2
+    incident = [[] for _ in range(len(verts))]
+    for t in fi:
+        for x in f[t]:
+            incident[x].append(t)
+    edge_faces = {}
+    for k in np.nonzero(manifold_edge)[0]:
+        edge_faces.setdefault(tuple(undirected[k]), []).append(int(owner[k]))
+    parent = {}
+
+    def root(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    nm_vertices = 0
+    for (a, b), (t1, t2) in edge_faces.items():
+        for x in (a, b):
+            for t in (t1, t2):
+                parent.setdefault((x, t), (x, t))
+            ra, rb = root((x, t1)), root((x, t2))
+            if ra != rb:
+                parent[ra] = rb
+    for x in range(len(verts)):
+        roots = set()
+        for t in incident[x]:
+            parent.setdefault((x, t), (x, t))
+            roots.add(root((x, t)))
+        if len(roots) > 1:
+            nm_vertices += 1
+    # Genus of each closed, conflict-free component without non-manifold vertices.
+    genus = None
+    labels_ok = labels[fi]
+    for comp in np.unique(labels_ok):
+        faces_c = fi[labels_ok == comp]
+        edge_ids = np.unique(inv[np.isin(owner, faces_c)])
+        if (uses[edge_ids] != 2).any():
+            continue
+        fwd = fwd_count[edge_ids]
+        if ((fwd == 0) | (fwd == 2)).any():
+            continue
+        vs = np.unique(f[faces_c])
+        chi = len(vs) - len(edge_ids) + len(faces_c)
+        genus = (genus or 0) + (2 - chi) // 2
     return {
         "file": path.name,
         "triangles": len(f),
@@ -79,6 +126,8 @@ def counts(path):
         "boundary_edges": boundary,
         "nonmanifold_edges": nonmanifold,
         "orientation_conflicts": conflicts,
+        "nonmanifold_vertices": nm_vertices,
+        "genus_sum_if_manifold_components": genus,
         "degenerate_triangles": degenerate,
         "duplicate_faces": int(duplicates),
         "area": float(twice_area.sum() / 2),

@@ -1,6 +1,7 @@
 //! The `haphe` command: a thin `main` over [`run`], which maps errors to exit codes.
 
 mod demo;
+mod generate;
 mod load;
 mod validate;
 
@@ -21,6 +22,8 @@ enum Command {
     /// Read mesh files and report every defect with where it is.
     #[command(after_help = validate::EXIT_CODES)]
     Validate(validate::Args),
+    /// Write a procedural test mesh (binary STL).
+    Generate(generate::Args),
     /// A short run on built-in procedural models (no files needed).
     Demo(demo::Args),
 }
@@ -29,6 +32,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Validate(args) => validate::run(&args),
+        Command::Generate(args) => generate::run(&args),
         Command::Demo(args) => demo::run(&args),
     };
     match result {

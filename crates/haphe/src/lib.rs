@@ -32,4 +32,5 @@
 
 pub mod mesh;
 
+pub use glam;
 pub use glam::DVec3;

@@ -24,7 +24,10 @@ mod topology;
 mod weld;
 
 pub use error::{Place, ReadError, ReadErrorKind};
-pub use frame::TriFrame;
+pub use frame::{
+    DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT, TriFrame, is_degenerate_triangle,
+    relative_height,
+};
 pub use ids::{NONE, TriId, VertId};
 pub use normals::DEFAULT_CREASE_ANGLE_RAD;
 pub use read::{Format, ReadOptions, Units, read_mesh, read_unwelded};
