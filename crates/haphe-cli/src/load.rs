@@ -71,6 +71,8 @@ pub fn weld_mode(tolerance_m: Option<f64>) -> anyhow::Result<Weld> {
         None => Ok(Weld::Exact),
         Some(t) if t == 0.0 => Ok(Weld::Exact),
         Some(t) if t.is_finite() && t > 0.0 => Ok(Weld::Tolerance(t)),
-        Some(t) => anyhow::bail!("--weld-tolerance must be a non-negative distance in metres, not {t}"),
+        Some(t) => {
+            anyhow::bail!("--weld-tolerance must be a non-negative distance in metres, not {t}")
+        }
     }
 }

@@ -5,7 +5,9 @@
 //! cargo run --release --example 01_validate -- part.stl mm   # a file, in millimetres
 //! ```
 
-use haphe::mesh::{MeshReport, ReadOptions, Surface, SurfaceOptions, TriId, Units, read_mesh, shapes};
+use haphe::mesh::{
+    MeshReport, ReadOptions, Surface, SurfaceOptions, TriId, Units, read_mesh, shapes,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -14,7 +16,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let units: Units = args.get(1).map_or(Ok(Units::Metres), |u| u.parse())?;
             let bytes = std::fs::read(path)?;
             // Errors name the file and the place (line, byte, face or vertex).
-            read_mesh(path, &bytes, &ReadOptions { units, ..Default::default() })?
+            read_mesh(
+                path,
+                &bytes,
+                &ReadOptions {
+                    units,
+                    ..Default::default()
+                },
+            )?
         }
         None => shapes::torus(0.08, 0.03, 48, 24),
     };

@@ -28,7 +28,11 @@ fn soup() -> impl Strategy<Value = Mesh> {
             for (k, (a, b, c)) in picks.into_iter().enumerate() {
                 let base = vertices.len() as u32;
                 for (j, i) in [a, b, c].into_iter().enumerate() {
-                    let nudge = if (k + j) % 3 == 0 { nudges[(3 * k + j) % 120] } else { 0.0 };
+                    let nudge = if (k + j) % 3 == 0 {
+                        nudges[(3 * k + j) % 120]
+                    } else {
+                        0.0
+                    };
                     vertices.push(pool[i % pool.len()] + DVec3::splat(nudge));
                 }
                 triangles.push([base, base + 1, base + 2]);
@@ -43,14 +47,8 @@ fn soup() -> impl Strategy<Value = Mesh> {
 /// A closed manifold mesh: one of the procedural shapes at a random resolution, rigidly
 /// moved, its vertices jittered radially (which keeps the topology).
 fn closed_manifold() -> impl Strategy<Value = Mesh> {
-    (
-        0usize..5,
-        1u32..4,
-        point(),
-        -0.3f64..0.3,
-        any::<u64>(),
-    )
-        .prop_map(|(kind, resolution, offset, angle, seed)| {
+    (0usize..5, 1u32..4, point(), -0.3f64..0.3, any::<u64>()).prop_map(
+        |(kind, resolution, offset, angle, seed)| {
             let mut mesh = match kind {
                 0 => shapes::sphere(0.1, resolution),
                 1 => shapes::torus(0.08, 0.03, 6 * resolution + 3, 4 * resolution + 3),
@@ -58,7 +56,8 @@ fn closed_manifold() -> impl Strategy<Value = Mesh> {
                 3 => shapes::concave_corner(0.2, resolution),
                 _ => shapes::blob(0.1, resolution, 0.02, seed),
             };
-            let rotation = glam::DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), angle);
+            let rotation =
+                glam::DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), angle);
             let mut state = seed | 1;
             for p in &mut mesh.vertices {
                 state ^= state << 13;
@@ -68,7 +67,8 @@ fn closed_manifold() -> impl Strategy<Value = Mesh> {
                 *p = rotation * (*p * jitter) + offset;
             }
             mesh
-        })
+        },
+    )
 }
 
 proptest! {
