@@ -14,6 +14,8 @@ pub enum Place {
     Face(usize),
     /// A vertex as numbered in the file, counted from 0.
     Vertex(usize),
+    /// A triangle strip (an entry of a PLY `tristrips` element), counted from 0.
+    Strip(usize),
     /// The file header (STL's 84 bytes, PLY's header, OFF's first line).
     Header,
 }
@@ -25,6 +27,7 @@ impl fmt::Display for Place {
             Place::Byte(n) => write!(f, "byte {n}"),
             Place::Face(n) => write!(f, "face {n}"),
             Place::Vertex(n) => write!(f, "vertex {n}"),
+            Place::Strip(n) => write!(f, "triangle strip {n}"),
             Place::Header => f.write_str("header"),
         }
     }

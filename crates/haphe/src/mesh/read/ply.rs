@@ -1,10 +1,390 @@
-//! PLY reader (to be written).
+//! PLY reader (ASCII, binary little and big endian), through `ply-rs-bw`.
+//!
+//! - `vertex` elements give the positions: `x`, `y`, `z` of any numeric type; other
+//!   properties (normals, colours, confidence) are ignored.
+//! - `face` elements give polygons through a `vertex_indices` (or `vertex_index`) list of any
+//!   integer types; polygons are triangulated ([`super::polygon`]).
+//! - `tristrips` elements give triangle strips through a `vertex_indices` list where `-1`
+//!   restarts the strip; every second triangle of a strip is flipped back to the strip's
+//!   winding, and degenerate strip triangles (a repeated index, used to stitch strips) are
+//!   skipped.
+//! - Other elements are read and dropped.
+//!
+//! `ply-rs-bw` parses the header and one entry at a time, so each error names its place: the
+//! line of an ASCII entry, the byte offset of a binary one, the face or vertex for index and
+//! coordinate errors. Before handing the header to it, a short scan of our own checks what
+//! it would accept silently or turn into huge work: duplicate element or property names (it
+//! keeps only one, which shifts every binary record after it), elements without properties
+//! but with a count (nothing to read, so nothing stops the loop), and binary counts that
+//! need more bytes than the file has.
 
-use crate::mesh::{Mesh, ReadErrorKind};
+use glam::DVec3;
+use ply_rs_bw::parser::{ParseError, Parser, Reader};
+use ply_rs_bw::ply::{ElementDef, Encoding, PropertyAccess, PropertyType, ScalarType};
+
+use super::polygon::Triangulator;
+use super::skip_ascii_whitespace;
+use crate::mesh::{Mesh, Place, ReadErrorKind};
+
+mod entries;
+mod header;
+
+use entries::{IndexList, Skip, VertexEntry};
+
+/// Longest message kept from a `ply-rs-bw` error (it quotes whole lines).
+const MAX_MESSAGE_CHARS: usize = 240;
 
 /// Reads PLY bytes into a mesh in file units.
-pub(super) fn read_ply(_bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
-    Err(ReadErrorKind::UnknownFormat {
-        reason: "PLY reader not written yet".into(),
-    })
+///
+/// # Errors
+/// A malformed header (its line), a malformed or missing entry (its line in ASCII, its byte
+/// offset in binary), an index out of range or a face with fewer than three corners (the
+/// face or strip), a non-finite position (the vertex), [`ReadErrorKind::Empty`] for no
+/// content.
+pub(super) fn read_ply(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
+    if skip_ascii_whitespace(bytes).is_empty() {
+        return Err(ReadErrorKind::Empty);
+    }
+    let scan = header::scan(bytes)?;
+    let mut reader = Reader::new(bytes);
+    let header = Parser::<Skip>::new()
+        .read_header(&mut reader)
+        .map_err(|e| map_parse_error(&e, Place::Header))?;
+    let payload = reader.into_inner();
+    let header_bytes = bytes.len() - payload.len();
+    let mut source = match header.encoding {
+        Encoding::Ascii => Source::Ascii {
+            text: payload,
+            pos: 0,
+            line: bytes[..header_bytes]
+                .iter()
+                .filter(|&&b| b == b'\n')
+                .count(),
+        },
+        encoding => Source::Binary {
+            rest: payload,
+            total: bytes.len(),
+            big_endian: encoding == Encoding::BinaryBigEndian,
+        },
+    };
+    let vertex_count = header.elements.get("vertex").map_or(0, |e| e.count);
+    let mut reading = Reading {
+        vertex_count,
+        vertices: Vec::new(),
+        corners: Vec::new(),
+        ends: Vec::new(),
+        strip_triangles: Vec::new(),
+    };
+    for (name, def) in &header.elements {
+        let declared = scan.element_place(name);
+        header::check_element(def, declared, &source)?;
+        match name.as_str() {
+            "vertex" => reading.vertices(def, declared, &mut source)?,
+            "face" => reading.faces(def, declared, &mut source)?,
+            "tristrips" => reading.strips(def, declared, &mut source)?,
+            _ => {
+                let parser = Parser::<Skip>::new();
+                for i in 0..def.count {
+                    source.entry(&parser, def, i)?;
+                }
+            }
+        }
+    }
+    Ok(reading.finish())
 }
+
+/// The mesh being read.
+struct Reading {
+    /// The vertex count the header announces (faces may come before the vertices).
+    vertex_count: usize,
+    vertices: Vec<DVec3>,
+    /// Face corners, checked against `vertex_count`, face after face.
+    corners: Vec<u32>,
+    /// End of each face in `corners`.
+    ends: Vec<usize>,
+    /// Triangles decoded from strips.
+    strip_triangles: Vec<[u32; 3]>,
+}
+
+impl Reading {
+    fn vertices(
+        &mut self,
+        def: &ElementDef,
+        declared: Place,
+        source: &mut Source<'_>,
+    ) -> Result<(), ReadErrorKind> {
+        for axis in ["x", "y", "z"] {
+            match def.properties.get(axis).map(|p| &p.data_type) {
+                Some(PropertyType::Scalar(_)) => {}
+                _ => {
+                    return Err(ReadErrorKind::Syntax {
+                        at: declared,
+                        message: format!("element 'vertex' has no number property '{axis}'"),
+                    });
+                }
+            }
+        }
+        if def.count > u32::MAX as usize {
+            return Err(ReadErrorKind::TooLarge {
+                at: declared,
+                message: format!("{} vertices do not fit 32-bit indices", def.count),
+            });
+        }
+        self.vertices.reserve(source.capacity_for(def.count));
+        let parser = Parser::<VertexEntry>::new();
+        for i in 0..def.count {
+            let p = DVec3::from_array(source.entry(&parser, def, i)?.xyz);
+            if !p.is_finite() {
+                return Err(ReadErrorKind::NonFinite {
+                    at: Place::Vertex(i),
+                });
+            }
+            self.vertices.push(p);
+        }
+        Ok(())
+    }
+
+    fn faces(
+        &mut self,
+        def: &ElementDef,
+        declared: Place,
+        source: &mut Source<'_>,
+    ) -> Result<(), ReadErrorKind> {
+        header::check_index_list(def, declared, &["vertex_indices", "vertex_index"])?;
+        self.ends.reserve(source.capacity_for(def.count));
+        let parser = Parser::<IndexList>::new();
+        for face in 0..def.count {
+            let list = source.entry(&parser, def, face)?.indices;
+            if list.len() < 3 {
+                return Err(ReadErrorKind::TooFewCorners {
+                    at: Place::Face(face),
+                    corners: list.len(),
+                });
+            }
+            for &index in &list {
+                let corner = self.check_index(index, Place::Face(face))?;
+                self.corners.push(corner);
+            }
+            self.ends.push(self.corners.len());
+        }
+        Ok(())
+    }
+
+    fn strips(
+        &mut self,
+        def: &ElementDef,
+        declared: Place,
+        source: &mut Source<'_>,
+    ) -> Result<(), ReadErrorKind> {
+        header::check_index_list(def, declared, &["vertex_indices"])?;
+        let parser = Parser::<IndexList>::new();
+        for strip in 0..def.count {
+            let list = source.entry(&parser, def, strip)?.indices;
+            for run in list.split(|&i| i == -1) {
+                let run = run
+                    .iter()
+                    .map(|&i| self.check_index(i, Place::Strip(strip)))
+                    .collect::<Result<Vec<u32>, _>>()?;
+                decode_strip(&run, &mut self.strip_triangles);
+            }
+        }
+        Ok(())
+    }
+
+    /// A corner index checked against the announced vertex count.
+    fn check_index(&self, index: i64, at: Place) -> Result<u32, ReadErrorKind> {
+        match u32::try_from(index) {
+            Ok(i) if (i as usize) < self.vertex_count => Ok(i),
+            _ => Err(ReadErrorKind::IndexOutOfRange {
+                at,
+                index,
+                count: self.vertex_count,
+            }),
+        }
+    }
+
+    /// Triangulates the faces (now that every vertex is known) and appends the strips.
+    fn finish(self) -> Mesh {
+        let mut triangles = Vec::with_capacity(
+            self.corners.len().saturating_sub(2 * self.ends.len()) + self.strip_triangles.len(),
+        );
+        let mut triangulator = Triangulator::default();
+        let mut start = 0;
+        for &end in &self.ends {
+            triangulator.triangulate(&self.corners[start..end], &self.vertices, &mut triangles);
+            start = end;
+        }
+        triangles.extend(self.strip_triangles);
+        Mesh {
+            vertices: self.vertices,
+            triangles,
+        }
+    }
+}
+
+/// Triangles of one strip run `v0 v1 v2 v3 ...`: `(v0 v1 v2)`, `(v2 v1 v3)`, ... — every
+/// second one swapped so all share the first one's winding; those with a repeated index
+/// are skipped (they keep the parity, as in the file).
+fn decode_strip(run: &[u32], out: &mut Vec<[u32; 3]>) {
+    for (k, w) in run.windows(3).enumerate() {
+        let (a, b, c) = (w[0], w[1], w[2]);
+        if a == b || b == c || a == c {
+            continue;
+        }
+        out.push(if k % 2 == 0 { [a, b, c] } else { [b, a, c] });
+    }
+}
+
+/// Where the entries come from: ASCII lines or binary records.
+enum Source<'a> {
+    Ascii {
+        /// The payload after the header.
+        text: &'a [u8],
+        /// Read position in `text`.
+        pos: usize,
+        /// Number of the last line read.
+        line: usize,
+    },
+    Binary {
+        /// The bytes not read yet.
+        rest: &'a [u8],
+        /// The file's size, to turn `rest` into an offset.
+        total: usize,
+        big_endian: bool,
+    },
+}
+
+impl Source<'_> {
+    /// How many entries may be reserved for a `count` from the header: never more than the
+    /// bytes left could hold (a hostile count must not allocate gigabytes).
+    fn capacity_for(&self, count: usize) -> usize {
+        let left = match self {
+            Source::Ascii { text, pos, .. } => text.len().saturating_sub(*pos) / 2,
+            Source::Binary { rest, .. } => rest.len(),
+        };
+        count.min(left)
+    }
+
+    /// The bytes left in a binary payload (`None` for ASCII).
+    fn binary_bytes_left(&self) -> Option<usize> {
+        match self {
+            Source::Ascii { .. } => None,
+            Source::Binary { rest, .. } => Some(rest.len()),
+        }
+    }
+
+    /// The place where the next entry starts.
+    fn place(&self) -> Place {
+        match self {
+            Source::Ascii { line, .. } => Place::Line(line + 1),
+            Source::Binary { rest, total, .. } => Place::Byte((total - rest.len()) as u64),
+        }
+    }
+
+    /// Reads entry `index` of element `def`.
+    fn entry<E: PropertyAccess>(
+        &mut self,
+        parser: &Parser<E>,
+        def: &ElementDef,
+        index: usize,
+    ) -> Result<E, ReadErrorKind> {
+        let ends_early = |at: Place| ReadErrorKind::Truncated {
+            at,
+            message: format!(
+                "element '{}' announces {} entries, the file ends in entry {index}",
+                def.name, def.count
+            ),
+        };
+        match self {
+            Source::Ascii { text, pos, line } => {
+                // The next line with content (blank lines are skipped).
+                let content = loop {
+                    if *pos >= text.len() {
+                        return Err(ends_early(Place::Line(*line + 1)));
+                    }
+                    let rest = &text[*pos..];
+                    let len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+                    *pos += len + 1;
+                    *line += 1;
+                    if !rest[..len].trim_ascii().is_empty() {
+                        break &rest[..len];
+                    }
+                };
+                let at = Place::Line(*line);
+                let content = std::str::from_utf8(content).map_err(|_| ReadErrorKind::Syntax {
+                    at,
+                    message: "an ASCII entry is not text".to_owned(),
+                })?;
+                parser
+                    .read_ascii_element(content, def)
+                    .map_err(|e| map_parse_error(&e, at))
+            }
+            Source::Binary {
+                rest,
+                total,
+                big_endian,
+            } => {
+                let at = Place::Byte((*total - rest.len()) as u64);
+                let result = if *big_endian {
+                    parser.read_big_endian_element(rest, def)
+                } else {
+                    parser.read_little_endian_element(rest, def)
+                };
+                result.map_err(|e| match e.kind() {
+                    std::io::ErrorKind::UnexpectedEof => ends_early(at),
+                    _ => map_parse_error(&e, at),
+                })
+            }
+        }
+    }
+}
+
+/// Turns a `ply-rs-bw` error into ours: its line when it has one, else `fallback`; its
+/// multi-line message folded onto one line and shortened.
+fn map_parse_error(error: &ParseError, fallback: Place) -> ReadErrorKind {
+    let at = error.line().map_or(fallback, Place::Line);
+    let text = error.to_string();
+    // Its Display starts with "Line N: " when it has a line; we print the place ourselves.
+    let text = match (error.line(), text.split_once(": ")) {
+        (Some(_), Some((prefix, rest))) if prefix.starts_with("Line ") => rest,
+        _ => text.as_str(),
+    };
+    let mut message: String = text
+        .split(['\n', '\t'])
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
+    if let Some((cut, _)) = message.char_indices().nth(MAX_MESSAGE_CHARS) {
+        message.truncate(cut);
+        message.push('…');
+    }
+    if error.kind() == std::io::ErrorKind::UnexpectedEof {
+        ReadErrorKind::Truncated { at, message }
+    } else {
+        ReadErrorKind::Syntax { at, message }
+    }
+}
+
+/// Size in bytes of a binary scalar.
+fn scalar_bytes(scalar: &ScalarType) -> usize {
+    match scalar {
+        ScalarType::Char | ScalarType::UChar => 1,
+        ScalarType::Short | ScalarType::UShort => 2,
+        ScalarType::Int | ScalarType::UInt | ScalarType::Float => 4,
+        ScalarType::Double => 8,
+    }
+}
+
+/// Smallest binary size of one entry: scalars, and list lengths with empty lists.
+fn min_entry_bytes(def: &ElementDef) -> usize {
+    def.properties
+        .values()
+        .map(|p| match &p.data_type {
+            PropertyType::Scalar(s) | PropertyType::List(s, _) => scalar_bytes(s),
+        })
+        .sum()
+}
+
+#[cfg(test)]
+mod tests;

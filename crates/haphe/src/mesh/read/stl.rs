@@ -1,15 +1,553 @@
-//! STL reader (to be written).
+//! STL reader, ASCII and binary, told apart by content.
+//!
+//! A binary STL is an 80-byte header, a little-endian `u32` triangle count and 50 bytes per
+//! triangle (normal, three corners as `f32`, a 2-byte attribute). Many exporters start the
+//! header with `solid`, like an ASCII file, so the size decides: a file of at least 84 bytes
+//! whose size is exactly `84 + 50 × count` is binary; otherwise a file starting with `solid`
+//! is ASCII; anything else is a binary file of the wrong size, reported with the expected
+//! and actual size.
+//!
+//! Binary files are parsed here (a straight pass over 50-byte records; `stl_io`'s binary
+//! reader does not check the size, and its detection takes every file starting with
+//! `solid ` for ASCII). ASCII files go through `stl_io`'s reader; its errors carry no place,
+//! so the facets are counted and the error names the facet and the line it starts on.
+//! Several solids in one ASCII file are all read.
+//!
+//! STL has no shared vertices: each triangle gets three new vertices, in file units, and
+//! `read_mesh` welds them. The facet normals are ignored (haphe computes its own from the
+//! winding).
 
-use crate::mesh::{Mesh, ReadErrorKind};
+use std::io::{Cursor, ErrorKind};
 
-/// Reads STL bytes into a mesh in file units.
-pub(super) fn read_stl(_bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
-    Err(ReadErrorKind::UnknownFormat {
-        reason: "STL reader not written yet".into(),
-    })
+use glam::DVec3;
+
+use super::{skip_ascii_whitespace, starts_with_word};
+use crate::mesh::{Mesh, Place, ReadErrorKind};
+
+/// Size of the binary header: 80 bytes of text plus the `u32` triangle count.
+const HEADER_BYTES: usize = 84;
+/// Size of one binary triangle record.
+const RECORD_BYTES: usize = 50;
+/// Non-blank lines per ASCII facet: `facet normal`, `outer loop`, 3 × `vertex`, `endloop`,
+/// `endfacet` (the layout `stl_io` requires).
+const LINES_PER_FACET: usize = 7;
+/// Most triangles whose corners fit 32-bit vertex indices.
+const MAX_TRIANGLES: usize = u32::MAX as usize / 3;
+
+/// Reads STL bytes into a mesh in file units (three vertices per triangle).
+///
+/// # Errors
+/// A binary file of the wrong size ([`ReadErrorKind::Truncated`] or
+/// [`ReadErrorKind::Syntax`] with the byte offset, expected and actual size), a non-finite
+/// coordinate (its byte offset, or the facet's line in ASCII), an ASCII syntax error (the
+/// facet and its line), [`ReadErrorKind::Empty`] for no content.
+pub(super) fn read_stl(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
+    let text = skip_ascii_whitespace(bytes);
+    if text.is_empty() {
+        return Err(ReadErrorKind::Empty);
+    }
+    if looks_binary(bytes) {
+        return read_binary(bytes);
+    }
+    if starts_with_word(text, b"solid") {
+        let skipped = bytes.len() - text.len();
+        let line_offset = bytes[..skipped].iter().filter(|&&b| b == b'\n').count();
+        return read_ascii(text, line_offset).map_err(|e| with_binary_hint(e, bytes));
+    }
+    Err(binary_size_error(bytes))
 }
 
 /// True when the size matches a binary STL's triangle count.
-pub(super) fn looks_binary(_bytes: &[u8]) -> bool {
-    false
+pub(super) fn looks_binary(bytes: &[u8]) -> bool {
+    announced_count(bytes).is_some_and(|count| expected_size(count) == bytes.len() as u64)
+}
+
+/// The triangle count in a binary header, when there is a header.
+fn announced_count(bytes: &[u8]) -> Option<u32> {
+    let count: [u8; 4] = bytes.get(80..HEADER_BYTES)?.try_into().ok()?;
+    Some(u32::from_le_bytes(count))
+}
+
+/// The size of a binary STL with `count` triangles.
+fn expected_size(count: u32) -> u64 {
+    HEADER_BYTES as u64 + RECORD_BYTES as u64 * u64::from(count)
+}
+
+/// The error for a file that is neither ASCII nor a binary STL of the right size.
+fn binary_size_error(bytes: &[u8]) -> ReadErrorKind {
+    let len = bytes.len() as u64;
+    let Some(count) = announced_count(bytes) else {
+        return ReadErrorKind::Truncated {
+            at: Place::Byte(len),
+            message: format!(
+                "not an ASCII STL (no 'solid'), and a binary STL needs an {HEADER_BYTES}-byte \
+                 header; the file has {len} bytes"
+            ),
+        };
+    };
+    let expected = expected_size(count);
+    if len < expected {
+        ReadErrorKind::Truncated {
+            at: Place::Byte(len),
+            message: format!(
+                "the binary header announces {count} triangles ({expected} bytes), the file \
+                 has {len} bytes"
+            ),
+        }
+    } else {
+        ReadErrorKind::Syntax {
+            at: Place::Byte(expected),
+            message: format!(
+                "the binary header announces {count} triangles ({expected} bytes), the file \
+                 has {len} bytes: {} bytes after the last triangle",
+                len - expected
+            ),
+        }
+    }
+}
+
+/// Adds to an ASCII error the size check of a binary reading, for binary files whose header
+/// starts with `solid` but whose size is wrong.
+fn with_binary_hint(error: ReadErrorKind, bytes: &[u8]) -> ReadErrorKind {
+    let Some(count) = announced_count(bytes) else {
+        return error;
+    };
+    let hint = format!(
+        " (if this is a binary STL: its header announces {count} triangles = {} bytes, the \
+         file has {} bytes)",
+        expected_size(count),
+        bytes.len()
+    );
+    match error {
+        ReadErrorKind::Syntax { at, message } => ReadErrorKind::Syntax {
+            at,
+            message: message + &hint,
+        },
+        ReadErrorKind::Truncated { at, message } => ReadErrorKind::Truncated {
+            at,
+            message: message + &hint,
+        },
+        other => other,
+    }
+}
+
+/// Reads a binary STL whose size has been checked.
+fn read_binary(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
+    let records = &bytes[HEADER_BYTES..];
+    let count = records.len() / RECORD_BYTES;
+    if count > MAX_TRIANGLES {
+        return Err(ReadErrorKind::TooLarge {
+            at: Place::Byte(80),
+            message: format!("{count} triangles need more than 32-bit vertex indices"),
+        });
+    }
+    let mut vertices = Vec::with_capacity(3 * count);
+    for (t, record) in records.chunks_exact(RECORD_BYTES).enumerate() {
+        // Bytes 0..12 are the normal, 12..48 the three corners, 48..50 the attribute.
+        let Ok(record) = <&[u8; RECORD_BYTES]>::try_from(record) else {
+            continue; // never: chunks_exact gives whole records
+        };
+        let xyz: [f32; 9] = std::array::from_fn(|k| {
+            let at = 12 + 4 * k;
+            f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]])
+        });
+        if !xyz.iter().all(|v| v.is_finite()) {
+            let corner = xyz
+                .chunks_exact(3)
+                .position(|c| !c.iter().all(|v| v.is_finite()));
+            return Err(ReadErrorKind::NonFinite {
+                at: Place::Byte(
+                    (HEADER_BYTES + t * RECORD_BYTES + 12 + 12 * corner.unwrap_or(0)) as u64,
+                ),
+            });
+        }
+        let corner = |c: usize| {
+            DVec3::new(
+                f64::from(xyz[3 * c]),
+                f64::from(xyz[3 * c + 1]),
+                f64::from(xyz[3 * c + 2]),
+            )
+        };
+        vertices.extend_from_slice(&[corner(0), corner(1), corner(2)]);
+    }
+    Ok(soup(vertices))
+}
+
+/// Triangles over consecutive vertex triples.
+fn soup(vertices: Vec<DVec3>) -> Mesh {
+    let triangles = (0..vertices.len() as u32 / 3)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    Mesh {
+        vertices,
+        triangles,
+    }
+}
+
+/// Reads an ASCII STL (`text` starts with `solid`; `line_offset` lines precede it), one
+/// solid after the other.
+fn read_ascii(text: &[u8], line_offset: usize) -> Result<Mesh, ReadErrorKind> {
+    let mut vertices = Vec::new();
+    let mut solid_start = 0;
+    let mut facets_before = 0;
+    loop {
+        let solid = &text[solid_start..];
+        // stl_io wants "solid " with a space; give it that when the name is missing.
+        let patched;
+        let input: &[u8] = if solid.get(5) == Some(&b' ') {
+            solid
+        } else {
+            patched = [b"solid ", &solid[5..]].concat();
+            &patched
+        };
+        let first_line = line_offset + 1 + count_newlines(&text[..solid_start]);
+        // stl_io's detection reads the first line as UTF-8 and, if that fails, silently
+        // reads the bytes as a binary STL; never let it.
+        let solid_line = input.split(|&b| b == b'\n').next().unwrap_or(input);
+        if std::str::from_utf8(solid_line).is_err() {
+            return Err(ReadErrorKind::Syntax {
+                at: Place::Line(first_line),
+                message: "the 'solid' line of an ASCII STL is not text".to_owned(),
+            });
+        }
+        let facets =
+            read_ascii_solid(input, &mut vertices).map_err(|(facet, error)| match facet {
+                Some(facet) => ascii_error(solid, first_line, facets_before, facet, &error),
+                None => ReadErrorKind::Syntax {
+                    at: Place::Line(first_line),
+                    message: error.to_string(),
+                },
+            })?;
+        facets_before += facets;
+        if 3 * facets_before > u32::MAX as usize {
+            return Err(ReadErrorKind::TooLarge {
+                at: Place::Line(first_line),
+                message: format!("{facets_before} facets need more than 32-bit vertex indices"),
+            });
+        }
+        // stl_io stops at `endsolid`; look for another solid after that line.
+        let end = nonblank_line_end(solid, 1 + LINES_PER_FACET * facets + 1).unwrap_or(solid.len());
+        let next = &solid[end..];
+        let rest = skip_ascii_whitespace(next);
+        if !starts_with_word(rest, b"solid") {
+            break;
+        }
+        solid_start += end + (next.len() - rest.len());
+    }
+    Ok(soup(vertices))
+}
+
+/// Reads one solid through `stl_io`, appending its corners. Returns the facet count, or
+/// the index of the facet that failed (within this solid; `None` for the `solid` line) and
+/// the error.
+fn read_ascii_solid(
+    input: &[u8],
+    vertices: &mut Vec<DVec3>,
+) -> Result<usize, (Option<usize>, std::io::Error)> {
+    let mut cursor = Cursor::new(input);
+    let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| (None, e))?;
+    let mut facets = 0;
+    for triangle in reader {
+        let triangle = triangle.map_err(|e| (Some(facets), e))?;
+        vertices.extend(
+            triangle
+                .vertices
+                .iter()
+                .map(|v| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]))),
+        );
+        facets += 1;
+    }
+    Ok(facets)
+}
+
+/// Maps an `stl_io` error at `facet` (within the solid starting at `solid`, on line
+/// `first_line`) to an error naming the facet and the line it starts on.
+fn ascii_error(
+    solid: &[u8],
+    first_line: usize,
+    facets_before: usize,
+    facet: usize,
+    error: &std::io::Error,
+) -> ReadErrorKind {
+    // Facet k starts on the (2 + 7k)-th non-blank line of the solid; past the end, the
+    // file ended early.
+    let start = nonblank_line_number(solid, 2 + LINES_PER_FACET * facet);
+    let line = first_line - 1 + start.unwrap_or_else(|| count_lines(solid) + 1);
+    let facet = facets_before + facet;
+    let message = error.to_string();
+    if start.is_none() || error.kind() == ErrorKind::UnexpectedEof {
+        ReadErrorKind::Truncated {
+            at: Place::Line(line),
+            message: format!("facet {facet}: {message}"),
+        }
+    } else if message.starts_with("expected finite") {
+        ReadErrorKind::NonFinite {
+            at: Place::Line(line),
+        }
+    } else {
+        ReadErrorKind::Syntax {
+            at: Place::Line(line),
+            message: format!("facet {facet} (starting here): {message}"),
+        }
+    }
+}
+
+/// True for a line `stl_io` skips (only white space).
+fn is_blank(line: &[u8]) -> bool {
+    match std::str::from_utf8(line) {
+        Ok(s) => s.trim().is_empty(),
+        Err(_) => false,
+    }
+}
+
+/// Lines of `text` with their 1-based numbers and the offset just past each (after `\n`).
+fn lines_with_ends(text: &[u8]) -> impl Iterator<Item = (usize, &[u8], usize)> {
+    let mut pos = 0;
+    let mut number = 0;
+    std::iter::from_fn(move || {
+        if pos >= text.len() {
+            return None;
+        }
+        let rest = &text[pos..];
+        let len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+        pos += (len + 1).min(rest.len());
+        number += 1;
+        Some((number, &rest[..len], pos))
+    })
+}
+
+/// The 1-based line number of the `k`-th (1-based) non-blank line.
+fn nonblank_line_number(text: &[u8], k: usize) -> Option<usize> {
+    lines_with_ends(text)
+        .filter(|(_, line, _)| !is_blank(line))
+        .nth(k.checked_sub(1)?)
+        .map(|(number, _, _)| number)
+}
+
+/// The offset just past the `k`-th (1-based) non-blank line.
+fn nonblank_line_end(text: &[u8], k: usize) -> Option<usize> {
+    lines_with_ends(text)
+        .filter(|(_, line, _)| !is_blank(line))
+        .nth(k.checked_sub(1)?)
+        .map(|(_, _, end)| end)
+}
+
+fn count_newlines(text: &[u8]) -> usize {
+    text.iter().filter(|&&b| b == b'\n').count()
+}
+
+fn count_lines(text: &[u8]) -> usize {
+    lines_with_ends(text).count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A binary STL with `header` (padded to 80 bytes) and the given triangles.
+    fn binary(header: &[u8], triangles: &[[[f32; 3]; 3]]) -> Vec<u8> {
+        let mut bytes = header.to_vec();
+        bytes.resize(80, b' ');
+        bytes.extend((triangles.len() as u32).to_le_bytes());
+        for t in triangles {
+            bytes.extend([0u8; 12]);
+            for v in t {
+                for x in v {
+                    bytes.extend(x.to_le_bytes());
+                }
+            }
+            bytes.extend([0u8; 2]);
+        }
+        bytes
+    }
+
+    const TRI: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    const TRI2: [[f32; 3]; 3] = [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+
+    const ASCII: &str = "solid square\n\
+        facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n\
+        facet normal 0 0 1\n outer loop\n  vertex 1 0 0\n  vertex 1 1 0\n  vertex 0 1 0\n endloop\nendfacet\n\
+        endsolid square\n";
+
+    #[test]
+    fn binary_with_a_solid_header_is_binary() {
+        let bytes = binary(b"solid trap", &[TRI, TRI2]);
+        assert!(looks_binary(&bytes));
+        let mesh = read_stl(&bytes).unwrap();
+        assert_eq!(mesh.vertices.len(), 6);
+        assert_eq!(mesh.triangles, vec![[0, 1, 2], [3, 4, 5]]);
+        assert_eq!(mesh.vertices[4], DVec3::new(1.0, 1.0, 0.0));
+    }
+
+    #[test]
+    fn empty_binary_has_no_triangles() {
+        let mesh = read_stl(&binary(b"", &[])).unwrap();
+        assert!(mesh.triangles.is_empty() && mesh.vertices.is_empty());
+    }
+
+    #[test]
+    fn truncated_binary_names_the_sizes() {
+        let bytes = binary(b"bin", &[TRI, TRI2]);
+        let cut = &bytes[..bytes.len() - 7];
+        assert_eq!(
+            read_stl(cut),
+            Err(ReadErrorKind::Truncated {
+                at: Place::Byte(177),
+                message: "the binary header announces 2 triangles (184 bytes), the file has \
+                          177 bytes"
+                    .into()
+            })
+        );
+        let mut long = bytes.clone();
+        long.extend([0u8; 3]);
+        assert!(matches!(
+            read_stl(&long),
+            Err(ReadErrorKind::Syntax {
+                at: Place::Byte(184),
+                ..
+            })
+        ));
+        assert!(matches!(
+            read_stl(&bytes[..50]),
+            Err(ReadErrorKind::Truncated {
+                at: Place::Byte(50),
+                ..
+            })
+        ));
+        assert_eq!(read_stl(b""), Err(ReadErrorKind::Empty));
+    }
+
+    #[test]
+    fn truncated_binary_with_solid_header_hints_at_the_size() {
+        let bytes = binary(b"solid x", &[TRI, TRI2]);
+        let err = read_stl(&bytes[..150]).unwrap_err();
+        assert!(
+            err.to_string()
+                .contains("announces 2 triangles = 184 bytes"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn binary_non_finite_names_the_byte() {
+        let mut t = TRI2;
+        t[1][2] = f32::INFINITY;
+        let err = read_stl(&binary(b"", &[TRI, t])).unwrap_err();
+        // Second record at 134; its second corner at 134 + 24.
+        assert_eq!(
+            err,
+            ReadErrorKind::NonFinite {
+                at: Place::Byte(158)
+            }
+        );
+    }
+
+    #[test]
+    fn ascii_square() {
+        let mesh = read_stl(ASCII.as_bytes()).unwrap();
+        assert_eq!(mesh.triangles.len(), 2);
+        assert_eq!(mesh.vertices[4], DVec3::new(1.0, 1.0, 0.0));
+        let crlf = ASCII.replace('\n', "\r\n");
+        assert_eq!(read_stl(crlf.as_bytes()).unwrap(), mesh);
+        let indented = format!("\n  {}", ASCII.replace("solid square\n", "solid\n\n"));
+        assert_eq!(read_stl(indented.as_bytes()).unwrap(), mesh);
+    }
+
+    #[test]
+    fn ascii_empty_solid() {
+        let mesh = read_stl(b"solid Empty\nendsolid Empty").unwrap();
+        assert!(mesh.triangles.is_empty());
+    }
+
+    #[test]
+    fn ascii_several_solids() {
+        let twice = format!("{ASCII}\n{}", ASCII.replace("square", "again"));
+        assert_eq!(read_stl(twice.as_bytes()).unwrap().triangles.len(), 4);
+    }
+
+    #[test]
+    fn ascii_errors_name_facet_and_line() {
+        let bad = ASCII.replacen("vertex 1 1 0", "vertex 1 x 0", 1);
+        let err = read_stl(bad.as_bytes()).unwrap_err();
+        assert!(
+            matches!(&err, ReadErrorKind::Syntax { at: Place::Line(9), message } if message.starts_with("facet 1 ")),
+            "{err:?}"
+        );
+        let bad = ASCII.replacen("outer loop", "outer lop", 1);
+        assert!(matches!(
+            read_stl(bad.as_bytes()),
+            Err(ReadErrorKind::Syntax {
+                at: Place::Line(2),
+                ..
+            })
+        ));
+        let non_finite = ASCII.replacen("vertex 1 1 0", "vertex 1 1e39 0", 1);
+        assert_eq!(
+            read_stl(non_finite.as_bytes()),
+            Err(ReadErrorKind::NonFinite { at: Place::Line(9) })
+        );
+        // In the second solid, lines count from the start of the file.
+        let twice = format!("{ASCII}{}", bad);
+        assert!(matches!(
+            read_stl(twice.as_bytes()),
+            Err(ReadErrorKind::Syntax {
+                at: Place::Line(18),
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn ascii_truncated() {
+        let cut = &ASCII[..ASCII.find("endfacet\nendsolid").unwrap()];
+        let err = read_stl(cut.as_bytes()).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                ReadErrorKind::Truncated {
+                    at: Place::Line(9),
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+        let no_end = &ASCII[..ASCII.find("endsolid").unwrap()];
+        let err = read_stl(no_end.as_bytes()).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                ReadErrorKind::Truncated {
+                    at: Place::Line(16),
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+    }
+
+    #[test]
+    fn ascii_with_a_binary_solid_line_is_not_read_as_binary() {
+        // Too short for its count, starts with "solid", not UTF-8: an error, not garbage.
+        let mut bytes = binary(b"solid \xff\xfe", &[TRI, TRI2]);
+        bytes.truncate(150);
+        let err = read_stl(&bytes).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                ReadErrorKind::Syntax {
+                    at: Place::Line(1),
+                    ..
+                }
+            ),
+            "{err:?}"
+        );
+    }
+
+    #[test]
+    fn neither_ascii_nor_binary() {
+        assert!(matches!(
+            read_stl(b"hello"),
+            Err(ReadErrorKind::Truncated { .. })
+        ));
+    }
 }
