@@ -69,7 +69,7 @@ pub fn load(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
 pub fn weld_mode(tolerance_m: Option<f64>) -> anyhow::Result<Weld> {
     match tolerance_m {
         None => Ok(Weld::Exact),
-        Some(t) if t == 0.0 => Ok(Weld::Exact),
+        Some(0.0) => Ok(Weld::Exact),
         Some(t) if t.is_finite() && t > 0.0 => Ok(Weld::Tolerance(t)),
         Some(t) => {
             anyhow::bail!("--weld-tolerance must be a non-negative distance in metres, not {t}")

@@ -19,7 +19,8 @@ Exit codes (the worst file decides):
 JSON (--json) prints one object per file and line: file, format, seconds, weld, then the report:
   triangles, vertices, edges, components, closed (every edge shared by exactly two
   triangles), boundary_edges (edges used by one), nonmanifold_edges (used by three or more),
-  nonmanifold_vertices, orientation_conflicts, inverted_components, degenerate_triangles,
+  nonmanifold_vertices, orientation_conflicts, inverted_components, nested_solids,
+  degenerate_triangles,
   sliver_triangles, duplicate_faces, genus, bounds_min, bounds_max (m), area (m²),
   volume (m³, null unless closed and oriented), usable_as (solid | surface | unusable),
   component_list, defects (the places: vertex, edge and triangle indices after welding).

@@ -84,8 +84,8 @@ proptest! {
         prop_assert_eq!(stats.unreferenced, 0);
         // Welding never moves a vertex: every corner keeps a position of its own cluster.
         for (t, tri) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let before = mesh.vertices[tri[k] as usize];
+            for (k, &v) in tri.iter().enumerate() {
+                let before = mesh.vertices[v as usize];
                 let after = once.vertices[once.triangles[t][k] as usize];
                 let limit = tolerance.map_or(0.0, |tol| tol * mesh.vertices.len() as f64);
                 prop_assert!(before.distance(after) <= limit);
@@ -101,8 +101,8 @@ proptest! {
         positions.dedup();
         prop_assert_eq!(positions.len(), welded.vertices.len(), "no two welded vertices are equal");
         for (t, tri) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                prop_assert_eq!(mesh.vertices[tri[k] as usize], welded.vertices[welded.triangles[t][k] as usize]);
+            for (k, &v) in tri.iter().enumerate() {
+                prop_assert_eq!(mesh.vertices[v as usize], welded.vertices[welded.triangles[t][k] as usize]);
             }
         }
     }

@@ -189,9 +189,18 @@ fn cavity_inside_a_solid_is_not_inside_out() {
     let volume = r.volume.expect("closed");
     assert!((volume - (8.0 - 1.0)).abs() < 1e-12, "{volume}");
 
-    // The same inner cube facing outward is a solid inside a solid: inside out.
+    // The same inner cube facing outward is a solid inside a solid (overlapping parts of
+    // an assembly): reported, not inside out.
     let nested = append(&cube(1.0), &cube(0.5));
     let r = MeshReport::of(&nested);
+    assert_eq!(r.inverted_components, 0);
+    assert_eq!(r.defects.nested_solids, vec![1]);
+    assert_eq!(r.usable_as, Usability::Solid);
+
+    // An inside-out cube beside (not inside) the big one is inside out.
+    let mut apart = cube(0.5);
+    apart.vertices.iter_mut().for_each(|p| p.x += 3.0);
+    let r = MeshReport::of(&append(&cube(1.0), &flipped(&apart)));
     assert_eq!(r.defects.inverted_components, vec![1]);
     assert_eq!(r.usable_as, Usability::Surface);
 }

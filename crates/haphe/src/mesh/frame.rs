@@ -70,33 +70,6 @@ impl TriFrame {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn barycentric_rebuilds_the_projected_point() {
-        let (a, b, c) = (
-            DVec3::new(0.1, 0.2, 0.3),
-            DVec3::new(1.0, 0.1, -0.2),
-            DVec3::new(0.3, 0.9, 0.5),
-        );
-        let f = TriFrame::new(a, b, c);
-        let p = DVec3::new(0.4, 0.4, 0.7);
-        let [wa, wb, wc] = f.barycentric(p);
-        let rebuilt = wa * a + wb * b + wc * c + f.height(p) * f.normal;
-        assert!((rebuilt - p).length() < 1e-12, "{rebuilt} vs {p}");
-        assert_eq!(f.barycentric(b).map(|w| (w * 1e9).round()), [0.0, 1e9, 0.0]);
-    }
-
-    #[test]
-    fn degenerate_triangle_has_a_zero_frame() {
-        let f = TriFrame::new(DVec3::ZERO, DVec3::X, 2.0 * DVec3::X);
-        assert!(f.is_degenerate());
-        assert_eq!(f.barycentric(DVec3::Y), [1.0, 0.0, 0.0]);
-    }
-}
-
 /// A triangle whose smallest altitude is below this fraction of its longest edge is
 /// *degenerate* (zero area for practical purposes): its barycentric frame would keep fewer
 /// than about seven significant digits of an `f64`, so it is never used as a contact.
@@ -126,4 +99,31 @@ pub fn relative_height(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 #[inline]
 pub fn is_degenerate_triangle(a: DVec3, b: DVec3, c: DVec3) -> bool {
     relative_height(a, b, c) <= DEGENERATE_MAX_RELATIVE_HEIGHT
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn barycentric_rebuilds_the_projected_point() {
+        let (a, b, c) = (
+            DVec3::new(0.1, 0.2, 0.3),
+            DVec3::new(1.0, 0.1, -0.2),
+            DVec3::new(0.3, 0.9, 0.5),
+        );
+        let f = TriFrame::new(a, b, c);
+        let p = DVec3::new(0.4, 0.4, 0.7);
+        let [wa, wb, wc] = f.barycentric(p);
+        let rebuilt = wa * a + wb * b + wc * c + f.height(p) * f.normal;
+        assert!((rebuilt - p).length() < 1e-12, "{rebuilt} vs {p}");
+        assert_eq!(f.barycentric(b).map(|w| (w * 1e9).round()), [0.0, 1e9, 0.0]);
+    }
+
+    #[test]
+    fn degenerate_triangle_has_a_zero_frame() {
+        let f = TriFrame::new(DVec3::ZERO, DVec3::X, 2.0 * DVec3::X);
+        assert!(f.is_degenerate());
+        assert_eq!(f.barycentric(DVec3::Y), [1.0, 0.0, 0.0]);
+    }
 }

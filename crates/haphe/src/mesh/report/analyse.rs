@@ -93,6 +93,12 @@ pub(super) fn analyse(mesh: &Mesh) -> MeshReport {
         .filter(|(_, c)| c.inverted)
         .map(|(i, _)| i as u32)
         .collect();
+    defects.nested_solids = component_list
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.volume > 0.0 && c.depth.is_some_and(|d| !d.is_multiple_of(2)))
+        .map(|(i, _)| i as u32)
+        .collect();
 
     let closed = defects.boundary_edges.is_empty() && defects.nonmanifold_edges.is_empty();
     let oriented = defects.orientation_conflicts.is_empty();
@@ -124,6 +130,7 @@ pub(super) fn analyse(mesh: &Mesh) -> MeshReport {
         nonmanifold_vertices: defects.nonmanifold_vertices.len(),
         orientation_conflicts: defects.orientation_conflicts.len(),
         inverted_components: defects.inverted_components.len(),
+        nested_solids: defects.nested_solids.len(),
         degenerate_triangles: defects.degenerate_triangles.len(),
         sliver_triangles: defects.sliver_triangles.len(),
         duplicate_faces: defects.duplicate_faces.len(),

@@ -42,8 +42,8 @@ pub struct ComponentReport {
     /// How many other closed components enclose this one (a cavity has depth 1); `None`
     /// when nesting was not computed (too many components, or not closed).
     pub depth: Option<u32>,
-    /// A closed oriented component whose normals point the wrong way: inward for a solid,
-    /// outward for a cavity inside one.
+    /// A closed oriented component whose normals point inward while it is not inside
+    /// another solid (so it is not a cavity): inside out.
     pub inverted: bool,
 }
 
@@ -66,6 +66,10 @@ pub struct Defects {
     pub duplicate_faces: Vec<[u32; 2]>,
     /// Indices into [`MeshReport::component_list`] of inside-out components.
     pub inverted_components: Vec<u32>,
+    /// Indices into [`MeshReport::component_list`] of solids that lie inside another solid
+    /// (overlapping parts): inside is their union, but the surface between them cannot be
+    /// touched.
+    pub nested_solids: Vec<u32>,
 }
 
 /// What haphe can do with a mesh.
@@ -107,6 +111,8 @@ pub struct MeshReport {
     pub orientation_conflicts: usize,
     /// Closed oriented components that are inside out.
     pub inverted_components: usize,
+    /// Closed components with outward normals that lie inside another solid.
+    pub nested_solids: usize,
     /// Triangles with (practically) zero area or a repeated vertex.
     pub degenerate_triangles: usize,
     /// Long thin (but usable) triangles.
@@ -122,8 +128,9 @@ pub struct MeshReport {
     pub bounds_max: [f64; 3],
     /// Surface area, m².
     pub area: f64,
-    /// Enclosed volume, m³: the signed volume when the mesh is closed and consistently
-    /// oriented, else `None` (an open mesh encloses nothing).
+    /// Enclosed volume, m³: the sum of the components' signed volumes when the mesh is
+    /// closed and consistently oriented (cavities subtract; overlapping solids count
+    /// twice), else `None` (an open mesh encloses nothing).
     pub volume: Option<f64>,
     /// What haphe can use the mesh for.
     pub usable_as: Usability,

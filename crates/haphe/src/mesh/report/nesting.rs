@@ -1,6 +1,7 @@
-//! Nesting of closed components: a closed component inside another is a cavity, whose
-//! normals rightly point into it (negative volume). Only with nesting known can "inside
-//! out" be told from "cavity".
+//! Nesting of closed components: a closed component with inward normals (negative volume)
+//! inside another is a cavity, not an inside-out solid. Only with nesting known can the
+//! two be told apart; a component with outward normals inside another is an overlapping
+//! solid (parts of an assembly), reported separately.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -55,8 +56,11 @@ pub(super) fn mark_nesting(mesh: &Mesh, component_of: &[usize], list: &mut [Comp
         .collect();
     for (i, &c) in closed.iter().enumerate() {
         list[c].depth = Some(depths[i]);
-        // Even depth: a solid, normals out (positive volume); odd: a cavity, normals in.
-        list[c].inverted = (list[c].volume < 0.0) == (depths[i] % 2 == 0);
+        // A negative volume is a cavity at odd depth (inside a solid), and inside out at even
+        // depth. A positive volume at odd depth is a solid inside another (an overlapping
+        // part of an assembly): not inverted, and under the non-zero winding rule the
+        // union of both is inside.
+        list[c].inverted = list[c].volume < 0.0 && depths[i].is_multiple_of(2);
     }
 }
 

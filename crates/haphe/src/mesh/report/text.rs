@@ -75,6 +75,11 @@ impl fmt::Display for MeshReport {
             &edges(&d.orientation_conflicts),
         )?;
         list(f, "inside-out components", &d.inverted_components)?;
+        list(
+            f,
+            "solids nested inside another solid (overlapping parts)",
+            &d.nested_solids,
+        )?;
         list(f, "degenerate triangles", &d.degenerate_triangles)?;
         list(f, "sliver triangles", &d.sliver_triangles)?;
         list(f, "duplicate faces [first, duplicate]", &d.duplicate_faces)?;
