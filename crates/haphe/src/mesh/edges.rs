@@ -3,8 +3,6 @@
 //! Shared by the validation report (which counts defects) and the topology (which links
 //! neighbours), so that both agree on what an edge is.
 
-use rayon::prelude::*;
-
 /// One use of an undirected edge by a triangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct HalfEdge {
@@ -35,27 +33,61 @@ pub(crate) struct EdgeTable {
 }
 
 impl EdgeTable {
-    /// Builds the table (parallel sort; deterministic, since keys are unique per use).
+    /// Builds the table: a counting sort by the edge's low vertex, then a small sort of
+    /// each vertex's bucket. Linear in the number of triangles, and deterministic.
     pub fn build(triangles: &[[u32; 3]]) -> EdgeTable {
-        let mut half_edges: Vec<HalfEdge> = triangles
-            .par_iter()
-            .enumerate()
-            .filter(|(_, t)| has_distinct_corners(t))
-            .flat_map_iter(|(tri, t)| {
-                (0..3u8).map(move |corner| {
-                    let c = corner as usize;
-                    let (a, b) = (t[(c + 1) % 3], t[(c + 2) % 3]);
-                    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-                    HalfEdge {
-                        key: (u64::from(lo) << 32) | u64::from(hi),
-                        tri: tri as u32,
-                        corner,
-                        forward: a < b,
-                    }
-                })
-            })
-            .collect();
-        half_edges.par_sort_unstable();
+        let half_edge = |tri: usize, corner: u8| {
+            let t = &triangles[tri];
+            let c = corner as usize;
+            let (a, b) = (t[(c + 1) % 3], t[(c + 2) % 3]);
+            let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+            HalfEdge {
+                key: (u64::from(lo) << 32) | u64::from(hi),
+                tri: tri as u32,
+                corner,
+                forward: a < b,
+            }
+        };
+        let vertex_count = triangles
+            .iter()
+            .flat_map(|t| t.iter())
+            .max()
+            .map_or(0, |&v| v as usize + 1);
+        // start[v]..start[v + 1]: the half-edges whose low vertex is v.
+        let mut start = vec![0u32; vertex_count + 1];
+        let proper = || {
+            triangles
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| has_distinct_corners(t))
+        };
+        for (tri, _) in proper() {
+            for corner in 0..3 {
+                start[half_edge(tri, corner).vertices()[0] as usize + 1] += 1;
+            }
+        }
+        for v in 0..vertex_count {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let placeholder = HalfEdge {
+            key: 0,
+            tri: 0,
+            corner: 0,
+            forward: false,
+        };
+        let mut half_edges = vec![placeholder; start[vertex_count] as usize];
+        for (tri, _) in proper() {
+            for corner in 0..3 {
+                let h = half_edge(tri, corner);
+                let slot = &mut fill[h.vertices()[0] as usize];
+                half_edges[*slot as usize] = h;
+                *slot += 1;
+            }
+        }
+        for v in 0..vertex_count {
+            half_edges[start[v] as usize..start[v + 1] as usize].sort_unstable();
+        }
         EdgeTable { half_edges }
     }
 

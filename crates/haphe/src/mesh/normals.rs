@@ -24,19 +24,21 @@ pub(crate) fn corner_normals<'a>(
     crease_angle_rad: f64,
 ) -> Vec<[DVec3; 3]> {
     let cos_crease = crease_angle_rad.clamp(0.0, std::f64::consts::PI).cos();
-    let corner_angle = |s: usize, v: u32| -> f64 {
-        let tri = triangles[s];
-        let i = tri.iter().position(|&w| w == v).unwrap_or(0);
-        let p = vertices[tri[i] as usize];
-        let e1 = vertices[tri[(i + 1) % 3] as usize] - p;
-        let e2 = vertices[tri[(i + 2) % 3] as usize] - p;
-        e1.angle_between(e2)
-    };
+    // Face normals and corner angles once, compactly: the loop below visits each triangle
+    // once per corner of each of its neighbours around a vertex.
+    let normal: Vec<DVec3> = frames.par_iter().map(|f| f.normal).collect();
+    let angle: Vec<[f64; 3]> = triangles
+        .par_iter()
+        .map(|tri| {
+            let p = tri.map(|v| vertices[v as usize]);
+            [0, 1, 2].map(|i| (p[(i + 1) % 3] - p[i]).angle_between(p[(i + 2) % 3] - p[i]))
+        })
+        .collect();
     triangles
         .par_iter()
         .enumerate()
         .map(|(t, tri)| {
-            let n_t = frames[t].normal;
+            let n_t = normal[t];
             if n_t == DVec3::ZERO {
                 return [DVec3::ZERO; 3];
             }
@@ -44,8 +46,11 @@ pub(crate) fn corner_normals<'a>(
                 let sum: DVec3 = fan(v)
                     .iter()
                     .map(|&s| s as usize)
-                    .filter(|&s| frames[s].normal.dot(n_t) >= cos_crease || s == t)
-                    .map(|s| corner_angle(s, v) * frames[s].normal)
+                    .filter(|&s| s == t || normal[s].dot(n_t) >= cos_crease)
+                    .map(|s| {
+                        let i = triangles[s].iter().position(|&w| w == v).unwrap_or(0);
+                        angle[s][i] * normal[s]
+                    })
                     .sum();
                 sum.try_normalize().unwrap_or(n_t)
             })

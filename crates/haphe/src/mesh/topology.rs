@@ -81,7 +81,7 @@ impl Surface {
     /// ```
     pub fn new(mesh: Mesh, options: &SurfaceOptions) -> Result<Surface, SurfaceError> {
         mesh.check_indices_and_finite()?;
-        let report = MeshReport::of(&mesh);
+        let (report, edges) = super::report::analyse_with_edges(&mesh);
         if report.usable_as == Usability::Unusable {
             return Err(SurfaceError::NoArea {
                 triangles: mesh.triangles.len(),
@@ -91,7 +91,8 @@ impl Surface {
             vertices,
             triangles,
         } = mesh;
-        let neighbours = link_neighbours(&triangles);
+        let neighbours = link_neighbours(triangles.len(), &edges);
+        drop(edges);
         let (fan_start, fan_triangles) = build_fans(vertices.len(), &triangles, &neighbours);
         let frames: Vec<TriFrame> = triangles
             .iter()
@@ -234,9 +235,9 @@ impl Surface {
 }
 
 /// Neighbours across each edge: set for edges used by exactly two distinct triangles.
-fn link_neighbours(triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
-    let mut neighbours = vec![[NONE; 3]; triangles.len()];
-    for group in EdgeTable::build(triangles).groups() {
+fn link_neighbours(triangle_count: usize, edges: &EdgeTable) -> Vec<[u32; 3]> {
+    let mut neighbours = vec![[NONE; 3]; triangle_count];
+    for group in edges.groups() {
         if let [h0, h1] = group
             && h0.tri != h1.tri
         {

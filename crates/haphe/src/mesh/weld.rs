@@ -4,6 +4,7 @@
 //! triangle lies across which edge) exists only once equal corners are one vertex.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::Mesh;
@@ -85,20 +86,78 @@ pub fn weld(mesh: &Mesh, mode: Weld) -> (Mesh, WeldStats) {
     )
 }
 
-/// Bit pattern of a coordinate with `-0.0` folded into `0.0`.
+/// The exact identity of a position: the bit patterns of its coordinates (with `-0.0`
+/// folded into `0.0`), each passed through a bijective mixer. Equal keys mean equal
+/// positions; the mixing spreads the bits, since coordinates read from `f32` files have 29
+/// zero low bits, which a fast hash would map into few buckets.
 #[inline]
 fn key(p: DVec3) -> [u64; 3] {
-    (p + DVec3::ZERO).to_array().map(f64::to_bits)
+    (p + DVec3::ZERO).to_array().map(|x| mix64(x.to_bits()))
 }
 
+/// MurmurHash3's 64-bit finaliser: a bijection on `u64` with full avalanche.
+#[inline]
+fn mix64(mut x: u64) -> u64 {
+    x ^= x >> 33;
+    x = x.wrapping_mul(0xff51_afd7_ed55_8ccd);
+    x ^= x >> 33;
+    x = x.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+    x ^ (x >> 33)
+}
+
+/// Number of hash shards of the exact weld, as a power of two: each shard's table stays
+/// small enough for the cache, so a million-vertex weld does not wait on memory.
+const WELD_SHARD_BITS: u32 = 8;
+
+/// For each vertex, the first vertex with the same key. Vertices are split into shards by
+/// the top bits of their key (a counting sort that keeps index order within a
+/// shard), then each shard is welded with its own small table, in parallel.
 fn exact_representatives(vertices: &[DVec3]) -> Vec<u32> {
-    let mut first: FxHashMap<[u64; 3], u32> =
-        FxHashMap::with_capacity_and_hasher(vertices.len(), Default::default());
-    vertices
-        .iter()
-        .enumerate()
-        .map(|(v, &p)| *first.entry(key(p)).or_insert(v as u32))
-        .collect()
+    let keys: Vec<[u64; 3]> = vertices.par_iter().map(|&p| key(p)).collect();
+    // The shard comes from the mixed y bits, not from the table's hash: a shard whose
+    // members all shared the hash's top bits would defeat the table's tag filtering.
+    let shard_of: Vec<u32> = keys
+        .par_iter()
+        .map(|k| (k[1] >> (64 - WELD_SHARD_BITS)) as u32)
+        .collect();
+    let shards = 1usize << WELD_SHARD_BITS;
+    let mut start = vec![0usize; shards + 1];
+    for &s in &shard_of {
+        start[s as usize + 1] += 1;
+    }
+    for s in 0..shards {
+        start[s + 1] += start[s];
+    }
+    // Scatter (key, vertex) into shard order: 2^WELD_SHARD_BITS sequential write streams,
+    // so each shard is then read from contiguous memory.
+    let mut fill = start.clone();
+    let mut sorted = vec![([0u64; 3], 0u32); vertices.len()];
+    for (v, (&s, k)) in shard_of.iter().zip(&keys).enumerate() {
+        sorted[fill[s as usize]] = (*k, v as u32);
+        fill[s as usize] += 1;
+    }
+    // Representatives in `sorted`'s order, computed shard by shard.
+    let mut in_order = vec![0u32; vertices.len()];
+    let mut segments = Vec::with_capacity(shards);
+    let mut rest = in_order.as_mut_slice();
+    for s in 0..shards {
+        let (head, tail) = rest.split_at_mut(start[s + 1] - start[s]);
+        segments.push((s, head));
+        rest = tail;
+    }
+    segments.into_par_iter().for_each(|(s, out)| {
+        let members = &sorted[start[s]..start[s + 1]];
+        let mut first: FxHashMap<[u64; 3], u32> =
+            FxHashMap::with_capacity_and_hasher(members.len(), Default::default());
+        for (slot, &(k, v)) in out.iter_mut().zip(members) {
+            *slot = *first.entry(k).or_insert(v);
+        }
+    });
+    let mut representative = vec![0u32; vertices.len()];
+    for (&(_, v), &r) in sorted.iter().zip(&in_order) {
+        representative[v as usize] = r;
+    }
+    representative
 }
 
 /// Union of every pair of vertices closer than `tol`, found through a hash grid of cell

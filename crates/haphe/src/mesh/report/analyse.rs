@@ -21,6 +21,11 @@ struct TriMeasure {
 }
 
 pub(super) fn analyse(mesh: &Mesh) -> MeshReport {
+    analyse_with_edges(mesh).0
+}
+
+/// The report and the edge table it was computed from (which the topology reuses).
+pub(crate) fn analyse_with_edges(mesh: &Mesh) -> (MeshReport, EdgeTable) {
     let tris = &mesh.triangles;
     // Measure relative to the box centre, so signed volumes of far-away meshes keep digits.
     let (lo, hi) = mesh.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
@@ -82,7 +87,7 @@ pub(super) fn analyse(mesh: &Mesh) -> MeshReport {
     }
     defects.nonmanifold_vertices =
         nonmanifold_vertices(tris, &mut corner_parent, mesh.vertices.len());
-    defects.duplicate_faces = duplicate_faces(tris);
+    defects.duplicate_faces = duplicate_faces(tris, &table);
 
     let (mut component_list, component_of) =
         components(mesh, &table, &measures, &mut component_parent, &defects);
@@ -119,7 +124,7 @@ pub(super) fn analyse(mesh: &Mesh) -> MeshReport {
         .iter()
         .filter_map(|c| c.genus)
         .reduce(|a, b| a + b);
-    MeshReport {
+    let report = MeshReport {
         triangles: tris.len(),
         vertices: mesh.vertices.len(),
         edges,
@@ -142,7 +147,8 @@ pub(super) fn analyse(mesh: &Mesh) -> MeshReport {
         usable_as,
         component_list,
         defects,
-    }
+    };
+    (report, table)
 }
 
 fn edge_use(edge: [u32; 2], group: &[HalfEdge]) -> EdgeUse {
@@ -183,20 +189,25 @@ fn nonmanifold_vertices(
         .collect()
 }
 
-/// Pairs `[first, duplicate]` of triangles with the same vertex set (in any order).
-fn duplicate_faces(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
-    let mut first: FxHashMap<[u32; 3], u32> =
-        FxHashMap::with_capacity_and_hasher(tris.len(), Default::default());
+/// Pairs `[first, duplicate]` of triangles with the same vertex set (in any order),
+/// sorted by the duplicate. Two such triangles share all their edges; each pair is found
+/// once, at the edge between its two smallest vertices, by comparing third vertices.
+fn duplicate_faces(tris: &[[u32; 3]], table: &EdgeTable) -> Vec<[u32; 2]> {
     let mut out = Vec::new();
-    for (t, tri) in tris.iter().enumerate() {
-        let mut key = *tri;
-        key.sort_unstable();
-        if let Some(&f) = first.get(&key) {
-            out.push([f, t as u32]);
-        } else {
-            first.insert(key, t as u32);
+    let mut thirds: Vec<(u32, u32)> = Vec::new();
+    for group in table.groups().filter(|g| g.len() > 1) {
+        let [_, hi] = group[0].vertices();
+        thirds.clear();
+        thirds.extend(group.iter().filter_map(|h| {
+            let third = tris[h.tri as usize][h.corner as usize];
+            (third > hi).then_some((third, h.tri))
+        }));
+        thirds.sort_unstable();
+        for same in thirds.chunk_by(|a, b| a.0 == b.0) {
+            out.extend(same[1..].iter().map(|&(_, dup)| [same[0].1, dup]));
         }
     }
+    out.sort_unstable_by_key(|&[_, dup]| dup);
     out
 }
 
@@ -242,15 +253,25 @@ fn components(
         list[c].volume += measures[t].volume;
         list[c].area += measures[t].area;
     }
-    // Vertices per component: each (vertex, component) pair once.
-    let mut seen: FxHashMap<(u32, usize), ()> = FxHashMap::default();
+    // Vertices per component: each (vertex, component) pair once. A vertex almost always
+    // belongs to one component; the rare others (non-manifold vertices) go to a set.
+    let mut first_component = vec![usize::MAX; mesh.vertices.len()];
+    let mut also: rustc_hash::FxHashSet<(u32, usize)> = Default::default();
     for (t, tri) in tris.iter().enumerate() {
-        if component_of[t] == usize::MAX {
+        let c = component_of[t];
+        if c == usize::MAX {
             continue;
         }
         for &v in tri {
-            if seen.insert((v, component_of[t]), ()).is_none() {
-                counts[component_of[t]][0] += 1;
+            let first = &mut first_component[v as usize];
+            let new = if *first == usize::MAX {
+                *first = c;
+                true
+            } else {
+                *first != c && also.insert((v, c))
+            };
+            if new {
+                counts[c][0] += 1;
             }
         }
     }

@@ -5,6 +5,7 @@
 //! surface, or nothing).
 
 mod analyse;
+pub(crate) use analyse::analyse_with_edges;
 mod nesting;
 mod text;
 
