@@ -2,6 +2,7 @@
 //! runs the mesh stage on the built-in procedural models and prints what a user of the
 //! library gets from it.
 
+use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -18,16 +19,20 @@ pub struct Args {
 
 /// Runs the demo; fails (exit 2) if a built-in model is not a valid solid.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    println!(
+    let mut out = std::io::stdout().lock();
+    writeln!(
+        out,
         "haphe demo: the mesh stage on the built-in models (about 0.2 m across, ~{} triangles each)\n",
         args.triangles
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "| model          | triangles | vertices | verdict | genus | area (m²)  | volume (m³) | generate | weld+validate | topology | topology bytes/triangle |"
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "|----------------|----------:|---------:|---------|------:|-----------:|------------:|---------:|--------------:|---------:|------------------------:|"
-    );
+    )?;
     let mut all_solid = true;
     for shape in Shape::ALL {
         let start = Instant::now();
@@ -45,7 +50,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         let t_topology = start.elapsed();
 
         all_solid &= report.usable_as == Usability::Solid;
-        println!(
+        writeln!(
+            out,
             "| {:<14} | {:>9} | {:>8} | {:<7} | {:>5} | {:>10.4e} | {:>11.4e} | {:>5.1} ms | {:>10.1} ms | {:>5.1} ms | {:>23.0} |",
             shape.name(),
             report.triangles,
@@ -58,13 +64,17 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             t_validate.as_secs_f64() * 1e3,
             t_topology.as_secs_f64() * 1e3,
             surface.heap_bytes() as f64 / surface.triangle_count() as f64,
-        );
+        )?;
     }
-    println!(
+    writeln!(
+        out,
         "\nEvery model is a closed, oriented, manifold solid: {}",
         if all_solid { "yes" } else { "NO" }
-    );
-    println!("Next: `haphe validate FILE` on your own meshes (see `haphe validate --help`).");
+    )?;
+    writeln!(
+        out,
+        "Next: `haphe validate FILE` on your own meshes (see `haphe validate --help`)."
+    )?;
     Ok(if all_solid {
         ExitCode::SUCCESS
     } else {

@@ -1,6 +1,7 @@
 //! `haphe generate`: write a procedural test mesh as a binary STL file.
 
 use std::io::BufWriter;
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -23,6 +24,7 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let mut out = std::io::stdout().lock();
     let start = Instant::now();
     let mesh = args.shape.with_triangles(args.triangles);
     let generated = start.elapsed();
@@ -39,13 +41,14 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .with_context(|| format!("cannot create {}", args.output.display()))?;
     stl_io::write_stl(&mut BufWriter::new(file), triangles)
         .with_context(|| format!("cannot write {}", args.output.display()))?;
-    println!(
+    writeln!(
+        out,
         "{}: {} ({} triangles, {} vertices), generated in {:.1} ms",
         args.output.display(),
         args.shape,
         mesh.triangles.len(),
         mesh.vertices.len(),
         generated.as_secs_f64() * 1e3
-    );
+    )?;
     Ok(ExitCode::SUCCESS)
 }

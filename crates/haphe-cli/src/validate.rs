@@ -1,5 +1,6 @@
 //! `haphe validate`: the mesh stage's report for each file.
 
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -66,6 +67,7 @@ struct WeldJson {
 
 /// Runs the command; the exit code is the worst file's.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let mut out = std::io::stdout().lock();
     let options = ReadOptions {
         units: args.units,
         weld: weld_mode(args.weld_tolerance)?,
@@ -81,10 +83,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         "file": path.display().to_string(),
                         "error": failure.to_string(),
                     });
-                    println!("{line}");
+                    writeln!(out, "{line}")?;
                 } else {
                     // The message names the file and the place.
-                    println!("{failure}\n  verdict: unreadable\n");
+                    writeln!(out, "{failure}\n  verdict: unreadable\n")?;
                 }
                 2
             }
@@ -103,9 +105,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         },
                         report: &report,
                     };
-                    println!("{}", serde_json::to_string(&line)?);
+                    writeln!(out, "{}", serde_json::to_string(&line)?)?;
                 } else {
-                    println!(
+                    writeln!(
+                        out,
                         "{}  ({:?}, read and welded in {:.1} ms, validated in {:.1} ms; {} vertices merged, {} unreferenced dropped)",
                         path.display(),
                         loaded.format,
@@ -113,12 +116,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         (seconds - loaded.elapsed.as_secs_f64()) * 1e3,
                         loaded.weld.merged,
                         loaded.weld.unreferenced,
-                    );
-                    print!("{report}");
+                    )?;
+                    write!(out, "{report}")?;
                     for problem in report.problems() {
-                        println!("  problem: {problem}");
+                        writeln!(out, "  problem: {problem}")?;
                     }
-                    println!();
+                    writeln!(out)?;
                 }
                 match report.usable_as {
                     Usability::Solid => 0,

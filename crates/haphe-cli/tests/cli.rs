@@ -1,0 +1,180 @@
+//! The `haphe` binary end to end: exit codes, JSON fields, error messages, demo.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn haphe(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_haphe"))
+        .args(args)
+        .output()
+        .expect("the haphe binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A fresh scratch folder for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("haphe-cli-test-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write");
+    path.display().to_string()
+}
+
+const TETRAHEDRON: &str =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+const OPEN_TETRAHEDRON: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
+
+#[test]
+fn validate_json_has_the_documented_fields_and_exit_codes() {
+    let dir = scratch("json");
+    let solid = write(&dir, "tet.obj", TETRAHEDRON);
+    let open = write(&dir, "open.obj", OPEN_TETRAHEDRON);
+
+    let out = haphe(&["validate", "--json", &solid]);
+    assert_eq!(out.status.code(), Some(0), "a closed solid exits 0");
+    let v: serde_json::Value = serde_json::from_str(stdout(&out).trim()).expect("one JSON object");
+    assert_eq!(v["triangles"], 4);
+    assert_eq!(v["vertices"], 4);
+    assert_eq!(v["closed"], true);
+    assert_eq!(v["boundary_edges"], 0);
+    assert_eq!(v["nonmanifold_edges"], 0);
+    assert_eq!(v["nonmanifold_vertices"], 0);
+    assert_eq!(v["orientation_conflicts"], 0);
+    assert_eq!(v["degenerate_triangles"], 0);
+    assert_eq!(v["components"], 1);
+    assert_eq!(v["usable_as"], "solid");
+    assert!((v["volume"].as_f64().expect("a number") - 1.0 / 6.0).abs() < 1e-15);
+
+    let out = haphe(&["validate", "--json", &open]);
+    assert_eq!(out.status.code(), Some(1), "an open surface exits 1");
+    let v: serde_json::Value = serde_json::from_str(stdout(&out).trim()).expect("JSON");
+    assert_eq!(v["closed"], false);
+    assert_eq!(v["boundary_edges"], 3);
+    assert_eq!(v["volume"], serde_json::Value::Null);
+
+    // Several files: one JSON line each, and the worst decides the exit code.
+    let out = haphe(&["validate", "--json", &solid, &open]);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(stdout(&out).lines().count(), 2);
+}
+
+#[test]
+fn unreadable_files_exit_2_with_the_file_and_the_place() {
+    let dir = scratch("bad");
+    let bad = write(&dir, "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    let solid = write(&dir, "tet.obj", TETRAHEDRON);
+    let out = haphe(&["validate", &solid, &bad]);
+    assert_eq!(out.status.code(), Some(2));
+    let text = stdout(&out);
+    assert!(
+        text.contains(&format!("{bad}: line 4: vertex index 7 is out of range")),
+        "{text}"
+    );
+    let missing = dir.join("missing.stl").display().to_string();
+    let out = haphe(&["validate", "--json", &missing]);
+    assert_eq!(out.status.code(), Some(2));
+    let v: serde_json::Value = serde_json::from_str(stdout(&out).trim()).expect("JSON");
+    assert!(
+        v["error"]
+            .as_str()
+            .expect("an error")
+            .contains("missing.stl")
+    );
+}
+
+#[test]
+fn units_scale_to_metres() {
+    let dir = scratch("units");
+    let solid = write(&dir, "tet.obj", TETRAHEDRON);
+    let out = haphe(&["validate", "--json", "--units", "mm", &solid]);
+    let v: serde_json::Value = serde_json::from_str(stdout(&out).trim()).expect("JSON");
+    assert_eq!(v["bounds_max"][0], 0.001);
+    let out = haphe(&["validate", "--units", "furlongs", &solid]);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "an unknown unit is a usage error"
+    );
+}
+
+#[test]
+fn generated_meshes_validate_as_solids() {
+    let dir = scratch("generate");
+    for shape in [
+        "sphere",
+        "torus",
+        "box",
+        "thin-plate",
+        "concave-corner",
+        "blob",
+    ] {
+        let path = dir.join(format!("{shape}.stl")).display().to_string();
+        let out = haphe(&["generate", shape, "--triangles", "2000", "-o", &path]);
+        assert!(
+            out.status.success(),
+            "{shape}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let out = haphe(&["validate", "--json", &path]);
+        assert_eq!(out.status.code(), Some(0), "{shape}: {}", stdout(&out));
+        let v: serde_json::Value = serde_json::from_str(stdout(&out).trim()).expect("JSON");
+        let expected_genus = if shape == "torus" { 1 } else { 0 };
+        assert_eq!(v["genus"], expected_genus, "{shape}");
+    }
+}
+
+#[test]
+fn demo_runs_and_reports_every_model_as_a_solid() {
+    let out = haphe(&["demo", "--triangles", "500"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = stdout(&out);
+    for shape in [
+        "sphere",
+        "torus",
+        "box",
+        "thin-plate",
+        "concave-corner",
+        "blob",
+    ] {
+        let row = text
+            .lines()
+            .find(|l| l.starts_with(&format!("| {shape} ")))
+            .unwrap_or_else(|| panic!("a row for {shape}:\n{text}"));
+        assert!(row.contains("| solid "), "{row}");
+    }
+    assert!(text.contains("closed, oriented, manifold solid: yes"));
+}
+
+#[test]
+fn every_odd_file_gets_a_verdict_not_a_crash() {
+    let dir = PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/meshes/odd"
+    ));
+    if !dir.is_dir() {
+        eprintln!("skipping: ../shared/meshes not found");
+        return;
+    }
+    for entry in std::fs::read_dir(&dir).expect("odd folder") {
+        let path = entry.expect("entry").path();
+        let out = haphe(&["validate", "--json", &path.display().to_string()]);
+        let code = out.status.code();
+        assert!(matches!(code, Some(0..=2)), "{}: {code:?}", path.display());
+        let v: serde_json::Value = serde_json::from_str(stdout(&out).trim()).expect("JSON");
+        if code == Some(2) && v.get("error").is_some() {
+            let name = path.file_name().expect("name").to_string_lossy();
+            assert!(v["error"].as_str().expect("text").contains(name.as_ref()));
+        }
+    }
+}
