@@ -91,7 +91,7 @@ fn empty_stl_is_an_ascii_solid_without_facets() {
     assert_fails(
         "empty.stl",
         ReadErrorKind::NoFaces { vertices: 0 },
-        "empty.stl: no faces: the file holds 0 vertices but no triangles or polygons",
+        "empty.stl: no faces: the file holds no geometry",
     );
 }
 
@@ -154,7 +154,7 @@ fn obj_points_has_vertices_only() {
     assert_fails(
         "obj_points.obj",
         ReadErrorKind::NoFaces { vertices: 8 },
-        "obj_points.obj: no faces: the file holds 8 vertices but no triangles or polygons",
+        "obj_points.obj: no faces: the file holds 8 vertices (a point cloud or a wireframe) but no triangles or polygons",
     );
 }
 
@@ -164,7 +164,7 @@ fn obj_wireframe_has_lines_only() {
     assert_fails(
         "obj_wireframe.obj",
         ReadErrorKind::NoFaces { vertices: 8 },
-        "obj_wireframe.obj: no faces: the file holds 8 vertices but no triangles or polygons",
+        "obj_wireframe.obj: no faces: the file holds 8 vertices (a point cloud or a wireframe) but no triangles or polygons",
     );
 }
 
@@ -174,7 +174,7 @@ fn ply_empty_header_declares_nothing() {
     assert_fails(
         "ply_empty_header.ply",
         ReadErrorKind::NoFaces { vertices: 0 },
-        "ply_empty_header.ply: no faces: the file holds 0 vertices but no triangles or polygons",
+        "ply_empty_header.ply: no faces: the file holds no geometry",
     );
 }
 
@@ -184,7 +184,7 @@ fn ply_points_bin_has_zero_faces() {
     assert_fails(
         "ply_points_bin.ply",
         ReadErrorKind::NoFaces { vertices: 8 },
-        "ply_points_bin.ply: no faces: the file holds 8 vertices but no triangles or polygons",
+        "ply_points_bin.ply: no faces: the file holds 8 vertices (a point cloud or a wireframe) but no triangles or polygons",
     );
 }
 
@@ -194,7 +194,7 @@ fn points_ascii_ply_has_no_face_element() {
     assert_fails(
         "points_ascii.ply",
         ReadErrorKind::NoFaces { vertices: 5 },
-        "points_ascii.ply: no faces: the file holds 5 vertices but no triangles or polygons",
+        "points_ascii.ply: no faces: the file holds 5 vertices (a point cloud or a wireframe) but no triangles or polygons",
     );
 }
 
@@ -216,7 +216,7 @@ fn stl_empty_ascii_has_no_facets() {
     assert_fails(
         "stl_empty_ascii.stl",
         ReadErrorKind::NoFaces { vertices: 0 },
-        "stl_empty_ascii.stl: no faces: the file holds 0 vertices but no triangles or polygons",
+        "stl_empty_ascii.stl: no faces: the file holds no geometry",
     );
 }
 
@@ -226,7 +226,7 @@ fn stl_empty_bin_has_a_zero_count() {
     assert_fails(
         "stl_empty_bin.stl",
         ReadErrorKind::NoFaces { vertices: 0 },
-        "stl_empty_bin.stl: no faces: the file holds 0 vertices but no triangles or polygons",
+        "stl_empty_bin.stl: no faces: the file holds no geometry",
     );
 }
 

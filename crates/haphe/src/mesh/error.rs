@@ -87,7 +87,10 @@ pub enum ReadErrorKind {
         corners: usize,
     },
     /// The file holds vertices (a point cloud, a wireframe) but no faces.
-    #[error("no faces: the file holds {vertices} vertices but no triangles or polygons")]
+    #[error("no faces: {}", match vertices {
+        0 => "the file holds no geometry".to_owned(),
+        n => format!("the file holds {n} vertices (a point cloud or a wireframe) but no triangles or polygons"),
+    })]
     NoFaces {
         /// How many vertices were read.
         vertices: usize,
