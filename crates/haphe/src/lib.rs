@@ -21,6 +21,10 @@
 //!    vertices, validate into a [`mesh::MeshReport`], and build the topology of a
 //!    [`mesh::Surface`] (neighbours, vertex fans, barycentric frames, shading normals).
 //!    Procedural test shapes live in [`mesh::shapes`].
+//! 2. [`map`] — the voxel map of one object: cells outside, inside or on the surface, the
+//!    triangles of each surface cell, clearance for free-space early-outs.
+//! 3. [`query`] — segment crossing, inside/outside, the barycentric surface walk and the
+//!    geometric kernels under them.
 //!
 //! Stages up to the proxy touch no files, threads, clocks or globals: readers take bytes,
 //! so they can be fuzzed, and only the command-line tool opens paths.
@@ -30,7 +34,9 @@
 )]
 #![deny(missing_docs)]
 
+pub mod map;
 pub mod mesh;
+pub mod query;
 
 pub use glam;
 pub use glam::DVec3;

@@ -1,0 +1,1 @@
+//! Stage 2 — the voxel map of one object (to be written).
