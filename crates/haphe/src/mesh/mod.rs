@@ -26,7 +26,7 @@ mod weld;
 pub use error::{Place, ReadError, ReadErrorKind};
 pub use frame::{
     DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT, TriFrame, is_degenerate_triangle,
-    relative_height,
+    relative_height, solid_angle,
 };
 pub use ids::{NONE, TriId, VertId};
 pub use normals::DEFAULT_CREASE_ANGLE_RAD;

@@ -5,7 +5,12 @@
 mod closest;
 mod segment_triangle;
 mod triangle_triangle;
+mod walk;
 
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use triangle_triangle::intersect_triangle_triangle;
+pub use walk::{
+    MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, nearest_point_brute_force,
+    walk_to_nearest,
+};

@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use super::ComponentReport;
 use crate::mesh::Mesh;
+use crate::mesh::frame::solid_angle;
 
 /// Upper bound on (closed components) × (triangles) for which nesting is computed exactly
 /// with winding numbers; past it, a closed component is taken as inside out when its
@@ -81,15 +82,4 @@ fn triangle_owners(component_of: &[usize], closed: &[usize]) -> Vec<u32> {
         .iter()
         .map(|&c| slot_of.get(c).copied().unwrap_or(u32::MAX))
         .collect()
-}
-
-/// Signed solid angle (steradians) of triangle `[a, b, c]` seen from `p` (Van Oosterom and
-/// Strackee): positive when `p` lies behind the triangle (on the side its normal points
-/// away from), so a closed outward-oriented surface sums to 4π around a point inside it.
-pub(crate) fn solid_angle([a, b, c]: [DVec3; 3], p: DVec3) -> f64 {
-    let (a, b, c) = (a - p, b - p, c - p);
-    let (la, lb, lc) = (a.length(), b.length(), c.length());
-    let numerator = a.dot(b.cross(c));
-    let denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-    2.0 * numerator.atan2(denominator)
 }
