@@ -37,6 +37,7 @@
 pub mod map;
 pub mod mesh;
 pub mod query;
+pub mod rng;
 
 pub use glam;
 pub use glam::DVec3;

@@ -12,6 +12,7 @@
 //! cones tile space without overlapping (they are the cones over the faces of the
 //! undisplaced sphere). So each ray from the centre crosses the surface once.
 
+use crate::rng::SplitMix64;
 use std::f64::consts::TAU;
 
 use glam::DVec3;
@@ -115,7 +116,7 @@ struct PlaneWave {
 
 impl RadialNoise {
     fn new(seed: u64) -> RadialNoise {
-        let mut random = SplitMix64(seed);
+        let mut random = SplitMix64::new(seed);
         let mut waves = [PlaneWave::default(); NOISE_WAVES];
         for wave in &mut waves {
             // A uniform direction: uniform height and uniform angle around the z axis.
@@ -152,37 +153,9 @@ impl RadialNoise {
     }
 }
 
-/// Steele, Lea and Flood's `splitmix64`: a tiny, fast generator with good statistics, enough
-/// to place a few waves.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// A uniform number in `[0, 1)` with 53 random bits.
-    fn next_unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn splitmix64_matches_the_reference_sequence() {
-        // The first outputs of the reference implementation seeded with 0.
-        let mut random = SplitMix64(0);
-        assert_eq!(random.next_u64(), 0xE220_A839_7B1D_CDAF);
-        assert_eq!(random.next_u64(), 0x6E78_9E6A_A1B9_65F4);
-        assert_eq!(random.next_u64(), 0x06C4_5D18_8009_454F);
-    }
 
     #[test]
     fn noise_stays_within_unit_bounds_and_varies() {
