@@ -27,6 +27,16 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
     path.display().to_string()
 }
 
+/// The built-in shapes, by their command-line names.
+const SHAPES: [&str; 6] = [
+    "sphere",
+    "torus",
+    "box",
+    "thin-plate",
+    "concave-corner",
+    "blob",
+];
+
 const TETRAHEDRON: &str =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 const OPEN_TETRAHEDRON: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
@@ -107,14 +117,7 @@ fn units_scale_to_metres() {
 #[test]
 fn generated_meshes_validate_as_solids() {
     let dir = scratch("generate");
-    for shape in [
-        "sphere",
-        "torus",
-        "box",
-        "thin-plate",
-        "concave-corner",
-        "blob",
-    ] {
+    for shape in SHAPES {
         let path = dir.join(format!("{shape}.stl")).display().to_string();
         let out = haphe(&["generate", shape, "--triangles", "2000", "-o", &path]);
         assert!(
@@ -139,14 +142,7 @@ fn demo_runs_and_reports_every_model_as_a_solid() {
         String::from_utf8_lossy(&out.stderr)
     );
     let text = stdout(&out);
-    for shape in [
-        "sphere",
-        "torus",
-        "box",
-        "thin-plate",
-        "concave-corner",
-        "blob",
-    ] {
+    for shape in SHAPES {
         let row = text
             .lines()
             .find(|l| l.starts_with(&format!("| {shape} ")))

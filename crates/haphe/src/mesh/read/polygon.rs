@@ -297,16 +297,21 @@ mod tests {
         check_exact_cover(&tilted(&dart));
     }
 
-    #[test]
-    fn l_shape_is_covered_exactly() {
-        let l = flat(&[
+    /// An L-shaped hexagon (one reflex corner).
+    fn l_shape() -> Vec<DVec3> {
+        flat(&[
             (0.0, 0.0),
             (3.0, 0.0),
             (3.0, 1.0),
             (1.0, 1.0),
             (1.0, 3.0),
             (0.0, 3.0),
-        ]);
+        ])
+    }
+
+    #[test]
+    fn l_shape_is_covered_exactly() {
+        let l = l_shape();
         check_exact_cover(&l);
         check_exact_cover(&tilted(&l));
         // Starting at the reflex corner changes nothing.
@@ -438,14 +443,7 @@ mod tests {
     #[test]
     fn scratch_is_reused_across_polygons() {
         let mut triangulator = Triangulator::default();
-        let l = flat(&[
-            (0.0, 0.0),
-            (3.0, 0.0),
-            (3.0, 1.0),
-            (1.0, 1.0),
-            (1.0, 3.0),
-            (0.0, 3.0),
-        ]);
+        let l = l_shape();
         let mut out = Vec::new();
         triangulator.triangulate(&[0, 1, 2, 3, 4, 5], &l, &mut out);
         triangulator.triangulate(&[0, 1, 2, 3], &l, &mut out);
