@@ -150,6 +150,9 @@ impl Reading {
         declared: Place,
         source: &mut Source<'_>,
     ) -> Result<(), ReadErrorKind> {
+        if def.count == 0 {
+            return Ok(()); // An empty face element may declare anything.
+        }
         header::check_index_list(def, declared, &["vertex_indices", "vertex_index"])?;
         self.ends.reserve(source.capacity_for(def.count));
         let parser = Parser::<IndexList>::new();
@@ -176,6 +179,9 @@ impl Reading {
         declared: Place,
         source: &mut Source<'_>,
     ) -> Result<(), ReadErrorKind> {
+        if def.count == 0 {
+            return Ok(());
+        }
         header::check_index_list(def, declared, &["vertex_indices"])?;
         let parser = Parser::<IndexList>::new();
         for strip in 0..def.count {

@@ -2,7 +2,7 @@
 //! element before its entries are read.
 
 use ply_rs_bw::ply::{ElementDef, PropertyType, ScalarType};
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::{Source, min_entry_bytes};
 use crate::mesh::{Place, ReadErrorKind};
@@ -10,24 +10,22 @@ use crate::mesh::{Place, ReadErrorKind};
 /// What the scan learnt: where each element is declared.
 pub(super) struct Scan {
     /// Element names with their declaration line.
-    elements: Vec<(String, usize)>,
+    elements: FxHashMap<String, usize>,
 }
 
 impl Scan {
     /// The line declaring element `name` (the header if unknown).
     pub(super) fn element_place(&self, name: &str) -> Place {
         self.elements
-            .iter()
-            .find(|(n, _)| n == name)
-            .map_or(Place::Header, |&(_, line)| Place::Line(line))
+            .get(name)
+            .map_or(Place::Header, |&line| Place::Line(line))
     }
 }
 
 /// Scans the header lines: `ply` first, text only, no element or property declared twice,
 /// an `end_header` line. The grammar of each line is left to `ply-rs-bw`.
 pub(super) fn scan(bytes: &[u8]) -> Result<Scan, ReadErrorKind> {
-    let mut elements: Vec<(String, usize)> = Vec::new();
-    let mut element_names: FxHashSet<&str> = FxHashSet::default();
+    let mut elements: FxHashMap<String, usize> = FxHashMap::default();
     let mut properties: FxHashSet<&str> = FxHashSet::default();
     for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let number = n + 1;
@@ -55,11 +53,10 @@ pub(super) fn scan(bytes: &[u8]) -> Result<Scan, ReadErrorKind> {
         match first {
             Some("end_header") => return Ok(Scan { elements }),
             Some("element") => {
-                if let Some(name) = words.next() {
-                    if !element_names.insert(name) {
-                        return Err(twice("element", name));
-                    }
-                    elements.push((name.to_owned(), number));
+                if let Some(name) = words.next()
+                    && elements.insert(name.to_owned(), number).is_some()
+                {
+                    return Err(twice("element", name));
                 }
                 properties.clear();
             }

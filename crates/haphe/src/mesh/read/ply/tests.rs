@@ -312,5 +312,8 @@ fn no_faces_and_empty() {
     assert_eq!((mesh.vertices.len(), mesh.triangles.len()), (2, 0));
     let mesh = read(b"ply\nformat ascii 1.0\nend_header\n").unwrap();
     assert!(mesh.vertices.is_empty() && mesh.triangles.is_empty());
+    let no_index_list = "ply\nformat ascii 1.0\nelement face 0\nproperty uchar flags\nend_header\n";
+    let mesh = read(no_index_list.as_bytes()).unwrap();
+    assert!(mesh.vertices.is_empty() && mesh.triangles.is_empty());
     assert_eq!(read(b" \n"), Err(ReadErrorKind::Empty));
 }
