@@ -46,7 +46,7 @@ impl Format {
         if text_start.starts_with(b"ply") {
             return Ok(Format::Ply);
         }
-        if text_start.starts_with(b"OFF") || text_start.starts_with(b"off") {
+        if is_off_keyword(text_start) {
             return Ok(Format::Off);
         }
         let extension = name
@@ -66,6 +66,25 @@ impl Format {
             }),
         }
     }
+}
+
+/// Whether the text starts with an OFF keyword: `OFF` with optional prefixes (`ST`, `C`,
+/// `N`, `4`, `n`: texture, colour, normal, 4D, n-dimensional), such as `COFF` or `NOFF`,
+/// possibly glued to the counts (`OFF8 6 12`).
+fn is_off_keyword(text: &[u8]) -> bool {
+    let word_end = text
+        .iter()
+        .position(|b| !b.is_ascii_alphanumeric())
+        .unwrap_or(text.len());
+    let word = text[..word_end].to_ascii_uppercase();
+    let Some(at) = word.windows(3).position(|w| w == b"OFF") else {
+        return false;
+    };
+    let prefix_ok = word[..at]
+        .iter()
+        .all(|b| matches!(b, b'S' | b'T' | b'C' | b'N' | b'4'));
+    let rest_ok = word[at + 3..].iter().all(u8::is_ascii_digit);
+    prefix_ok && rest_ok && at <= 5
 }
 
 fn skip_ascii_whitespace(bytes: &[u8]) -> &[u8] {
@@ -215,4 +234,36 @@ pub fn read_unwelded(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<
     // overflow to infinity).
     mesh.check_indices_and_finite().map_err(fail)?;
     Ok(mesh)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn off_variants_are_detected_from_the_content() {
+        for header in [
+            "OFF\n",
+            "COFF\n",
+            "NOFF\n",
+            "STOFF\n",
+            "CNOFF\n",
+            "4OFF\n",
+            "off\n",
+            "OFF8 6 12\n",
+        ] {
+            assert_eq!(
+                Format::detect("mesh.txt", header.as_bytes()),
+                Ok(Format::Off),
+                "{header}"
+            );
+        }
+        for other in ["OFFSET 1\n", "XOFF\n"] {
+            assert_ne!(
+                Format::detect("mesh.txt", other.as_bytes()),
+                Ok(Format::Off),
+                "{other}"
+            );
+        }
+    }
 }
