@@ -20,7 +20,12 @@ impl Axis {
     /// The component of `v` along this axis.
     #[inline(always)]
     fn of(self, v: DVec3) -> f64 {
-        v.to_array()[self as usize]
+        // A select, not an array index: no store and reload of the vector.
+        match self {
+            Axis::X => v.x,
+            Axis::Y => v.y,
+            Axis::Z => v.z,
+        }
     }
 
     /// The next axis in the cycle x → y → z → x.
