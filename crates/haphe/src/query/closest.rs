@@ -83,6 +83,7 @@ pub struct ClosestPoint {
 /// let beyond = closest_point_triangle(DVec3::new(2.0, -1.0, 0.0), tri);
 /// assert_eq!((beyond.point, beyond.feature), (DVec3::X, Feature::Vertex(1)));
 /// ```
+#[inline]
 pub fn closest_point_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> ClosestPoint {
     let ab = b - a;
     let ac = c - a;

@@ -54,9 +54,9 @@ impl Axis {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Segment {
     /// Start point, metres.
-    pub p0: DVec3,
+    p0: DVec3,
     /// End point, metres.
-    pub p1: DVec3,
+    p1: DVec3,
     /// The axis of the largest component of `p1 − p0`.
     kz: Axis,
     /// The first of the two other axes (swapped with `ky` when `(p1 − p0)[kz] < 0`).
@@ -74,6 +74,18 @@ pub struct Segment {
 }
 
 impl Segment {
+    /// The start point, metres.
+    #[inline]
+    pub fn p0(&self) -> DVec3 {
+        self.p0
+    }
+
+    /// The end point, metres.
+    #[inline]
+    pub fn p1(&self) -> DVec3 {
+        self.p1
+    }
+
     /// Prepares the segment from `p0` to `p1` (metres): the axis permutation and shear
     /// constants of its direction `d = p1 − p0`.
     ///
@@ -91,6 +103,7 @@ impl Segment {
     /// assert!(hit.entering);
     /// assert!((hit.weights[0] - 0.6).abs() < 1e-15);
     /// ```
+    #[inline]
     pub fn new(p0: DVec3, p1: DVec3) -> Segment {
         let d = p1 - p0;
         let m = d.abs();
