@@ -31,7 +31,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{shape}, {triangles} triangles, solid: {}",
         surface.is_solid()
     );
-    println!("  {stats:#?}");
+    println!(
+        "  cells {:?} = {} ({:.1e} m, {:?})",
+        stats.dims, stats.cells, stats.cell_size_m, stats.cell_size_rule
+    );
+    println!(
+        "  surface cells {}, inside {}, outside {}; triangles per surface cell {:.2} (max {})",
+        stats.surface_cells,
+        stats.inside_cells,
+        stats.outside_cells,
+        stats.mean_triangles_per_surface_cell,
+        stats.max_triangles_per_surface_cell
+    );
+    println!(
+        "  bricks {}: {} detailed, {} graded; {} bytes",
+        stats.bricks, stats.detailed_bricks, stats.graded_bricks, stats.bytes
+    );
     println!(
         "  build {:.1} ms, {:.1} map bytes per triangle",
         ms(build),

@@ -19,6 +19,9 @@
 //!   surface cell is (Chebyshev distance, capped at [`MAX_CLEARANCE`]), so a device point
 //!   that stays in free space needs no triangle test at all for several ticks.
 //!
+//! A query finds the cells a segment passes with [`Grid::walk`] (a 3D-DDA) and the
+//! candidate triangles of each with [`VoxelMap::triangles_in`], in constant time per cell.
+//!
 //! Storage is sparse ([`VoxelMap`]): bricks of 8×8×8 cells, uniform bricks far from the
 //! surface cost four bytes each. The build is parallel and deterministic: the same surface
 //! and options give the same map, byte for byte, for any number of threads. [`encode`] and
@@ -39,11 +42,13 @@ mod fill;
 mod grid;
 mod overlap;
 mod validate;
+mod walk;
 
 pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
 pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, encode};
 pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL, PADDING_SLACK_REL};
 pub use overlap::overlap_triangle_box;
+pub use walk::{CellStep, CellWalk};
 
 /// Largest clearance a cell stores, in cells. Cells within 15 cells of the surface store
 /// their exact Chebyshev distance to it (in bricks holding surface cells), farther ones 15:

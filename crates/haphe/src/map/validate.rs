@@ -4,9 +4,9 @@
 use glam::DVec3;
 
 use super::bricks::{
-    BRICK_CELLS, BRICK_SIDE, GRADED, MASK_WORDS, MAX_BRICKS, NIBBLE_BYTES, UNIFORM,
-    UNIFORM_PAYLOAD, UNIFORM_STATE_SHIFT, VoxelMap, brick_coords, brick_dims, cell_in_brick, has,
-    in_grid_bits, nibble,
+    BRICK_CELLS, BRICK_SIDE, BrickBits, GRADED, MASK_WORDS, MAX_BRICKS, NIBBLE_BYTES, UNIFORM,
+    UNIFORM_PAYLOAD, UNIFORM_STATE_SHIFT, VoxelMap, brick_coords, brick_dims, cell_in_brick,
+    in_grid_bits,
 };
 use super::file::{invalid, u64_at};
 use super::grid::Grid;
@@ -178,20 +178,6 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
                 ));
             }
         }
-    }
-    if p.frames.len() != t {
-        return Err(invalid(
-            "frames",
-            format!("{} frames for {t} triangles", p.frames.len()),
-        ));
-    }
-    if let Some(i) = p.frames.iter().position(|f| {
-        !(f.origin.is_finite()
-            && f.dual_b.is_finite()
-            && f.dual_c.is_finite()
-            && f.normal.is_finite())
-    }) {
-        return Err(invalid("frames", format!("frame {i} is not finite")));
     }
     if p.corner_normals.len() != t {
         return Err(invalid(
@@ -407,35 +393,46 @@ fn check_detailed(map: &VoxelMap) -> Result<(), MapFileError> {
                 ),
             ));
         }
-        for local in 0..BRICK_CELLS {
-            let k = nibble(&map.clearances, d, local);
-            let valid = if has(&surface, local) {
-                k == 0
-            } else {
-                (1..=MAX_CLEARANCE).contains(&k)
-            };
-            if !valid {
-                return Err(invalid(
-                    "clearances",
-                    format!("cell {local} of detailed brick {d} has clearance {k}"),
-                ));
-            }
-        }
-    }
-    let clearance_bricks = map.clearances.len() / NIBBLE_BYTES;
-    for g in detailed..clearance_bricks {
-        if let Some(local) = (0..BRICK_CELLS)
-            .find(|&l| !(1..=MAX_CLEARANCE).contains(&nibble(&map.clearances, g, l)))
-        {
+        // Zero nibbles exactly on the surface cells (the cap is 15, so any non-zero
+        // nibble is a valid clearance).
+        let bytes = map
+            .clearances
+            .get(d * NIBBLE_BYTES..(d + 1) * NIBBLE_BYTES)
+            .unwrap_or(&[]);
+        if zero_nibbles(bytes) != surface {
             return Err(invalid(
                 "clearances",
                 format!(
-                    "cell {local} of graded brick {g} has clearance 0 or above {MAX_CLEARANCE}"
+                    "detailed brick {d} has clearance 0 on a non-surface cell or not on a surface cell"
                 ),
             ));
         }
     }
+    let graded = map.clearances.get(detailed * NIBBLE_BYTES..).unwrap_or(&[]);
+    if let Some(i) = graded.iter().position(|&b| b & 0x0f == 0 || b & 0xf0 == 0) {
+        return Err(invalid(
+            "clearances",
+            format!(
+                "graded brick {} has clearance 0 near cell {}",
+                detailed + i / NIBBLE_BYTES,
+                2 * (i % NIBBLE_BYTES)
+            ),
+        ));
+    }
     Ok(())
+}
+
+/// The cells of a brick whose clearance nibble is zero (`bytes` holds the brick's
+/// [`NIBBLE_BYTES`]; missing bytes count as zero).
+fn zero_nibbles(bytes: &[u8]) -> BrickBits {
+    let mut bits = [0u64; MASK_WORDS];
+    for local in 0..BRICK_CELLS {
+        let byte = bytes.get(local >> 1).copied().unwrap_or(0);
+        if (byte >> ((local & 1) * 4)) & 0xf == 0 {
+            bits[local >> 6] |= 1 << (local & 63);
+        }
+    }
+    bits
 }
 
 /// Triangle lists: one start per surface cell plus one, from 0, increasing (no empty
