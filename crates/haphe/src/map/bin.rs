@@ -137,38 +137,42 @@ fn bin_triangle(corners: [DVec3; 3], t: u32, dims: [u32; 3], bdims: [u32; 3], ou
     }
 }
 
-/// Bits per pass of the radix sort.
-const RADIX_BITS: u32 = 12;
+/// The sort first distributes the keys into `2^BUCKET_BITS` buckets by the top bits of
+/// their cell.
+const BUCKET_BITS: u32 = 12;
 
-/// Sorts the keys by cell (their upper 32 bits, of which the lower `cell_bits` are used),
-/// keeping the order of equal cells: a least-significant-digit radix sort, linear in the
-/// number of keys. The binning emits keys in increasing triangle order, so each cell's
-/// triangles come out increasing.
+/// Sorts the keys (cell in the upper 32 bits, of which the lower `cell_bits` are used,
+/// triangle below): one sequential pass distributes them into buckets by the top bits of
+/// the cell, then the buckets are sorted in parallel. The result is the keys in increasing
+/// order — by cell, then by triangle — whatever their order on entry, so it does not
+/// depend on the number of threads.
 pub(super) fn sort_by_cell(keys: Vec<u64>, cell_bits: u32) -> Vec<u64> {
-    let mut src = keys;
-    let mut dst = vec![0u64; src.len()];
-    let mask = (1u64 << RADIX_BITS) - 1;
-    let mut shift = 32;
-    while shift < 32 + cell_bits {
-        let mut counts = vec![0usize; 1 << RADIX_BITS];
-        for &k in &src {
-            counts[((k >> shift) & mask) as usize] += 1;
-        }
-        let mut at = 0;
-        for c in counts.iter_mut() {
-            let n = *c;
-            *c = at;
-            at += n;
-        }
-        for &k in &src {
-            let bucket = &mut counts[((k >> shift) & mask) as usize];
-            dst[*bucket] = k;
-            *bucket += 1;
-        }
-        std::mem::swap(&mut src, &mut dst);
-        shift += RADIX_BITS;
+    let shift = 32 + cell_bits.saturating_sub(BUCKET_BITS);
+    let bucket = |k: u64| ((k >> shift) as usize) & ((1 << BUCKET_BITS) - 1);
+    let mut starts = vec![0usize; (1 << BUCKET_BITS) + 1];
+    for &k in &keys {
+        starts[bucket(k) + 1] += 1;
     }
-    src
+    for i in 1..starts.len() {
+        starts[i] += starts[i - 1];
+    }
+    let mut sorted = vec![0u64; keys.len()];
+    let mut fill = starts.clone();
+    for &k in &keys {
+        let at = &mut fill[bucket(k)];
+        sorted[*at] = k;
+        *at += 1;
+    }
+    drop(keys);
+    let mut buckets: Vec<&mut [u64]> = Vec::with_capacity(1 << BUCKET_BITS);
+    let mut rest: &mut [u64] = &mut sorted;
+    for w in starts.windows(2) {
+        let (head, tail) = rest.split_at_mut(w[1] - w[0]);
+        buckets.push(head);
+        rest = tail;
+    }
+    buckets.par_iter_mut().for_each(|b| b.sort_unstable());
+    sorted
 }
 
 /// Capacity of a clipped polygon. A convex polygon gains at most one corner per clipping

@@ -62,15 +62,6 @@ pub(crate) fn nibble(nibbles: &[u8], brick: usize, local: usize) -> u8 {
         .map_or(0, |&b| (b >> ((local & 1) * 4)) & 0xf)
 }
 
-/// Sets the clearance of cell `local` of clearance brick `brick` (ignored out of range).
-#[inline]
-pub(crate) fn set_nibble(nibbles: &mut [u8], brick: usize, local: usize, value: u8) {
-    if let Some(b) = nibbles.get_mut(brick * NIBBLE_BYTES + (local >> 1)) {
-        let shift = (local & 1) * 4;
-        *b = (*b & !(0xf << shift)) | ((value & 0xf) << shift);
-    }
-}
-
 /// The state of a uniform entry.
 #[inline]
 pub(crate) fn entry_state(entry: u32) -> CellState {

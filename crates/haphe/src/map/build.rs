@@ -66,9 +66,9 @@ impl VoxelMap {
     ///
     /// # Performance
     /// Parallel (rayon), `O(T + P log P + B + D)` for `T` triangles, `P` (cell, triangle)
-    /// pairs, `B` bricks and `D` cells in bricks near the surface; about a second per
-    /// million triangles on two cores. Peak memory is the finished map plus about 8 bytes
-    /// per pair. Not for a servo tick.
+    /// pairs, `B` bricks and `D` cells in bricks near the surface; about 0.6 s per million
+    /// triangles on two cores. Peak memory is the finished map plus about 16 bytes per
+    /// pair (the pairs, and their sorted copy). Not for a servo tick.
     pub fn build_with_progress(
         surface: &Surface,
         options: &MapOptions,

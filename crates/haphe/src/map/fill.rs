@@ -8,9 +8,8 @@
 use rayon::prelude::*;
 
 use super::bricks::{
-    BRICK_BITS, BRICK_CELLS, BRICK_SIDE, BrickBits, MASK_WORDS, NIBBLE_BYTES, UNIFORM, VoxelMap,
-    brick_coords, brick_of, entry_state, graded_entry, has, in_grid_bits, set_nibble,
-    uniform_entry,
+    BRICK_BITS, BRICK_SIDE, BrickBits, MASK_WORDS, NIBBLE_BYTES, UNIFORM, VoxelMap, brick_coords,
+    brick_of, entry_state, graded_entry, in_grid_bits, uniform_entry,
 };
 use super::{CellState, MAX_CLEARANCE};
 
@@ -298,67 +297,135 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
         })
         .collect();
 
-    // Surface bits; non-surface cells start at the cap, surface cells at 0.
+    // D_0: the surface cells. Each cell's clearance is the number of steps k in
+    // 0..MAX_CLEARANCE with the cell not yet in D_k, counted in four bit planes.
     let mut current: Vec<BrickBits> = vec![[0; MASK_WORDS]; slots.len()];
-    let detailed_count = map.detailed_count();
-    map.clearances = vec![MAX_CLEARANCE * 0x11; (detailed_count + graded_count) * NIBBLE_BYTES];
     for (s, target) in targets.iter().enumerate() {
-        let Target::Detailed(d) = *target else {
-            continue;
-        };
-        if let Some(surface) = map.surface_bits.get(d) {
+        if let Target::Detailed(d) = *target
+            && let Some(surface) = map.surface_bits.get(d)
+        {
             current[s] = *surface;
-            for local in 0..BRICK_CELLS {
-                if has(surface, local) {
-                    set_nibble(&mut map.clearances, d, local, 0);
-                }
-            }
         }
     }
-    let mut min_clearance = vec![MAX_CLEARANCE; slots.len()];
+    let mut counts: Vec<Counter> = current
+        .par_iter()
+        .map(|bits| {
+            let mut counter = Counter::default();
+            counter.add_missing(bits);
+            counter
+        })
+        .collect();
     let mut along_x = current.clone();
     let mut along_y = current.clone();
     let mut next = current.clone();
-    for k in 1..MAX_CLEARANCE {
+    for _ in 1..MAX_CLEARANCE {
         dilate(&current, &mut along_x, &neighbours, 0);
         dilate(&along_x, &mut along_y, &neighbours, 1);
         dilate(&along_y, &mut next, &neighbours, 2);
-        for (s, target) in targets.iter().enumerate() {
-            for z in 0..BRICK_SIDE as usize {
-                let mut fresh = next[s][z] & !current[s][z];
-                if fresh == 0 {
-                    continue;
-                }
-                min_clearance[s] = min_clearance[s].min(k);
-                while fresh != 0 {
-                    let local = (z << 6) + fresh.trailing_zeros() as usize;
-                    fresh &= fresh - 1;
-                    match *target {
-                        Target::Detailed(d) => set_nibble(&mut map.clearances, d, local, k),
-                        Target::Graded(g) => {
-                            set_nibble(&mut map.clearances, detailed_count + g, local, k);
-                        }
-                        Target::Uniform => break,
-                    }
-                }
-            }
-        }
+        counts
+            .par_iter_mut()
+            .zip(next.par_iter())
+            .for_each(|(counter, bits)| counter.add_missing(bits));
         std::mem::swap(&mut current, &mut next);
     }
+    drop((current, next, along_x, along_y));
 
+    let detailed_count = map.detailed_count();
+    map.clearances = vec![0; (detailed_count + graded_count) * NIBBLE_BYTES];
+    for (target, counter) in targets.iter().zip(&counts) {
+        let brick = match *target {
+            Target::Detailed(d) => d,
+            Target::Graded(g) => detailed_count + g,
+            Target::Uniform => continue,
+        };
+        if let Some(bytes) = map
+            .clearances
+            .get_mut(brick * NIBBLE_BYTES..(brick + 1) * NIBBLE_BYTES)
+        {
+            counter.write_nibbles(bytes);
+        }
+    }
     for (b, entry) in map.bricks.iter_mut().enumerate() {
         if *entry & UNIFORM == 0 {
             continue;
         }
         let state = entry_state(*entry);
-        let slot = slot_of[b];
-        *entry = match targets.get(slot as usize) {
-            Some(Target::Graded(g)) => graded_entry(state, (detailed_count + g) as u32),
-            Some(_) => uniform_entry(state, min_clearance[slot as usize]),
-            None => uniform_entry(state, MAX_CLEARANCE),
+        let slot = slot_of[b] as usize;
+        *entry = match (targets.get(slot), counts.get(slot)) {
+            (Some(Target::Graded(g)), _) => graded_entry(state, (detailed_count + g) as u32),
+            (Some(_), Some(counter)) => uniform_entry(state, counter.min()),
+            _ => uniform_entry(state, MAX_CLEARANCE),
         };
     }
 }
+
+/// A 4-bit counter per cell of a brick, bit-sliced: bit `p` of every cell's count lives
+/// in plane `p`, so adding one to a set of cells costs a few word operations.
+#[derive(Clone, Copy, Default)]
+struct Counter {
+    planes: [BrickBits; 4],
+}
+
+impl Counter {
+    /// Adds one to every cell not in `bits` (counts stay below 16: at most
+    /// [`MAX_CLEARANCE`] additions).
+    #[inline]
+    fn add_missing(&mut self, bits: &BrickBits) {
+        for z in 0..MASK_WORDS {
+            let mut carry = !bits[z];
+            for plane in &mut self.planes {
+                let sum = plane[z] ^ carry;
+                carry &= plane[z];
+                plane[z] = sum;
+            }
+        }
+    }
+
+    /// The smallest count of the brick's cells.
+    fn min(&self) -> u8 {
+        let mut candidates = [u64::MAX; MASK_WORDS];
+        let mut min = 0u8;
+        for p in (0..4).rev() {
+            let zero: BrickBits = std::array::from_fn(|z| candidates[z] & !self.planes[p][z]);
+            if zero.iter().any(|&w| w != 0) {
+                candidates = zero;
+            } else {
+                min |= 1 << p;
+            }
+        }
+        min
+    }
+
+    /// The counts as nibbles (cell `l` in byte `l / 2`, low nibble first).
+    fn write_nibbles(&self, bytes: &mut [u8]) {
+        for (group, out) in bytes.chunks_exact_mut(4).enumerate() {
+            // Eight cells: `group * 8 ..`, the byte `group % 8` of word `group / 8`.
+            let (z, shift) = (group / 8, 8 * (group % 8));
+            let mut nibbles = 0u32;
+            for (p, plane) in self.planes.iter().enumerate() {
+                nibbles |= SPREAD_NIBBLES[((plane[z] >> shift) & 0xff) as usize] << p;
+            }
+            out.copy_from_slice(&nibbles.to_le_bytes());
+        }
+    }
+}
+
+/// `SPREAD_NIBBLES[x]` has bit `i` of `x` at bit `4·i`.
+const SPREAD_NIBBLES: [u32; 256] = {
+    let mut table = [0u32; 256];
+    let mut x = 0;
+    while x < 256 {
+        let mut i = 0;
+        while i < 8 {
+            if x >> i & 1 != 0 {
+                table[x] |= 1 << (4 * i);
+            }
+            i += 1;
+        }
+        x += 1;
+    }
+    table
+};
 
 /// One dilation step along `axis` of every brick of the work set: a bit is set when it or
 /// a face neighbour along `axis` (possibly in the next brick) is set in `input`.

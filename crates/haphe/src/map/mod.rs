@@ -96,7 +96,7 @@ pub struct MapOptions {
     /// more memory and more cells for a segment to step through.
     pub triangles_per_cell: f64,
     /// Upper bound on the memory of the finished map ([`VoxelMap::heap_bytes`]), bytes.
-    /// The build needs about 8 more bytes per (cell, triangle) pair while it runs.
+    /// The build needs about 16 more bytes per (cell, triangle) pair while it runs.
     pub memory_budget_bytes: usize,
 }
 
