@@ -297,8 +297,10 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
         })
         .collect();
 
-    // D_0: the surface cells. Each cell's clearance is the number of steps k in
-    // 0..MAX_CLEARANCE with the cell not yet in D_k, counted in four bit planes.
+    // D_0: the surface cells. A cell's clearance is the number of steps k in
+    // 0..MAX_CLEARANCE with the cell not yet in D_k: counted per cell, in four bit planes,
+    // for detailed and graded bricks; for the other bricks only their smallest clearance
+    // is kept, the number of steps with the whole brick still outside D_k.
     let mut current: Vec<BrickBits> = vec![[0; MASK_WORDS]; slots.len()];
     for (s, target) in targets.iter().enumerate() {
         if let Target::Detailed(d) = *target
@@ -307,13 +309,22 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
             current[s] = *surface;
         }
     }
-    let mut counts: Vec<Counter> = current
+    let counted: Vec<usize> = (0..slots.len())
+        .filter(|&s| !matches!(targets[s], Target::Uniform))
+        .collect();
+    let mut counts: Vec<Counter> = counted
         .par_iter()
-        .map(|bits| {
+        .map(|&s| {
             let mut counter = Counter::default();
-            counter.add_missing(bits);
+            counter.add_missing(&current[s]);
             counter
         })
+        .collect();
+    let mut current = Layer::new(current);
+    let mut empty_steps: Vec<u8> = current
+        .occupancy
+        .iter()
+        .map(|&o| u8::from(o == Occupancy::Empty))
         .collect();
     let mut along_x = current.clone();
     let mut along_y = current.clone();
@@ -324,16 +335,24 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
         dilate(&along_y, &mut next, &neighbours, 2);
         counts
             .par_iter_mut()
-            .zip(next.par_iter())
-            .for_each(|(counter, bits)| counter.add_missing(bits));
+            .zip(counted.par_iter())
+            .for_each(|(counter, &s)| {
+                if next.occupancy[s] != Occupancy::Full {
+                    counter.add_missing(&next.bits[s]);
+                }
+            });
+        empty_steps
+            .par_iter_mut()
+            .zip(next.occupancy.par_iter())
+            .for_each(|(steps, &o)| *steps += u8::from(o == Occupancy::Empty));
         std::mem::swap(&mut current, &mut next);
     }
     drop((current, next, along_x, along_y));
 
     let detailed_count = map.detailed_count();
     map.clearances = vec![0; (detailed_count + graded_count) * NIBBLE_BYTES];
-    for (target, counter) in targets.iter().zip(&counts) {
-        let brick = match *target {
+    for (&s, counter) in counted.iter().zip(&counts) {
+        let brick = match targets[s] {
             Target::Detailed(d) => d,
             Target::Graded(g) => detailed_count + g,
             Target::Uniform => continue,
@@ -351,9 +370,9 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
         }
         let state = entry_state(*entry);
         let slot = slot_of[b] as usize;
-        *entry = match (targets.get(slot), counts.get(slot)) {
+        *entry = match (targets.get(slot), empty_steps.get(slot)) {
             (Some(Target::Graded(g)), _) => graded_entry(state, (detailed_count + g) as u32),
-            (Some(_), Some(counter)) => uniform_entry(state, counter.min()),
+            (Some(_), Some(&steps)) => uniform_entry(state, steps.min(MAX_CLEARANCE)),
             _ => uniform_entry(state, MAX_CLEARANCE),
         };
     }
@@ -379,21 +398,6 @@ impl Counter {
                 plane[z] = sum;
             }
         }
-    }
-
-    /// The smallest count of the brick's cells.
-    fn min(&self) -> u8 {
-        let mut candidates = [u64::MAX; MASK_WORDS];
-        let mut min = 0u8;
-        for p in (0..4).rev() {
-            let zero: BrickBits = std::array::from_fn(|z| candidates[z] & !self.planes[p][z]);
-            if zero.iter().any(|&w| w != 0) {
-                candidates = zero;
-            } else {
-                min |= 1 << p;
-            }
-        }
-        min
     }
 
     /// The counts as nibbles (cell `l` in byte `l / 2`, low nibble first).
@@ -427,19 +431,79 @@ const SPREAD_NIBBLES: [u32; 256] = {
     table
 };
 
+/// How much of a brick's bit mask is set, so that dilation can skip bricks whose result
+/// is known.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Occupancy {
+    Empty,
+    Full,
+    Mixed,
+}
+
+impl Occupancy {
+    fn of(bits: &BrickBits) -> Occupancy {
+        if bits.iter().all(|&w| w == 0) {
+            Occupancy::Empty
+        } else if bits.iter().all(|&w| w == u64::MAX) {
+            Occupancy::Full
+        } else {
+            Occupancy::Mixed
+        }
+    }
+}
+
+/// The bit masks of the work set, with each brick's occupancy.
+#[derive(Clone)]
+struct Layer {
+    bits: Vec<BrickBits>,
+    occupancy: Vec<Occupancy>,
+}
+
+impl Layer {
+    fn new(bits: Vec<BrickBits>) -> Layer {
+        let occupancy = bits.par_iter().map(Occupancy::of).collect();
+        Layer { bits, occupancy }
+    }
+}
+
 /// One dilation step along `axis` of every brick of the work set: a bit is set when it or
-/// a face neighbour along `axis` (possibly in the next brick) is set in `input`.
-fn dilate(input: &[BrickBits], output: &mut [BrickBits], neighbours: &[[u32; 6]], axis: usize) {
-    let get = |slot: u32| input.get(slot as usize);
+/// a face neighbour along `axis` (possibly in the next brick) is set in `input`. A full
+/// brick stays full, and an empty one with empty neighbours along `axis` stays empty,
+/// without computing.
+fn dilate(input: &Layer, output: &mut Layer, neighbours: &[[u32; 6]], axis: usize) {
+    let get = |slot: u32| input.bits.get(slot as usize);
+    let occupancy = |slot: u32| {
+        input
+            .occupancy
+            .get(slot as usize)
+            .copied()
+            .unwrap_or(Occupancy::Empty)
+    };
     output
+        .bits
         .par_iter_mut()
-        .zip(input.par_iter())
+        .zip(output.occupancy.par_iter_mut())
+        .zip(input.bits.par_iter().zip(input.occupancy.par_iter()))
         .zip(neighbours.par_iter())
-        .for_each(|((out, bits), nb)| {
-            let (below, above) = (get(nb[2 * axis]), get(nb[2 * axis + 1]));
+        .for_each(|(((out, out_occupancy), (bits, &own)), nb)| {
+            let (below, above) = (nb[2 * axis], nb[2 * axis + 1]);
+            if own == Occupancy::Full {
+                *out = [u64::MAX; MASK_WORDS];
+                *out_occupancy = Occupancy::Full;
+                return;
+            }
+            if own == Occupancy::Empty
+                && occupancy(below) == Occupancy::Empty
+                && occupancy(above) == Occupancy::Empty
+            {
+                *out = [0; MASK_WORDS];
+                *out_occupancy = Occupancy::Empty;
+                return;
+            }
+            let (below, above) = (get(below), get(above));
             match axis {
                 0 => {
-                    for z in 0..BRICK_SIDE as usize {
+                    for z in 0..MASK_WORDS {
                         let w = bits[z];
                         let mut o = w | ((w << 1) & !COLUMN_X0) | ((w >> 1) & !COLUMN_X7);
                         if let Some(n) = below {
@@ -452,7 +516,7 @@ fn dilate(input: &[BrickBits], output: &mut [BrickBits], neighbours: &[[u32; 6]]
                     }
                 }
                 1 => {
-                    for z in 0..BRICK_SIDE as usize {
+                    for z in 0..MASK_WORDS {
                         let w = bits[z];
                         let mut o = w | (w << 8) | (w >> 8);
                         if let Some(n) = below {
@@ -465,7 +529,7 @@ fn dilate(input: &[BrickBits], output: &mut [BrickBits], neighbours: &[[u32; 6]]
                     }
                 }
                 _ => {
-                    let last = BRICK_SIDE as usize - 1;
+                    let last = MASK_WORDS - 1;
                     for z in 0..=last {
                         let mut o = bits[z];
                         o |= if z > 0 {
@@ -482,5 +546,6 @@ fn dilate(input: &[BrickBits], output: &mut [BrickBits], neighbours: &[[u32; 6]]
                     }
                 }
             }
+            *out_occupancy = Occupancy::of(out);
         });
 }
