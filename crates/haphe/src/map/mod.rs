@@ -1,1 +1,178 @@
-//! Stage 2 — the voxel map of one object (to be written).
+//! Stage 2 — the voxel map of one object.
+//!
+//! ```text
+//! Surface ──VoxelMap::build──▶ VoxelMap ──encode──▶ bytes ──decode──▶ (Surface, VoxelMap)
+//! ```
+//!
+//! A [`VoxelMap`] is a uniform [`Grid`] over the object's bounding box, padded by one cell
+//! on every side, in the object frame. Each cell is [`CellState::Outside`],
+//! [`CellState::Inside`] or [`CellState::Surface`]:
+//!
+//! - a **surface** cell lists every triangle that overlaps it ([`overlap_triangle_box`],
+//!   with cells enlarged by [`OVERLAP_TOLERANCE_REL`] so that rounding in a query's cell
+//!   walk never misses a triangle at a cell border), so a query finds its candidate
+//!   triangles in constant time;
+//! - the other cells are classified by a **flood fill** from the padding (reached means
+//!   outside, the rest inside) when the surface is a closed solid; for any other surface
+//!   they are all outside (free space);
+//! - each non-surface cell also stores its **clearance**: how many cells away the nearest
+//!   surface cell is (Chebyshev distance, capped at [`MAX_CLEARANCE`]), so a device point
+//!   that stays in free space needs no triangle test at all for several ticks.
+//!
+//! A query finds the cells a segment passes with [`Grid::walk`] (a 3D-DDA) and the
+//! candidate triangles of each with [`VoxelMap::triangles_in`], in constant time per cell.
+//!
+//! Storage is sparse ([`VoxelMap`]): bricks of 8×8×8 cells, uniform bricks far from the
+//! surface cost four bytes each. The build is parallel and deterministic: the same surface
+//! and options give the same map, byte for byte, for any number of threads. [`encode`] and
+//! [`decode`] save and load a surface with its map in one checked file.
+//!
+//! # Choosing the cell size
+//!
+//! See [`MapOptions`]: by default the cell size follows the typical triangle size so that
+//! a surface cell lists a few triangles, and grows when the map would exceed the memory
+//! budget. [`VoxelMap::stats`] reports what was chosen and why.
+
+mod bin;
+mod bricks;
+mod build;
+mod cell_size;
+mod file;
+mod fill;
+mod grid;
+mod overlap;
+mod validate;
+mod walk;
+
+pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
+pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, encode};
+pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL, PADDING_SLACK_REL};
+pub use overlap::overlap_triangle_box;
+pub use walk::{CellStep, CellWalk};
+
+/// Largest clearance a cell stores, in cells. Cells within 15 cells of the surface store
+/// their exact Chebyshev distance to it (in bricks holding surface cells), farther ones 15:
+/// with millimetre cells a device point far from the object may move 14 mm before the map
+/// needs to be consulted again. Fits the brick layout: two bricks of exact distances
+/// around every brick that holds surface cells.
+pub const MAX_CLEARANCE: u8 = 15;
+
+/// The default target of [`MapOptions::triangles_per_cell`].
+pub const DEFAULT_TRIANGLES_PER_CELL: f64 = 4.0;
+
+/// The default of [`MapOptions::memory_budget_bytes`]: 1 GiB.
+pub const DEFAULT_MEMORY_BUDGET_BYTES: usize = 1 << 30;
+
+/// What a cell of a [`VoxelMap`] is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum CellState {
+    /// Free space: no triangle overlaps the cell, and it is outside the object (or the
+    /// surface has no inside).
+    Outside = 0,
+    /// Inside the solid: no triangle overlaps the cell, and it is enclosed by the surface.
+    Inside = 1,
+    /// At least one triangle overlaps the cell ([`VoxelMap::triangles_in`] lists them).
+    Surface = 2,
+}
+
+/// How a [`VoxelMap`] is built.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MapOptions {
+    /// The cell edge length, metres; `None` chooses it from the mesh.
+    ///
+    /// The automatic rule: let `s` be the typical triangle size (the median over
+    /// non-degenerate triangles of `√area`) and `τ` the target
+    /// [`MapOptions::triangles_per_cell`]. On the procedural shapes the mean number of
+    /// triangles per surface cell is close to `1 + 2.2·f + 0.75·f²` for a cell size
+    /// `h = f·s`, so the rule takes the `f` that makes this `τ` (at least 0.25): `f ≈ 0.73`
+    /// for the default `τ = 3`. The size then grows by a factor of 1.25 at a time while
+    /// the estimated map size exceeds the budget or the grid exceeds
+    /// [`MAX_CELLS_PER_AXIS`] or [`MAX_BRICKS`]; [`MapStats::cell_size_rule`] reports `s`,
+    /// the first size and how many times it grew.
+    pub cell_size_m: Option<f64>,
+    /// Target mean number of triangles per surface cell (used when the cell size is
+    /// automatic); at least 1. Fewer means smaller cells: fewer triangle tests per cell, but
+    /// more memory and more cells for a segment to step through.
+    pub triangles_per_cell: f64,
+    /// Upper bound on the memory of the finished map ([`VoxelMap::heap_bytes`]), bytes.
+    /// The build needs about 16 more bytes per (cell, triangle) pair while it runs.
+    pub memory_budget_bytes: usize,
+}
+
+impl Default for MapOptions {
+    fn default() -> Self {
+        MapOptions {
+            cell_size_m: None,
+            triangles_per_cell: DEFAULT_TRIANGLES_PER_CELL,
+            memory_budget_bytes: DEFAULT_MEMORY_BUDGET_BYTES,
+        }
+    }
+}
+
+/// How the cell size of a map was chosen (reported by [`MapStats::cell_size_rule`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CellSizeRule {
+    /// Given in [`MapOptions::cell_size_m`].
+    Given,
+    /// Chosen from the mesh (see [`MapOptions::cell_size_m`]).
+    Automatic {
+        /// The typical triangle size `s`, metres: the median of `√area`.
+        typical_triangle_size_m: f64,
+        /// The size the rule gave before any enlargement, metres.
+        initial_cell_size_m: f64,
+        /// How many times the size grew by 1.25 to respect the memory budget and the
+        /// grid limits.
+        enlargements: u32,
+    },
+}
+
+/// Why a [`VoxelMap`] could not be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MapError {
+    /// [`MapOptions::cell_size_m`] is not a finite positive length.
+    #[error("cell size {cell_size_m} m is not a finite positive length")]
+    InvalidCellSize {
+        /// The cell size given, metres.
+        cell_size_m: f64,
+    },
+    /// [`MapOptions::triangles_per_cell`] is not finite or below 1.
+    #[error("triangles per cell {value} is not a finite number of at least 1")]
+    InvalidTrianglesPerCell {
+        /// The value given.
+        value: f64,
+    },
+    /// The given cell size makes a grid larger than [`MAX_CELLS_PER_AXIS`] along an axis
+    /// or than [`MAX_BRICKS`] bricks.
+    #[error(
+        "a grid of {cell_size_m} m cells over a box of {extent_m:?} m is too large (at most \
+         {MAX_CELLS_PER_AXIS} cells per axis and {MAX_BRICKS} bricks of 8×8×8 cells)"
+    )]
+    TooManyCells {
+        /// The cell size, metres.
+        cell_size_m: f64,
+        /// The surface's bounding box size, metres.
+        extent_m: [f64; 3],
+    },
+    /// The map would need more memory than [`MapOptions::memory_budget_bytes`] (with the
+    /// given cell size, or even with the coarsest grid).
+    #[error(
+        "the map needs about {needed_bytes} bytes with {cell_size_m} m cells, more than the \
+         budget of {budget_bytes} bytes"
+    )]
+    OverBudget {
+        /// The cell size of the last attempt, metres.
+        cell_size_m: f64,
+        /// Estimated or measured bytes of that map.
+        needed_bytes: u64,
+        /// The budget, bytes.
+        budget_bytes: usize,
+    },
+    /// More (cell, triangle) pairs than 32-bit offsets can address.
+    #[error("{refs} (cell, triangle) pairs exceed the 2^32 the map can address")]
+    TooManyTriangleRefs {
+        /// The number of pairs.
+        refs: u64,
+    },
+}

@@ -234,6 +234,75 @@ impl Surface {
     }
 }
 
+/// The arrays of a [`Surface`], owned (to rebuild a saved surface) or borrowed (to save one).
+///
+/// Invariants the caller of [`Surface::from_parts`] must have checked, as [`Surface::new`]
+/// establishes them: every coordinate finite; `triangles` and `neighbours` index within
+/// `vertices` and `triangles` (or are [`NONE`] for a missing neighbour), and neighbours are
+/// symmetric; `frames` and `corner_normals` have one entry per triangle, all finite;
+/// `fan_start` has `vertices.len() + 1` non-decreasing entries from 0 to
+/// `fan_triangles.len()`, and every triangle in the fan of `v` has a corner at `v`; the
+/// report describes this mesh.
+pub(crate) struct SurfaceParts<V, T, F, N, U> {
+    pub(crate) vertices: V,
+    pub(crate) triangles: T,
+    pub(crate) neighbours: T,
+    pub(crate) frames: F,
+    pub(crate) corner_normals: N,
+    pub(crate) fan_start: U,
+    pub(crate) fan_triangles: U,
+    pub(crate) report: MeshReport,
+}
+
+/// Owned parts, as [`Surface::from_parts`] takes them.
+pub(crate) type OwnedSurfaceParts =
+    SurfaceParts<Vec<DVec3>, Vec<[u32; 3]>, Vec<TriFrame>, Vec<[DVec3; 3]>, Vec<u32>>;
+
+/// Borrowed parts, as [`Surface::parts`] gives them (the report is cloned).
+pub(crate) type SurfacePartsRef<'a> =
+    SurfaceParts<&'a [DVec3], &'a [[u32; 3]], &'a [TriFrame], &'a [[DVec3; 3]], &'a [u32]>;
+
+impl Surface {
+    /// Reassembles a surface from trusted parts (a saved file, after its checks), without
+    /// recomputing anything. See [`SurfaceParts`] for what the caller guarantees.
+    pub(crate) fn from_parts(parts: OwnedSurfaceParts) -> Surface {
+        let SurfaceParts {
+            vertices,
+            triangles,
+            neighbours,
+            frames,
+            corner_normals,
+            fan_start,
+            fan_triangles,
+            report,
+        } = parts;
+        Surface {
+            vertices,
+            triangles,
+            neighbours,
+            frames,
+            corner_normals,
+            fan_start,
+            fan_triangles,
+            report,
+        }
+    }
+
+    /// The arrays of the surface, borrowed, for saving.
+    pub(crate) fn parts(&self) -> SurfacePartsRef<'_> {
+        SurfaceParts {
+            vertices: &self.vertices,
+            triangles: &self.triangles,
+            neighbours: &self.neighbours,
+            frames: &self.frames,
+            corner_normals: &self.corner_normals,
+            fan_start: &self.fan_start,
+            fan_triangles: &self.fan_triangles,
+            report: self.report.clone(),
+        }
+    }
+}
+
 /// Neighbours across each edge: set for edges used by exactly two distinct triangles.
 fn link_neighbours(triangle_count: usize, edges: &EdgeTable) -> Vec<[u32; 3]> {
     let mut neighbours = vec![[NONE; 3]; triangle_count];

@@ -10,12 +10,12 @@ pub use nesting::MAX_NESTING_WORK;
 mod nesting;
 mod text;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::Mesh;
 
 /// An undirected edge `[low vertex, high vertex]` and the triangles that use it.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct EdgeUse {
     /// The edge's vertices, lower index first.
     pub edge: [u32; 2],
@@ -24,7 +24,7 @@ pub struct EdgeUse {
 }
 
 /// One connected component (triangles joined through shared edges).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ComponentReport {
     /// Number of triangles.
     pub triangles: usize,
@@ -50,7 +50,7 @@ pub struct ComponentReport {
 }
 
 /// Every defect listed with its place (vertex, edge or triangle indices, after welding).
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Defects {
     /// Edges used by one triangle only (the mesh is open there).
     pub boundary_edges: Vec<[u32; 2]>,
@@ -75,7 +75,7 @@ pub struct Defects {
 }
 
 /// What haphe can do with a mesh.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Usability {
     /// A valid closed solid: closed, manifold, consistently oriented, not inside out, no
@@ -91,7 +91,7 @@ pub enum Usability {
 /// `haphe validate --json`.
 ///
 /// Counts are after welding. Lengths are metres, areas m², volumes m³, object frame.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MeshReport {
     /// Number of triangles.
     pub triangles: usize,

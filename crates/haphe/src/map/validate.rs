@@ -1,0 +1,472 @@
+//! The checks a loaded file passes before its surface and map are trusted: every invariant
+//! that a query relies on to index arrays, and the canonical layout the build produces.
+
+use glam::DVec3;
+
+use super::bricks::{
+    BRICK_CELLS, BRICK_SIDE, BrickBits, GRADED, MASK_WORDS, MAX_BRICKS, NIBBLE_BYTES, UNIFORM,
+    UNIFORM_PAYLOAD, UNIFORM_STATE_SHIFT, VoxelMap, brick_coords, brick_dims, cell_in_brick,
+    in_grid_bits,
+};
+use super::file::{invalid, u64_at};
+use super::grid::Grid;
+use super::{CellSizeRule, MAX_CLEARANCE, MapFileError};
+use crate::mesh::{NONE, OwnedSurfaceParts, Surface, Usability};
+
+/// The map's scalar parameters, as stored in the "map parameters" section.
+pub(crate) struct MapParams {
+    pub(crate) grid: Grid,
+    pub(crate) triangle_count: u32,
+    pub(crate) solid: bool,
+    pub(crate) cell_size_rule: CellSizeRule,
+}
+
+/// Bytes of the "map parameters" section.
+const PARAMS_BYTES: usize = 88;
+
+impl MapParams {
+    pub(crate) fn of(map: &VoxelMap) -> MapParams {
+        MapParams {
+            grid: map.grid,
+            triangle_count: map.triangle_count,
+            solid: map.solid,
+            cell_size_rule: map.cell_size_rule,
+        }
+    }
+}
+
+/// The section: origin (3 × f64), cell size (f64), dims (3 × u32), triangle count, solid
+/// flag, maximum clearance, brick side, cell-size rule (0 given, 1 automatic) (u32 each),
+/// typical triangle size and initial cell size (f64), enlargements and a zero (u32).
+pub(crate) fn map_params_bytes(p: &MapParams) -> Vec<u8> {
+    let mut out = Vec::with_capacity(PARAMS_BYTES);
+    let g = &p.grid;
+    for x in g.origin().to_array() {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+    out.extend_from_slice(&g.cell_size().to_le_bytes());
+    for d in g.dims() {
+        out.extend_from_slice(&d.to_le_bytes());
+    }
+    let (rule, typical, initial, enlargements) = match p.cell_size_rule {
+        CellSizeRule::Given => (0u32, 0.0, 0.0, 0u32),
+        CellSizeRule::Automatic {
+            typical_triangle_size_m,
+            initial_cell_size_m,
+            enlargements,
+        } => (
+            1,
+            typical_triangle_size_m,
+            initial_cell_size_m,
+            enlargements,
+        ),
+    };
+    for w in [
+        p.triangle_count,
+        u32::from(p.solid),
+        u32::from(MAX_CLEARANCE),
+        BRICK_SIDE,
+        rule,
+    ] {
+        out.extend_from_slice(&w.to_le_bytes());
+    }
+    out.extend_from_slice(&typical.to_le_bytes());
+    out.extend_from_slice(&initial.to_le_bytes());
+    out.extend_from_slice(&enlargements.to_le_bytes());
+    out.extend_from_slice(&0u32.to_le_bytes());
+    out
+}
+
+pub(crate) fn parse_map_params(bytes: &[u8]) -> Result<MapParams, MapFileError> {
+    const NAME: &str = "map parameters";
+    if bytes.len() != PARAMS_BYTES {
+        return Err(invalid(
+            NAME,
+            format!("{} bytes, expected {PARAMS_BYTES}", bytes.len()),
+        ));
+    }
+    let f = |at: usize| f64::from_bits(u64_at(bytes, at));
+    let u = |at: usize| (u64_at(bytes, at) & 0xffff_ffff) as u32;
+    let origin = DVec3::new(f(0), f(8), f(16));
+    let cell_size = f(24);
+    let dims = [u(32), u(36), u(40)];
+    let grid = Grid::new(origin, cell_size, dims).ok_or_else(|| {
+        invalid(
+            NAME,
+            format!("grid at {origin} with {cell_size} m cells and dims {dims:?} is not valid"),
+        )
+    })?;
+    let bricks: u64 = brick_dims(dims).iter().map(|&d| u64::from(d)).product();
+    if bricks > MAX_BRICKS || dims.iter().any(|&d| d < 3) {
+        return Err(invalid(
+            NAME,
+            format!("dims {dims:?} are not a padded grid of at most {MAX_BRICKS} bricks"),
+        ));
+    }
+    let (triangle_count, solid, max_clearance, brick_side, rule) =
+        (u(44), u(48), u(52), u(56), u(60));
+    if solid > 1 || max_clearance != u32::from(MAX_CLEARANCE) || brick_side != BRICK_SIDE {
+        return Err(invalid(
+            NAME,
+            format!(
+                "solid flag {solid}, maximum clearance {max_clearance} and brick side \
+                 {brick_side} (expected 0 or 1, {MAX_CLEARANCE} and {BRICK_SIDE})"
+            ),
+        ));
+    }
+    let (typical, initial, enlargements, zero) = (f(64), f(72), u(80), u(84));
+    let cell_size_rule = match rule {
+        0 if typical == 0.0 && initial == 0.0 && enlargements == 0 => CellSizeRule::Given,
+        1 if typical.is_finite() && initial.is_finite() => CellSizeRule::Automatic {
+            typical_triangle_size_m: typical,
+            initial_cell_size_m: initial,
+            enlargements,
+        },
+        _ => return Err(invalid(NAME, format!("cell-size rule {rule} is not valid"))),
+    };
+    if zero != 0 {
+        return Err(invalid(NAME, "reserved word is not zero"));
+    }
+    Ok(MapParams {
+        grid,
+        triangle_count,
+        solid: solid == 1,
+        cell_size_rule,
+    })
+}
+
+/// The invariants of [`Surface`] that later stages index with.
+pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
+    let (v, t) = (p.vertices.len(), p.triangles.len());
+    if t == 0 || t >= NONE as usize || v >= NONE as usize {
+        return Err(invalid(
+            "triangles",
+            format!("{t} triangles and {v} vertices"),
+        ));
+    }
+    if let Some(i) = p.vertices.iter().position(|x| !x.is_finite()) {
+        return Err(invalid("vertices", format!("vertex {i} is not finite")));
+    }
+    if let Some(i) = p
+        .triangles
+        .iter()
+        .position(|tri| tri.iter().any(|&x| x as usize >= v))
+    {
+        return Err(invalid(
+            "triangles",
+            format!("triangle {i} has a vertex index out of range (of {v})"),
+        ));
+    }
+    if p.neighbours.len() != t {
+        return Err(invalid(
+            "neighbours",
+            format!("{} rows for {t} triangles", p.neighbours.len()),
+        ));
+    }
+    for (i, row) in p.neighbours.iter().enumerate() {
+        for &n in row {
+            let linked_back = p
+                .neighbours
+                .get(n as usize)
+                .is_some_and(|back| n as usize != i && back.contains(&(i as u32)));
+            if n != NONE && !linked_back {
+                return Err(invalid(
+                    "neighbours",
+                    format!(
+                        "triangle {i} names neighbour {n}, which is out of range or does not name it back"
+                    ),
+                ));
+            }
+        }
+    }
+    if p.corner_normals.len() != t {
+        return Err(invalid(
+            "corner normals",
+            format!("{} rows for {t} triangles", p.corner_normals.len()),
+        ));
+    }
+    if let Some(i) = p
+        .corner_normals
+        .iter()
+        .position(|n| n.iter().any(|x| !x.is_finite()))
+    {
+        return Err(invalid(
+            "corner normals",
+            format!("triangle {i} has a non-finite normal"),
+        ));
+    }
+    let starts = &p.fan_start;
+    if starts.len() != v + 1
+        || starts.first() != Some(&0)
+        || starts.last().map(|&x| x as usize) != Some(p.fan_triangles.len())
+        || starts.windows(2).any(|w| w[0] > w[1])
+    {
+        return Err(invalid(
+            "fan starts",
+            format!(
+                "{} starts for {v} vertices and {} fan entries: not 0, non-decreasing, up to the entries",
+                starts.len(),
+                p.fan_triangles.len()
+            ),
+        ));
+    }
+    for (vertex, w) in starts.windows(2).enumerate() {
+        let fan = p
+            .fan_triangles
+            .get(w[0] as usize..w[1] as usize)
+            .unwrap_or(&[]);
+        for &tri in fan {
+            let has_corner = p
+                .triangles
+                .get(tri as usize)
+                .is_some_and(|corners| corners.contains(&(vertex as u32)));
+            if !has_corner {
+                return Err(invalid(
+                    "fan triangles",
+                    format!(
+                        "the fan of vertex {vertex} lists triangle {tri}, which has no corner there"
+                    ),
+                ));
+            }
+        }
+    }
+    let r = &p.report;
+    if r.triangles != t || r.vertices != v || r.usable_as == Usability::Unusable {
+        return Err(invalid(
+            "report",
+            format!(
+                "the report describes {} triangles and {} vertices ({:?}); the surface has {t} and {v}",
+                r.triangles, r.vertices, r.usable_as
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The invariants of [`VoxelMap`], against the surface it must belong to.
+pub(crate) fn check_map(map: &VoxelMap, surface: &Surface) -> Result<(), MapFileError> {
+    let t = surface.triangle_count();
+    if map.triangle_count as usize != t || map.solid != surface.is_solid() {
+        let solid = |s: bool| if s { "solid" } else { "not solid" };
+        return Err(invalid(
+            "map parameters",
+            format!(
+                "the map was built for {} triangles ({}), the surface has {t} ({})",
+                map.triangle_count,
+                solid(map.solid),
+                solid(surface.is_solid()),
+            ),
+        ));
+    }
+    check_bricks(map)?;
+    check_detailed(map)?;
+    check_triangle_lists(map, t)
+}
+
+/// Brick entries: uniform ones with a valid state and clearance (inside only for a solid,
+/// never at the border), graded and detailed ones numbered consecutively in brick order.
+fn check_bricks(map: &VoxelMap) -> Result<(), MapFileError> {
+    let bdims = map.brick_dims;
+    let brick_count: usize = bdims.iter().map(|&d| d as usize).product();
+    if map.bricks.len() != brick_count {
+        return Err(invalid(
+            "bricks",
+            format!("{} entries for {brick_count} bricks", map.bricks.len()),
+        ));
+    }
+    let detailed = map.detailed_count();
+    let mut next_detailed = 0u32;
+    let mut next_graded = detailed as u32;
+    for (b, &entry) in map.bricks.iter().enumerate() {
+        if entry & UNIFORM == 0 {
+            if entry != next_detailed {
+                return Err(invalid(
+                    "bricks",
+                    format!("brick {b} names detailed brick {entry}, expected {next_detailed}"),
+                ));
+            }
+            next_detailed += 1;
+            continue;
+        }
+        let bc = brick_coords(b, bdims);
+        let state = (entry >> UNIFORM_STATE_SHIFT) & 0x3f;
+        let payload = entry & UNIFORM_PAYLOAD;
+        let on_border = (0..3).any(|a| bc[a] == 0 || bc[a] + 1 >= bdims[a]);
+        let state_ok = state == 0 || (state == 1 && map.solid && !on_border);
+        let payload_ok = if entry & GRADED != 0 {
+            next_graded += 1;
+            payload == next_graded - 1
+        } else {
+            (1..=u32::from(MAX_CLEARANCE)).contains(&payload)
+        };
+        if !state_ok || !payload_ok {
+            return Err(invalid(
+                "bricks",
+                format!(
+                    "uniform brick {b} has entry {entry:#010x}: bad state, clearance or \
+                     graded index"
+                ),
+            ));
+        }
+    }
+    if next_detailed as usize != detailed {
+        return Err(invalid(
+            "bricks",
+            format!("{next_detailed} detailed bricks named, {detailed} stored"),
+        ));
+    }
+    if map.clearances.len() != next_graded as usize * NIBBLE_BYTES {
+        return Err(invalid(
+            "clearances",
+            format!(
+                "{} bytes for {next_graded} detailed and graded bricks",
+                map.clearances.len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Detailed bricks: masks of the same length, surface and inside disjoint and within the
+/// interior cells (inside only for a solid), at least one surface cell, counts per word
+/// and first surface cells consistent; clearance nibbles 0 exactly on surface cells and
+/// `1..=MAX_CLEARANCE` elsewhere (graded bricks: everywhere).
+fn check_detailed(map: &VoxelMap) -> Result<(), MapFileError> {
+    let detailed = map.detailed_count();
+    if map.inside_bits.len() != detailed
+        || map.surface_before.len() != detailed
+        || map.surface_first.len() != detailed + 1
+        || map.surface_first.first() != Some(&0)
+    {
+        return Err(invalid(
+            "surface firsts",
+            format!(
+                "{} surface masks, {} inside masks, {} counts and {} firsts do not match",
+                detailed,
+                map.inside_bits.len(),
+                map.surface_before.len(),
+                map.surface_first.len()
+            ),
+        ));
+    }
+    let dims = map.grid.dims();
+    let bdims = map.brick_dims;
+    // The interior cells of a brick: all of them, except in bricks at the border of the
+    // grid, which hold the padding (and cells beyond the grid).
+    let interior = |bc: [u32; 3]| {
+        let mut bits = in_grid_bits(bc, dims);
+        if (0..3).all(|a| bc[a] > 0 && bc[a] + 1 < bdims[a]) {
+            return bits;
+        }
+        for local in 0..BRICK_CELLS {
+            let c = cell_in_brick(bc, local);
+            if (0..3).any(|a| c[a] == 0 || c[a] + 1 >= dims[a]) {
+                bits[local >> 6] &= !(1 << (local & 63));
+            }
+        }
+        bits
+    };
+    for (b, &entry) in map.bricks.iter().enumerate() {
+        if entry & UNIFORM != 0 {
+            continue;
+        }
+        let d = entry as usize;
+        let (surface, inside) = (map.surface_bits[d], map.inside_bits[d]);
+        let allowed = interior(brick_coords(b, bdims));
+        let mut count = 0u32;
+        let mut ok = true;
+        for z in 0..MASK_WORDS {
+            ok &= surface[z] & inside[z] == 0
+                && surface[z] & !allowed[z] == 0
+                && inside[z] & !allowed[z] == 0
+                && (map.solid || inside[z] == 0)
+                && u32::from(map.surface_before[d][z]) == count;
+            count += surface[z].count_ones();
+        }
+        let (first, next) = (map.surface_first[d], map.surface_first[d + 1]);
+        if !ok || count == 0 || next.checked_sub(first) != Some(count) {
+            return Err(invalid(
+                "surface masks",
+                format!(
+                    "detailed brick {d} (brick {b}): masks overlap, leave the interior, or \
+                     disagree with its counts ({count} surface cells, firsts {first}..{next})"
+                ),
+            ));
+        }
+        // Zero nibbles exactly on the surface cells (the cap is 15, so any non-zero
+        // nibble is a valid clearance).
+        let bytes = map
+            .clearances
+            .get(d * NIBBLE_BYTES..(d + 1) * NIBBLE_BYTES)
+            .unwrap_or(&[]);
+        if zero_nibbles(bytes) != surface {
+            return Err(invalid(
+                "clearances",
+                format!(
+                    "detailed brick {d} has clearance 0 on a non-surface cell or not on a surface cell"
+                ),
+            ));
+        }
+    }
+    let graded = map.clearances.get(detailed * NIBBLE_BYTES..).unwrap_or(&[]);
+    if let Some(i) = graded.iter().position(|&b| b & 0x0f == 0 || b & 0xf0 == 0) {
+        return Err(invalid(
+            "clearances",
+            format!(
+                "graded brick {} has clearance 0 near cell {}",
+                detailed + i / NIBBLE_BYTES,
+                2 * (i % NIBBLE_BYTES)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The cells of a brick whose clearance nibble is zero (`bytes` holds the brick's
+/// [`NIBBLE_BYTES`]; missing bytes count as zero).
+fn zero_nibbles(bytes: &[u8]) -> BrickBits {
+    let mut bits = [0u64; MASK_WORDS];
+    for local in 0..BRICK_CELLS {
+        let byte = bytes.get(local >> 1).copied().unwrap_or(0);
+        if (byte >> ((local & 1) * 4)) & 0xf == 0 {
+            bits[local >> 6] |= 1 << (local & 63);
+        }
+    }
+    bits
+}
+
+/// Triangle lists: one start per surface cell plus one, from 0, increasing (no empty
+/// list), up to the references; each list increasing and within the triangles.
+fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
+    let surface_cells = map.surface_first.last().map_or(0, |&x| x as usize);
+    let starts = &map.triangle_start;
+    if starts.len() != surface_cells + 1
+        || starts.first() != Some(&0)
+        || starts.last().map(|&x| x as usize) != Some(map.triangle_refs.len())
+        || starts.windows(2).any(|w| w[0] >= w[1])
+    {
+        return Err(invalid(
+            "triangle starts",
+            format!(
+                "{} starts for {surface_cells} surface cells and {} references: not 0, \
+                 increasing, up to the references",
+                starts.len(),
+                map.triangle_refs.len()
+            ),
+        ));
+    }
+    for (s, w) in starts.windows(2).enumerate() {
+        let list = map
+            .triangle_refs
+            .get(w[0] as usize..w[1] as usize)
+            .unwrap_or(&[]);
+        let sorted = list.windows(2).all(|p| p[0] < p[1]);
+        if !sorted || list.last().is_some_and(|&x| x as usize >= t) {
+            return Err(invalid(
+                "triangle references",
+                format!("surface cell {s} lists triangles not increasing or out of range (of {t})"),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,269 @@
+//! Saving and loading: round trips, damaged files refused with the reason, crafted files
+//! checked so that they never cause a panic.
+
+use super::*;
+
+/// A small solid and its map, encoded once.
+fn sample() -> &'static (Surface, VoxelMap, Vec<u8>) {
+    static SAMPLE: OnceLock<(Surface, VoxelMap, Vec<u8>)> = OnceLock::new();
+    SAMPLE.get_or_init(|| {
+        let surface = surface(shapes::torus(0.07, 0.03, 16, 8));
+        let map = build(&surface, &MapOptions::default());
+        let bytes = encode(&surface, &map);
+        (surface, map, bytes)
+    })
+}
+
+/// Recomputes the checksum of a file (XXH3-64 of bytes 0..56 and 64..).
+fn reseal(bytes: &mut [u8]) {
+    let mut hasher = xxhash_rust::xxh3::Xxh3::new();
+    hasher.update(&bytes[..56]);
+    hasher.update(&bytes[64..]);
+    let sum = hasher.digest();
+    bytes[56..64].copy_from_slice(&sum.to_le_bytes());
+}
+
+/// Every accessor on every cell (and beyond), as a query would use a loaded map.
+fn exercise(surface: &Surface, map: &VoxelMap) {
+    let [dx, dy, dz] = map.grid().dims();
+    for z in 0..=dz {
+        for y in 0..=dy {
+            for x in 0..=dx {
+                let c = [x, y, z];
+                let _ = (map.state(c), map.clearance(c));
+                for &t in map.triangles_in(c) {
+                    let _ = surface.corners(TriId(t));
+                    let _ = surface.neighbours(TriId(t));
+                }
+            }
+        }
+    }
+    for v in 0..surface.vertex_count() {
+        for &t in surface.fan(haphe::mesh::VertId(v as u32)) {
+            let _ = surface.frame(TriId(t));
+        }
+    }
+    let _ = map.stats();
+}
+
+#[test]
+fn encode_then_decode_gives_the_same_surface_and_map() {
+    for (name, surface) in solids().into_iter().chain([("open", open_sphere())]) {
+        let map = build(&surface, &MapOptions::default());
+        let bytes = encode(&surface, &map);
+        let (loaded_surface, loaded_map) = decode(&bytes).expect("decodes");
+        assert_eq!(loaded_map, map, "{name}");
+        assert_eq!(loaded_surface.vertices(), surface.vertices(), "{name}");
+        assert_eq!(loaded_surface.triangles(), surface.triangles(), "{name}");
+        assert_eq!(loaded_surface.report(), surface.report(), "{name}");
+        assert_eq!(loaded_surface.is_solid(), surface.is_solid(), "{name}");
+        for t in 0..surface.triangle_count() {
+            let t = TriId(t as u32);
+            assert_eq!(loaded_surface.neighbours(t), surface.neighbours(t));
+            assert_eq!(loaded_surface.frame(t), surface.frame(t));
+            assert_eq!(loaded_surface.corner_normals(t), surface.corner_normals(t));
+        }
+        for v in 0..surface.vertex_count() {
+            let v = haphe::mesh::VertId(v as u32);
+            assert_eq!(loaded_surface.fan(v), surface.fan(v));
+        }
+        assert!(
+            encode(&loaded_surface, &loaded_map) == bytes,
+            "{name}: re-encoding differs"
+        );
+        // Any alignment of the buffer.
+        let mut shifted = vec![0u8; 1];
+        shifted.extend_from_slice(&bytes);
+        assert_eq!(decode(&shifted[1..]).expect("decodes").1, map);
+    }
+}
+
+#[test]
+fn damaged_files_are_refused_with_the_reason() {
+    let (_, _, bytes) = sample();
+    let mut wrong_magic = bytes.clone();
+    wrong_magic[0] = b'X';
+    assert!(matches!(
+        decode(&wrong_magic),
+        Err(MapFileError::WrongMagic { .. })
+    ));
+
+    let mut stale = bytes.clone();
+    stale[8..12].copy_from_slice(&(FORMAT_VERSION + 1).to_le_bytes());
+    reseal(&mut stale);
+    assert_eq!(
+        decode(&stale).err(),
+        Some(MapFileError::UnsupportedVersion {
+            found: FORMAT_VERSION + 1,
+            supported: FORMAT_VERSION
+        })
+    );
+
+    for len in [0, 10, 63, 64, 200, bytes.len() / 2, bytes.len() - 1] {
+        assert!(
+            matches!(decode(&bytes[..len]), Err(MapFileError::Truncated { .. })),
+            "{len} bytes"
+        );
+    }
+    let mut longer = bytes.clone();
+    longer.push(0);
+    assert!(matches!(
+        decode(&longer),
+        Err(MapFileError::TrailingBytes { .. })
+    ));
+
+    let mut flipped = bytes.clone();
+    let middle = flipped.len() / 2;
+    flipped[middle] ^= 0x10;
+    assert!(matches!(
+        decode(&flipped),
+        Err(MapFileError::ChecksumMismatch { .. })
+    ));
+
+    let message = decode(&flipped).expect_err("damaged").to_string();
+    assert!(message.contains("checksum"), "{message}");
+}
+
+#[test]
+fn a_map_paired_with_another_surface_is_refused() {
+    let (surface, _, _) = sample();
+    let other = self::surface(shapes::sphere(0.1, 2));
+    let map = build(&other, &MapOptions::default());
+    let bytes = encode(surface, &map);
+    match decode(&bytes) {
+        Err(MapFileError::Invalid { section, .. }) => assert_eq!(section, "map parameters"),
+        other => panic!("expected an invalid map, got {other:?}"),
+    }
+}
+
+#[test]
+fn crafted_files_with_a_valid_checksum_are_checked() {
+    let (surface, _, bytes) = sample();
+    // A triangle reference out of range, in the last section.
+    let mut crafted = bytes.clone();
+    let sections = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
+    let last_ref = find_section_end(&crafted, sections - 1) - 4;
+    crafted[last_ref..last_ref + 4].copy_from_slice(&u32::MAX.to_le_bytes());
+    reseal(&mut crafted);
+    assert!(matches!(
+        decode(&crafted),
+        Err(MapFileError::Invalid {
+            section: "triangle references",
+            ..
+        })
+    ));
+    // A vertex index out of range.
+    let mut crafted = bytes.clone();
+    let at = find_section_start(&crafted, 2);
+    crafted[at..at + 4].copy_from_slice(&(surface.vertex_count() as u32).to_le_bytes());
+    reseal(&mut crafted);
+    assert!(matches!(
+        decode(&crafted),
+        Err(MapFileError::Invalid {
+            section: "triangles",
+            ..
+        })
+    ));
+    // A non-finite vertex.
+    let mut crafted = bytes.clone();
+    let at = find_section_start(&crafted, 1);
+    crafted[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes());
+    reseal(&mut crafted);
+    assert!(matches!(
+        decode(&crafted),
+        Err(MapFileError::Invalid {
+            section: "vertices",
+            ..
+        })
+    ));
+}
+
+/// Where section `k` starts, from the table (entry `k` at byte `64 + 32·k`).
+fn find_section_start(bytes: &[u8], k: usize) -> usize {
+    let at = 64 + 32 * k + 8;
+    u64::from_le_bytes(bytes[at..at + 8].try_into().expect("8 bytes")) as usize
+}
+
+fn find_section_end(bytes: &[u8], k: usize) -> usize {
+    let at = 64 + 32 * k + 16;
+    find_section_start(bytes, k)
+        + u64::from_le_bytes(bytes[at..at + 8].try_into().expect("8 bytes")) as usize
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Any damage is caught: flipped bytes anywhere always give an error, never a panic.
+    #[test]
+    fn flipped_bytes_are_always_refused(
+        flips in prop::collection::vec((any::<prop::sample::Index>(), 1u8..=255), 1..5),
+    ) {
+        let (_, _, bytes) = sample();
+        let mut damaged = bytes.clone();
+        for (at, mask) in flips {
+            damaged[at.index(bytes.len())] ^= mask;
+        }
+        prop_assert!(decode(&damaged).is_err());
+    }
+
+    /// Truncated or extended files are refused.
+    #[test]
+    fn truncated_or_extended_files_are_refused(cut in any::<prop::sample::Index>(), extra in prop::collection::vec(any::<u8>(), 1..100)) {
+        let (_, _, bytes) = sample();
+        prop_assert!(decode(&bytes[..cut.index(bytes.len())]).is_err());
+        let mut longer = bytes.clone();
+        longer.extend_from_slice(&extra);
+        prop_assert!(decode(&longer).is_err());
+    }
+
+    /// A crafted file (bytes changed, checksum recomputed) either is refused or decodes to
+    /// a surface and map that every accessor can use without a panic.
+    #[test]
+    fn crafted_files_never_cause_a_panic(
+        changes in prop::collection::vec((any::<prop::sample::Index>(), any::<u8>()), 1..4),
+        in_map in any::<bool>(),
+    ) {
+        let (_, _, bytes) = sample();
+        let mut crafted = bytes.clone();
+        // Half the cases aim at the map's sections (after the map parameters), which are
+        // small next to the surface's.
+        let start = if in_map { find_section_start(bytes, 8) } else { 0 };
+        for (at, value) in changes {
+            let i = start + at.index(bytes.len() - start);
+            crafted[i] = value;
+        }
+        reseal(&mut crafted);
+        if let Ok((surface, map)) = decode(&crafted) {
+            exercise(&surface, &map);
+        }
+    }
+
+    /// Accessors take any index without a panic; outside the grid they say outside.
+    #[test]
+    fn accessors_take_any_index(c in any::<[u32; 3]>()) {
+        let (_, map, _) = sample();
+        let inside = map.grid().contains(c);
+        let _ = map.clearance(c);
+        if !inside {
+            prop_assert_eq!(map.state(c), CellState::Outside);
+            prop_assert_eq!(map.clearance(c), 0);
+            prop_assert!(map.triangles_in(c).is_empty());
+        }
+    }
+
+    /// Grid lookups take any point without a panic, and agree with the cell bounds.
+    #[test]
+    fn cell_of_agrees_with_cell_bounds(p in prop::array::uniform3(-0.3f64..0.3)) {
+        let (_, map, _) = sample();
+        let grid: &Grid = map.grid();
+        let p = DVec3::from_array(p);
+        match grid.cell_of(p) {
+            Some(c) => {
+                let (lo, hi) = grid.cell_bounds(c);
+                let h = grid.cell_size();
+                prop_assert!((p - lo).min_element() >= -1e-12 * h && (hi - p).min_element() >= -1e-12 * h);
+            }
+            None => prop_assert!(p.cmplt(grid.origin()).any() || p.cmpge(grid.max_corner()).any()),
+        }
+    }
+}
