@@ -1,9 +1,13 @@
 //! The `haphe` command: a thin `main` over [`run`], which maps errors to exit codes.
 
+mod build;
 mod demo;
 mod generate;
 mod load;
+mod object;
+mod query;
 mod validate;
+mod verify;
 
 use std::process::ExitCode;
 
@@ -22,6 +26,12 @@ enum Command {
     /// Read mesh files and report every defect with where it is.
     #[command(after_help = validate::EXIT_CODES)]
     Validate(validate::Args),
+    /// Build the voxel map of a mesh and save surface and map as one file.
+    Build(build::Args),
+    /// Answer inside/outside and segment-crossing queries from CSV files.
+    Query(query::Args),
+    /// Check haphe's queries against brute force and parry on a mesh.
+    Verify(verify::Args),
     /// Write a procedural test mesh (binary STL).
     Generate(generate::Args),
     /// A short run on built-in procedural models (no files needed).
@@ -32,6 +42,9 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Validate(args) => validate::run(&args),
+        Command::Build(args) => build::run(&args),
+        Command::Query(args) => query::run(&args),
+        Command::Verify(args) => verify::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Demo(args) => demo::run(&args),
     };

@@ -44,7 +44,8 @@ pub struct Args {
     weld_tolerance: Option<f64>,
 }
 
-fn parse_units(s: &str) -> Result<Units, String> {
+/// Parses a `--units` value.
+pub fn parse_units(s: &str) -> Result<Units, String> {
     s.parse()
 }
 

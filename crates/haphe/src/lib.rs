@@ -38,6 +38,7 @@ pub mod map;
 pub mod mesh;
 pub mod query;
 pub mod rng;
+pub mod verify;
 
 pub use glam;
 pub use glam::DVec3;

@@ -3,11 +3,17 @@
 //! crossing through the voxel map, inside/outside, and the barycentric surface walk.
 
 mod closest;
+mod crossing;
+mod inside;
 mod segment_triangle;
 mod triangle_triangle;
 mod walk;
 
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
+pub use crossing::{
+    Crossing, all_crossings_brute_force, first_crossing, first_crossing_brute_force,
+};
+pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use triangle_triangle::intersect_triangle_triangle;
 pub use walk::{

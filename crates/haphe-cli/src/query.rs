@@ -1,0 +1,140 @@
+//! `haphe query`: batches of inside/outside and segment-crossing queries from CSV.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, bail};
+use haphe::DVec3;
+use haphe::mesh::ReadOptions;
+use haphe::query::{Side, classify_point, first_crossing};
+
+use crate::build::map_options;
+use crate::load::weld_mode;
+use crate::object::open;
+use crate::validate::parse_units;
+
+/// Arguments of `haphe query`.
+#[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("queries").required(true).args(["inside", "segments"])))]
+pub struct Args {
+    /// A map file from `haphe build`, or a mesh file (its map is built first).
+    object: PathBuf,
+    /// CSV of points `x,y,z` (metres, object frame): prints `inside` or `outside` per line.
+    #[arg(long, value_name = "POINTS.csv")]
+    inside: Option<PathBuf>,
+    /// CSV of segments `x0,y0,z0,x1,y1,z1`: prints the first crossing per line
+    /// (`triangle,t,x,y,z,entering`) or `none`.
+    #[arg(long, value_name = "SEGS.csv")]
+    segments: Option<PathBuf>,
+    /// One JSON object per line instead of CSV.
+    #[arg(long)]
+    json: bool,
+    /// Length unit of a mesh file (map files are in metres).
+    #[arg(long, default_value = "m", value_parser = parse_units)]
+    units: haphe::mesh::Units,
+    /// Merge vertices closer than this (metres) when building from a mesh file.
+    #[arg(long, value_name = "METRES")]
+    weld_tolerance: Option<f64>,
+}
+
+/// Reads rows of `width` numbers from a CSV file; a first row that is not numeric is a
+/// header and skipped. Errors name the file and the line.
+fn read_rows(path: &Path, width: usize) -> anyhow::Result<Vec<Vec<f64>>> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .flexible(true)
+        .from_path(path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    let mut rows = Vec::new();
+    for (i, record) in reader.records().enumerate() {
+        let record = record.with_context(|| format!("{}", path.display()))?;
+        let line = record.position().map_or(i as u64 + 1, |p| p.line());
+        if record.iter().all(|f| f.is_empty()) {
+            continue;
+        }
+        let numbers: Result<Vec<f64>, _> = record.iter().map(str::parse::<f64>).collect();
+        match numbers {
+            Ok(v) if v.len() == width && v.iter().all(|x| x.is_finite()) => rows.push(v),
+            Ok(v) if v.len() == width => {
+                bail!("{}: line {line}: a value is not finite", path.display())
+            }
+            Ok(v) => bail!(
+                "{}: line {line}: expected {width} numbers, found {}",
+                path.display(),
+                v.len()
+            ),
+            Err(_) if rows.is_empty() && i == 0 => continue, // a header
+            Err(e) => bail!("{}: line {line}: {e}", path.display()),
+        }
+    }
+    Ok(rows)
+}
+
+/// Runs the command.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let read = ReadOptions {
+        units: args.units,
+        weld: weld_mode(args.weld_tolerance)?,
+        format: None,
+    };
+    let object = open(&args.object, &read, &map_options(None, None))?;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    if let Some(path) = &args.inside {
+        for row in read_rows(path, 3)? {
+            let p = DVec3::new(row[0], row[1], row[2]);
+            let (side, _) = classify_point(&object.surface, &object.map, p);
+            let word = if side == Side::Inside {
+                "inside"
+            } else {
+                "outside"
+            };
+            if args.json {
+                writeln!(out, "{}", serde_json::json!({ "point": row, "side": word }))?;
+            } else {
+                writeln!(out, "{word}")?;
+            }
+        }
+    }
+    if let Some(path) = &args.segments {
+        for row in read_rows(path, 6)? {
+            let (p0, p1) = (
+                DVec3::new(row[0], row[1], row[2]),
+                DVec3::new(row[3], row[4], row[5]),
+            );
+            let hit = first_crossing(&object.surface, &object.map, p0, p1);
+            match (hit, args.json) {
+                (None, false) => writeln!(out, "none")?,
+                (None, true) => writeln!(
+                    out,
+                    "{}",
+                    serde_json::json!({ "segment": row, "crossing": null })
+                )?,
+                (Some(c), false) => writeln!(
+                    out,
+                    "{},{:?},{:?},{:?},{:?},{}",
+                    c.triangle.0, c.t, c.point.x, c.point.y, c.point.z, c.entering
+                )?,
+                (Some(c), true) => writeln!(
+                    out,
+                    "{}",
+                    serde_json::json!({
+                        "segment": row,
+                        "crossing": {
+                            "triangle": c.triangle.0,
+                            "t": c.t,
+                            "point": c.point.to_array(),
+                            "weights": c.weights,
+                            "normal": c.face_normal.to_array(),
+                            "entering": c.entering,
+                        }
+                    })
+                )?,
+            }
+        }
+    }
+    out.flush()?;
+    Ok(ExitCode::SUCCESS)
+}

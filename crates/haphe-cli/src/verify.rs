@@ -1,0 +1,262 @@
+//! `haphe verify`: check haphe's accelerated queries against brute-force oracles and
+//! `parry3d-f64` on any mesh.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::anyhow;
+use haphe::mesh::{ReadOptions, Surface};
+use haphe::verify::{
+    CrossingCheck, InsideCheck, SegmentKind, WalkCheck, WindingOracle, bounds, check_crossings,
+    check_inside, check_walk, distance_to_surface, points, segments,
+};
+use parry3d_f64::query::{PointQuery, Ray, RayCast};
+use parry3d_f64::shape::{TriMesh, TriMeshFlags};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::build::map_options;
+use crate::load::weld_mode;
+use crate::object::open;
+use crate::validate::parse_units;
+
+/// Arguments of `haphe verify`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// A mesh file (or a map file from `haphe build`).
+    file: PathBuf,
+    /// Samples per check: segments of each kind, points, and walk targets.
+    #[arg(long, default_value_t = 10_000)]
+    samples: usize,
+    /// Seed of the samples (the same seed gives the same samples).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Print one JSON object instead of the tables.
+    #[arg(long)]
+    json: bool,
+    /// Length unit of the file: m, mm, cm, in, or a factor in metres per file unit.
+    #[arg(long, default_value = "m", value_parser = parse_units)]
+    units: haphe::mesh::Units,
+}
+
+#[derive(Serialize)]
+struct CrossingRow {
+    #[serde(flatten)]
+    check: CrossingCheck,
+    /// Segments that cross the surface (by brute force) where parry's ray cast finds nothing.
+    parry_misses: Option<usize>,
+}
+
+#[derive(Serialize)]
+struct InsideRow {
+    #[serde(flatten)]
+    check: InsideCheck,
+    /// Points (off the surface) where parry's `contains_point` disagrees with the oracle.
+    parry_disagreements: Option<usize>,
+}
+
+#[derive(Serialize)]
+struct Verification {
+    file: String,
+    triangles: usize,
+    solid: bool,
+    map_cells: [u32; 3],
+    /// Seconds to open the object: decode a map file, or read, build surface and map.
+    open_seconds: f64,
+    /// Whether the object came from a map file.
+    from_map_file: bool,
+    seconds: f64,
+    crossings: Vec<CrossingRow>,
+    inside: InsideRow,
+    walk: WalkCheck,
+    passed: bool,
+}
+
+/// parry's mesh with pseudo-normals (needed for its inside test); `None` where parry
+/// refuses the mesh.
+fn parry_mesh(surface: &Surface) -> Option<TriMesh> {
+    TriMesh::with_flags(
+        surface.vertices().to_vec(),
+        surface.triangles().to_vec(),
+        TriMeshFlags::ORIENTED,
+    )
+    .ok()
+}
+
+/// Runs the command; exit 0 when every check passes, 1 otherwise.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let start = Instant::now();
+    let read = ReadOptions {
+        units: args.units,
+        weld: weld_mode(None)?,
+        format: None,
+    };
+    let object = open(&args.file, &read, &map_options(None, None)).map_err(|e| anyhow!("{e:#}"))?;
+    let (surface, map) = (&object.surface, &object.map);
+    let parry = parry_mesh(surface);
+    let n = args.samples;
+
+    let crossings: Vec<CrossingRow> = SegmentKind::ALL
+        .iter()
+        .enumerate()
+        .map(|(k, &kind)| {
+            let seed = args.seed.wrapping_mul(1000).wrapping_add(k as u64);
+            let check = check_crossings(surface, map, kind, n, seed);
+            let parry_misses = parry.as_ref().map(|mesh| {
+                segments(surface, kind, n, seed)
+                    .par_iter()
+                    .filter(|&&(p0, p1)| {
+                        haphe::query::first_crossing_brute_force(surface, p0, p1).is_some()
+                            && mesh
+                                .cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false)
+                                .is_none()
+                    })
+                    .count()
+            });
+            CrossingRow {
+                check,
+                parry_misses,
+            }
+        })
+        .collect();
+
+    let inside_check = check_inside(surface, map, n, args.seed);
+    let parry_disagreements = (surface.is_solid())
+        .then_some(parry.as_ref())
+        .flatten()
+        .map(|mesh| {
+            let oracle = WindingOracle::new(surface);
+            points(surface, n, args.seed)
+                .par_iter()
+                .filter(|&&p| {
+                    let inside = oracle.winding(p) != 0;
+                    mesh.contains_local_point(p) != inside
+                        && distance_to_surface(surface, p) > haphe::verify::ON_SURFACE_M
+                })
+                .count()
+        });
+    let inside = InsideRow {
+        check: inside_check,
+        parry_disagreements,
+    };
+
+    // Steps of 0.05–0.5 mm on a 0.2 m object, scaled to this object's size.
+    let (_, _, size) = bounds(surface);
+    let scale = size / (0.2 * 3f64.sqrt());
+    let steps = 100;
+    let walk = check_walk(
+        surface,
+        n.div_ceil(steps),
+        steps,
+        (0.05e-3 * scale, 0.5e-3 * scale),
+        args.seed,
+    );
+
+    let passed = crossings
+        .iter()
+        .all(|r| r.check.mismatches == 0 && r.check.leaks == 0)
+        && inside.check.mismatches == 0
+        && walk.not_local_minimum == 0
+        && walk.not_nearest == 0;
+    let report = Verification {
+        file: args.file.display().to_string(),
+        triangles: surface.triangle_count(),
+        solid: surface.is_solid(),
+        map_cells: map.grid().dims(),
+        open_seconds: object.elapsed.as_secs_f64(),
+        from_map_file: object.from_map_file,
+        seconds: start.elapsed().as_secs_f64(),
+        crossings,
+        inside,
+        walk,
+        passed,
+    };
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        writeln!(out, "{}", serde_json::to_string(&report)?)?;
+    } else {
+        print_tables(&mut out, &report)?;
+    }
+    Ok(if passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
+    let opt = |v: Option<usize>| v.map_or("-".to_owned(), |v| v.to_string());
+    writeln!(
+        out,
+        "{}: {} triangles, {}, map {}x{}x{} cells ({} in {:.2} s; checks took {:.1} s)\n",
+        r.file,
+        r.triangles,
+        if r.solid {
+            "closed solid"
+        } else {
+            "open surface"
+        },
+        r.map_cells[0],
+        r.map_cells[1],
+        r.map_cells[2],
+        if r.from_map_file {
+            "map file decoded"
+        } else {
+            "surface and map built"
+        },
+        r.open_seconds,
+        r.seconds
+    )?;
+    writeln!(
+        out,
+        "| segments         | samples | crossing | mismatches vs brute force | outside→inside | leaks | parry misses |"
+    )?;
+    writeln!(
+        out,
+        "|------------------|--------:|---------:|--------------------------:|---------------:|------:|-------------:|"
+    )?;
+    for row in &r.crossings {
+        let c = &row.check;
+        writeln!(
+            out,
+            "| {:<16} | {:>7} | {:>8} | {:>25} | {:>14} | {:>5} | {:>12} |",
+            serde_json::to_value(c.kind)
+                .map(|v| v.as_str().unwrap_or("").to_owned())
+                .unwrap_or_default(),
+            c.samples,
+            c.crossing,
+            c.mismatches,
+            c.outside_to_inside,
+            c.leaks,
+            opt(row.parry_misses)
+        )?;
+    }
+    let i = &r.inside.check;
+    writeln!(
+        out,
+        "\ninside/outside: {} points, {} inside, {} mismatches vs winding numbers ({} excused within 1 nm of the surface), parry disagreements: {}",
+        i.samples,
+        i.inside,
+        i.mismatches,
+        i.on_surface,
+        opt(r.inside.parry_disagreements)
+    )?;
+    let w = &r.walk;
+    writeln!(
+        out,
+        "surface walk: {} coherent walks on {} trajectories, {} not a local minimum, {} step caps hit{}",
+        w.walks,
+        w.trajectories,
+        w.not_local_minimum,
+        w.bound_hits,
+        if w.convex {
+            format!(", convex: {} not the nearest point", w.not_nearest)
+        } else {
+            String::new()
+        }
+    )?;
+    writeln!(out, "\n{}", if r.passed { "PASSED" } else { "FAILED" })?;
+    Ok(())
+}

@@ -1,0 +1,159 @@
+//! Segment crossing: the first place where a segment meets the surface (object frame).
+
+use glam::DVec3;
+
+use super::{Segment, SegmentHit, intersect_segment_triangle};
+use crate::map::VoxelMap;
+use crate::mesh::{Surface, TriId};
+
+/// Where a segment first meets the surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Crossing {
+    /// Parameter along the segment, `p0 + t (p1 − p0)`, in `[0, 1]`.
+    pub t: f64,
+    /// The triangle crossed.
+    pub triangle: TriId,
+    /// Barycentric weights of the crossing point for the triangle's corners.
+    pub weights: [f64; 3],
+    /// The crossing point, metres, object frame.
+    pub point: DVec3,
+    /// Unit face normal of the triangle (pointing out of a solid).
+    pub face_normal: DVec3,
+    /// The segment passes from the front of the triangle to its back (into a solid).
+    pub entering: bool,
+}
+
+/// Slots of the per-query table of triangles already tested (a power of two). A segment
+/// that meets more distinct triangles than fit simply tests some twice (the answer is the
+/// same); see [`first_crossing`].
+const TESTED_SLOTS: usize = 256;
+
+/// A fixed-size, allocation-free set of triangle indices (open addressing, no removal).
+pub(crate) struct Tested {
+    slots: [u32; TESTED_SLOTS],
+    len: usize,
+}
+
+impl Tested {
+    pub fn new() -> Tested {
+        Tested {
+            slots: [u32::MAX; TESTED_SLOTS],
+            len: 0,
+        }
+    }
+
+    /// Inserts `t`; `false` when it was already there. When the table is three quarters
+    /// full, it answers `true` without remembering (`overflowed` says so).
+    pub fn insert(&mut self, t: u32) -> bool {
+        if self.overflowed() {
+            return true;
+        }
+        let mut i = (t.wrapping_mul(0x9E37_79B1) >> 24) as usize % TESTED_SLOTS;
+        loop {
+            match self.slots[i] {
+                u32::MAX => {
+                    self.slots[i] = t;
+                    self.len += 1;
+                    return true;
+                }
+                s if s == t => return false,
+                _ => i = (i + 1) % TESTED_SLOTS,
+            }
+        }
+    }
+
+    /// Whether the table stopped remembering.
+    pub fn overflowed(&self) -> bool {
+        4 * self.len >= 3 * TESTED_SLOTS
+    }
+}
+
+/// The first crossing of the segment from `p0` to `p1` (metres, object frame) with the
+/// surface, walking the map's cells in order (3D-DDA) and testing each triangle of each
+/// surface cell (once, as far as the per-query table holds) with the watertight test.
+/// Among hits at the same `t`, the lowest triangle index wins, as in
+/// [`first_crossing_brute_force`], which this always equals.
+///
+/// # Real-time
+/// No allocation (a 1 KiB table on the stack), no lock, no panic; visits at most
+/// the grid's `dims[0] + dims[1] + dims[2]` cells. Non-finite input gives `None`.
+pub fn first_crossing(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -> Option<Crossing> {
+    let segment = Segment::new(p0, p1);
+    let mut tested = Tested::new();
+    let mut best: Option<(SegmentHit, u32)> = None;
+    // A hit found in a cell may lie a little past the cell's exit (the triangle reaches
+    // into later cells); the walk stops once the best hit is before the current cell's
+    // exit, with a margin for the rounding of the cell boundaries' parameters.
+    let margin = crossing_margin(map, p0, p1);
+    for visit in map.grid().walk(p0, p1) {
+        if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
+            break;
+        }
+        for &t in map.triangles_in(visit.cell) {
+            if !tested.insert(t) {
+                continue;
+            }
+            if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+                && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
+            {
+                best = Some((hit, t));
+            }
+        }
+    }
+    best.map(|(hit, t)| crossing(surface, hit, t))
+}
+
+/// Parameter margin covering the rounding of cell-boundary parameters: a millionth of a
+/// cell, in units of `t`.
+fn crossing_margin(map: &VoxelMap, p0: DVec3, p1: DVec3) -> f64 {
+    let length = p0.distance(p1);
+    if length > 0.0 {
+        1e-6 * map.grid().cell_size() / length
+    } else {
+        0.0
+    }
+}
+
+/// The first crossing by testing every triangle: the oracle for [`first_crossing`].
+///
+/// # Performance
+/// `O(n)`: for tests and verification, never for a tick.
+pub fn first_crossing_brute_force(surface: &Surface, p0: DVec3, p1: DVec3) -> Option<Crossing> {
+    let segment = Segment::new(p0, p1);
+    let mut best: Option<(SegmentHit, u32)> = None;
+    for t in 0..surface.triangle_count() as u32 {
+        if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+            && best.is_none_or(|(b, _)| hit.t < b.t)
+        {
+            best = Some((hit, t));
+        }
+    }
+    best.map(|(hit, t)| crossing(surface, hit, t))
+}
+
+/// Every crossing of the segment with the surface, by testing every triangle, in order of
+/// `t` then triangle: the oracle for counting crossings.
+pub fn all_crossings_brute_force(surface: &Surface, p0: DVec3, p1: DVec3) -> Vec<Crossing> {
+    let segment = Segment::new(p0, p1);
+    let mut hits: Vec<Crossing> = (0..surface.triangle_count() as u32)
+        .filter_map(|t| {
+            intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+                .map(|hit| crossing(surface, hit, t))
+        })
+        .collect();
+    hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.triangle.cmp(&b.triangle)));
+    hits
+}
+
+fn crossing(surface: &Surface, hit: SegmentHit, t: u32) -> Crossing {
+    let [a, b, c] = surface.corners(TriId(t));
+    let [wa, wb, wc] = hit.weights;
+    Crossing {
+        t: hit.t,
+        triangle: TriId(t),
+        weights: hit.weights,
+        point: wa * a + wb * b + wc * c,
+        face_normal: surface.frame(TriId(t)).normal,
+        entering: hit.entering,
+    }
+}

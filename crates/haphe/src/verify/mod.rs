@@ -1,0 +1,305 @@
+//! Verification of the accelerated queries against brute-force oracles, on any mesh.
+//!
+//! The same checks run in the test suite (small samples) and in `haphe verify` (any
+//! sample count, on the user's own meshes): segment crossing against every-triangle
+//! testing, on random and adversarial segments, with a leak count (segments from outside
+//! to inside that report no crossing); inside/outside against winding numbers; the surface
+//! walk against the definition of a local minimum and, on convex meshes, against the
+//! brute-force nearest point.
+
+mod oracle;
+mod samples;
+
+pub use oracle::{WindingOracle, distance_to_surface};
+pub use samples::{SegmentKind, bounds, points, segments, trajectory};
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::map::VoxelMap;
+use crate::mesh::{Surface, TriId, VertId};
+use crate::query::{
+    Feature, Side, WalkStatus, classify_point, closest_point_triangle, first_crossing,
+    first_crossing_brute_force, nearest_point_brute_force, walk_to_nearest,
+};
+
+/// Points closer than this to the surface (metres) may be classified either way: the
+/// inside/outside and leak checks excuse them.
+pub const ON_SURFACE_M: f64 = 1e-9;
+
+/// How many failing samples a check keeps, to reproduce them.
+pub const KEPT_FAILURES: usize = 5;
+
+/// Segment crossing against brute force for one kind of segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CrossingCheck {
+    /// The kind of segments.
+    pub kind: SegmentKind,
+    /// How many segments.
+    pub samples: usize,
+    /// How many cross the surface (by brute force).
+    pub crossing: usize,
+    /// Segments where the accelerated answer differs from brute force (another triangle,
+    /// another parameter, or a crossing on one side only).
+    pub mismatches: usize,
+    /// Segments from a point outside to a point inside a solid (by winding number, end
+    /// points off the surface).
+    pub outside_to_inside: usize,
+    /// Of those, how many report no crossing: users falling through the surface.
+    pub leaks: usize,
+    /// Some failing segments `[p0, p1]`.
+    pub failures: Vec<[[f64; 3]; 2]>,
+}
+
+/// Inside/outside against winding numbers.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InsideCheck {
+    /// How many points.
+    pub samples: usize,
+    /// How many are inside (by winding number).
+    pub inside: usize,
+    /// Points classified differently from the oracle, farther than [`ON_SURFACE_M`] from
+    /// the surface.
+    pub mismatches: usize,
+    /// Points classified differently but within [`ON_SURFACE_M`] of the surface (excused).
+    pub on_surface: usize,
+    /// Some failing points.
+    pub failures: Vec<[f64; 3]>,
+}
+
+/// The surface walk along coherent trajectories.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WalkCheck {
+    /// How many trajectories.
+    pub trajectories: usize,
+    /// How many walks (steps of all trajectories).
+    pub walks: usize,
+    /// Walks whose answer has a closer point on a face, edge or vertex adjacent to it.
+    pub not_local_minimum: usize,
+    /// Whether the mesh is convex (closed, connected, every edge convex).
+    pub convex: bool,
+    /// On a convex mesh: walks to targets outside it that start on a triangle facing the
+    /// target; their answer must be the nearest point. (Every face whose plane the target
+    /// projects into holds a local minimum — inside a convex polyhedron, and on its far
+    /// side from outside — so only a walk that starts facing the target has one answer.)
+    pub outside_walks: usize,
+    /// Of those, walks whose answer is not the brute-force nearest point.
+    pub not_nearest: usize,
+    /// Walks that reached a step cap.
+    pub bound_hits: usize,
+    /// Some failing targets.
+    pub failures: Vec<[f64; 3]>,
+}
+
+fn mismatch(a: Option<crate::query::Crossing>, b: Option<crate::query::Crossing>) -> bool {
+    match (a, b) {
+        (None, None) => false,
+        (Some(a), Some(b)) => {
+            a.triangle != b.triangle || (a.t - b.t).abs() > 1e-12 * a.t.abs().max(1e-300)
+        }
+        _ => true,
+    }
+}
+
+/// Checks [`first_crossing`] against [`first_crossing_brute_force`] on `n` segments of
+/// `kind`, and counts leaks on solids. Parallel over segments; deterministic.
+pub fn check_crossings(
+    surface: &Surface,
+    map: &VoxelMap,
+    kind: SegmentKind,
+    n: usize,
+    seed: u64,
+) -> CrossingCheck {
+    let oracle = surface.is_solid().then(|| WindingOracle::new(surface));
+    /// What one segment showed.
+    struct Outcome {
+        crosses: bool,
+        mismatch: bool,
+        outside_to_inside: bool,
+        leak: bool,
+        segment: [[f64; 3]; 2],
+    }
+    let results: Vec<Outcome> = segments(surface, kind, n, seed)
+        .par_iter()
+        .map(|&(p0, p1)| {
+            let fast = first_crossing(surface, map, p0, p1);
+            let brute = first_crossing_brute_force(surface, p0, p1);
+            let bad = mismatch(fast, brute);
+            let mut candidate = false;
+            let mut leak = false;
+            if let Some(oracle) = &oracle {
+                let (w0, w1) = (oracle.winding(p0), oracle.winding(p1));
+                if (w0 == 0) != (w1 == 0) {
+                    let off = |p| distance_to_surface(surface, p) > ON_SURFACE_M;
+                    // Distances only where it matters (they cost a pass over the mesh).
+                    candidate = fast.is_some() || (off(p0) && off(p1));
+                    leak = candidate && fast.is_none();
+                }
+            }
+            Outcome {
+                crosses: brute.is_some(),
+                mismatch: bad,
+                outside_to_inside: candidate,
+                leak,
+                segment: [p0.to_array(), p1.to_array()],
+            }
+        })
+        .collect();
+    CrossingCheck {
+        kind,
+        samples: n,
+        crossing: results.iter().filter(|r| r.crosses).count(),
+        mismatches: results.iter().filter(|r| r.mismatch).count(),
+        outside_to_inside: results.iter().filter(|r| r.outside_to_inside).count(),
+        leaks: results.iter().filter(|r| r.leak).count(),
+        failures: results
+            .iter()
+            .filter(|r| r.mismatch || r.leak)
+            .take(KEPT_FAILURES)
+            .map(|r| r.segment)
+            .collect(),
+    }
+}
+
+/// Checks [`classify_point`] against winding numbers on `n` random points.
+pub fn check_inside(surface: &Surface, map: &VoxelMap, n: usize, seed: u64) -> InsideCheck {
+    let oracle = WindingOracle::new(surface);
+    let solid = surface.is_solid();
+    let results: Vec<(bool, u8, [f64; 3])> = points(surface, n, seed)
+        .par_iter()
+        .map(|&p| {
+            let (side, _) = classify_point(surface, map, p);
+            let inside = solid && oracle.winding(p) != 0;
+            let agrees = (side == Side::Inside) == inside;
+            let verdict = if agrees {
+                0
+            } else if distance_to_surface(surface, p) <= ON_SURFACE_M {
+                1
+            } else {
+                2
+            };
+            (inside, verdict, p.to_array())
+        })
+        .collect();
+    InsideCheck {
+        samples: n,
+        inside: results.iter().filter(|r| r.0).count(),
+        mismatches: results.iter().filter(|r| r.1 == 2).count(),
+        on_surface: results.iter().filter(|r| r.1 == 1).count(),
+        failures: results
+            .iter()
+            .filter(|r| r.1 == 2)
+            .take(KEPT_FAILURES)
+            .map(|r| r.2)
+            .collect(),
+    }
+}
+
+/// Whether the surface is convex: closed and connected, with every edge convex (a closed
+/// connected surface that is locally convex everywhere bounds a convex body).
+pub fn is_convex(surface: &Surface) -> bool {
+    let report = surface.report();
+    if !surface.is_solid() || report.components != 1 {
+        return false;
+    }
+    let (_, _, size) = bounds(surface);
+    let tolerance = 1e-12 * size;
+    (0..surface.triangle_count() as u32).all(|t| {
+        let t = TriId(t);
+        let frame = surface.frame(t);
+        (0..3).all(|corner| {
+            surface.neighbour(t, corner).is_none_or(|n| {
+                surface
+                    .corners(n)
+                    .iter()
+                    .all(|&p| frame.height(p) <= tolerance)
+            })
+        })
+    })
+}
+
+/// Checks [`walk_to_nearest`] on `trajectories` coherent trajectories of `steps` targets
+/// each (steps of `step_range` metres), each walk starting from the previous answer: every
+/// answer is a local minimum of distance, and for targets outside a convex mesh the
+/// nearest point.
+pub fn check_walk(
+    surface: &Surface,
+    trajectories: usize,
+    steps: usize,
+    step_range: (f64, f64),
+    seed: u64,
+) -> WalkCheck {
+    let convex = is_convex(surface);
+    let oracle = convex.then(|| WindingOracle::new(surface));
+    let (_, _, size) = bounds(surface);
+    let tolerance = 1e-12 * size;
+    /// What one trajectory showed.
+    #[derive(Default)]
+    struct Outcome {
+        not_local_minimum: usize,
+        outside: usize,
+        not_nearest: usize,
+        bound_hits: usize,
+        failures: Vec<[f64; 3]>,
+    }
+    let per: Vec<Outcome> = (0..trajectories)
+        .into_par_iter()
+        .map(|k| {
+            let (mut t, targets) =
+                trajectory(surface, steps, step_range, seed.wrapping_add(k as u64));
+            let mut o = Outcome::default();
+            for q in targets {
+                let facing = surface.frame(t).height(q) >= 0.0;
+                let (found, status) = walk_to_nearest(surface, t, q);
+                t = found.triangle;
+                o.bound_hits += usize::from(status == WalkStatus::BoundHit);
+                let closer = |s: u32| {
+                    !surface.frame(TriId(s)).is_degenerate()
+                        && closest_point_triangle(q, surface.corners(TriId(s)))
+                            .point
+                            .distance(q)
+                            < found.distance - tolerance
+                };
+                let tri = surface.triangle(found.triangle);
+                let local_min = match found.feature {
+                    Feature::Face => true,
+                    Feature::Edge(i) => surface
+                        .neighbour(found.triangle, i as usize)
+                        .is_none_or(|n| !closer(n.0)),
+                    Feature::Vertex(i) => !surface
+                        .fan(VertId(tri[i as usize]))
+                        .iter()
+                        .any(|&s| closer(s)),
+                };
+                let mut failed = !local_min;
+                o.not_local_minimum += usize::from(!local_min);
+                if facing && oracle.as_ref().is_some_and(|o| o.winding(q) == 0) {
+                    o.outside += 1;
+                    let best = nearest_point_brute_force(surface, q);
+                    if found.distance > best.distance + tolerance {
+                        o.not_nearest += 1;
+                        failed = true;
+                    }
+                }
+                if failed && o.failures.len() < KEPT_FAILURES {
+                    o.failures.push(q.to_array());
+                }
+            }
+            o
+        })
+        .collect();
+    WalkCheck {
+        trajectories,
+        walks: trajectories * steps,
+        not_local_minimum: per.iter().map(|o| o.not_local_minimum).sum(),
+        convex,
+        outside_walks: per.iter().map(|o| o.outside).sum(),
+        not_nearest: per.iter().map(|o| o.not_nearest).sum(),
+        bound_hits: per.iter().map(|o| o.bound_hits).sum(),
+        failures: per
+            .into_iter()
+            .flat_map(|o| o.failures)
+            .take(KEPT_FAILURES)
+            .collect(),
+    }
+}

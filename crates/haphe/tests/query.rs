@@ -1,0 +1,114 @@
+//! The accelerated queries against their brute-force oracles (small samples; `haphe verify`
+//! runs the same checks at any size): segment crossing on random and adversarial segments
+//! with zero leaks, inside/outside against winding numbers and parry, the surface walk.
+
+mod support;
+
+use haphe::map::{MapOptions, VoxelMap};
+use haphe::mesh::shapes::{self, Shape};
+use haphe::mesh::{Mesh, ReadOptions, Surface, SurfaceOptions, read_mesh};
+use haphe::verify::{SegmentKind, check_crossings, check_inside, check_walk, points};
+use parry3d_f64::query::PointQuery;
+use parry3d_f64::shape::{TriMesh, TriMeshFlags};
+
+fn object(mesh: Mesh) -> (Surface, VoxelMap) {
+    let surface = Surface::new(mesh, &SurfaceOptions::default()).expect("valid surface");
+    let map = VoxelMap::build(&surface, &MapOptions::default()).expect("map");
+    (surface, map)
+}
+
+/// Runs every check with `n` samples and asserts zero failures.
+fn assert_verified(name: &str, surface: &Surface, map: &VoxelMap, n: usize) {
+    for kind in SegmentKind::ALL {
+        let c = check_crossings(surface, map, kind, n, 7);
+        assert_eq!(c.mismatches, 0, "{name} {kind:?}: {c:?}");
+        assert_eq!(c.leaks, 0, "{name} {kind:?}: {c:?}");
+    }
+    let i = check_inside(surface, map, n, 11);
+    assert_eq!(i.mismatches, 0, "{name}: {i:?}");
+    let size = surface.report().bounds_max[0] - surface.report().bounds_min[0];
+    let w = check_walk(
+        surface,
+        n / 50 + 1,
+        50,
+        (0.05e-3 * size / 0.2, 0.5e-3 * size / 0.2),
+        13,
+    );
+    assert_eq!(w.not_local_minimum, 0, "{name}: {w:?}");
+    assert_eq!(w.not_nearest, 0, "{name}: {w:?}");
+}
+
+#[test]
+fn procedural_shapes_agree_with_brute_force() {
+    for shape in Shape::ALL {
+        let (surface, map) = object(shape.with_triangles(3_000));
+        assert_verified(&shape.to_string(), &surface, &map, 300);
+    }
+}
+
+#[test]
+fn convex_shapes_walk_to_the_nearest_point() {
+    for (name, mesh) in [
+        ("sphere", shapes::sphere(0.1, 3)),
+        (
+            "box",
+            shapes::cuboid(haphe::DVec3::new(0.1, 0.06, 0.03), [5, 4, 3]),
+        ),
+    ] {
+        let (surface, _) = object(mesh);
+        let w = check_walk(&surface, 20, 100, (0.05e-3, 0.5e-3), 5);
+        assert!(w.convex, "{name} is convex");
+        assert!(w.outside_walks > 500, "{name}: {w:?}");
+        assert_eq!(
+            (w.not_local_minimum, w.not_nearest),
+            (0, 0),
+            "{name}: {w:?}"
+        );
+    }
+}
+
+#[test]
+fn inside_agrees_with_parry_on_solids() {
+    for shape in Shape::ALL {
+        let (surface, map) = object(shape.with_triangles(2_000));
+        let parry = TriMesh::with_flags(
+            surface.vertices().to_vec(),
+            surface.triangles().to_vec(),
+            TriMeshFlags::ORIENTED,
+        )
+        .expect("parry accepts a closed manifold");
+        for p in points(&surface, 500, 3) {
+            let (side, _) = haphe::query::classify_point(&surface, &map, p);
+            assert_eq!(
+                side == haphe::query::Side::Inside,
+                parry.contains_local_point(p),
+                "{shape} at {p}"
+            );
+        }
+    }
+}
+
+#[test]
+fn shared_models_agree_with_brute_force() {
+    let Some(dir) = support::shared_meshes() else {
+        return;
+    };
+    let mut names: Vec<_> = std::fs::read_dir(dir.join("models"))
+        .expect("models")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    names.sort();
+    for path in names {
+        let name = path
+            .file_name()
+            .expect("name")
+            .to_string_lossy()
+            .into_owned();
+        let bytes = std::fs::read(&path).expect("readable");
+        let mesh = read_mesh(&name, &bytes, &ReadOptions::default()).expect("loads");
+        // Brute force is O(n) per sample: fewer samples on bigger meshes.
+        let n = (2_000_000 / mesh.triangles.len()).clamp(20, 300);
+        let (surface, map) = object(mesh);
+        assert_verified(&name, &surface, &map, n);
+    }
+}
