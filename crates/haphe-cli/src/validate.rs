@@ -5,7 +5,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use haphe::mesh::{MeshReport, ReadOptions, Units, Usability};
+use haphe::map::{MapOptions, VoxelMap};
+use haphe::mesh::{
+    Mesh, MeshReport, ReadOptions, Surface, SurfaceOptions, Units, Usability,
+    is_degenerate_triangle,
+};
+use haphe::query::{SelfIntersections, self_intersections};
 use serde::Serialize;
 
 use crate::load::{load, weld_mode};
@@ -24,7 +29,11 @@ JSON (--json) prints one object per file and line: file, format, seconds, weld, 
   degenerate_triangles,
   sliver_triangles, duplicate_faces, genus, bounds_min, bounds_max (m), area (m²),
   volume (m³, null unless closed and oriented), usable_as (solid | surface | unusable),
-  component_list, defects (the places: vertex, edge and triangle indices after welding).
+  component_list, defects (the places: vertex, edge and triangle indices after welding),
+  self_intersections (pairs of triangles that cross or touch other than in shared corners;
+  null for an unusable mesh), self_intersections_crossing (of those, pairs that pass through
+  each other: a closed mesh with any is not a valid solid), self_intersection_pairs (the
+  first 100 pairs).
   An unreadable file gives {\"file\": ..., \"error\": ...}.";
 
 /// Arguments of `haphe validate`.
@@ -57,6 +66,30 @@ struct JsonLine<'a> {
     weld: WeldJson,
     #[serde(flatten)]
     report: &'a MeshReport,
+    /// Triangle pairs that intersect (other than in shared corners); `null` when the mesh
+    /// has no usable surface.
+    self_intersections: Option<usize>,
+    /// Of those, pairs that cross each other (or overlap in a plane).
+    self_intersections_crossing: Option<usize>,
+    /// The first intersecting pairs.
+    self_intersection_pairs: Option<&'a [[u32; 2]]>,
+}
+
+/// The report of a mesh, and its self-intersections when it has a usable surface (found
+/// with the surface's voxel map).
+fn validate_mesh(mesh: Mesh) -> anyhow::Result<(MeshReport, Option<SelfIntersections>)> {
+    let has_area = (0..mesh.triangles.len()).any(|t| {
+        let [a, b, c] = mesh.corners(t);
+        !is_degenerate_triangle(a, b, c)
+    });
+    if has_area {
+        let surface = Surface::new(mesh, &SurfaceOptions::default())?;
+        let map = VoxelMap::build(&surface, &MapOptions::default())?;
+        let intersections = self_intersections(&surface, &map);
+        Ok((surface.report().clone(), Some(intersections)))
+    } else {
+        Ok((MeshReport::of(&mesh), None))
+    }
 }
 
 #[derive(Serialize)]
@@ -92,8 +125,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 2
             }
             Ok(loaded) => {
-                let report = MeshReport::of(&loaded.mesh);
+                let triangles = loaded.mesh.triangles.len();
+                let validated = Instant::now();
+                let (report, intersections) = validate_mesh(loaded.mesh)?;
+                let t_validate = validated.elapsed();
                 let seconds = start.elapsed().as_secs_f64();
+                let crossing_itself = intersections.as_ref().is_some_and(|s| s.crossing > 0);
                 if args.json {
                     let line = JsonLine {
                         file: path.display().to_string(),
@@ -105,26 +142,56 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                             unreferenced: loaded.weld.unreferenced,
                         },
                         report: &report,
+                        self_intersections: intersections.as_ref().map(|s| s.count),
+                        self_intersections_crossing: intersections.as_ref().map(|s| s.crossing),
+                        self_intersection_pairs: intersections.as_ref().map(|s| s.pairs.as_slice()),
                     };
                     writeln!(out, "{}", serde_json::to_string(&line)?)?;
                 } else {
                     writeln!(
                         out,
-                        "{}  ({:?}, read and welded in {:.1} ms, validated in {:.1} ms; {} vertices merged, {} unreferenced dropped)",
+                        "{}  ({:?}, {triangles} triangles read and welded in {:.1} ms, validated in {:.1} ms; {} vertices merged, {} unreferenced dropped)",
                         path.display(),
                         loaded.format,
                         loaded.elapsed.as_secs_f64() * 1e3,
-                        (seconds - loaded.elapsed.as_secs_f64()) * 1e3,
+                        t_validate.as_secs_f64() * 1e3,
                         loaded.weld.merged,
                         loaded.weld.unreferenced,
                     )?;
                     write!(out, "{report}")?;
+                    if let Some(s) = intersections.as_ref().filter(|s| s.count > 0) {
+                        writeln!(
+                            out,
+                            "  self-intersections: {} triangle pairs ({} crossing, {} only touching)",
+                            s.count, s.crossing, s.touching
+                        )?;
+                        let shown: Vec<String> =
+                            s.pairs.iter().take(8).map(|p| format!("{p:?}")).collect();
+                        writeln!(
+                            out,
+                            "  self-intersecting triangle pairs ({}): {}{}",
+                            s.count,
+                            shown.join(" "),
+                            if s.count > 8 {
+                                format!(" … and {} more", s.count - 8)
+                            } else {
+                                String::new()
+                            }
+                        )?;
+                    }
                     for problem in report.problems() {
                         writeln!(out, "  problem: {problem}")?;
+                    }
+                    if crossing_itself {
+                        writeln!(
+                            out,
+                            "  problem: the surface passes through itself: inside and outside are not defined where it does"
+                        )?;
                     }
                     writeln!(out)?;
                 }
                 match report.usable_as {
+                    Usability::Solid if crossing_itself => 1,
                     Usability::Solid => 0,
                     Usability::Surface => 1,
                     Usability::Unusable => 2,

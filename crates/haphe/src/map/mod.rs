@@ -37,6 +37,7 @@ mod bin;
 mod bricks;
 mod build;
 mod cell_size;
+mod cells;
 mod file;
 mod fill;
 mod grid;

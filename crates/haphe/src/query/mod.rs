@@ -6,6 +6,7 @@ mod closest;
 mod crossing;
 mod inside;
 mod segment_triangle;
+mod self_intersect;
 mod triangle_triangle;
 mod walk;
 
@@ -15,6 +16,9 @@ pub use crossing::{
 };
 pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
+pub use self_intersect::{
+    LISTED_SELF_INTERSECTIONS, SelfIntersections, TOUCH_TOLERANCE_REL, self_intersections,
+};
 pub use triangle_triangle::intersect_triangle_triangle;
 pub use walk::{
     MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, nearest_point_brute_force,

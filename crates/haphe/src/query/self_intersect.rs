@@ -1,0 +1,148 @@
+//! Self-intersections: pairs of triangles of one surface that cross or touch each other
+//! anywhere but in the corners they share. Where a surface passes through itself, inside
+//! and outside are not defined, and a user would feel walls that are not there.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::intersect_triangle_triangle;
+use crate::map::VoxelMap;
+use crate::mesh::{Surface, TriId};
+
+/// How many intersecting pairs a [`SelfIntersections`] lists (all are counted).
+pub const LISTED_SELF_INTERSECTIONS: usize = 100;
+
+/// The self-intersections of a surface.
+#[derive(Debug, Clone, PartialEq, Eq, Default, serde::Serialize)]
+pub struct SelfIntersections {
+    /// How many triangle pairs intersect.
+    pub count: usize,
+    /// Of those, pairs whose interiors pass through each other (each has corners strictly
+    /// on both sides of the other's plane), or that overlap in one plane: where the surface
+    /// really crosses itself and inside/outside is not defined.
+    pub crossing: usize,
+    /// Of those, pairs that only touch: a corner or an edge of one lies on the other (as at
+    /// a T-junction of a CAD mesh), with no crossing.
+    pub touching: usize,
+    /// The first pairs `[a, b]` (`a < b`, in increasing order), at most
+    /// [`LISTED_SELF_INTERSECTIONS`].
+    pub pairs: Vec<[u32; 2]>,
+    /// How many candidate pairs (sharing a cell) were tested exactly.
+    pub candidates: usize,
+}
+
+/// Finds every pair of triangles that intersect other than in shared corners: the pairs
+/// listed together in some cell of `map` (a triangle pair that meets shares a cell, since
+/// cells list every triangle that overlaps them), deduplicated, then tested exactly with
+/// [`intersect_triangle_triangle`]. Neighbours sharing an edge or a vertex are reported
+/// only where they overlap beyond it (a fold).
+///
+/// # Performance
+/// Offline: parallel; proportional to the number of pairs sharing a cell (about ten per
+/// triangle with the map's default cell size).
+pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersections {
+    let mut candidates: Vec<u64> = map
+        .surface_cell_triangles()
+        .collect::<Vec<_>>()
+        .par_iter()
+        .flat_map_iter(|list| {
+            list.iter().enumerate().flat_map(move |(i, &a)| {
+                list[i + 1..]
+                    .iter()
+                    .map(move |&b| (u64::from(a.min(b)) << 32) | u64::from(a.max(b)))
+            })
+        })
+        .collect();
+    candidates.par_sort_unstable();
+    candidates.dedup();
+    let found: Vec<([u32; 2], bool)> = candidates
+        .par_iter()
+        .filter_map(|&key| {
+            let (a, b) = ((key >> 32) as u32, key as u32);
+            let (ta, tb) = (surface.corners(TriId(a)), surface.corners(TriId(b)));
+            intersect_triangle_triangle(ta, tb).then(|| ([a, b], crosses(ta, tb)))
+        })
+        .collect();
+    let crossing = found.iter().filter(|(_, c)| *c).count();
+    SelfIntersections {
+        count: found.len(),
+        crossing,
+        touching: found.len() - crossing,
+        pairs: found
+            .iter()
+            .take(LISTED_SELF_INTERSECTIONS)
+            .map(|(p, _)| *p)
+            .collect(),
+        candidates: candidates.len(),
+    }
+}
+
+/// A corner closer than this fraction of the larger triangle's longest edge to the other
+/// triangle's plane counts as lying on it, when telling crossing from touching: files that
+/// store coordinates as `f32` (STL, most PLY) round a corner that was designed to lie on a
+/// plane (a T-junction) by up to about 6e-8 of the coordinates' size, which exact tests
+/// would read as a crossing.
+pub const TOUCH_TOLERANCE_REL: f64 = 1e-6;
+
+/// For two intersecting triangles: whether they cross (each has corners clearly on both
+/// sides of the other's plane) or overlap in one plane, rather than only touch.
+fn crosses(ta: [DVec3; 3], tb: [DVec3; 3]) -> bool {
+    let longest = |t: [DVec3; 3]| {
+        (t[1] - t[0])
+            .length()
+            .max((t[2] - t[1]).length())
+            .max((t[0] - t[2]).length())
+    };
+    let tolerance = TOUCH_TOLERANCE_REL * longest(ta).max(longest(tb));
+    // Signed distances of `points` from the plane of `plane`, rounded to 0 within the
+    // tolerance.
+    let sides = |plane: [DVec3; 3], points: [DVec3; 3]| {
+        let n = (plane[1] - plane[0])
+            .cross(plane[2] - plane[0])
+            .normalize_or_zero();
+        points.map(|q| {
+            let h = n.dot(q - plane[0]);
+            if h.abs() <= tolerance { 0.0 } else { h }
+        })
+    };
+    let straddles = |s: [f64; 3]| s.iter().any(|&x| x > 0.0) && s.iter().any(|&x| x < 0.0);
+    let (sb, sa) = (sides(ta, tb), sides(tb, ta));
+    if sb.iter().all(|&x| x == 0.0) && sa.iter().all(|&x| x == 0.0) {
+        return interiors_overlap_coplanar(ta, tb);
+    }
+    straddles(sa) && straddles(sb)
+}
+
+/// For two triangles in one plane: whether their interiors overlap (not just touch along
+/// an edge or at a corner). They do unless an edge line of one has the whole other
+/// triangle on its outer side or on it (exact 2D orientation tests, in the coordinate
+/// plane the triangles project to without collapsing).
+fn interiors_overlap_coplanar(ta: [DVec3; 3], tb: [DVec3; 3]) -> bool {
+    let n = (ta[1] - ta[0]).cross(ta[2] - ta[0]).abs();
+    let drop = if n.x >= n.y && n.x >= n.z {
+        0
+    } else if n.y >= n.z {
+        1
+    } else {
+        2
+    };
+    let flat = |p: DVec3| {
+        let (u, v) = match drop {
+            0 => (p.y, p.z),
+            1 => (p.z, p.x),
+            _ => (p.x, p.y),
+        };
+        robust::Coord { x: u, y: v }
+    };
+    let (a, b) = (ta.map(flat), tb.map(flat));
+    let separates = |tri: [robust::Coord<f64>; 3], other: [robust::Coord<f64>; 3]| {
+        let orientation = robust::orient2d(tri[0], tri[1], tri[2]);
+        (0..3).any(|i| {
+            let (p, q) = (tri[i], tri[(i + 1) % 3]);
+            other
+                .iter()
+                .all(|&r| robust::orient2d(p, q, r) * orientation <= 0.0)
+        })
+    };
+    !(separates(a, b) || separates(b, a))
+}
