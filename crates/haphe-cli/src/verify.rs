@@ -9,8 +9,8 @@ use std::time::Instant;
 use anyhow::anyhow;
 use haphe::mesh::{ReadOptions, Surface};
 use haphe::verify::{
-    CrossingCheck, InsideCheck, SegmentKind, WalkCheck, WindingOracle, bounds, check_crossings,
-    check_inside, check_walk, distance_to_surface, points, segments,
+    BruteCrossing, CrossingCheck, InsideCheck, SegmentKind, WalkCheck, WindingOracle, bounds,
+    check_crossings, check_inside, check_walk, distance_to_surface, points, segments,
 };
 use parry3d_f64::query::{PointQuery, Ray, RayCast};
 use parry3d_f64::shape::{TriMesh, TriMeshFlags};
@@ -47,6 +47,38 @@ struct CrossingRow {
     check: CrossingCheck,
     /// Segments that cross the surface (by brute force) where parry's ray cast finds nothing.
     parry_misses: Option<usize>,
+    /// Of the segments from outside to inside a solid, those parry's ray cast finds no
+    /// crossing on: where a parry-based renderer lets the user through.
+    parry_leaks: Option<usize>,
+}
+
+/// parry's misses and leaks on the segments of one kind.
+fn parry_segments(
+    surface: &Surface,
+    mesh: &TriMesh,
+    segments: &[(haphe::DVec3, haphe::DVec3)],
+) -> (usize, usize) {
+    let brute = BruteCrossing::new(surface);
+    let oracle = surface.is_solid().then(|| WindingOracle::new(surface));
+    let counts: Vec<(bool, bool)> = segments
+        .par_iter()
+        .map(|&(p0, p1)| {
+            let crosses = brute.first_crossing(p0, p1).is_some();
+            let parry_hit = mesh
+                .cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false)
+                .is_some();
+            let outside_to_inside = oracle.as_ref().is_some_and(|o| {
+                (o.winding(p0) == 0) != (o.winding(p1) == 0)
+                    && distance_to_surface(surface, p0) > haphe::verify::ON_SURFACE_M
+                    && distance_to_surface(surface, p1) > haphe::verify::ON_SURFACE_M
+            });
+            (crosses && !parry_hit, outside_to_inside && !parry_hit)
+        })
+        .collect();
+    (
+        counts.iter().filter(|c| c.0).count(),
+        counts.iter().filter(|c| c.1).count(),
+    )
 }
 
 #[derive(Serialize)]
@@ -104,20 +136,13 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .map(|(k, &kind)| {
             let seed = args.seed.wrapping_mul(1000).wrapping_add(k as u64);
             let check = check_crossings(surface, map, kind, n, seed);
-            let parry_misses = parry.as_ref().map(|mesh| {
-                segments(surface, kind, n, seed)
-                    .par_iter()
-                    .filter(|&&(p0, p1)| {
-                        haphe::query::first_crossing_brute_force(surface, p0, p1).is_some()
-                            && mesh
-                                .cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false)
-                                .is_none()
-                    })
-                    .count()
-            });
+            let parry = parry
+                .as_ref()
+                .map(|mesh| parry_segments(surface, mesh, &segments(surface, kind, n, seed)));
             CrossingRow {
                 check,
-                parry_misses,
+                parry_misses: parry.map(|p| p.0),
+                parry_leaks: parry.map(|p| p.1),
             }
         })
         .collect();
@@ -211,17 +236,17 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
     )?;
     writeln!(
         out,
-        "| segments         | samples | crossing | mismatches vs brute force | outside→inside | leaks | parry misses |"
+        "| segments         | samples | crossing | mismatches vs brute force | outside→inside | leaks | parry misses | parry leaks |"
     )?;
     writeln!(
         out,
-        "|------------------|--------:|---------:|--------------------------:|---------------:|------:|-------------:|"
+        "|------------------|--------:|---------:|--------------------------:|---------------:|------:|-------------:|------------:|"
     )?;
     for row in &r.crossings {
         let c = &row.check;
         writeln!(
             out,
-            "| {:<16} | {:>7} | {:>8} | {:>25} | {:>14} | {:>5} | {:>12} |",
+            "| {:<16} | {:>7} | {:>8} | {:>25} | {:>14} | {:>5} | {:>12} | {:>11} |",
             serde_json::to_value(c.kind)
                 .map(|v| v.as_str().unwrap_or("").to_owned())
                 .unwrap_or_default(),
@@ -230,7 +255,8 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
             c.mismatches,
             c.outside_to_inside,
             c.leaks,
-            opt(row.parry_misses)
+            opt(row.parry_misses),
+            opt(row.parry_leaks)
         )?;
     }
     let i = &r.inside.check;

@@ -100,7 +100,7 @@ pub fn first_crossing(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -
             }
         }
     }
-    best.map(|(hit, t)| crossing(surface, hit, t))
+    best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
 }
 
 /// Parameter margin covering the rounding of cell-boundary parameters: a millionth of a
@@ -128,7 +128,7 @@ pub fn first_crossing_brute_force(surface: &Surface, p0: DVec3, p1: DVec3) -> Op
             best = Some((hit, t));
         }
     }
-    best.map(|(hit, t)| crossing(surface, hit, t))
+    best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
 }
 
 /// Every crossing of the segment with the surface, by testing every triangle, in order of
@@ -138,14 +138,15 @@ pub fn all_crossings_brute_force(surface: &Surface, p0: DVec3, p1: DVec3) -> Vec
     let mut hits: Vec<Crossing> = (0..surface.triangle_count() as u32)
         .filter_map(|t| {
             intersect_segment_triangle(&segment, surface.corners(TriId(t)))
-                .map(|hit| crossing(surface, hit, t))
+                .map(|hit| crossing_from_hit(surface, hit, t))
         })
         .collect();
     hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.triangle.cmp(&b.triangle)));
     hits
 }
 
-fn crossing(surface: &Surface, hit: SegmentHit, t: u32) -> Crossing {
+/// The crossing of triangle `t` from its segment–triangle hit.
+pub(crate) fn crossing_from_hit(surface: &Surface, hit: SegmentHit, t: u32) -> Crossing {
     let [a, b, c] = surface.corners(TriId(t));
     let [wa, wb, wc] = hit.weights;
     Crossing {

@@ -10,7 +10,7 @@
 mod oracle;
 mod samples;
 
-pub use oracle::{WindingOracle, distance_to_surface};
+pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
 pub use samples::{SegmentKind, bounds, points, segments, trajectory};
 
 use rayon::prelude::*;
@@ -20,7 +20,7 @@ use crate::map::VoxelMap;
 use crate::mesh::{Surface, TriId, VertId};
 use crate::query::{
     Feature, Side, WalkStatus, classify_point, closest_point_triangle, first_crossing,
-    first_crossing_brute_force, nearest_point_brute_force, walk_to_nearest,
+    nearest_point_brute_force, walk_to_nearest,
 };
 
 /// Points closer than this to the surface (metres) may be classified either way: the
@@ -111,6 +111,7 @@ pub fn check_crossings(
     seed: u64,
 ) -> CrossingCheck {
     let oracle = surface.is_solid().then(|| WindingOracle::new(surface));
+    let brute_force = BruteCrossing::new(surface);
     /// What one segment showed.
     struct Outcome {
         crosses: bool,
@@ -123,7 +124,7 @@ pub fn check_crossings(
         .par_iter()
         .map(|&(p0, p1)| {
             let fast = first_crossing(surface, map, p0, p1);
-            let brute = first_crossing_brute_force(surface, p0, p1);
+            let brute = brute_force.first_crossing(p0, p1);
             let bad = mismatch(fast, brute);
             let mut candidate = false;
             let mut leak = false;

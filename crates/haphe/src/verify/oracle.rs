@@ -90,3 +90,76 @@ impl<'a> WindingOracle<'a> {
 pub fn distance_to_surface(surface: &Surface, p: DVec3) -> f64 {
     crate::query::nearest_point_brute_force(surface, p).distance
 }
+
+/// First crossings by testing every triangle, with each triangle's bounding box tested
+/// first (a slab test), so that a million segments against a hundred thousand triangles
+/// stay affordable. Same answers as [`first_crossing_brute_force`]: the lowest `t`, then
+/// the lowest triangle index.
+///
+/// [`first_crossing_brute_force`]: crate::query::first_crossing_brute_force
+pub struct BruteCrossing<'a> {
+    surface: &'a Surface,
+    /// Per triangle: min corner, max corner.
+    boxes: Vec<[DVec3; 2]>,
+}
+
+impl<'a> BruteCrossing<'a> {
+    /// Prepares the boxes of `surface`'s triangles.
+    pub fn new(surface: &'a Surface) -> BruteCrossing<'a> {
+        let boxes = (0..surface.triangle_count() as u32)
+            .map(|t| {
+                let [a, b, c] = surface.corners(TriId(t));
+                // Grown by a relative hair so rounding in the slab test never drops a hit.
+                let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+                let pad = (hi - lo)
+                    .max_element()
+                    .max(hi.abs().max(lo.abs()).max_element())
+                    * 1e-9;
+                [lo - DVec3::splat(pad), hi + DVec3::splat(pad)]
+            })
+            .collect();
+        BruteCrossing { surface, boxes }
+    }
+
+    /// The first crossing of the segment from `p0` to `p1`, testing every triangle whose
+    /// box the segment meets.
+    pub fn first_crossing(&self, p0: DVec3, p1: DVec3) -> Option<crate::query::Crossing> {
+        let segment = Segment::new(p0, p1);
+        let d = p1 - p0;
+        let inv = DVec3::ONE / d;
+        let mut best: Option<(crate::query::SegmentHit, u32)> = None;
+        for (t, [lo, hi]) in self.boxes.iter().enumerate() {
+            // Slab test on [0, 1] (infinities from zero components compare correctly;
+            // NaN from 0 · ∞ is avoided by testing the degenerate axes separately).
+            let mut t0 = 0.0f64;
+            let mut t1 = 1.0f64;
+            let mut hit = true;
+            for k in 0..3 {
+                if d[k] == 0.0 {
+                    if p0[k] < lo[k] || p0[k] > hi[k] {
+                        hit = false;
+                        break;
+                    }
+                } else {
+                    let (a, b) = ((lo[k] - p0[k]) * inv[k], (hi[k] - p0[k]) * inv[k]);
+                    t0 = t0.max(a.min(b));
+                    t1 = t1.min(a.max(b));
+                    if t0 > t1 {
+                        hit = false;
+                        break;
+                    }
+                }
+            }
+            if !hit || best.is_some_and(|(b, _)| t0 > b.t) {
+                continue;
+            }
+            if let Some(h) =
+                intersect_segment_triangle(&segment, self.surface.corners(TriId(t as u32)))
+                && best.is_none_or(|(b, _)| h.t < b.t)
+            {
+                best = Some((h, t as u32));
+            }
+        }
+        best.map(|(hit, t)| crate::query::crossing_from_hit(self.surface, hit, t))
+    }
+}
