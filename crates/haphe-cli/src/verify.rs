@@ -30,6 +30,18 @@ pub struct Args {
     /// Samples per check: segments of each kind, points, and walk targets.
     #[arg(long, default_value_t = 10_000)]
     samples: usize,
+    /// Random segments (default: --samples).
+    #[arg(long)]
+    random: Option<usize>,
+    /// Segments of each adversarial kind (default: --samples).
+    #[arg(long)]
+    adversarial: Option<usize>,
+    /// Random points for inside/outside (default: --samples).
+    #[arg(long)]
+    points: Option<usize>,
+    /// Surface-walk targets (default: --samples).
+    #[arg(long)]
+    walks: Option<usize>,
     /// Seed of the samples (the same seed gives the same samples).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -135,6 +147,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .enumerate()
         .map(|(k, &kind)| {
             let seed = args.seed.wrapping_mul(1000).wrapping_add(k as u64);
+            let n = if kind.is_adversarial() {
+                args.adversarial.unwrap_or(n)
+            } else {
+                args.random.unwrap_or(n)
+            };
             let check = check_crossings(surface, map, kind, n, seed);
             let parry = parry
                 .as_ref()
@@ -147,13 +164,14 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         })
         .collect();
 
-    let inside_check = check_inside(surface, map, n, args.seed);
+    let n_points = args.points.unwrap_or(n);
+    let inside_check = check_inside(surface, map, n_points, args.seed);
     let parry_disagreements = (surface.is_solid())
         .then_some(parry.as_ref())
         .flatten()
         .map(|mesh| {
             let oracle = WindingOracle::new(surface);
-            points(surface, n, args.seed)
+            points(surface, n_points, args.seed)
                 .par_iter()
                 .filter(|&&p| {
                     let inside = oracle.winding(p) != 0;
@@ -173,7 +191,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let steps = 100;
     let walk = check_walk(
         surface,
-        n.div_ceil(steps),
+        args.walks.unwrap_or(n).div_ceil(steps),
         steps,
         (0.05e-3 * scale, 0.5e-3 * scale),
         args.seed,
