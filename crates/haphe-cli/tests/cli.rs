@@ -150,6 +150,7 @@ fn demo_runs_and_reports_every_model_as_a_solid() {
         assert!(row.contains("| solid "), "{row}");
     }
     assert!(text.contains("closed, oriented, manifold solid: yes"));
+    assert!(text.contains("no segment from outside to inside missed: yes"));
 }
 
 #[test]
