@@ -51,6 +51,11 @@ pub struct Args {
     /// Merge vertices closer than this (metres, after scaling); exact welding by default.
     #[arg(long, value_name = "METRES")]
     weld_tolerance: Option<f64>,
+    /// Skip the search for self-intersections (it builds the surface's voxel map, which
+    /// takes a few seconds on meshes of millions of triangles); `self_intersections` is
+    /// then null.
+    #[arg(long)]
+    skip_self_intersections: bool,
 }
 
 /// Parses a `--units` value.
@@ -127,7 +132,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             Ok(loaded) => {
                 let triangles = loaded.mesh.triangles.len();
                 let validated = Instant::now();
-                let (report, intersections) = validate_mesh(loaded.mesh)?;
+                let (report, intersections) = if args.skip_self_intersections {
+                    (MeshReport::of(&loaded.mesh), None)
+                } else {
+                    validate_mesh(loaded.mesh)?
+                };
                 let t_validate = validated.elapsed();
                 let seconds = start.elapsed().as_secs_f64();
                 let crossing_itself = intersections.as_ref().is_some_and(|s| s.crossing > 0);

@@ -60,6 +60,9 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
         .filter_map(|&key| {
             let (a, b) = ((key >> 32) as u32, key as u32);
             let (ta, tb) = (surface.corners(TriId(a)), surface.corners(TriId(b)));
+            if clearly_apart(ta, tb) {
+                return None;
+            }
             intersect_triangle_triangle(ta, tb).then(|| ([a, b], crosses(ta, tb)))
         })
         .collect();
@@ -75,6 +78,48 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
             .collect(),
         candidates: candidates.len(),
     }
+}
+
+/// Relative margin of [`clearly_apart`]: a corner must be farther than this fraction of the
+/// triangles' size from a plane to count as clearly off it (far above the rounding of the
+/// float test, so the shortcut never hides an intersection the exact test would find).
+const APART_MARGIN_REL: f64 = 1e-9;
+
+/// A float shortcut for the common case, sound by its margin: the corners of one triangle
+/// that it does not share with the other all lie clearly on one side of the other's plane.
+/// Then the triangles can meet only in their shared corners (or not at all), which the
+/// exact test would also say. Most candidate pairs are neighbours around a vertex or an
+/// edge of a smooth surface, and end here.
+fn clearly_apart(ta: [DVec3; 3], tb: [DVec3; 3]) -> bool {
+    let size = (ta[1] - ta[0])
+        .abs()
+        .max((ta[2] - ta[0]).abs())
+        .max((tb[1] - tb[0]).abs())
+        .max((tb[2] - tb[0]).abs())
+        .max_element();
+    let scale = size.max(ta[0].abs().max_element());
+    let margin = APART_MARGIN_REL * scale;
+    let one_side = |plane: [DVec3; 3], points: [DVec3; 3]| {
+        let n = (plane[1] - plane[0]).cross(plane[2] - plane[0]);
+        let length = n.length();
+        if !(length > 0.0 && length.is_finite()) {
+            return false;
+        }
+        let n = n / length;
+        let (mut above, mut below) = (false, false);
+        for q in points.iter().filter(|q| !plane.contains(q)) {
+            let h = n.dot(*q - plane[0]);
+            if h > margin {
+                above = true;
+            } else if h < -margin {
+                below = true;
+            } else {
+                return false;
+            }
+        }
+        above != below
+    };
+    one_side(ta, tb) || one_side(tb, ta)
 }
 
 /// A corner closer than this fraction of the larger triangle's longest edge to the other
