@@ -131,7 +131,7 @@ pub(crate) fn cell_in_brick(bc: [u32; 3], local: usize) -> [u32; 3] {
 ///   are outside; every other connected region of non-surface cells is inside, unless
 ///   the generalised winding number at its first cell says it is outside space (a cavity,
 ///   or a pocket closed off at the grid's resolution) — checked for as many regions as
-///   about 67 million triangle evaluations allow, which covers every ordinary solid; for
+///   about 33 million triangle evaluations allow, which covers every ordinary solid; for
 ///   any other surface no cell is inside;
 /// - [`clearance`](VoxelMap::clearance) of a non-surface cell is `k ≥ 1` such that every
 ///   cell at Chebyshev distance below `k` (in cells) is a non-surface cell. It is exactly
