@@ -9,7 +9,8 @@ use super::bricks::{
     BRICK_BITS, BRICK_CELLS, BrickBits, MASK_WORDS, VoxelMap, brick_dims, uniform_entry,
 };
 use super::cell_size::SizeModel;
-use super::fill::{compute_clearance, flood_fill};
+use super::clearance::compute_clearance;
+use super::fill::flood_fill;
 use super::grid::Grid;
 use super::{CellSizeRule, CellState, MapError, MapOptions};
 use crate::mesh::Surface;
@@ -144,7 +145,7 @@ pub(super) fn build_on_grid(
     progress(PROGRESS_ASSEMBLED);
 
     if solid {
-        flood_fill(&mut map);
+        flood_fill(&mut map, surface);
     }
     progress(PROGRESS_FILLED);
     compute_clearance(&mut map);

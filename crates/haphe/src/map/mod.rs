@@ -13,8 +13,9 @@
 //!   walk never misses a triangle at a cell border), so a query finds its candidate
 //!   triangles in constant time;
 //! - the other cells are classified by a **flood fill** from the padding (reached means
-//!   outside, the rest inside) when the surface is a closed solid; for any other surface
-//!   they are all outside (free space);
+//!   outside, the rest inside) when the surface is a closed solid, each region left
+//!   inside checked once with the generalised winding number (a cavity is outside); for
+//!   any other surface they are all outside (free space);
 //! - each non-surface cell also stores its **clearance**: how many cells away the nearest
 //!   surface cell is (Chebyshev distance, capped at [`MAX_CLEARANCE`]), so a device point
 //!   that stays in free space needs no triangle test at all for several ticks.
@@ -38,6 +39,7 @@ mod bricks;
 mod build;
 mod cell_size;
 mod cells;
+mod clearance;
 mod file;
 mod fill;
 mod grid;

@@ -35,7 +35,9 @@ impl Dense {
 /// Builds the dense reference on `grid`: a triangle is listed in every cell of the grid
 /// (padding included) near its bounding box for which `grid.overlaps_cell` holds; a
 /// six-connected breadth-first search from cell `[0, 0, 0]` through non-surface cells
-/// marks the outside (when `solid`; otherwise every non-surface cell is outside); a
+/// marks the outside (when `solid`; otherwise every non-surface cell is outside), and each
+/// region it does not reach is outside when the winding number at one of its cells is at
+/// most ½ (a cavity); a
 /// 26-connected multi-source search from the surface cells gives Chebyshev distances.
 pub fn dense_reference(surface: &Surface, grid: &Grid, solid: bool) -> Dense {
     let dims = grid.dims();
@@ -77,16 +79,26 @@ pub fn dense_reference(surface: &Surface, grid: &Grid, solid: bool) -> Dense {
         }
     }
     if solid {
-        let mut queue = VecDeque::from([[0u32, 0, 0]]);
         let start = dense.index([0, 0, 0]);
         assert_eq!(dense.states[start], CellState::Inside, "padding is free");
-        dense.states[start] = CellState::Outside;
-        while let Some(c) = queue.pop_front() {
-            for n in face_neighbours(c, dims) {
-                let i = dense.index(n);
-                if dense.states[i] == CellState::Inside {
-                    dense.states[i] = CellState::Outside;
-                    queue.push_back(n);
+        for c in region(&dense, [0, 0, 0]) {
+            let i = dense.index(c);
+            dense.states[i] = CellState::Outside;
+        }
+        // Every enclosed region: outside when the winding number at one of its cells says
+        // so (a cavity), else inside.
+        let mut checked = vec![false; count];
+        for &c in &cells {
+            let i = dense.index(c);
+            if dense.states[i] != CellState::Inside || checked[i] {
+                continue;
+            }
+            let cavity = winding_number(surface, grid.cell_centre(c)) <= 0.5;
+            for n in region(&dense, c) {
+                let j = dense.index(n);
+                checked[j] = true;
+                if cavity {
+                    dense.states[j] = CellState::Outside;
                 }
             }
         }
@@ -114,6 +126,26 @@ pub fn dense_reference(surface: &Surface, grid: &Grid, solid: bool) -> Dense {
         dense.clearance[i] = d.min(u32::from(MAX_CLEARANCE)) as u8;
     }
     dense
+}
+
+/// The cells connected to `start` through face-adjacent cells of the same state.
+fn region(dense: &Dense, start: [u32; 3]) -> Vec<[u32; 3]> {
+    let state = dense.states[dense.index(start)];
+    let mut seen = vec![false; dense.states.len()];
+    seen[dense.index(start)] = true;
+    let mut queue = VecDeque::from([start]);
+    let mut out = Vec::new();
+    while let Some(c) = queue.pop_front() {
+        out.push(c);
+        for n in face_neighbours(c, dense.dims) {
+            let i = dense.index(n);
+            if !seen[i] && dense.states[i] == state {
+                seen[i] = true;
+                queue.push_back(n);
+            }
+        }
+    }
+    out
 }
 
 /// The face neighbours of `c` inside the grid.

@@ -1,0 +1,350 @@
+//! The clearance of every non-surface cell: its Chebyshev distance in cells to the nearest
+//! surface cell, capped at [`MAX_CLEARANCE`], computed only in bricks near the surface by
+//! dilating bit masks of the surface cells one cell at a time.
+
+use rayon::prelude::*;
+
+use super::MAX_CLEARANCE;
+use super::bricks::{
+    BRICK_BITS, BRICK_SIDE, BrickBits, MASK_WORDS, NIBBLE_BYTES, UNIFORM, VoxelMap, brick_coords,
+    brick_of, entry_state, graded_entry, uniform_entry,
+};
+use super::fill::{COLUMN_X0, COLUMN_X7, FACES, step};
+
+/// No neighbour slot.
+const NO_SLOT: u32 = u32::MAX;
+
+/// What a brick of the clearance work set stores its clearances in.
+#[derive(Clone, Copy)]
+enum Target {
+    /// Detailed brick `d`: its nibbles.
+    Detailed(usize),
+    /// Graded brick `g` (uniform, touching a detailed brick): nibbles after the detailed
+    /// bricks'.
+    Graded(usize),
+    /// Other uniform brick: only the smallest clearance.
+    Uniform,
+}
+
+/// Sets the clearance of every non-surface cell, and makes graded the uniform bricks
+/// that touch a detailed brick.
+///
+/// Bricks within `⌈(MAX_CLEARANCE − 1) / 8⌉` bricks of a detailed brick form the work set.
+/// Starting from the surface cells, the set of cells within Chebyshev distance `k` is the
+/// previous one dilated by one cell along x, then y, then z (separable); a cell first
+/// reached at step `k` has clearance `k`. Cells not reached after `MAX_CLEARANCE − 1`
+/// steps get `MAX_CLEARANCE`, as do bricks outside the work set (farther than
+/// `MAX_CLEARANCE` cells from any surface cell). Detailed and graded bricks keep every
+/// cell's clearance; other uniform bricks the smallest of their cells'.
+///
+/// Deterministic; parallel over bricks within each step.
+pub(crate) fn compute_clearance(map: &mut VoxelMap) {
+    let bdims = map.brick_dims;
+    let reach = i64::from((MAX_CLEARANCE.max(1) - 1).div_ceil(BRICK_SIDE as u8)).max(1);
+    // The work set, in brick order; `TOUCHING` marks bricks next to a detailed brick.
+    const TOUCHING: u32 = 1;
+    const NEAR: u32 = 2;
+    let mut mark = vec![0u32; map.bricks.len()];
+    for (b, &entry) in map.bricks.iter().enumerate() {
+        if entry & UNIFORM != 0 {
+            continue;
+        }
+        let bc = brick_coords(b, bdims).map(i64::from);
+        for dz in -reach..=reach {
+            for dy in -reach..=reach {
+                for dx in -reach..=reach {
+                    let n = [bc[0] + dx, bc[1] + dy, bc[2] + dz];
+                    if (0..3).all(|a| n[a] >= 0 && n[a] < i64::from(bdims[a])) {
+                        let nb = brick_of(n.map(|x| (x as u32) << BRICK_BITS), bdims);
+                        let touching = dx.abs().max(dy.abs()).max(dz.abs()) <= 1;
+                        mark[nb] |= if touching { TOUCHING | NEAR } else { NEAR };
+                    }
+                }
+            }
+        }
+    }
+    let mut slot_of = vec![NO_SLOT; map.bricks.len()];
+    let mut slots: Vec<usize> = Vec::new();
+    let mut targets: Vec<Target> = Vec::new();
+    let mut graded_count = 0usize;
+    for (b, &m) in mark.iter().enumerate() {
+        if m == 0 {
+            continue;
+        }
+        slot_of[b] = slots.len() as u32;
+        slots.push(b);
+        let entry = map.bricks[b];
+        targets.push(if entry & UNIFORM == 0 {
+            Target::Detailed(entry as usize)
+        } else if m & TOUCHING != 0 {
+            graded_count += 1;
+            Target::Graded(graded_count - 1)
+        } else {
+            Target::Uniform
+        });
+    }
+    drop(mark);
+    let neighbours: Vec<[u32; 6]> = slots
+        .par_iter()
+        .map(|&b| {
+            let bc = brick_coords(b, bdims);
+            FACES.map(|(axis, up)| {
+                step(bc, axis, up, bdims)
+                    .map(|n| slot_of[brick_of(n.map(|x| x << BRICK_BITS), bdims)])
+                    .unwrap_or(NO_SLOT)
+            })
+        })
+        .collect();
+
+    // D_0: the surface cells. A cell's clearance is the number of steps k in
+    // 0..MAX_CLEARANCE with the cell not yet in D_k: counted per cell, in four bit planes,
+    // for detailed and graded bricks; for the other bricks only their smallest clearance
+    // is kept, the number of steps with the whole brick still outside D_k.
+    let mut current: Vec<BrickBits> = vec![[0; MASK_WORDS]; slots.len()];
+    for (s, target) in targets.iter().enumerate() {
+        if let Target::Detailed(d) = *target
+            && let Some(surface) = map.surface_bits.get(d)
+        {
+            current[s] = *surface;
+        }
+    }
+    let counted: Vec<usize> = (0..slots.len())
+        .filter(|&s| !matches!(targets[s], Target::Uniform))
+        .collect();
+    let mut counts: Vec<Counter> = counted
+        .par_iter()
+        .map(|&s| {
+            let mut counter = Counter::default();
+            counter.add_missing(&current[s]);
+            counter
+        })
+        .collect();
+    let mut current = Layer::new(current);
+    let mut empty_steps: Vec<u8> = current
+        .occupancy
+        .iter()
+        .map(|&o| u8::from(o == Occupancy::Empty))
+        .collect();
+    let mut along_x = current.clone();
+    let mut along_y = current.clone();
+    let mut next = current.clone();
+    for _ in 1..MAX_CLEARANCE {
+        dilate(&current, &mut along_x, &neighbours, 0);
+        dilate(&along_x, &mut along_y, &neighbours, 1);
+        dilate(&along_y, &mut next, &neighbours, 2);
+        counts
+            .par_iter_mut()
+            .zip(counted.par_iter())
+            .for_each(|(counter, &s)| {
+                if next.occupancy[s] != Occupancy::Full {
+                    counter.add_missing(&next.bits[s]);
+                }
+            });
+        empty_steps
+            .par_iter_mut()
+            .zip(next.occupancy.par_iter())
+            .for_each(|(steps, &o)| *steps += u8::from(o == Occupancy::Empty));
+        std::mem::swap(&mut current, &mut next);
+    }
+    drop((current, next, along_x, along_y));
+
+    let detailed_count = map.detailed_count();
+    map.clearances = vec![0; (detailed_count + graded_count) * NIBBLE_BYTES];
+    for (&s, counter) in counted.iter().zip(&counts) {
+        let brick = match targets[s] {
+            Target::Detailed(d) => d,
+            Target::Graded(g) => detailed_count + g,
+            Target::Uniform => continue,
+        };
+        if let Some(bytes) = map
+            .clearances
+            .get_mut(brick * NIBBLE_BYTES..(brick + 1) * NIBBLE_BYTES)
+        {
+            counter.write_nibbles(bytes);
+        }
+    }
+    for (b, entry) in map.bricks.iter_mut().enumerate() {
+        if *entry & UNIFORM == 0 {
+            continue;
+        }
+        let state = entry_state(*entry);
+        let slot = slot_of[b] as usize;
+        *entry = match (targets.get(slot), empty_steps.get(slot)) {
+            (Some(Target::Graded(g)), _) => graded_entry(state, (detailed_count + g) as u32),
+            (Some(_), Some(&steps)) => uniform_entry(state, steps.min(MAX_CLEARANCE)),
+            _ => uniform_entry(state, MAX_CLEARANCE),
+        };
+    }
+}
+
+/// A 4-bit counter per cell of a brick, bit-sliced: bit `p` of every cell's count lives
+/// in plane `p`, so adding one to a set of cells costs a few word operations.
+#[derive(Clone, Copy, Default)]
+struct Counter {
+    planes: [BrickBits; 4],
+}
+
+impl Counter {
+    /// Adds one to every cell not in `bits` (counts stay below 16: at most
+    /// [`MAX_CLEARANCE`] additions).
+    #[inline]
+    fn add_missing(&mut self, bits: &BrickBits) {
+        for z in 0..MASK_WORDS {
+            let mut carry = !bits[z];
+            for plane in &mut self.planes {
+                let sum = plane[z] ^ carry;
+                carry &= plane[z];
+                plane[z] = sum;
+            }
+        }
+    }
+
+    /// The counts as nibbles (cell `l` in byte `l / 2`, low nibble first).
+    fn write_nibbles(&self, bytes: &mut [u8]) {
+        for (group, out) in bytes.chunks_exact_mut(4).enumerate() {
+            // Eight cells: `group * 8 ..`, the byte `group % 8` of word `group / 8`.
+            let (z, shift) = (group / 8, 8 * (group % 8));
+            let mut nibbles = 0u32;
+            for (p, plane) in self.planes.iter().enumerate() {
+                nibbles |= SPREAD_NIBBLES[((plane[z] >> shift) & 0xff) as usize] << p;
+            }
+            out.copy_from_slice(&nibbles.to_le_bytes());
+        }
+    }
+}
+
+/// `SPREAD_NIBBLES[x]` has bit `i` of `x` at bit `4·i`.
+const SPREAD_NIBBLES: [u32; 256] = {
+    let mut table = [0u32; 256];
+    let mut x = 0;
+    while x < 256 {
+        let mut i = 0;
+        while i < 8 {
+            if x >> i & 1 != 0 {
+                table[x] |= 1 << (4 * i);
+            }
+            i += 1;
+        }
+        x += 1;
+    }
+    table
+};
+
+/// How much of a brick's bit mask is set, so that dilation can skip bricks whose result
+/// is known.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Occupancy {
+    Empty,
+    Full,
+    Mixed,
+}
+
+impl Occupancy {
+    fn of(bits: &BrickBits) -> Occupancy {
+        if bits.iter().all(|&w| w == 0) {
+            Occupancy::Empty
+        } else if bits.iter().all(|&w| w == u64::MAX) {
+            Occupancy::Full
+        } else {
+            Occupancy::Mixed
+        }
+    }
+}
+
+/// The bit masks of the work set, with each brick's occupancy.
+#[derive(Clone)]
+struct Layer {
+    bits: Vec<BrickBits>,
+    occupancy: Vec<Occupancy>,
+}
+
+impl Layer {
+    fn new(bits: Vec<BrickBits>) -> Layer {
+        let occupancy = bits.par_iter().map(Occupancy::of).collect();
+        Layer { bits, occupancy }
+    }
+}
+
+/// One dilation step along `axis` of every brick of the work set: a bit is set when it or
+/// a face neighbour along `axis` (possibly in the next brick) is set in `input`. A full
+/// brick stays full, and an empty one with empty neighbours along `axis` stays empty,
+/// without computing.
+fn dilate(input: &Layer, output: &mut Layer, neighbours: &[[u32; 6]], axis: usize) {
+    let get = |slot: u32| input.bits.get(slot as usize);
+    let occupancy = |slot: u32| {
+        input
+            .occupancy
+            .get(slot as usize)
+            .copied()
+            .unwrap_or(Occupancy::Empty)
+    };
+    output
+        .bits
+        .par_iter_mut()
+        .zip(output.occupancy.par_iter_mut())
+        .zip(input.bits.par_iter().zip(input.occupancy.par_iter()))
+        .zip(neighbours.par_iter())
+        .for_each(|(((out, out_occupancy), (bits, &own)), nb)| {
+            let (below, above) = (nb[2 * axis], nb[2 * axis + 1]);
+            if own == Occupancy::Full {
+                *out = [u64::MAX; MASK_WORDS];
+                *out_occupancy = Occupancy::Full;
+                return;
+            }
+            if own == Occupancy::Empty
+                && occupancy(below) == Occupancy::Empty
+                && occupancy(above) == Occupancy::Empty
+            {
+                *out = [0; MASK_WORDS];
+                *out_occupancy = Occupancy::Empty;
+                return;
+            }
+            let (below, above) = (get(below), get(above));
+            match axis {
+                0 => {
+                    for z in 0..MASK_WORDS {
+                        let w = bits[z];
+                        let mut o = w | ((w << 1) & !COLUMN_X0) | ((w >> 1) & !COLUMN_X7);
+                        if let Some(n) = below {
+                            o |= (n[z] & COLUMN_X7) >> 7;
+                        }
+                        if let Some(n) = above {
+                            o |= (n[z] & COLUMN_X0) << 7;
+                        }
+                        out[z] = o;
+                    }
+                }
+                1 => {
+                    for z in 0..MASK_WORDS {
+                        let w = bits[z];
+                        let mut o = w | (w << 8) | (w >> 8);
+                        if let Some(n) = below {
+                            o |= n[z] >> 56;
+                        }
+                        if let Some(n) = above {
+                            o |= (n[z] & 0xff) << 56;
+                        }
+                        out[z] = o;
+                    }
+                }
+                _ => {
+                    let last = MASK_WORDS - 1;
+                    for z in 0..=last {
+                        let mut o = bits[z];
+                        o |= if z > 0 {
+                            bits[z - 1]
+                        } else {
+                            below.map_or(0, |n| n[last])
+                        };
+                        o |= if z < last {
+                            bits[z + 1]
+                        } else {
+                            above.map_or(0, |n| n[0])
+                        };
+                        out[z] = o;
+                    }
+                }
+            }
+            *out_occupancy = Occupancy::of(out);
+        });
+}
