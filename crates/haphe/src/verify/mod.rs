@@ -101,7 +101,7 @@ fn mismatch(a: Option<crate::query::Crossing>, b: Option<crate::query::Crossing>
     }
 }
 
-/// Checks [`first_crossing`] against [`first_crossing_brute_force`] on `n` segments of
+/// Checks [`first_crossing`] against [`crate::query::first_crossing_brute_force`] on `n` segments of
 /// `kind`, and counts leaks on solids. Parallel over segments; deterministic.
 pub fn check_crossings(
     surface: &Surface,
