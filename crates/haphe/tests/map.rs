@@ -22,6 +22,10 @@ mod support;
 #[path = "map/file.rs"]
 mod file;
 
+/// Lookups with any index or point.
+#[path = "map/lookup.rs"]
+mod lookup;
+
 /// Segments walked through the grid find the triangles they meet.
 #[path = "map/walk.rs"]
 mod walk;
