@@ -113,17 +113,14 @@ const WELD_SHARD_BITS: u32 = 8;
 /// the top bits of their key (a counting sort that keeps index order within a
 /// shard), then each shard is welded with its own small table, in parallel.
 fn exact_representatives(vertices: &[DVec3]) -> Vec<u32> {
-    let keys: Vec<[u64; 3]> = vertices.par_iter().map(|&p| key(p)).collect();
     // The shard comes from the mixed y bits, not from the table's hash: a shard whose
-    // members all shared the hash's top bits would defeat the table's tag filtering.
-    let shard_of: Vec<u32> = keys
-        .par_iter()
-        .map(|k| (k[1] >> (64 - WELD_SHARD_BITS)) as u32)
-        .collect();
+    // members all shared the hash's top bits would defeat the table's tag filtering. Keys
+    // are computed twice rather than stored: fresh memory costs more than the mixing.
+    let shard_of = |k: &[u64; 3]| (k[1] >> (64 - WELD_SHARD_BITS)) as usize;
     let shards = 1usize << WELD_SHARD_BITS;
     let mut start = vec![0usize; shards + 1];
-    for &s in &shard_of {
-        start[s as usize + 1] += 1;
+    for &p in vertices {
+        start[shard_of(&key(p)) + 1] += 1;
     }
     for s in 0..shards {
         start[s + 1] += start[s];
@@ -132,9 +129,11 @@ fn exact_representatives(vertices: &[DVec3]) -> Vec<u32> {
     // so each shard is then read from contiguous memory.
     let mut fill = start.clone();
     let mut sorted = vec![([0u64; 3], 0u32); vertices.len()];
-    for (v, (&s, k)) in shard_of.iter().zip(&keys).enumerate() {
-        sorted[fill[s as usize]] = (*k, v as u32);
-        fill[s as usize] += 1;
+    for (v, &p) in vertices.iter().enumerate() {
+        let k = key(p);
+        let s = shard_of(&k);
+        sorted[fill[s]] = (k, v as u32);
+        fill[s] += 1;
     }
     // Representatives in `sorted`'s order, computed shard by shard.
     let mut in_order = vec![0u32; vertices.len()];
