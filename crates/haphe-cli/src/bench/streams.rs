@@ -70,12 +70,13 @@ impl Streams {
         let step_range = (STEP_RANGE_M.0 * scale, STEP_RANGE_M.1 * scale);
         // Distinct seeds per stream, so that no two streams share their random numbers.
         let mut seeds = SplitMix64::new(seed);
-        let (near_seed, free_seed, points_seed, segments_seed) = (
-            seeds.next_u64(),
-            seeds.next_u64(),
-            seeds.next_u64(),
-            seeds.next_u64(),
-        );
+        let [
+            near_seed,
+            free_seed,
+            offset_seed,
+            points_seed,
+            segments_seed,
+        ] = std::array::from_fn(|_| seeds.next_u64());
 
         let near: Vec<Trajectory> = (0..chunks)
             .map(|k| {
@@ -98,7 +99,7 @@ impl Streams {
             })
             .collect();
 
-        let mut offsets = SplitMix64::new(free_seed);
+        let mut offsets = SplitMix64::new(offset_seed);
         let free = (0..chunks * FREE_ATTEMPTS_PER_CHUNK)
             .map(|k| {
                 let (start, positions) =
