@@ -1,4 +1,5 @@
-//! The `haphe` command: a thin `main` over [`run`], which maps errors to exit codes.
+//! The `haphe` command: a thin `main` that hands each subcommand to its module's `run` and maps
+//! errors to exit codes.
 
 mod bench;
 mod build;
