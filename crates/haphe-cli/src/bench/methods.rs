@@ -31,8 +31,8 @@ use super::timing::{Overhead, Summary, time_each, time_empty};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Query {
-    /// Inside/outside of a point in a cell without triangles, moving coherently near the
-    /// object: the free-space tick.
+    /// Inside/outside of a point moving coherently near the object where the map lists no
+    /// triangle: the free-space tick.
     FreeSpace,
     /// First crossing of the segment between consecutive positions of a near trajectory.
     Segment,
@@ -97,8 +97,9 @@ impl Query {
     pub fn description(self) -> &'static str {
         match self {
             Query::FreeSpace => {
-                "free-space tick: inside/outside of a point moving near the object in cells \
-                 without triangles (haphe `classify_point`, the cell-state path; parry \
+                "free-space tick: inside/outside of a point moving near the object where the \
+                 map lists no triangle, in a cell without triangles or beyond the grid (haphe \
+                 `classify_point`, the cell-state path; parry \
                  `contains_local_point`; brute force: winding number by counting crossings \
                  with every triangle)"
             }

@@ -7,8 +7,12 @@
 //!   size, starting within 1 % of the object's size of a random surface point and
 //!   wandering around it. Each trajectory is one chunk of [`STEPS`] positions.
 //! - **free**: the same kind of trajectories moved away from the surface along the start
-//!   triangle's normal by 1–5 % of the object's size, keeping only the positions whose map
-//!   cell lists no triangle: a device point moving in free space near the object.
+//!   triangle's normal by 1–5 % of the object's size, keeping only the positions where
+//!   the map lists no triangle — a cell without triangles, or beyond the grid, which
+//!   extends one cell past the bounding box: a device point moving in free space near the
+//!   object. (Around a thin plate the grid is a few cells thick, so most of its free space
+//!   lies beyond it; keeping only cells inside the grid would keep only the one layer of
+//!   padding cells right beside the plate.)
 //! - **random points** and **random segments**: uniform in the bounding box grown by a
 //!   fifth on every side ([`haphe::verify::points`], [`haphe::verify::segments`]).
 
@@ -141,9 +145,9 @@ fn chunked<T: Clone>(all: Vec<T>) -> Vec<Vec<T>> {
     all.chunks(STEPS).map(<[T]>::to_vec).collect()
 }
 
-/// Whether `p` lies in a cell of the map's grid that lists no triangle.
+/// Whether the map lists no triangle at `p`: its cell has none, or it lies beyond the grid.
 fn is_free(map: &VoxelMap, p: DVec3) -> bool {
     map.grid()
         .cell_of(p)
-        .is_some_and(|c| map.state(c) != CellState::Surface)
+        .is_none_or(|c| map.state(c) != CellState::Surface)
 }
