@@ -1,5 +1,7 @@
-//! The `haphe` command: a thin `main` over [`run`], which maps errors to exit codes.
+//! The `haphe` command: a thin `main` that hands each subcommand to its module's `run` and maps
+//! errors to exit codes.
 
+mod bench;
 mod build;
 mod demo;
 mod generate;
@@ -36,6 +38,8 @@ enum Command {
     Generate(generate::Args),
     /// A short run on built-in procedural models (no files needed).
     Demo(demo::Args),
+    /// Time haphe's queries beside parry3d-f64 and brute force, on procedural meshes and files.
+    Bench(bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -47,6 +51,7 @@ fn main() -> ExitCode {
         Command::Verify(args) => verify::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Demo(args) => demo::run(&args),
+        Command::Bench(args) => bench::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -1,0 +1,439 @@
+//! The query kinds, the methods that answer them, and the interleaved rounds that time
+//! them.
+//!
+//! Every timed query kind runs on one stream ([`super::streams`]) cut into chunks. Round
+//! `c` runs chunk `c` with every method in turn — the order rotating from round to
+//! round — together with an empty query that measures the clock ([`time_empty`]). A slow
+//! spell of the machine (another process, a busy core) thus falls on every method alike,
+//! and each method meets the caches as the previous one left them, as a servo tick
+//! meets them after the rest of an application has run. Methods that keep state from one
+//! query to the next (the surface walk) keep it within a chunk, which is one trajectory.
+//!
+//! Brute force runs only on small meshes, and on every `k`-th chunk so that its
+//! samples still spread over the whole run.
+
+use haphe::map::VoxelMap;
+use haphe::mesh::Surface;
+use haphe::query::{
+    classify_point, closest_point_triangle, first_crossing, first_crossing_brute_force,
+    nearest_point_brute_force, walk_to_nearest,
+};
+use haphe::verify::WindingOracle;
+use parry3d_f64::query::{PointQuery, Ray, RayCast};
+use parry3d_f64::shape::TriMesh;
+use serde::Serialize;
+
+use super::alloc;
+use super::streams::Streams;
+use super::timing::{Overhead, Summary, time_each, time_empty};
+
+/// A kind of query, timed per query, or a whole operation (build, decode).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Query {
+    /// Inside/outside of a point moving coherently near the object where the map lists no
+    /// triangle: the free-space tick.
+    FreeSpace,
+    /// First crossing of the segment between consecutive positions of a near trajectory.
+    Segment,
+    /// First crossing of a random segment across the bounding box.
+    SegmentRandom,
+    /// Inside/outside of the positions of a near trajectory.
+    Inside,
+    /// Inside/outside of random points in the bounding box.
+    InsideRandom,
+    /// Nearest surface point of the positions of a near trajectory, walking on from the
+    /// previous answer.
+    Walk,
+    /// One closest point on the triangle the walk stands on: the least a query can cost.
+    Floor,
+    /// Building the structures from the welded mesh.
+    Build,
+    /// Loading a saved surface and map (checks included).
+    Decode,
+}
+
+impl Query {
+    /// Every kind, in the order of the report.
+    pub const ALL: [Query; 9] = [
+        Query::FreeSpace,
+        Query::Segment,
+        Query::SegmentRandom,
+        Query::Inside,
+        Query::InsideRandom,
+        Query::Walk,
+        Query::Floor,
+        Query::Build,
+        Query::Decode,
+    ];
+
+    /// The kinds timed one query at a time.
+    pub const TIMED: [Query; 7] = [
+        Query::FreeSpace,
+        Query::Segment,
+        Query::SegmentRandom,
+        Query::Inside,
+        Query::InsideRandom,
+        Query::Walk,
+        Query::Floor,
+    ];
+
+    /// The name in tables, JSON records and plot file names.
+    pub fn name(self) -> &'static str {
+        match self {
+            Query::FreeSpace => "free_space",
+            Query::Segment => "segment",
+            Query::SegmentRandom => "segment_random",
+            Query::Inside => "inside",
+            Query::InsideRandom => "inside_random",
+            Query::Walk => "walk",
+            Query::Floor => "floor",
+            Query::Build => "build",
+            Query::Decode => "decode",
+        }
+    }
+
+    /// What is measured, and by which call of each method.
+    pub fn description(self) -> &'static str {
+        match self {
+            Query::FreeSpace => {
+                "free-space tick: inside/outside of a point moving near the object where the \
+                 map lists no triangle, in a cell without triangles or beyond the grid (haphe \
+                 `classify_point`, the cell-state path; parry \
+                 `contains_local_point`; brute force: winding number by counting crossings \
+                 with every triangle)"
+            }
+            Query::Segment => {
+                "segment crossing between consecutive positions of a trajectory near the \
+                 surface (haphe `first_crossing`; parry `cast_local_ray` up to the segment's \
+                 end; brute force: every triangle)"
+            }
+            Query::SegmentRandom => {
+                "segment crossing on random segments across the bounding box (same calls)"
+            }
+            Query::Inside => {
+                "inside/outside of the positions of a trajectory near the surface (haphe \
+                 `classify_point`; parry `contains_local_point`; brute force: winding number)"
+            }
+            Query::InsideRandom => {
+                "inside/outside of random points in the bounding box (same calls)"
+            }
+            Query::Walk => {
+                "nearest surface point along a trajectory near the surface (haphe \
+                 `walk_to_nearest` from the previous answer's triangle; parry \
+                 `project_local_point(p, true)`; brute force: every triangle)"
+            }
+            Query::Floor => {
+                "floor: one `closest_point_triangle` on the triangle the walk stands on"
+            }
+            Query::Build => {
+                "build from the welded mesh (haphe `Surface::new` + `VoxelMap::build`; parry \
+                 `TriMesh::with_flags(.., ORIENTED)`)"
+            }
+            Query::Decode => {
+                "decode a saved surface and map (haphe `map::decode`, checks included)"
+            }
+        }
+    }
+}
+
+/// Who answers a query.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// haphe's accelerated query.
+    Haphe,
+    /// parry3d-f64 on its `TriMesh` with pseudo-normals (`ORIENTED`).
+    Parry,
+    /// Every triangle tested (small meshes only).
+    BruteForce,
+}
+
+impl Method {
+    /// The name in tables, JSON records and plots.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Haphe => "haphe",
+            Method::Parry => "parry",
+            Method::BruteForce => "brute_force",
+        }
+    }
+}
+
+/// What the methods of one mesh run on.
+#[derive(Clone, Copy)]
+pub struct Context<'a> {
+    /// haphe's surface.
+    pub surface: &'a Surface,
+    /// haphe's map.
+    pub map: &'a VoxelMap,
+    /// parry's mesh, where parry accepted the mesh.
+    pub parry: Option<&'a TriMesh>,
+    /// The brute-force inside/outside oracle, on meshes small enough for brute force.
+    pub oracle: Option<&'a WindingOracle<'a>>,
+    /// How many queries brute force runs per kind (whole chunks, spread over the run).
+    pub brute_samples: usize,
+    /// The query streams.
+    pub streams: &'a Streams,
+}
+
+/// The times of one method on one query kind.
+pub struct Timed {
+    /// Who answered.
+    pub method: Method,
+    /// Per-query percentiles and mean, clock overhead subtracted.
+    pub summary: Summary,
+    /// Allocation calls made by the process while this method's queries ran.
+    pub allocations: u64,
+}
+
+/// The times of every method on one query kind.
+pub struct Measured {
+    /// The query kind.
+    pub query: Query,
+    /// The clock overhead: raw times of the empty query, nothing subtracted.
+    pub clock: Summary,
+    /// One entry per method that ran.
+    pub methods: Vec<Timed>,
+}
+
+/// Runs chunk `c` of a stream, appending one raw time per query.
+type Run<'a> = Box<dyn FnMut(usize, &mut Vec<u32>) + 'a>;
+
+/// One method of one query kind.
+struct Runner<'a> {
+    method: Method,
+    run: Run<'a>,
+    /// Runs chunks `0, every, 2·every, ...`.
+    every: usize,
+}
+
+/// Times every method on query kind `query` (one of [`Query::TIMED`]), interleaved.
+pub fn measure(query: Query, cx: Context<'_>) -> Measured {
+    let lengths = chunk_lengths(query, cx.streams);
+    let mut runners = runners(query, cx, &lengths);
+    // Room for every time up front, so that the timed rounds allocate nothing themselves.
+    let mut raw: Vec<Vec<u32>> = runners
+        .iter()
+        .map(|r| Vec::with_capacity(lengths.iter().step_by(r.every).sum()))
+        .collect();
+    let mut clock = Vec::with_capacity(lengths.iter().sum());
+    let mut allocations = vec![0u64; runners.len()];
+    let slots = runners.len() + 1;
+    for (c, &length) in lengths.iter().enumerate() {
+        for k in 0..slots {
+            let i = (c + k) % slots;
+            match runners.get_mut(i) {
+                None => time_empty(length, &mut clock),
+                Some(r) if c % r.every == 0 => {
+                    let before = alloc::allocations();
+                    (r.run)(c, &mut raw[i]);
+                    allocations[i] += alloc::allocations() - before;
+                }
+                Some(_) => {}
+            }
+        }
+    }
+    let clock = Summary::of(&mut clock, Overhead::NONE);
+    let overhead = Overhead::of(&clock);
+    let methods = runners
+        .iter()
+        .zip(&mut raw)
+        .zip(allocations)
+        .map(|((r, times), allocations)| Timed {
+            method: r.method,
+            summary: Summary::of(times, overhead),
+            allocations,
+        })
+        .collect();
+    Measured {
+        query,
+        clock,
+        methods,
+    }
+}
+
+/// The number of queries in each chunk of the stream of `query`.
+fn chunk_lengths(query: Query, streams: &Streams) -> Vec<usize> {
+    fn lengths<T>(chunks: &[Vec<T>]) -> Vec<usize> {
+        chunks.iter().map(Vec::len).collect()
+    }
+    match query {
+        Query::FreeSpace => lengths(&streams.free),
+        Query::Segment => lengths(&streams.near_segments),
+        Query::SegmentRandom => lengths(&streams.random_segments),
+        Query::Inside | Query::Walk | Query::Floor => {
+            streams.near.iter().map(|t| t.positions.len()).collect()
+        }
+        Query::InsideRandom => lengths(&streams.random_points),
+        Query::Build | Query::Decode => Vec::new(),
+    }
+}
+
+/// The methods of `query`, each a closure that times one chunk.
+fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'a>> {
+    let Context {
+        surface,
+        map,
+        parry,
+        oracle,
+        streams,
+        ..
+    } = cx;
+    // Brute force on every `every`-th chunk: about `brute_samples` queries in all.
+    let total: usize = lengths.iter().sum();
+    let every = total
+        .checked_div(cx.brute_samples)
+        .map_or(usize::MAX, |every| every.max(1));
+    let brute = oracle.filter(|_| cx.brute_samples > 0);
+    let mut runners: Vec<Runner<'a>> = Vec::new();
+    let mut add = |method, run: Run<'a>, every| runners.push(Runner { method, run, every });
+    match query {
+        Query::FreeSpace | Query::Inside | Query::InsideRandom => {
+            let points = move |c: usize| match query {
+                Query::FreeSpace => streams.free[c].as_slice(),
+                Query::Inside => streams.near[c].positions.as_slice(),
+                _ => streams.random_points[c].as_slice(),
+            };
+            add(
+                Method::Haphe,
+                Box::new(move |c, out| {
+                    time_each(
+                        points(c).iter().copied(),
+                        |p| classify_point(surface, map, p),
+                        out,
+                    )
+                }),
+                1,
+            );
+            if let Some(mesh) = parry {
+                add(
+                    Method::Parry,
+                    Box::new(move |c, out| {
+                        time_each(
+                            points(c).iter().copied(),
+                            |p| mesh.contains_local_point(p),
+                            out,
+                        )
+                    }),
+                    1,
+                );
+            }
+            if let Some(oracle) = brute {
+                add(
+                    Method::BruteForce,
+                    Box::new(move |c, out| {
+                        time_each(points(c).iter().copied(), |p| oracle.winding(p), out)
+                    }),
+                    every,
+                );
+            }
+        }
+        Query::Segment | Query::SegmentRandom => {
+            let segments = move |c: usize| match query {
+                Query::Segment => streams.near_segments[c].as_slice(),
+                _ => streams.random_segments[c].as_slice(),
+            };
+            add(
+                Method::Haphe,
+                Box::new(move |c, out| {
+                    time_each(
+                        segments(c).iter().copied(),
+                        |(p0, p1)| first_crossing(surface, map, p0, p1),
+                        out,
+                    )
+                }),
+                1,
+            );
+            if let Some(mesh) = parry {
+                add(
+                    Method::Parry,
+                    Box::new(move |c, out| {
+                        time_each(
+                            segments(c).iter().copied(),
+                            |(p0, p1)| mesh.cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false),
+                            out,
+                        )
+                    }),
+                    1,
+                );
+            }
+            if brute.is_some() {
+                add(
+                    Method::BruteForce,
+                    Box::new(move |c, out| {
+                        time_each(
+                            segments(c).iter().copied(),
+                            |(p0, p1)| first_crossing_brute_force(surface, p0, p1),
+                            out,
+                        )
+                    }),
+                    every,
+                );
+            }
+        }
+        Query::Walk => {
+            add(
+                Method::Haphe,
+                Box::new(move |c, out| {
+                    let trajectory = &streams.near[c];
+                    let mut t = trajectory.start;
+                    time_each(
+                        trajectory.positions.iter().copied(),
+                        |p| {
+                            let answer = walk_to_nearest(surface, t, p);
+                            t = answer.0.triangle;
+                            answer
+                        },
+                        out,
+                    )
+                }),
+                1,
+            );
+            if let Some(mesh) = parry {
+                add(
+                    Method::Parry,
+                    Box::new(move |c, out| {
+                        time_each(
+                            streams.near[c].positions.iter().copied(),
+                            |p| mesh.project_local_point(p, true),
+                            out,
+                        )
+                    }),
+                    1,
+                );
+            }
+            if brute.is_some() {
+                add(
+                    Method::BruteForce,
+                    Box::new(move |c, out| {
+                        time_each(
+                            streams.near[c].positions.iter().copied(),
+                            |p| nearest_point_brute_force(surface, p),
+                            out,
+                        )
+                    }),
+                    every,
+                );
+            }
+        }
+        Query::Floor => add(
+            Method::Haphe,
+            Box::new(move |c, out| {
+                let trajectory = &streams.near[c];
+                time_each(
+                    trajectory
+                        .current
+                        .iter()
+                        .copied()
+                        .zip(trajectory.positions.iter().copied()),
+                    |(t, p)| closest_point_triangle(p, surface.corners(t)),
+                    out,
+                )
+            }),
+            1,
+        ),
+        Query::Build | Query::Decode => {}
+    }
+    runners
+}

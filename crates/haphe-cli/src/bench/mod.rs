@@ -1,0 +1,266 @@
+//! `haphe bench`: haphe's queries side by side with `parry3d-f64` (and brute force on
+//! small meshes), in one process, on the same query streams.
+//!
+//! # What runs
+//!
+//! For each mesh — procedural shapes at several triangle counts ([`Shape::with_triangles`],
+//! by default a noisy blob and a 0.1 mm thin plate, about 0.2 m across) and any files
+//! given — the structures of both libraries are built and weighed
+//! ([`structures`]), the query streams generated with fixed seeds ([`streams`]), and
+//! every query kind ([`methods::Query`]) timed with every method, interleaved
+//! ([`methods`]). Each mesh's structures are dropped before the next mesh is made, so the
+//! peak memory is that of the largest mesh alone.
+//!
+//! # How a query is timed
+//!
+//! One query at a time: the clock is read before and after each query, the input and the
+//! answer pass through `black_box`, and the cost of reading the clock — measured the same
+//! way around an empty query, interleaved with the real ones — is subtracted
+//! ([`timing`]). Percentiles (p50, p99, p99.9, max) are taken over the individual queries,
+//! so the tail shows what a servo tick would meet: cache misses, a long walk, an
+//! interrupt. Methods alternate chunk by chunk (one trajectory of 250 positions), the
+//! order rotating every round, so that a slow spell of the shared machine falls on every
+//! method alike. Queries run on the calling thread; pin it (`taskset -c 1 haphe bench`)
+//! for steadier figures.
+//!
+//! # Memory
+//!
+//! A counting global allocator ([`alloc`]) gives the heap bytes each library's structures
+//! hold once built, and the number of allocations made while each method's queries ran.
+
+mod alloc;
+mod json;
+mod methods;
+mod plot;
+mod streams;
+mod structures;
+mod table;
+mod timing;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{anyhow, bail};
+use haphe::mesh::shapes::Shape;
+use haphe::mesh::{Mesh, ReadOptions, Units, Weld};
+use haphe::verify::WindingOracle;
+
+use crate::load::load;
+use crate::validate::parse_units;
+use methods::{Context, Measured, Query};
+use streams::Streams;
+use structures::BuildCost;
+
+/// Triangle counts of the procedural meshes by default.
+const DEFAULT_SIZES: [usize; 5] = [1_000, 10_000, 100_000, 1_000_000, 4_000_000];
+/// Triangle counts of the procedural meshes with `--quick`.
+const QUICK_SIZES: [usize; 3] = [1_000, 10_000, 100_000];
+/// Queries per kind and mesh by default, and with `--quick`.
+const DEFAULT_SAMPLES: usize = 50_000;
+const QUICK_SAMPLES: usize = 5_000;
+/// Brute force runs on meshes of at most this many triangles.
+const BRUTE_FORCE_MAX_TRIANGLES: usize = 20_000;
+/// Triangles brute force may test per query of the other methods: its sample count is
+/// this times the samples, divided by the triangle count (at least one).
+const BRUTE_FORCE_TESTS_PER_SAMPLE: usize = 500;
+
+/// Arguments of `haphe bench`.
+#[derive(clap::Args, Debug)]
+#[command(after_long_help = json::FIELDS)]
+pub struct Args {
+    /// Small sizes only (1k, 10k, 100k triangles) and 5 000 queries per kind.
+    #[arg(long)]
+    quick: bool,
+    /// A mesh file to measure as well (OBJ, STL, PLY, OFF); repeat for several. Without
+    /// --sizes, only the files are measured.
+    #[arg(long = "mesh", value_name = "FILE")]
+    meshes: Vec<PathBuf>,
+    /// Triangle counts of the procedural meshes, comma-separated [default:
+    /// 1000,10000,100000,1000000,4000000; with --quick: 1000,10000,100000].
+    #[arg(long, value_delimiter = ',', value_name = "N,N,...")]
+    sizes: Option<Vec<usize>>,
+    /// Procedural shape families, comma-separated (sphere, torus, box, thin-plate,
+    /// concave-corner, blob).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "blob,thin-plate",
+        value_name = "SHAPE,..."
+    )]
+    shapes: Vec<Shape>,
+    /// Queries per query kind and mesh [default: 50000; with --quick: 5000].
+    #[arg(long, value_name = "N")]
+    samples: Option<usize>,
+    /// Write one JSON record per (mesh, query, method) to this file (fields below).
+    #[arg(long, value_name = "OUT")]
+    json: Option<PathBuf>,
+    /// Write one PNG per query kind into this folder: cost against triangle count, log-log.
+    #[arg(long, value_name = "DIR")]
+    plot: Option<PathBuf>,
+    /// Seed of the query streams (the same seed gives the same queries).
+    #[arg(long, default_value_t = 1, value_name = "S")]
+    seed: u64,
+    /// Length unit of the --mesh files: m, mm, cm, in, or a factor in metres per file unit.
+    #[arg(long, default_value = "m", value_parser = parse_units)]
+    units: Units,
+}
+
+/// A mesh to measure.
+enum Source {
+    /// A procedural shape with about this many triangles.
+    Shape(Shape, usize),
+    /// A mesh file.
+    File(PathBuf),
+}
+
+/// Everything measured on one mesh.
+pub struct MeshResult {
+    /// `SHAPE-SIZE` or the file name.
+    pub name: String,
+    /// The shape name or the file name.
+    pub family: String,
+    /// Triangles of the mesh.
+    pub triangles: usize,
+    /// Build, decode and memory.
+    pub cost: BuildCost,
+    /// The timed query kinds.
+    pub measured: Vec<Measured>,
+}
+
+/// Runs the command.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let sizes = match (&args.sizes, args.meshes.is_empty(), args.quick) {
+        (Some(sizes), _, _) => sizes.clone(),
+        (None, false, _) => Vec::new(),
+        (None, true, true) => QUICK_SIZES.to_vec(),
+        (None, true, false) => DEFAULT_SIZES.to_vec(),
+    };
+    if sizes.contains(&0) {
+        bail!("--sizes: a triangle count must be at least 1");
+    }
+    let samples = args.samples.unwrap_or(if args.quick {
+        QUICK_SAMPLES
+    } else {
+        DEFAULT_SAMPLES
+    });
+    if samples == 0 {
+        bail!("--samples must be at least 1");
+    }
+    let sources: Vec<Source> = args
+        .shapes
+        .iter()
+        .flat_map(|&shape| sizes.iter().map(move |&n| Source::Shape(shape, n)))
+        .chain(args.meshes.iter().cloned().map(Source::File))
+        .collect();
+    if sources.is_empty() {
+        bail!("nothing to measure: give --sizes, --shapes or --mesh");
+    }
+
+    // Start the build thread pool before anything is weighed.
+    let threads = rayon::current_num_threads();
+    let started = Instant::now();
+    let mut results = Vec::new();
+    for source in &sources {
+        let (name, family, mesh) = match source {
+            Source::Shape(shape, n) => (
+                format!("{shape}-{}", short_count(*n)),
+                shape.to_string(),
+                shape.with_triangles(*n),
+            ),
+            Source::File(path) => {
+                let read = ReadOptions {
+                    units: args.units,
+                    weld: Weld::Exact,
+                    format: None,
+                };
+                let mesh = load(path, &read).map_err(|e| anyhow!("{e}"))?.mesh;
+                let name = path.file_name().map_or_else(
+                    || path.display().to_string(),
+                    |n| n.to_string_lossy().into(),
+                );
+                (name.clone(), name, mesh)
+            }
+        };
+        eprintln!(
+            "haphe bench: {name} ({} triangles) ...",
+            mesh.triangles.len()
+        );
+        results.push(measure_mesh(name, family, mesh, samples, args.seed)?);
+    }
+    let wall = started.elapsed();
+
+    let clocks = results.iter().flat_map(|r| &r.measured).map(|m| m.clock);
+    let clock_ns = clocks.fold((f64::INFINITY, 0.0f64, 0.0f64), |(lo, hi, p99), c| {
+        (lo.min(c.p50), hi.max(c.p50), p99.max(c.p99))
+    });
+    let records = json::records(&results);
+    let header = table::Header {
+        threads,
+        seed: args.seed,
+        samples,
+        brute_force_max_triangles: BRUTE_FORCE_MAX_TRIANGLES,
+        wall,
+        clock_ns,
+    };
+    table::write(&mut std::io::stdout().lock(), &records, &header)?;
+    if let Some(path) = &args.json {
+        json::write(path, &records)?;
+    }
+    if let Some(dir) = &args.plot {
+        for path in plot::write(dir, &records)? {
+            eprintln!("haphe bench: wrote {}", path.display());
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Builds, weighs and times everything on one mesh; its structures are dropped on return.
+fn measure_mesh(
+    name: String,
+    family: String,
+    mesh: Mesh,
+    samples: usize,
+    seed: u64,
+) -> anyhow::Result<MeshResult> {
+    let triangles = mesh.triangles.len();
+    let built = structures::build(mesh).map_err(|e| anyhow!("{name}: {e:#}"))?;
+    if let Err(e) = &built.parry {
+        eprintln!("haphe bench: {name}: parry refuses the mesh ({e}); no parry figures");
+    }
+    let streams = Streams::new(&built.surface, &built.map, samples, seed);
+    let small = triangles <= BRUTE_FORCE_MAX_TRIANGLES;
+    let oracle = small.then(|| WindingOracle::new(&built.surface));
+    let cx = Context {
+        surface: &built.surface,
+        map: &built.map,
+        parry: built.parry.as_ref().ok(),
+        oracle: oracle.as_ref(),
+        brute_samples: if small {
+            (BRUTE_FORCE_TESTS_PER_SAMPLE * samples / triangles.max(1)).max(1)
+        } else {
+            0
+        },
+        streams: &streams,
+    };
+    let measured = Query::TIMED
+        .iter()
+        .map(|&query| methods::measure(query, cx))
+        .collect();
+    Ok(MeshResult {
+        name,
+        family,
+        triangles,
+        cost: built.cost,
+        measured,
+    })
+}
+
+/// `1000` as `1k`, `4000000` as `4M`; other numbers as they are.
+fn short_count(n: usize) -> String {
+    match n {
+        n if n >= 1_000_000 && n % 1_000_000 == 0 => format!("{}M", n / 1_000_000),
+        n if n >= 1_000 && n % 1_000 == 0 => format!("{}k", n / 1_000),
+        n => n.to_string(),
+    }
+}
