@@ -25,6 +25,10 @@
 //!    triangles of each surface cell, clearance for free-space early-outs.
 //! 3. [`query`] — segment crossing, inside/outside, the barycentric surface walk and the
 //!    geometric kernels under them.
+//! 4. [`proxy`] — the god-object proxy that never enters an object, with friction, force
+//!    shading and the rendered force, ticked against a scene.
+//! 5. [`scene`] — many objects, each a shared [`scene::Shape`] at a rigid pose with a
+//!    material, edited from other threads without locking the servo thread.
 //!
 //! Stages up to the proxy touch no files, threads, clocks or globals: readers take bytes,
 //! so they can be fuzzed, and only the command-line tool opens paths.
@@ -36,8 +40,10 @@
 
 pub mod map;
 pub mod mesh;
+pub mod proxy;
 pub mod query;
 pub mod rng;
+pub mod scene;
 pub mod verify;
 
 pub use glam;

@@ -8,9 +8,11 @@
 //! brute-force nearest point.
 
 mod oracle;
+mod proxy;
 mod samples;
 
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
+pub use proxy::{BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy, haptic_path};
 pub use samples::{SegmentKind, bounds, points, segments, trajectory};
 
 use rayon::prelude::*;

@@ -1,0 +1,101 @@
+//! The rendered force and the friction rule, as plain functions shared by the proxy and
+//! its oracle.
+
+use glam::DVec3;
+
+use crate::scene::Material;
+
+/// The force on the device, newtons, world frame: the spring–damper
+/// `k (proxy − hip) − b v` toward the proxy, with force shading and a clamp.
+///
+/// - `normal`: the contact plane's unit normal (toward the proxy), or `None` in free space
+///   (then the force is zero: the proxy is the device point).
+/// - `shading_normal`: the interpolated normal at the contact, used as the direction of the
+///   normal part of the spring on a single face (`constraints == 1`), so a coarse mesh
+///   feels smooth; on an edge or in a corner the plain spring is used.
+/// - damping acts along the spring only, on the device velocity `v` (m/s).
+///
+/// Returns the force and whether it was clamped to `max_force` (newtons). A non-finite
+/// result gives zero.
+pub fn contact_force(
+    proxy: DVec3,
+    hip: DVec3,
+    velocity: DVec3,
+    contact: Option<(DVec3, DVec3, u8)>,
+    material: &Material,
+    max_force: f64,
+) -> (DVec3, bool) {
+    let Some((normal, shading_normal, constraints)) = contact else {
+        return (DVec3::ZERO, false);
+    };
+    let d = proxy - hip;
+    let spring = if constraints == 1 && shading_normal.is_finite() {
+        let dn = d.dot(normal);
+        dn * shading_normal + (d - dn * normal)
+    } else {
+        d
+    };
+    let mut force = material.stiffness * spring;
+    let len = d.length();
+    if len > 0.0 {
+        let u = d / len;
+        force -= material.damping * velocity.dot(u) * u;
+    }
+    if !force.is_finite() {
+        return (DVec3::ZERO, false);
+    }
+    let max = if max_force.is_finite() && max_force > 0.0 {
+        max_force
+    } else {
+        0.0
+    };
+    let f = force.length();
+    if f > max {
+        let scaled = if f > 0.0 {
+            force * (max / f)
+        } else {
+            DVec3::ZERO
+        };
+        (
+            if scaled.is_finite() {
+                scaled
+            } else {
+                DVec3::ZERO
+            },
+            true,
+        )
+    } else {
+        (force, false)
+    }
+}
+
+/// Coulomb friction on the proxy. `held` is where the proxy was (already resting on the
+/// surface), `free` where it would go without friction, `hip` the device point.
+///
+/// The normal force is proportional to `|free − hip|` and the tangential force to
+/// `|held − free|`; the proxy sticks (returns `held`, `true`) while the tangential part is
+/// within `mu` times the normal part, where `mu` is the static coefficient when it was
+/// sticking and the dynamic one when it was slipping (hysteresis). Otherwise it slips to
+/// the point between `free` and `held` where the ratio equals the dynamic coefficient
+/// (returns it, `false`).
+pub fn friction_target(
+    held: DVec3,
+    free: DVec3,
+    hip: DVec3,
+    material: &Material,
+    was_sticking: bool,
+) -> (DVec3, bool) {
+    let normal = free.distance(hip);
+    let e = held - free;
+    let tangential = e.length();
+    let mu = if was_sticking {
+        material.static_friction
+    } else {
+        material.dynamic_friction
+    };
+    if tangential <= mu * normal {
+        return (held, true);
+    }
+    let keep = material.dynamic_friction * normal / tangential;
+    (free + keep * e, false)
+}

@@ -1,0 +1,333 @@
+//! The god-object proxy (Zilles & Salisbury): a point that never enters an object, moved
+//! each tick toward the device point and stopped and slid by the surfaces it meets.
+
+use glam::DVec3;
+
+use super::constraints::{Constraints, Plane, advance_to_plane};
+use super::force::{contact_force, friction_target};
+use super::output::{Contact, TickOutput, TickStatus};
+use crate::mesh::TriId;
+use crate::scene::{Hit, Material, Scene};
+
+/// Most constraint steps in one tick (each is one segment crossing query). Three planes
+/// need at most four; the rest is headroom for re-targeting.
+pub const MAX_PROXY_STEPS: usize = 8;
+
+/// Default skin, metres: how far the proxy stays off a touched surface against rounding.
+/// A micrometre: far above the rounding of `f64` coordinates of a workspace of a few metres
+/// (about 1e-15 m), far below what a hand can feel.
+pub const DEFAULT_SKIN: f64 = 1e-6;
+
+/// Settings of a [`Proxy`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProxyOptions {
+    /// Distance kept from a touched surface, metres (see [`DEFAULT_SKIN`]).
+    pub skin: f64,
+    /// Largest force rendered, newtons (the device's maximum continuous force).
+    pub max_force: f64,
+    /// Device points farther than this from the world origin are pulled back to it,
+    /// metres: keeps every product in range whatever the input.
+    pub workspace_radius: f64,
+}
+
+impl Default for ProxyOptions {
+    /// A micrometre of skin, 3.3 N (a common desktop device), a 1 km workspace.
+    fn default() -> ProxyOptions {
+        ProxyOptions {
+            skin: DEFAULT_SKIN,
+            max_force: 3.3,
+            workspace_radius: 1e3,
+        }
+    }
+}
+
+impl ProxyOptions {
+    /// Tolerance of the constraint planes, metres: a thousandth of the skin.
+    pub fn plane_tolerance(&self) -> f64 {
+        self.skin * 1e-3
+    }
+}
+
+/// What the proxy remembers from its last contact (coherence: the next walk starts here).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct LastContact {
+    object: usize,
+    triangle: TriId,
+}
+
+/// The haptic proxy of one point device.
+///
+/// Each [`tick`](Proxy::tick): objects that moved carry the proxy with them; the proxy then
+/// moves toward the device point (the HIP); a path that meets a surface stops a skin's
+/// width before it, the surface's plane becomes a constraint, and the proxy slides toward
+/// the point closest to the HIP on the free side of up to three planes (face, concave edge,
+/// concave corner), testing each leg for crossings; friction may hold it back; the force
+/// pulls the device toward it.
+///
+/// The proxy never crosses a triangle in either direction, so it never passes through a
+/// wall however thin or however fast the device moves, and it stays on the side it came
+/// from (no direction problem). Crossings are found with the voxel map
+/// ([`first_crossing`](crate::query::first_crossing)); the contact point and its shading
+/// normal by walking the surface from the last triangle touched.
+#[derive(Debug, Clone)]
+pub struct Proxy {
+    position: DVec3,
+    options: ProxyOptions,
+    last: Option<LastContact>,
+    sticking: bool,
+}
+
+impl Proxy {
+    /// A proxy at `position` (metres, world frame), normally the device point at start-up.
+    /// A proxy that starts inside an object stays inside it (see the servo loop's safe
+    /// start).
+    pub fn new(position: DVec3, options: ProxyOptions) -> Proxy {
+        Proxy {
+            position: if position.is_finite() {
+                position
+            } else {
+                DVec3::ZERO
+            },
+            options,
+            last: None,
+            sticking: false,
+        }
+    }
+
+    /// The proxy position, metres, world frame.
+    pub fn position(&self) -> DVec3 {
+        self.position
+    }
+
+    /// The settings.
+    pub fn options(&self) -> &ProxyOptions {
+        &self.options
+    }
+
+    /// Puts the proxy at `position` with no contact (for a device that was re-homed).
+    pub fn reset(&mut self, position: DVec3) {
+        *self = Proxy::new(position, self.options);
+    }
+
+    /// One servo tick: `hip` is the device point (metres, world frame), `velocity` its
+    /// velocity (m/s). Call [`Scene::begin_tick`] once before, so that objects moved since
+    /// the previous tick push the proxy.
+    ///
+    /// # Real-time
+    /// No allocation, no lock, no panic for any input; at most one carry query per moved
+    /// object, [`MAX_PROXY_STEPS`] crossing queries, one friction query and one walk.
+    /// A non-finite input leaves the proxy where it was and gives zero force.
+    pub fn tick(&mut self, scene: &Scene, hip: DVec3, velocity: DVec3) -> TickOutput {
+        let mut status = TickStatus::default();
+        if !hip.is_finite() || !velocity.is_finite() {
+            status.input_rejected = true;
+            self.last = None;
+            self.sticking = false;
+            return TickOutput {
+                proxy: self.position,
+                force: DVec3::ZERO,
+                contact: None,
+                status,
+            };
+        }
+        let (hip, clamped) = clamp_to_radius(hip, self.options.workspace_radius);
+        status.input_clamped = clamped;
+        let skin = self.options.skin;
+
+        let mut p = carry(scene, self.position, skin);
+        let held = p;
+        let sweep = constrain(
+            scene,
+            p,
+            hip,
+            skin,
+            self.options.plane_tolerance(),
+            &mut status,
+        );
+        p = sweep.position;
+
+        let Some((hit, plane)) = sweep.last_hit else {
+            self.position = p;
+            self.last = None;
+            self.sticking = false;
+            return TickOutput {
+                proxy: p,
+                force: DVec3::ZERO,
+                contact: None,
+                status,
+            };
+        };
+        let object = &scene.objects()[hit.object];
+        let material: Material = object.material;
+
+        // Friction: against where the proxy rested, or where it touched down this tick.
+        if material.static_friction > 0.0 {
+            let (anchor, was_sticking) = match self.last {
+                Some(_) => (held, self.sticking),
+                None => (sweep.touch_down, true),
+            };
+            let (target, sticking) = friction_target(anchor, p, hip, &material, was_sticking);
+            p = move_checked(scene, p, target, skin);
+            self.sticking = sticking;
+        } else {
+            self.sticking = false;
+        }
+        status.sticking = self.sticking;
+        status.in_contact = true;
+
+        let contact = scene
+            .surface_point(hit.object, hit.triangle, p)
+            .map(|(s, walk)| {
+                status.walk_cap_hit = walk == crate::query::WalkStatus::BoundHit;
+                let side = if s.face_normal.dot(plane.normal) >= 0.0 {
+                    1.0
+                } else {
+                    -1.0
+                };
+                Contact {
+                    object: hit.object,
+                    id: object.id,
+                    triangle: s.triangle,
+                    weights: s.weights,
+                    point: s.point,
+                    normal: plane.normal,
+                    shading_normal: side * s.shading_normal,
+                    penetration: (p - hip).dot(plane.normal).max(0.0),
+                    constraints: sweep.planes.len() as u8,
+                }
+            });
+        let (force, force_clamped) = contact_force(
+            p,
+            hip,
+            velocity,
+            contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
+            &material,
+            self.options.max_force,
+        );
+        status.force_clamped = force_clamped;
+        self.position = p;
+        self.last = contact.map(|c| LastContact {
+            object: c.object,
+            triangle: c.triangle,
+        });
+        TickOutput {
+            proxy: p,
+            force,
+            contact,
+            status,
+        }
+    }
+}
+
+/// `p` pulled back onto the sphere of `radius` (metres) around the origin when beyond it.
+pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
+    let r = p.length();
+    if r > radius && r.is_finite() {
+        (p * (radius / r), true)
+    } else {
+        (p, false)
+    }
+}
+
+/// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
+/// object index.
+pub(crate) fn first_hit_all(scene: &Scene, p0: DVec3, p1: DVec3) -> Option<Hit> {
+    let mut best: Option<Hit> = None;
+    for i in 0..scene.objects().len() {
+        if let Some(h) = scene.first_hit(i, p0, p1)
+            && best.is_none_or(|b| h.t < b.t)
+        {
+            best = Some(h);
+        }
+    }
+    best
+}
+
+/// Moving objects carry the proxy: for each object that moved since the previous tick (in
+/// index order), the proxy's motion relative to it is tested in its frame and stopped a
+/// skin's width before its surface.
+fn carry(scene: &Scene, mut p: DVec3, skin: f64) -> DVec3 {
+    for (i, o) in scene.objects().iter().enumerate() {
+        if !o.moved() {
+            continue;
+        }
+        let from = scene.previous_relative(i, p);
+        if let Some(h) = scene.first_hit(i, from, p) {
+            let plane = Plane::facing(h.normal, h.point, from, p, skin);
+            p = advance_to_plane(from, p, &plane);
+        }
+    }
+    p
+}
+
+/// The result of the constraint steps of one tick.
+struct Sweep {
+    position: DVec3,
+    /// Where the proxy first stopped at a surface this tick.
+    touch_down: DVec3,
+    planes: Constraints,
+    /// The last surface met, and its plane.
+    last_hit: Option<(Hit, Plane)>,
+}
+
+/// The god-object's constraint steps: aim at the point closest to `hip` on the free side
+/// of the active planes, move toward it, and on a crossing stop at the touched triangle's
+/// plane (moved out by `skin`) and add it.
+fn constrain(
+    scene: &Scene,
+    mut p: DVec3,
+    hip: DVec3,
+    skin: f64,
+    tolerance: f64,
+    status: &mut TickStatus,
+) -> Sweep {
+    let mut planes = Constraints::NONE;
+    let mut last_hit = None;
+    let mut touch_down = p;
+    let mut finished = false;
+    for _ in 0..MAX_PROXY_STEPS {
+        let Some(target) = planes.closest_feasible(hip, tolerance) else {
+            status.wedged = true;
+            finished = true;
+            break;
+        };
+        if target == p {
+            finished = true;
+            break;
+        }
+        let Some(hit) = first_hit_all(scene, p, target) else {
+            p = target;
+            finished = true;
+            break;
+        };
+        let plane = Plane::facing(hit.normal, hit.point, p, target, skin);
+        p = advance_to_plane(p, target, &plane);
+        if last_hit.is_none() {
+            touch_down = p;
+        }
+        last_hit = Some((hit, plane));
+        if !planes.push(plane) {
+            finished = true;
+            status.step_cap_hit = true;
+            break;
+        }
+    }
+    status.step_cap_hit |= !finished;
+    Sweep {
+        position: p,
+        touch_down,
+        planes,
+        last_hit,
+    }
+}
+
+/// Moves from `from` toward `to` and stops a skin's width before the first surface met.
+fn move_checked(scene: &Scene, from: DVec3, to: DVec3, skin: f64) -> DVec3 {
+    if from == to {
+        return to;
+    }
+    match first_hit_all(scene, from, to) {
+        None => to,
+        Some(h) => advance_to_plane(from, to, &Plane::facing(h.normal, h.point, from, to, skin)),
+    }
+}

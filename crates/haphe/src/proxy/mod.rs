@@ -1,0 +1,44 @@
+//! Stage 4 — the haptic proxy: the god-object of Zilles & Salisbury, moved each tick
+//! toward the device point and held outside every object of a [`Scene`](crate::scene::Scene),
+//! with the force that pulls the device toward it.
+//!
+//! # Semantics
+//!
+//! The proxy is a point that never crosses a triangle. Each tick:
+//!
+//! 1. **Carry.** Each object that moved since the previous tick tests the proxy's motion
+//!    relative to it (in its frame, between its previous and current pose); if that
+//!    motion meets its surface, the proxy is stopped a skin's width in front of it — the
+//!    object pushes the proxy.
+//! 2. **Constrain.** The proxy aims at the point closest to the device point (HIP) on the
+//!    free side of the active constraint planes (none at first) and moves toward it in a
+//!    straight line. If the line meets a triangle (the first crossing over every object,
+//!    lowest object index on ties), the proxy stops where the line meets that triangle's
+//!    plane moved out by the skin, the plane becomes a constraint, and it aims again. At
+//!    most three planes (a face, a concave edge, a concave corner) and
+//!    [`MAX_PROXY_STEPS`] legs.
+//! 3. **Friction.** In contact, with friction, the proxy stays where it rested while the
+//!    tangential force is inside the static friction cone, and otherwise slips to the
+//!    edge of the dynamic cone ([`friction_target`]); that last move is tested for
+//!    crossings too.
+//! 4. **Contact and force.** The surface point under the proxy is found by walking from
+//!    the last triangle touched; the force is the spring–damper toward the proxy with
+//!    force shading, clamped ([`contact_force`]).
+//!
+//! The constraint steps and the friction rule are plain functions ([`Constraints`],
+//! [`advance_to_plane`], [`friction_target`], [`contact_force`]) so that a brute-force
+//! proxy in the tests, which tests every triangle of every object, runs the same
+//! semantics as the fast one.
+
+mod constraints;
+mod force;
+mod godobject;
+mod output;
+
+pub use constraints::{
+    Constraints, MAX_CONSTRAINTS, MIN_PAIR_SINE_SQUARED, MIN_TRIPLE_DETERMINANT, Plane,
+    advance_to_plane,
+};
+pub use force::{contact_force, friction_target};
+pub use godobject::{DEFAULT_SKIN, MAX_PROXY_STEPS, Proxy, ProxyOptions, clamp_to_radius};
+pub use output::{Contact, TickOutput, TickStatus};

@@ -1,0 +1,138 @@
+//! The wait-free hand-off of scene edits from other threads to the servo thread.
+
+use rtrb::{Consumer, Producer, RingBuffer};
+
+use super::{MAX_EDITS_PER_TICK, Material, ObjectId, Pose, Scene, SceneObject};
+
+/// A change to a scene, sent from another thread.
+#[derive(Debug)]
+pub enum Edit {
+    /// Add an object (refused, and handed back, when the scene is full or the name taken).
+    Insert(SceneObject),
+    /// Remove the object with this name (it is handed back to the editor).
+    Remove(ObjectId),
+    /// Move an object; the motion since the previous tick is rendered.
+    SetPose(ObjectId, Pose),
+    /// Change how an object feels.
+    SetMaterial(ObjectId, Material),
+}
+
+/// Why an edit was refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum EditError {
+    /// The scene holds as many objects as it has room for.
+    #[error("the scene is full")]
+    Full,
+    /// Another object has that name.
+    #[error("an object with that id is already in the scene")]
+    DuplicateId,
+    /// Too many edits are waiting for the servo thread; try again after a tick.
+    #[error("too many edits are waiting for the servo thread")]
+    Busy,
+}
+
+/// What comes back from the servo thread: removed objects and refused insertions.
+#[derive(Debug)]
+pub enum Returned {
+    /// An object removed from the scene.
+    Removed(SceneObject),
+    /// An insertion the scene refused, and why.
+    Refused(SceneObject, EditError),
+}
+
+/// The servo thread's end of the hand-off.
+#[derive(Debug)]
+pub(super) struct Inbox {
+    edits: Consumer<Edit>,
+    returns: Producer<Returned>,
+}
+
+/// Changes a [`Scene`] from another thread: edits go through a wait-free ring buffer and are
+/// applied at the start of the next servo tick; objects leaving the scene come back here
+/// to be dropped ([`SceneEditor::collect`]), so no shape is ever freed on the servo thread.
+#[derive(Debug)]
+pub struct SceneEditor {
+    edits: Producer<Edit>,
+    returns: Consumer<Returned>,
+}
+
+pub(super) fn channel(capacity: usize) -> (Inbox, SceneEditor) {
+    let (edit_tx, edit_rx) = RingBuffer::new(capacity);
+    // Every edit can return at most one object, so this ring never refuses one that the
+    // edit ring accepted, as long as the editor collects.
+    let (ret_tx, ret_rx) = RingBuffer::new(capacity);
+    (
+        Inbox {
+            edits: edit_rx,
+            returns: ret_tx,
+        },
+        SceneEditor {
+            edits: edit_tx,
+            returns: ret_rx,
+        },
+    )
+}
+
+impl SceneEditor {
+    /// Sends an edit to the servo thread.
+    ///
+    /// # Errors
+    /// [`EditError::Busy`] when the ring is full (the servo thread is not ticking, or the
+    /// editor does not [`collect`](SceneEditor::collect)); the edit is handed back.
+    #[expect(
+        clippy::result_large_err,
+        reason = "the edit comes back by value: boxing would allocate"
+    )]
+    pub fn send(&mut self, edit: Edit) -> Result<(), (EditError, Edit)> {
+        self.edits
+            .push(edit)
+            .map_err(|rtrb::PushError::Full(e)| (EditError::Busy, e))
+    }
+
+    /// Takes back the objects that left the scene (removed, or refused insertions), so
+    /// that they are dropped on this thread. Call it regularly.
+    pub fn collect(&mut self) -> Vec<Returned> {
+        let mut out = Vec::new();
+        while let Ok(r) = self.returns.pop() {
+            out.push(r);
+        }
+        out
+    }
+
+    /// Edits sent and not yet applied.
+    pub fn pending(&self) -> usize {
+        self.edits.buffer().capacity() - self.edits.slots()
+    }
+}
+
+impl Inbox {
+    /// Applies at most [`MAX_EDITS_PER_TICK`] edits; an edit that may hand an object back
+    /// waits while the return ring is full.
+    pub(super) fn apply(&mut self, scene: &mut Scene) -> usize {
+        let mut applied = 0;
+        while applied < MAX_EDITS_PER_TICK && self.returns.slots() > 0 {
+            let Ok(edit) = self.edits.pop() else { break };
+            applied += 1;
+            let back = match edit {
+                Edit::Insert(object) => scene
+                    .insert(object)
+                    .err()
+                    .map(|(why, o)| Returned::Refused(o, why)),
+                Edit::Remove(id) => scene.remove(id).map(Returned::Removed),
+                Edit::SetPose(id, pose) => {
+                    scene.set_pose(id, pose);
+                    None
+                }
+                Edit::SetMaterial(id, material) => {
+                    scene.set_material(id, material);
+                    None
+                }
+            };
+            if let Some(back) = back {
+                // A slot was free before the pop and only this thread fills the ring.
+                let _ = self.returns.push(back);
+            }
+        }
+        applied
+    }
+}

@@ -1,0 +1,258 @@
+//! Stage 5 — scenes: many objects, each a shared immutable [`Shape`] placed by a rigid
+//! [`Pose`] and given a [`Material`], changed from other threads without locking the
+//! servo thread.
+//!
+//! The servo thread owns the [`Scene`]; another thread holds its [`SceneEditor`] and sends
+//! edits (insert, remove, move, change material) through a wait-free ring buffer. The
+//! scene applies them at the start of a tick ([`Scene::begin_tick`]) and sends every
+//! removed object back to the editor, so that no shape is ever freed on the servo thread.
+//!
+//! Motion counts: `begin_tick` remembers each object's pose of the previous tick, so the
+//! proxy tests its path in the object's frame between the two poses and a moving object
+//! pushes the proxy instead of jumping over it.
+
+mod handoff;
+mod material;
+mod pose;
+mod shape;
+
+pub use handoff::{Edit, EditError, Returned, SceneEditor};
+pub use material::Material;
+pub use pose::Pose;
+pub use shape::Shape;
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use crate::mesh::TriId;
+use crate::query::{SurfacePoint, WalkStatus, first_crossing, walk_to_nearest};
+
+/// A stable name for an object of a scene, chosen by the caller.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct ObjectId(pub u32);
+
+/// One object of a scene: a shared shape at a pose, with a material.
+#[derive(Debug, Clone)]
+pub struct SceneObject {
+    /// The caller's name for the object (unique within a scene).
+    pub id: ObjectId,
+    /// The shape, shared with other objects and threads.
+    pub shape: Arc<Shape>,
+    /// `world_from_object` now.
+    pub pose: Pose,
+    /// `world_from_object` at the previous tick (equal to `pose` for an object at rest).
+    pub previous_pose: Pose,
+    /// How the surface feels.
+    pub material: Material,
+}
+
+impl SceneObject {
+    /// An object at rest at `pose`.
+    pub fn new(id: ObjectId, shape: Arc<Shape>, pose: Pose, material: Material) -> SceneObject {
+        SceneObject {
+            id,
+            shape,
+            pose,
+            previous_pose: pose,
+            material: material.sanitised(),
+        }
+    }
+
+    /// Whether the object moved since the previous tick.
+    pub fn moved(&self) -> bool {
+        self.pose != self.previous_pose
+    }
+}
+
+/// Where a path first meets an object's surface, world frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// Parameter along the path, in `[0, 1]`.
+    pub t: f64,
+    /// Index of the object in the scene ([`Scene::objects`]).
+    pub object: usize,
+    /// The triangle met.
+    pub triangle: TriId,
+    /// The point met, metres, world frame.
+    pub point: DVec3,
+    /// Unit face normal of the triangle, world frame (out of a solid).
+    pub normal: DVec3,
+}
+
+/// The objects the proxy renders, owned by the servo thread.
+///
+/// Storage is reserved once ([`Scene::new`]); inserting beyond the capacity is refused,
+/// never a reallocation.
+#[derive(Debug)]
+pub struct Scene {
+    objects: Vec<SceneObject>,
+    capacity: usize,
+    inbox: Option<handoff::Inbox>,
+}
+
+impl Scene {
+    /// An empty scene with room for `capacity` objects, and the editor that other threads
+    /// use to change it (it holds up to `capacity` pending edits).
+    pub fn new(capacity: usize) -> (Scene, SceneEditor) {
+        let capacity = capacity.max(1);
+        let (inbox, editor) = handoff::channel(capacity);
+        (
+            Scene {
+                objects: Vec::with_capacity(capacity),
+                capacity,
+                inbox: Some(inbox),
+            },
+            editor,
+        )
+    }
+
+    /// An empty scene edited only directly (no editor), with room for `capacity` objects.
+    pub fn local(capacity: usize) -> Scene {
+        let capacity = capacity.max(1);
+        Scene {
+            objects: Vec::with_capacity(capacity),
+            capacity,
+            inbox: None,
+        }
+    }
+
+    /// The objects, in insertion order (removal keeps the order of the others).
+    pub fn objects(&self) -> &[SceneObject] {
+        &self.objects
+    }
+
+    /// The index of the object named `id`.
+    pub fn index_of(&self, id: ObjectId) -> Option<usize> {
+        self.objects.iter().position(|o| o.id == id)
+    }
+
+    /// Adds an object.
+    ///
+    /// # Errors
+    /// [`EditError::Full`] at capacity, [`EditError::DuplicateId`] when the name is taken;
+    /// the object is handed back.
+    #[expect(
+        clippy::result_large_err,
+        reason = "the object comes back by value: boxing would allocate on the servo thread"
+    )]
+    pub fn insert(&mut self, object: SceneObject) -> Result<(), (EditError, SceneObject)> {
+        if self.index_of(object.id).is_some() {
+            return Err((EditError::DuplicateId, object));
+        }
+        if self.objects.len() >= self.capacity {
+            return Err((EditError::Full, object));
+        }
+        self.objects.push(object);
+        Ok(())
+    }
+
+    /// Removes the object named `id` and hands it back.
+    pub fn remove(&mut self, id: ObjectId) -> Option<SceneObject> {
+        self.index_of(id).map(|i| self.objects.remove(i))
+    }
+
+    /// Moves the object named `id` to `pose` (the motion since the previous tick is
+    /// rendered). `false` when there is no such object.
+    pub fn set_pose(&mut self, id: ObjectId, pose: Pose) -> bool {
+        self.index_of(id)
+            .map(|i| self.objects[i].pose = pose)
+            .is_some()
+    }
+
+    /// Changes the material of the object named `id`. `false` when there is no such object.
+    pub fn set_material(&mut self, id: ObjectId, material: Material) -> bool {
+        self.index_of(id)
+            .map(|i| self.objects[i].material = material.sanitised())
+            .is_some()
+    }
+
+    /// Starts a servo tick: remembers every pose as the previous one, then applies the
+    /// edits sent by the [`SceneEditor`] (at most [`MAX_EDITS_PER_TICK`]). Returns how many
+    /// edits were applied.
+    ///
+    /// Call it once per tick, before ticking the proxy.
+    ///
+    /// # Real-time
+    /// No allocation, no lock, no shape freed here (removed objects go back to the
+    /// editor); bounded by [`MAX_EDITS_PER_TICK`].
+    pub fn begin_tick(&mut self) -> usize {
+        for o in &mut self.objects {
+            o.previous_pose = o.pose;
+        }
+        let Some(mut inbox) = self.inbox.take() else {
+            return 0;
+        };
+        let applied = inbox.apply(self);
+        self.inbox = Some(inbox);
+        applied
+    }
+
+    /// The first place where the world segment `p0 → p1` meets object `i` at its current
+    /// pose. `None` when it does not, or when `i` is out of range.
+    ///
+    /// # Real-time
+    /// A bounding-sphere test, then [`first_crossing`] in the object frame.
+    pub fn first_hit(&self, i: usize, p0: DVec3, p1: DVec3) -> Option<Hit> {
+        let o = self.objects.get(i)?;
+        let shape = &*o.shape;
+        let centre = o.pose.to_world(shape.bound_centre());
+        if segment_point_distance(p0, p1, centre) > shape.bound_radius() * BOUND_SLACK {
+            return None;
+        }
+        let a = o.pose.to_object(p0);
+        let b = o.pose.to_object(p1);
+        first_crossing(shape.surface(), shape.map(), a, b).map(|c| Hit {
+            t: c.t,
+            object: i,
+            triangle: c.triangle,
+            point: o.pose.to_world(c.point),
+            normal: o.pose.vector_to_world(c.face_normal),
+        })
+    }
+
+    /// Where the world point `p` was, relative to object `i`, at the previous tick,
+    /// expressed at the object's current pose: `pose · previous_pose⁻¹ · p`. Equal to `p`
+    /// for an object at rest (or out of range).
+    pub fn previous_relative(&self, i: usize, p: DVec3) -> DVec3 {
+        match self.objects.get(i) {
+            Some(o) if o.moved() => o.pose.to_world(o.previous_pose.to_object(p)),
+            _ => p,
+        }
+    }
+
+    /// The locally nearest surface point of object `i` to the world point `p`, walking
+    /// from triangle `start` (see [`walk_to_nearest`]); point and normals in the world
+    /// frame. `None` when `i` is out of range.
+    pub fn surface_point(
+        &self,
+        i: usize,
+        start: TriId,
+        p: DVec3,
+    ) -> Option<(SurfacePoint, WalkStatus)> {
+        let o = self.objects.get(i)?;
+        let (mut s, status) = walk_to_nearest(o.shape.surface(), start, o.pose.to_object(p));
+        s.point = o.pose.to_world(s.point);
+        s.face_normal = o.pose.vector_to_world(s.face_normal);
+        s.shading_normal = o.pose.vector_to_world(s.shading_normal);
+        Some((s, status))
+    }
+}
+
+/// Relative slack on a shape's bounding sphere, covering the rounding of poses.
+const BOUND_SLACK: f64 = 1.0 + 1e-7;
+
+/// Most edits applied in one [`Scene::begin_tick`]; the rest wait for the next tick.
+pub const MAX_EDITS_PER_TICK: usize = 16;
+
+/// Distance from `q` to the segment `p0 → p1`, metres.
+fn segment_point_distance(p0: DVec3, p1: DVec3, q: DVec3) -> f64 {
+    let d = p1 - p0;
+    let len2 = d.length_squared();
+    let s = if len2 > 0.0 {
+        ((q - p0).dot(d) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p0 + s * d).distance(q)
+}

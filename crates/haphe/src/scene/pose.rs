@@ -1,0 +1,108 @@
+//! Rigid poses: where an object's frame sits in the world.
+
+use glam::{DQuat, DVec3};
+
+/// A rigid transform `world_from_object`: a rotation, then a translation (metres).
+///
+/// Applied to a point `p_object` it gives `p_world = rotation · p_object + translation`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// Unit quaternion, object axes to world axes.
+    rotation: DQuat,
+    /// Position of the object's origin in the world, metres.
+    translation: DVec3,
+}
+
+impl Default for Pose {
+    fn default() -> Pose {
+        Pose::IDENTITY
+    }
+}
+
+impl Pose {
+    /// The object frame is the world frame.
+    pub const IDENTITY: Pose = Pose {
+        rotation: DQuat::IDENTITY,
+        translation: DVec3::ZERO,
+    };
+
+    /// A pose from a rotation (normalised here) and a translation in metres. A non-finite
+    /// or zero rotation gives the identity rotation; a non-finite translation gives zero.
+    pub fn new(rotation: DQuat, translation: DVec3) -> Pose {
+        let rotation = if rotation.is_finite() && rotation.length_squared() > 0.0 {
+            rotation.normalize()
+        } else {
+            DQuat::IDENTITY
+        };
+        let translation = if translation.is_finite() {
+            translation
+        } else {
+            DVec3::ZERO
+        };
+        Pose {
+            rotation,
+            translation,
+        }
+    }
+
+    /// A pure translation, metres.
+    pub fn from_translation(translation: DVec3) -> Pose {
+        Pose::new(DQuat::IDENTITY, translation)
+    }
+
+    /// The rotation, object axes to world axes.
+    pub fn rotation(&self) -> DQuat {
+        self.rotation
+    }
+
+    /// The translation, metres.
+    pub fn translation(&self) -> DVec3 {
+        self.translation
+    }
+
+    /// `p_world` of a point given in the object frame.
+    #[inline]
+    pub fn to_world(&self, p_object: DVec3) -> DVec3 {
+        self.rotation * p_object + self.translation
+    }
+
+    /// `p_object` of a point given in the world frame.
+    #[inline]
+    pub fn to_object(&self, p_world: DVec3) -> DVec3 {
+        self.rotation.inverse() * (p_world - self.translation)
+    }
+
+    /// A direction (normal, velocity) from object axes to world axes.
+    #[inline]
+    pub fn vector_to_world(&self, v_object: DVec3) -> DVec3 {
+        self.rotation * v_object
+    }
+
+    /// A direction from world axes to object axes.
+    #[inline]
+    pub fn vector_to_object(&self, v_world: DVec3) -> DVec3 {
+        self.rotation.inverse() * v_world
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trip() {
+        let pose = Pose::new(
+            DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7),
+            DVec3::new(0.1, -0.2, 0.3),
+        );
+        let p = DVec3::new(0.4, 0.5, -0.6);
+        assert!(pose.to_object(pose.to_world(p)).distance(p) < 1e-15);
+        assert!(pose.vector_to_object(pose.vector_to_world(p)).distance(p) < 1e-15);
+    }
+
+    #[test]
+    fn bad_input_gives_a_valid_pose() {
+        let pose = Pose::new(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), DVec3::NAN);
+        assert_eq!(pose, Pose::IDENTITY);
+    }
+}

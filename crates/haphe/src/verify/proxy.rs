@@ -1,0 +1,328 @@
+//! The proxy against a brute-force god-object on haptic trajectories.
+//!
+//! [`BruteProxy`] runs the semantics documented in [`crate::proxy`] with no voxel map and
+//! no surface walk: every crossing is found by testing every triangle of every object. The
+//! fast [`Proxy`] must stay within [`PROXY_TOLERANCE_M`] of it at every tick.
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::{BruteCrossing, KEPT_FAILURES, bounds};
+use crate::mesh::TriId;
+use crate::proxy::{
+    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, advance_to_plane, clamp_to_radius,
+    friction_target,
+};
+use crate::query::{Side, classify_point, walk_to_nearest};
+use crate::rng::SplitMix64;
+use crate::scene::{Pose, Scene};
+
+/// Largest distance between the fast proxy and the brute-force one, metres.
+pub const PROXY_TOLERANCE_M: f64 = 1e-9;
+
+/// One object's brute-force crossing finder.
+struct BruteObject<'a> {
+    crossing: BruteCrossing<'a>,
+    pose: Pose,
+    previous_pose: Pose,
+}
+
+/// The god-object by brute force: the oracle for [`Proxy`].
+pub struct BruteProxy<'a> {
+    objects: Vec<BruteObject<'a>>,
+    scene: &'a Scene,
+    options: ProxyOptions,
+    position: DVec3,
+    in_contact: bool,
+    sticking: bool,
+}
+
+/// A crossing found by brute force, world frame.
+#[derive(Clone, Copy)]
+struct BruteHit {
+    t: f64,
+    object: usize,
+    point: DVec3,
+    normal: DVec3,
+}
+
+impl<'a> BruteProxy<'a> {
+    /// The oracle for a proxy at `position` in `scene` (poses are read at every tick).
+    pub fn new(scene: &'a Scene, position: DVec3, options: ProxyOptions) -> BruteProxy<'a> {
+        let objects = scene
+            .objects()
+            .iter()
+            .map(|o| BruteObject {
+                crossing: BruteCrossing::new(o.shape.surface()),
+                pose: o.pose,
+                previous_pose: o.previous_pose,
+            })
+            .collect();
+        BruteProxy {
+            objects,
+            scene,
+            options,
+            position,
+            in_contact: false,
+            sticking: false,
+        }
+    }
+
+    /// The proxy position, metres, world frame.
+    pub fn position(&self) -> DVec3 {
+        self.position
+    }
+
+    /// Puts the oracle in the state of the fast proxy (after a reported mismatch).
+    pub fn resync(&mut self, proxy: &Proxy, in_contact: bool, sticking: bool) {
+        self.position = proxy.position();
+        self.in_contact = in_contact;
+        self.sticking = sticking;
+    }
+
+    fn hit(&self, i: usize, p0: DVec3, p1: DVec3) -> Option<BruteHit> {
+        let o = &self.objects[i];
+        let c = o
+            .crossing
+            .first_crossing(o.pose.to_object(p0), o.pose.to_object(p1))?;
+        Some(BruteHit {
+            t: c.t,
+            object: i,
+            point: o.pose.to_world(c.point),
+            normal: o.pose.vector_to_world(c.face_normal),
+        })
+    }
+
+    fn first_hit(&self, p0: DVec3, p1: DVec3) -> Option<BruteHit> {
+        let mut best: Option<BruteHit> = None;
+        for i in 0..self.objects.len() {
+            if let Some(h) = self.hit(i, p0, p1)
+                && best.is_none_or(|b| h.t < b.t)
+            {
+                best = Some(h);
+            }
+        }
+        best
+    }
+
+    /// One tick; returns the proxy and whether it touches an object.
+    pub fn tick(&mut self, hip: DVec3) -> (DVec3, bool) {
+        for (o, s) in self.objects.iter_mut().zip(self.scene.objects()) {
+            o.pose = s.pose;
+            o.previous_pose = s.previous_pose;
+        }
+        if !hip.is_finite() {
+            self.in_contact = false;
+            self.sticking = false;
+            return (self.position, false);
+        }
+        let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
+        let skin = self.options.skin;
+        // Carry by moving objects.
+        let mut p = self.position;
+        for i in 0..self.objects.len() {
+            let o = &self.objects[i];
+            if o.pose == o.previous_pose {
+                continue;
+            }
+            let from = o.pose.to_world(o.previous_pose.to_object(p));
+            if let Some(h) = self.hit(i, from, p) {
+                p = advance_to_plane(from, p, &Plane::facing(h.normal, h.point, from, p, skin));
+            }
+        }
+        let held = p;
+        // Constraint steps.
+        let mut planes = Constraints::NONE;
+        let mut touch_down = None;
+        let mut last_object = 0;
+        for _ in 0..MAX_PROXY_STEPS {
+            let Some(target) = planes.closest_feasible(hip, self.options.plane_tolerance()) else {
+                break;
+            };
+            if target == p {
+                break;
+            }
+            let Some(h) = self.first_hit(p, target) else {
+                p = target;
+                break;
+            };
+            let plane = Plane::facing(h.normal, h.point, p, target, skin);
+            p = advance_to_plane(p, target, &plane);
+            touch_down.get_or_insert(p);
+            last_object = h.object;
+            if !planes.push(plane) {
+                break;
+            }
+        }
+        let Some(touch_down) = touch_down else {
+            self.position = p;
+            self.in_contact = false;
+            self.sticking = false;
+            return (p, false);
+        };
+        // Friction, with the material of the object met last.
+        let material = self.scene.objects()[last_object].material;
+        if material.static_friction > 0.0 {
+            let (anchor, was) = if self.in_contact {
+                (held, self.sticking)
+            } else {
+                (touch_down, true)
+            };
+            let (target, sticking) = friction_target(anchor, p, hip, &material, was);
+            if target != p {
+                p = match self.first_hit(p, target) {
+                    None => target,
+                    Some(h) => advance_to_plane(
+                        p,
+                        target,
+                        &Plane::facing(h.normal, h.point, p, target, skin),
+                    ),
+                };
+            }
+            self.sticking = sticking;
+        } else {
+            self.sticking = false;
+        }
+        self.position = p;
+        self.in_contact = true;
+        (p, true)
+    }
+}
+
+/// A haptic trajectory for the proxy check: device points at `rate_hz`, moving in straight
+/// legs between waypoints near the surface of `scene`'s objects (from a few millimetres
+/// outside to well inside, scaled to the object's size), at speeds drawn log-uniformly
+/// in `speeds` (m/s). Most legs stay close to the previous waypoint (sliding); some cross
+/// the object (strikes through thin parts).
+pub fn haptic_path(
+    scene: &Scene,
+    ticks: usize,
+    speeds: (f64, f64),
+    rate_hz: f64,
+    seed: u64,
+) -> Vec<DVec3> {
+    let mut random = SplitMix64::new(seed);
+    let mut out = Vec::with_capacity(ticks);
+    let dt = 1.0 / rate_hz;
+    let waypoint = |random: &mut SplitMix64, near: Option<(usize, TriId, DVec3)>| {
+        let i = near.map_or_else(|| random.index(scene.objects().len()), |n| n.0);
+        let o = &scene.objects()[i];
+        let surface = o.shape.surface();
+        let (_, _, size) = bounds(surface);
+        let (t, p_object) = match near {
+            Some((_, t, p)) if random.next_unit() < 0.8 => {
+                let goal =
+                    o.pose.to_object(p) + random.unit_vector() * random.range(0.0, 0.1) * size;
+                let (s, _) = walk_to_nearest(surface, t, goal);
+                (s.triangle, s.point)
+            }
+            _ => {
+                let t = TriId(random.index(surface.triangle_count()) as u32);
+                let [a, b, c] = surface.corners(t);
+                let (u, v) = (random.next_unit(), random.next_unit());
+                let (u, v) = if u + v > 1.0 {
+                    (1.0 - u, 1.0 - v)
+                } else {
+                    (u, v)
+                };
+                (t, a + u * (b - a) + v * (c - a))
+            }
+        };
+        let n = surface.frame(t).normal;
+        let offset = if near.is_some() {
+            random.range(-0.08, 0.03) * size
+        } else {
+            // The first waypoint, where the device starts: outside.
+            random.range(0.01, 0.03) * size
+        };
+        (i, t, o.pose.to_world(p_object + offset * n))
+    };
+    let mut at = waypoint(&mut random, None);
+    let mut p = at.2;
+    while out.len() < ticks {
+        let next = waypoint(&mut random, Some(at));
+        let speed = (speeds.0.ln() + random.next_unit() * (speeds.1 / speeds.0).ln()).exp();
+        let step = speed * dt;
+        let leg = next.2 - p;
+        let n = ((leg.length() / step).ceil() as usize).clamp(1, 10_000);
+        for k in 1..=n {
+            if out.len() == ticks {
+                break;
+            }
+            out.push(p + leg * (k as f64 / n as f64));
+        }
+        p = next.2;
+        at = next;
+    }
+    out
+}
+
+/// The proxy against [`BruteProxy`] along a path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ProxyCheck {
+    /// Ticks run.
+    pub ticks: usize,
+    /// Ticks in contact (fast proxy).
+    pub contact_ticks: usize,
+    /// Ticks where the fast and brute-force proxies differ by more than
+    /// [`PROXY_TOLERANCE_M`] or disagree on contact (the oracle is then reset to the fast
+    /// proxy's state).
+    pub mismatches: usize,
+    /// Largest distance between the two, metres.
+    pub max_deviation_m: f64,
+    /// Ticks where the proxy is inside a solid object (by the voxel map and crossing
+    /// count): a break-through.
+    pub inside: usize,
+    /// Ticks where a force was non-finite or above the maximum.
+    pub bad_forces: usize,
+    /// Some failing ticks: `(tick, fast proxy, brute-force proxy)`.
+    pub failures: Vec<(usize, [f64; 3], [f64; 3])>,
+}
+
+/// Runs the fast proxy and the brute-force one along `path` in `scene` (at rest).
+pub fn check_proxy(scene: &Scene, path: &[DVec3], options: ProxyOptions) -> ProxyCheck {
+    let start = path.first().copied().unwrap_or(DVec3::ZERO);
+    let mut fast = Proxy::new(start, options);
+    let mut brute = BruteProxy::new(scene, start, options);
+    let mut check = ProxyCheck {
+        ticks: path.len(),
+        contact_ticks: 0,
+        mismatches: 0,
+        max_deviation_m: 0.0,
+        inside: 0,
+        bad_forces: 0,
+        failures: Vec::new(),
+    };
+    let mut previous = start;
+    for (tick, &hip) in path.iter().enumerate() {
+        let velocity = (hip - previous) * 1e3;
+        previous = hip;
+        let out = fast.tick(scene, hip, velocity);
+        let (b, b_contact) = brute.tick(hip);
+        let deviation = out.proxy.distance(b);
+        check.max_deviation_m = check.max_deviation_m.max(deviation);
+        check.contact_ticks += usize::from(out.contact.is_some());
+        if deviation > PROXY_TOLERANCE_M || b_contact != out.contact.is_some() {
+            check.mismatches += 1;
+            if check.failures.len() < KEPT_FAILURES {
+                check
+                    .failures
+                    .push((tick, out.proxy.to_array(), b.to_array()));
+            }
+            brute.resync(&fast, out.contact.is_some(), out.status.sticking);
+        }
+        if !out.force.is_finite() || out.force.length() > options.max_force * (1.0 + 1e-12) {
+            check.bad_forces += 1;
+        }
+        check.inside += scene
+            .objects()
+            .iter()
+            .filter(|o| o.shape.is_solid())
+            .filter(|o| {
+                let q = o.pose.to_object(out.proxy);
+                classify_point(o.shape.surface(), o.shape.map(), q).0 == Side::Inside
+            })
+            .count();
+    }
+    check
+}

@@ -1,0 +1,332 @@
+//! The god-object proxy: against the brute-force proxy on haptic trajectories, no
+//! break-through, no direction problem, moving objects, physics sanity, bad input.
+
+mod support;
+
+use std::sync::Arc;
+
+use haphe::DVec3;
+use haphe::glam::DQuat;
+use haphe::map::MapOptions;
+use haphe::mesh::shapes::{self, Shape as Catalog};
+use haphe::mesh::{Mesh, Surface, SurfaceOptions};
+use haphe::proxy::{Proxy, ProxyOptions};
+use haphe::query::{Side, classify_point};
+use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::verify::{check_proxy, haptic_path};
+
+fn shape(mesh: Mesh) -> Arc<Shape> {
+    let surface = Surface::new(mesh, &SurfaceOptions::default()).expect("a usable surface");
+    Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"))
+}
+
+fn scene_of(shape: Arc<Shape>, material: Material) -> Scene {
+    let mut scene = Scene::local(4);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            shape,
+            Pose::IDENTITY,
+            material,
+        ))
+        .expect("room");
+    scene
+}
+
+fn friction() -> Material {
+    Material {
+        stiffness: 800.0,
+        damping: 1.0,
+        static_friction: 0.6,
+        dynamic_friction: 0.4,
+    }
+}
+
+/// The fast proxy equals the brute-force one at every tick, on every procedural shape
+/// (thin plate, concave corner and knife-free convex ones), with and without friction.
+#[test]
+fn fast_proxy_equals_brute_force_on_procedural_shapes() {
+    for (k, which) in Catalog::ALL.into_iter().enumerate() {
+        for (m, material) in [Material::default(), friction()].into_iter().enumerate() {
+            let scene = scene_of(shape(which.with_triangles(2_000)), material);
+            let path = haptic_path(
+                &scene,
+                3_000,
+                (0.01, 2.0),
+                1e3,
+                17 + k as u64 * 2 + m as u64,
+            );
+            let check = check_proxy(&scene, &path, ProxyOptions::default());
+            println!("{which} material {m}: {check:?}");
+            assert!(
+                check.contact_ticks > 300,
+                "{which}: too little contact: {check:?}"
+            );
+            assert_eq!(check.mismatches, 0, "{which}: {check:?}");
+            assert_eq!(check.inside, 0, "{which}: {check:?}");
+            assert_eq!(check.bad_forces, 0, "{which}: {check:?}");
+        }
+    }
+}
+
+/// The same on the closed shared models.
+#[test]
+fn fast_proxy_equals_brute_force_on_shared_models() {
+    let Some(dir) = support::shared_meshes() else {
+        return;
+    };
+    for name in [
+        "20mm-xyz-cube.stl",
+        "cylinder.stl",
+        "fandisk.obj",
+        "bunny.ply",
+    ] {
+        let path = dir.join("models").join(name);
+        let bytes = std::fs::read(&path).expect("readable");
+        let mut mesh = haphe::mesh::read_mesh(&path.to_string_lossy(), &bytes, &Default::default())
+            .expect("loads");
+        fit_to_hand_size(&mut mesh);
+        let scene = scene_of(shape(mesh), friction());
+        let path = haptic_path(&scene, 3_000, (0.01, 2.0), 1e3, 11);
+        let check = check_proxy(&scene, &path, ProxyOptions::default());
+        println!("{name}: {check:?}");
+        assert!(
+            check.contact_ticks > 300,
+            "{name}: too little contact: {check:?}"
+        );
+        assert_eq!(check.mismatches, 0, "{name}: {check:?}");
+        assert_eq!(check.inside, 0, "{name}: {check:?}");
+        assert_eq!(check.bad_forces, 0, "{name}: {check:?}");
+    }
+}
+
+/// Scales a model (in whatever units its file used) to 0.2 m across, the size of an
+/// object explored with a desktop device.
+fn fit_to_hand_size(mesh: &mut Mesh) {
+    let (lo, hi) = mesh.bounds().expect("vertices");
+    let scale = 0.2 / (hi - lo).max_element();
+    mesh.vertices
+        .iter_mut()
+        .for_each(|v| *v = (*v - lo) * scale);
+}
+
+/// A flat floor: the top face of a box, z = 0 over x, y in [−0.1, 0.1].
+fn floor(material: Material) -> Scene {
+    let mesh = shapes::cuboid(DVec3::new(0.1, 0.1, 0.05), [4, 4, 2]);
+    let mut scene = Scene::local(4);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(1),
+            shape(mesh),
+            Pose::from_translation(DVec3::new(0.0, 0.0, -0.05)),
+            material,
+        ))
+        .expect("room");
+    scene
+}
+
+#[test]
+fn resting_on_a_floor_renders_a_spring() {
+    let scene = floor(Material::default());
+    let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.01), ProxyOptions::default());
+    let out = proxy.tick(&scene, DVec3::new(0.01, 0.02, 0.01), DVec3::ZERO);
+    assert!(out.contact.is_none());
+    assert_eq!(out.force, DVec3::ZERO);
+    let out = proxy.tick(&scene, DVec3::new(0.01, 0.02, -0.002), DVec3::ZERO);
+    let contact = out.contact.expect("in contact");
+    assert!(
+        (out.proxy - DVec3::new(0.01, 0.02, 1e-6)).length() < 1e-12,
+        "{out:?}"
+    );
+    assert!((contact.penetration - 0.002 - 1e-6).abs() < 1e-12);
+    assert!(contact.normal.distance(DVec3::Z) < 1e-12);
+    assert!((out.force - DVec3::new(0.0, 0.0, 500.0 * (0.002 + 1e-6))).length() < 1e-9);
+    assert_eq!(contact.constraints, 1);
+}
+
+/// Fast strikes (1 cm per tick) against a plate 0.1 mm thick, through vertices and edges
+/// hit exactly: the proxy never reaches the far side and the force points back.
+#[test]
+fn no_break_through_on_a_thin_plate() {
+    let plate = shape(Catalog::ThinPlate.with_triangles(2_000));
+    let scene = scene_of(plate.clone(), Material::default());
+    let options = ProxyOptions {
+        max_force: 1e9,
+        ..ProxyOptions::default()
+    };
+    let vertices: Vec<DVec3> = plate.surface().vertices().to_vec();
+    let mut strikes = 0;
+    for (i, v) in vertices.iter().enumerate().step_by(3) {
+        // Strikes that stay over the plate (it spans ±0.1 m in x and y).
+        if v.x.abs() > 0.08 || v.y.abs() > 0.09 {
+            continue;
+        }
+        // Straight down through a vertex, through an edge midpoint, and slanted.
+        let w = vertices[(i * 31 + 5) % vertices.len()];
+        if w.x.abs() > 0.08 || w.y.abs() > 0.09 {
+            continue;
+        }
+        for target in [*v, 0.5 * (*v + w)] {
+            for side in [1.0, -1.0] {
+                let start = DVec3::new(target.x, target.y, side * 0.03);
+                let mut proxy = Proxy::new(start, options);
+                for k in 1..=8 {
+                    let hip = start - DVec3::new(0.002 * k as f64, 0.0, side * 0.01 * k as f64);
+                    let out = proxy.tick(&scene, hip, DVec3::ZERO);
+                    assert!(out.proxy.z * side > 0.0, "through the plate: {out:?}");
+                    if out.contact.is_some() {
+                        assert!(out.force.z * side > 0.0, "force flipped: {out:?}");
+                    }
+                }
+                strikes += 1;
+            }
+        }
+    }
+    assert!(strikes > 100);
+}
+
+/// Pushing deep into a thin part keeps the force pointing back to the side of entry,
+/// where the nearest-point method flips as soon as the device passes the middle.
+#[test]
+fn no_direction_problem() {
+    // A slab 4 mm thick: z in [−0.002, 0.002].
+    let slab = shape(shapes::cuboid(DVec3::new(0.1, 0.1, 0.002), [4, 4, 1]));
+    let scene = scene_of(slab.clone(), Material::default());
+    let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.01), ProxyOptions::default());
+    let mut flips = 0;
+    for k in 0..120 {
+        let hip = DVec3::new(0.0, 0.0, 0.01 - 0.0002 * k as f64);
+        let out = proxy.tick(&scene, hip, DVec3::ZERO);
+        if hip.z < 0.002 {
+            // Inside the slab and beyond it: always back up through the top.
+            assert!(out.force.z > 0.0, "tick {k}: {out:?}");
+            assert!(out.proxy.z > 0.002, "tick {k}: {out:?}");
+            // The nearest-point method pushes out through the nearer face.
+            let nearest = haphe::query::nearest_point_brute_force(slab.surface(), hip);
+            if (nearest.point - hip).z < 0.0 {
+                flips += 1;
+            }
+        }
+    }
+    // The device is in the lower half of the slab for 10 ticks.
+    assert_eq!(
+        flips, 10,
+        "the nearest-point method flips in the lower half"
+    );
+}
+
+/// A box moving at 1 m/s into a device point at rest pushes the proxy: no pop-through.
+#[test]
+fn a_moving_box_pushes_the_proxy() {
+    let cube = shape(shapes::cuboid(DVec3::splat(0.02), [2, 2, 2]));
+    let mut scene = Scene::local(2);
+    let id = ObjectId(7);
+    let start = Pose::from_translation(DVec3::new(-0.05, 0.0, 0.0));
+    scene
+        .insert(SceneObject::new(id, cube, start, Material::default()))
+        .expect("room");
+    let hip = DVec3::ZERO;
+    let mut proxy = Proxy::new(hip, ProxyOptions::default());
+    let mut pushed = 0;
+    for k in 1..=60 {
+        // 1 mm per tick at 1 kHz.
+        let x = -0.05 + 0.001 * k as f64;
+        scene.begin_tick();
+        scene.set_pose(
+            id,
+            Pose::new(
+                DQuat::from_rotation_z(0.001 * k as f64),
+                DVec3::new(x, 0.0, 0.0),
+            ),
+        );
+        let out = proxy.tick(&scene, hip, DVec3::ZERO);
+        let o = &scene.objects()[0];
+        let q = o.pose.to_object(out.proxy);
+        assert_ne!(
+            classify_point(o.shape.surface(), o.shape.map(), q).0,
+            Side::Inside,
+            "tick {k}: proxy inside the box"
+        );
+        if out.contact.is_some() {
+            pushed += 1;
+            assert!(out.force.x > 0.0, "tick {k}: {out:?}");
+            assert!(out.proxy.x > x + 0.019, "tick {k}: {out:?}");
+        }
+    }
+    assert!(pushed > 20, "{pushed}");
+}
+
+/// A point mass pressed onto a floor with a constant force settles at `F / k`.
+#[test]
+fn constant_push_settles_at_force_over_stiffness() {
+    let material = Material {
+        stiffness: 1000.0,
+        damping: 2.0,
+        ..Material::default()
+    };
+    let scene = floor(material);
+    let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.005), ProxyOptions::default());
+    let (mass, push, dt) = (0.05, 1.5, 1e-3);
+    let mut x = DVec3::new(0.0, 0.0, 0.005);
+    let mut v = DVec3::ZERO;
+    for _ in 0..5_000 {
+        let out = proxy.tick(&scene, x, v);
+        let a = (out.force + DVec3::new(0.0, 0.0, -push)) / mass;
+        v += a * dt;
+        x += v * dt;
+    }
+    let expected = -push / 1000.0 + 1e-6;
+    assert!(
+        (x.z - expected).abs() < 1e-6,
+        "settled at {} not {}",
+        x.z,
+        expected
+    );
+}
+
+/// Friction holds the proxy while the tangential force is inside the cone and lets it
+/// slide outside it.
+#[test]
+fn friction_sticks_inside_the_cone_and_slips_outside() {
+    let scene = floor(friction());
+    let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.005), ProxyOptions::default());
+    proxy.tick(&scene, DVec3::new(0.0, 0.0, -0.001), DVec3::ZERO);
+    let anchor = proxy.position();
+    // Tangential 0.5 mm at 1 mm depth: ratio 0.5 < 0.6, sticks.
+    let out = proxy.tick(&scene, DVec3::new(0.0005, 0.0, -0.001), DVec3::ZERO);
+    assert!(out.status.sticking);
+    assert!(out.proxy.distance(anchor) < 1e-12);
+    let ratio = out.force.x.abs() / out.force.z;
+    assert!((ratio - 0.5).abs() < 1e-3, "{ratio}");
+    // Tangential 1 mm: ratio 1 > 0.6, slips to the dynamic cone (0.4).
+    let out = proxy.tick(&scene, DVec3::new(0.001, 0.0, -0.001), DVec3::ZERO);
+    assert!(!out.status.sticking);
+    let ratio = out.force.x.abs() / out.force.z;
+    assert!((ratio - 0.4).abs() < 1e-3, "{ratio}");
+}
+
+/// Two boxes side by side make a concave corner with the floor: the proxy rests in it,
+/// constrained by both objects.
+#[test]
+fn corner_between_two_objects() {
+    let mut scene = floor(Material::default());
+    let wall = shape(shapes::cuboid(DVec3::new(0.01, 0.1, 0.05), [1, 4, 2]));
+    scene
+        .insert(SceneObject::new(
+            ObjectId(2),
+            wall,
+            Pose::from_translation(DVec3::new(0.03, 0.0, 0.05)),
+            Material::default(),
+        ))
+        .expect("room");
+    // The wall's face at x = 0.02 rises from the floor.
+    let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.01), ProxyOptions::default());
+    let out = proxy.tick(&scene, DVec3::new(0.025, 0.0, -0.003), DVec3::ZERO);
+    let contact = out.contact.expect("contact");
+    assert_eq!(contact.constraints, 2, "{out:?}");
+    assert!(
+        (out.proxy - DVec3::new(0.02 - 1e-6, 0.0, 1e-6)).length() < 1e-9,
+        "{out:?}"
+    );
+    assert!(out.force.x < 0.0 && out.force.z > 0.0);
+}
