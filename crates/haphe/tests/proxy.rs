@@ -330,3 +330,116 @@ fn corner_between_two_objects() {
     );
     assert!(out.force.x < 0.0 && out.force.z > 0.0);
 }
+
+/// Moving objects: the fast proxy equals the brute-force one while two objects move and
+/// turn under the device (relative motion tested in each object's frame).
+#[test]
+fn fast_proxy_equals_brute_force_with_moving_objects() {
+    let blob = shape(Catalog::Blob.with_triangles(2_000));
+    let plate = shape(Catalog::ThinPlate.with_triangles(1_000));
+    let mut scene = Scene::local(4);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            blob,
+            Pose::IDENTITY,
+            friction(),
+        ))
+        .expect("room");
+    scene
+        .insert(SceneObject::new(
+            ObjectId(1),
+            plate,
+            Pose::from_translation(DVec3::new(0.0, 0.0, 0.12)),
+            Material::default(),
+        ))
+        .expect("room");
+    let path = haptic_path(&scene, 4_000, (0.01, 2.0), 1e3, 3);
+    let options = ProxyOptions::default();
+    let mut fast = Proxy::new(path[0], options);
+    let mut brute = haphe::verify::BruteProxy::new(&scene, path[0], options);
+    let mut contacts = 0;
+    for (k, &hip) in path.iter().enumerate() {
+        let t = k as f64 * 1e-3;
+        scene.begin_tick();
+        // Up to 0.3 m/s and 1 rad/s.
+        scene.set_pose(
+            ObjectId(0),
+            Pose::new(
+                DQuat::from_rotation_z(t),
+                DVec3::new(0.03 * (10.0 * t).sin(), 0.0, 0.0),
+            ),
+        );
+        scene.set_pose(
+            ObjectId(1),
+            Pose::new(
+                DQuat::from_rotation_x(0.3 * t),
+                DVec3::new(0.0, 0.0, 0.12 - 0.01 * t),
+            ),
+        );
+        let out = fast.tick(&scene, hip, DVec3::ZERO);
+        brute.sync(&scene);
+        let (b, b_contact) = brute.tick(hip);
+        assert!(
+            out.proxy.distance(b) <= haphe::verify::PROXY_TOLERANCE_M,
+            "tick {k}: fast {out:?}, brute {b:?}"
+        );
+        assert_eq!(out.contact.is_some(), b_contact, "tick {k}");
+        contacts += usize::from(b_contact);
+        for o in scene.objects().iter().filter(|o| o.shape.is_solid()) {
+            let q = o.pose.to_object(out.proxy);
+            assert_ne!(
+                classify_point(o.shape.surface(), o.shape.map(), q).0,
+                Side::Inside,
+                "tick {k}: inside {:?}",
+                o.id
+            );
+        }
+    }
+    assert!(contacts > 500, "{contacts}");
+}
+
+use proptest::prelude::Strategy as _;
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Any device input — non-finite, huge, wildly jumping — and any material: no panic,
+    /// and the force is finite and within the clamp.
+    #[test]
+    fn any_input_gives_a_bounded_force(
+        hips in proptest::collection::vec(
+            proptest::prop_oneof![
+                (-0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3).prop_map(|(x, y, z)| DVec3::new(x, y, z)),
+                proptest::num::f64::ANY.prop_map(DVec3::splat),
+                (proptest::num::f64::ANY, proptest::num::f64::ANY, proptest::num::f64::ANY)
+                    .prop_map(|(x, y, z)| DVec3::new(x, y, z)),
+            ],
+            1..200,
+        ),
+        stiffness in proptest::num::f64::ANY,
+        friction in 0.0f64..3.0,
+        max_force in proptest::num::f64::ANY,
+    ) {
+        let scene = thread_scene(Material {
+            stiffness,
+            damping: 1.0,
+            static_friction: friction,
+            dynamic_friction: friction * 0.5,
+        });
+        let options = ProxyOptions { max_force, ..ProxyOptions::default() };
+        let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.2), options);
+        let limit = if max_force.is_finite() && max_force > 0.0 { max_force } else { 0.0 };
+        for hip in hips {
+            let out = proxy.tick(&scene, hip, hip);
+            proptest::prop_assert!(out.force.is_finite(), "{out:?}");
+            proptest::prop_assert!(out.force.length() <= limit * (1.0 + 1e-12), "{out:?}");
+            proptest::prop_assert!(out.proxy.is_finite(), "{out:?}");
+        }
+    }
+}
+
+/// A small blob scene for the property test (built once per case: cheap at 320 triangles).
+fn thread_scene(material: Material) -> Scene {
+    scene_of(shape(shapes::sphere(0.1, 2)), material)
+}

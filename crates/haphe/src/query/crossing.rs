@@ -79,6 +79,21 @@ impl Tested {
 /// the grid's `dims[0] + dims[1] + dims[2]` cells. Non-finite input gives `None`.
 pub fn first_crossing(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -> Option<Crossing> {
     let segment = Segment::new(p0, p1);
+    // The common haptic case: a short segment inside one cell. Cells are convex, so every
+    // triangle it can meet overlaps that cell and is listed there once: no walk, no table.
+    if let Some(cell) = map.grid().cell_of(p0)
+        && map.grid().cell_of(p1) == Some(cell)
+    {
+        let mut best: Option<(SegmentHit, u32)> = None;
+        for &t in map.triangles_in(cell) {
+            if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+                && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
+            {
+                best = Some((hit, t));
+            }
+        }
+        return best.map(|(hit, t)| crossing_from_hit(surface, hit, t));
+    }
     let mut tested = Tested::new();
     let mut best: Option<(SegmentHit, u32)> = None;
     // A hit found in a cell may lie a little past the cell's exit (the triangle reaches

@@ -7,30 +7,32 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use super::{BruteCrossing, KEPT_FAILURES, bounds};
+use std::sync::Arc;
+
+use super::{KEPT_FAILURES, bounds};
 use crate::mesh::TriId;
 use crate::proxy::{
     Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, advance_to_plane, clamp_to_radius,
     friction_target,
 };
-use crate::query::{Side, classify_point, walk_to_nearest};
+use crate::query::{Side, classify_point, first_crossing_brute_force, walk_to_nearest};
 use crate::rng::SplitMix64;
-use crate::scene::{Pose, Scene};
+use crate::scene::{Material, Pose, Scene, Shape};
 
 /// Largest distance between the fast proxy and the brute-force one, metres.
 pub const PROXY_TOLERANCE_M: f64 = 1e-9;
 
-/// One object's brute-force crossing finder.
-struct BruteObject<'a> {
-    crossing: BruteCrossing<'a>,
+/// One object as the oracle sees it.
+struct BruteObject {
+    shape: Arc<Shape>,
     pose: Pose,
     previous_pose: Pose,
+    material: Material,
 }
 
 /// The god-object by brute force: the oracle for [`Proxy`].
-pub struct BruteProxy<'a> {
-    objects: Vec<BruteObject<'a>>,
-    scene: &'a Scene,
+pub struct BruteProxy {
+    objects: Vec<BruteObject>,
     options: ProxyOptions,
     position: DVec3,
     in_contact: bool,
@@ -46,21 +48,22 @@ struct BruteHit {
     normal: DVec3,
 }
 
-impl<'a> BruteProxy<'a> {
-    /// The oracle for a proxy at `position` in `scene` (poses are read at every tick).
-    pub fn new(scene: &'a Scene, position: DVec3, options: ProxyOptions) -> BruteProxy<'a> {
+impl BruteProxy {
+    /// The oracle for a proxy at `position` among the objects of `scene` (their poses and
+    /// materials are read again by [`BruteProxy::sync`]).
+    pub fn new(scene: &Scene, position: DVec3, options: ProxyOptions) -> BruteProxy {
         let objects = scene
             .objects()
             .iter()
             .map(|o| BruteObject {
-                crossing: BruteCrossing::new(o.shape.surface()),
+                shape: o.shape.clone(),
                 pose: o.pose,
                 previous_pose: o.previous_pose,
+                material: o.material,
             })
             .collect();
         BruteProxy {
             objects,
-            scene,
             options,
             position,
             in_contact: false,
@@ -80,11 +83,24 @@ impl<'a> BruteProxy<'a> {
         self.sticking = sticking;
     }
 
+    /// Reads the objects' poses and materials from the scene, which must hold the same
+    /// objects in the same order (call it after moving objects, before
+    /// [`BruteProxy::tick`]).
+    pub fn sync(&mut self, scene: &Scene) {
+        for (o, s) in self.objects.iter_mut().zip(scene.objects()) {
+            o.pose = s.pose;
+            o.previous_pose = s.previous_pose;
+            o.material = s.material;
+        }
+    }
+
     fn hit(&self, i: usize, p0: DVec3, p1: DVec3) -> Option<BruteHit> {
         let o = &self.objects[i];
-        let c = o
-            .crossing
-            .first_crossing(o.pose.to_object(p0), o.pose.to_object(p1))?;
+        let c = first_crossing_brute_force(
+            o.shape.surface(),
+            o.pose.to_object(p0),
+            o.pose.to_object(p1),
+        )?;
         Some(BruteHit {
             t: c.t,
             object: i,
@@ -107,10 +123,6 @@ impl<'a> BruteProxy<'a> {
 
     /// One tick; returns the proxy and whether it touches an object.
     pub fn tick(&mut self, hip: DVec3) -> (DVec3, bool) {
-        for (o, s) in self.objects.iter_mut().zip(self.scene.objects()) {
-            o.pose = s.pose;
-            o.previous_pose = s.previous_pose;
-        }
         if !hip.is_finite() {
             self.in_contact = false;
             self.sticking = false;
@@ -161,7 +173,7 @@ impl<'a> BruteProxy<'a> {
             return (p, false);
         };
         // Friction, with the material of the object met last.
-        let material = self.scene.objects()[last_object].material;
+        let material = self.objects[last_object].material;
         if material.static_friction > 0.0 {
             let (anchor, was) = if self.in_contact {
                 (held, self.sticking)

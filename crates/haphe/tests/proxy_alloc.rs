@@ -1,0 +1,120 @@
+//! The servo path allocates nothing: 10^5 proxy ticks over several meshes, with moving
+//! objects, scene edits arriving from another thread, friction, and bad input mixed in,
+//! run under a counting allocator.
+
+use std::sync::Arc;
+
+use haphe::DVec3;
+use haphe::glam::DQuat;
+use haphe::map::MapOptions;
+use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::{Surface, SurfaceOptions};
+use haphe::proxy::{Proxy, ProxyOptions};
+use haphe::scene::{Edit, Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::verify::haptic_path;
+
+fn shape(which: Catalog, triangles: usize) -> Arc<Shape> {
+    let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())
+        .expect("a usable surface");
+    Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"))
+}
+
+#[test]
+fn the_counter_counts() {
+    let info = allocation_counter::measure(|| {
+        std::hint::black_box(vec![1u8; 10]);
+    });
+    assert_eq!(info.count_total, 1);
+}
+
+#[test]
+fn proxy_ticks_allocate_nothing() {
+    let material = Material {
+        stiffness: 800.0,
+        damping: 1.0,
+        static_friction: 0.5,
+        dynamic_friction: 0.3,
+    };
+    let shapes = [
+        shape(Catalog::Blob, 20_000),
+        shape(Catalog::ThinPlate, 5_000),
+        shape(Catalog::ConcaveCorner, 5_000),
+        shape(Catalog::Torus, 5_000),
+    ];
+    let (mut scene, mut editor) = Scene::new(8);
+    for (i, s) in shapes.iter().enumerate() {
+        let pose = Pose::from_translation(DVec3::new(0.5 * i as f64, 0.0, 0.0));
+        scene
+            .insert(SceneObject::new(
+                ObjectId(i as u32),
+                s.clone(),
+                pose,
+                material,
+            ))
+            .expect("room");
+    }
+    // Paths over each object in turn, with bad input spliced in.
+    let mut hips = Vec::new();
+    for (i, s) in shapes.iter().enumerate() {
+        let mut one = Scene::local(1);
+        one.insert(SceneObject::new(
+            ObjectId(0),
+            s.clone(),
+            scene.objects()[i].pose,
+            material,
+        ))
+        .expect("room");
+        hips.extend(haptic_path(&one, 25_000, (0.01, 10.0), 1e3, 40 + i as u64));
+    }
+    for k in (0..hips.len()).step_by(997) {
+        hips[k] = match k % 3 {
+            0 => DVec3::NAN,
+            1 => DVec3::splat(1e300),
+            _ => -hips[k] * 1e6,
+        };
+    }
+    let spare = SceneObject::new(ObjectId(99), shapes[0].clone(), Pose::IDENTITY, material);
+    let mut proxy = Proxy::new(hips[0], ProxyOptions::default());
+    let mut previous = hips[0];
+    let mut contacts = 0usize;
+    let mut spare = Some(spare);
+    let chunk = 1_000;
+    let mut total_allocations = 0;
+    for (c, block) in hips.chunks(chunk).enumerate() {
+        // Off the servo thread's clock: another thread's edits, sent before the block.
+        let t = c as f64 * 0.01;
+        let _ = editor.send(Edit::SetPose(
+            ObjectId(3),
+            Pose::new(
+                DQuat::from_rotation_z(t),
+                DVec3::new(1.5, 0.0, 0.01 * t.sin()),
+            ),
+        ));
+        if let Some(object) = spare.take() {
+            let _ = editor.send(Edit::Insert(object));
+        } else if c % 2 == 0 {
+            let _ = editor.send(Edit::Remove(ObjectId(99)));
+        }
+        let info = allocation_counter::measure(|| {
+            for &hip in block {
+                scene.begin_tick();
+                let velocity = (hip - previous) * 1e3;
+                previous = hip;
+                let out = proxy.tick(&scene, hip, velocity);
+                contacts += usize::from(out.contact.is_some());
+                assert!(out.force.is_finite());
+                assert!(out.force.length() <= proxy.options().max_force * (1.0 + 1e-12));
+            }
+        });
+        total_allocations += info.count_total;
+        // Objects that left the scene are dropped here, off the servo thread.
+        for returned in editor.collect() {
+            if let haphe::scene::Returned::Removed(o) = returned {
+                spare = Some(o);
+            }
+        }
+    }
+    assert_eq!(hips.len(), 100_000);
+    assert!(contacts > 20_000, "{contacts}");
+    assert_eq!(total_allocations, 0, "the servo path allocated");
+}
