@@ -40,6 +40,28 @@ impl Plane {
         }
     }
 
+    /// The constraint plane of a surface met by the move `from → to`: for a closed solid,
+    /// the outside of the face (its normal's side); for an open surface, the side the
+    /// move comes from ([`Plane::facing`]).
+    #[inline]
+    pub fn of_hit(
+        normal: DVec3,
+        point: DVec3,
+        solid: bool,
+        from: DVec3,
+        to: DVec3,
+        skin: f64,
+    ) -> Plane {
+        if solid {
+            Plane {
+                normal,
+                offset: normal.dot(point) + skin,
+            }
+        } else {
+            Plane::facing(normal, point, from, to, skin)
+        }
+    }
+
     /// Signed height of `p` above the plane, metres (negative behind it).
     #[inline]
     pub fn height(&self, p: DVec3) -> f64 {

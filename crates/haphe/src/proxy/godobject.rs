@@ -46,6 +46,12 @@ impl ProxyOptions {
     pub fn plane_tolerance(&self) -> f64 {
         self.skin * 1e-3
     }
+
+    /// How far crossing tests reach beyond a move, metres ([`PROBE_REACH_OF_SKIN`] of
+    /// the skin; see [`Probe`](super::Probe)).
+    pub fn probe_reach(&self) -> f64 {
+        self.skin * super::PROBE_REACH_OF_SKIN
+    }
 }
 
 /// What the proxy remembers from its last contact (coherence: the next walk starts here).
@@ -132,18 +138,10 @@ impl Proxy {
         }
         let (hip, clamped) = clamp_to_radius(hip, self.options.workspace_radius);
         status.input_clamped = clamped;
-        let skin = self.options.skin;
 
-        let mut p = carry(scene, self.position, skin);
+        let mut p = carry(scene, self.position, &self.options);
         let held = p;
-        let sweep = constrain(
-            scene,
-            p,
-            hip,
-            skin,
-            self.options.plane_tolerance(),
-            &mut status,
-        );
+        let sweep = constrain(scene, p, hip, &self.options, &mut status);
         p = sweep.position;
 
         let Some((hit, plane)) = sweep.last_hit else {
@@ -167,7 +165,7 @@ impl Proxy {
                 None => (sweep.touch_down, true),
             };
             let (target, sticking) = friction_target(anchor, p, hip, &material, was_sticking);
-            p = move_checked(scene, p, target, skin);
+            p = move_checked(scene, p, target, &self.options);
             self.sticking = sticking;
         } else {
             self.sticking = false;
@@ -231,10 +229,10 @@ pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
 
 /// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
 /// object index.
-pub(crate) fn first_hit_all(scene: &Scene, p0: DVec3, p1: DVec3) -> Option<Hit> {
+pub(crate) fn first_hit_all(scene: &Scene, p0: DVec3, p1: DVec3, reach: f64) -> Option<Hit> {
     let mut best: Option<Hit> = None;
     for i in 0..scene.objects().len() {
-        if let Some(h) = scene.first_hit(i, p0, p1)
+        if let Some(h) = scene.first_hit(i, p0, p1, reach)
             && best.is_none_or(|b| h.t < b.t)
         {
             best = Some(h);
@@ -246,14 +244,14 @@ pub(crate) fn first_hit_all(scene: &Scene, p0: DVec3, p1: DVec3) -> Option<Hit> 
 /// Moving objects carry the proxy: for each object that moved since the previous tick (in
 /// index order), the proxy's motion relative to it is tested in its frame and stopped a
 /// skin's width before its surface.
-fn carry(scene: &Scene, mut p: DVec3, skin: f64) -> DVec3 {
+fn carry(scene: &Scene, mut p: DVec3, options: &ProxyOptions) -> DVec3 {
     for (i, o) in scene.objects().iter().enumerate() {
         if !o.moved() {
             continue;
         }
         let from = scene.previous_relative(i, p);
-        if let Some(h) = scene.first_hit(i, from, p) {
-            let plane = Plane::facing(h.normal, h.point, from, p, skin);
+        if let Some(h) = scene.first_hit(i, from, p, options.probe_reach()) {
+            let plane = Plane::of_hit(h.normal, h.point, h.solid, from, p, options.skin);
             p = advance_to_plane(from, p, &plane);
         }
     }
@@ -277,8 +275,7 @@ fn constrain(
     scene: &Scene,
     mut p: DVec3,
     hip: DVec3,
-    skin: f64,
-    tolerance: f64,
+    options: &ProxyOptions,
     status: &mut TickStatus,
 ) -> Sweep {
     let mut planes = Constraints::NONE;
@@ -286,7 +283,7 @@ fn constrain(
     let mut touch_down = p;
     let mut finished = false;
     for _ in 0..MAX_PROXY_STEPS {
-        let Some(target) = planes.closest_feasible(hip, tolerance) else {
+        let Some(target) = planes.closest_feasible(hip, options.plane_tolerance()) else {
             status.wedged = true;
             finished = true;
             break;
@@ -295,12 +292,12 @@ fn constrain(
             finished = true;
             break;
         }
-        let Some(hit) = first_hit_all(scene, p, target) else {
+        let Some(hit) = first_hit_all(scene, p, target, options.probe_reach()) else {
             p = target;
             finished = true;
             break;
         };
-        let plane = Plane::facing(hit.normal, hit.point, p, target, skin);
+        let plane = Plane::of_hit(hit.normal, hit.point, hit.solid, p, target, options.skin);
         p = advance_to_plane(p, target, &plane);
         if last_hit.is_none() {
             touch_down = p;
@@ -322,12 +319,16 @@ fn constrain(
 }
 
 /// Moves from `from` toward `to` and stops a skin's width before the first surface met.
-fn move_checked(scene: &Scene, from: DVec3, to: DVec3, skin: f64) -> DVec3 {
+fn move_checked(scene: &Scene, from: DVec3, to: DVec3, options: &ProxyOptions) -> DVec3 {
     if from == to {
         return to;
     }
-    match first_hit_all(scene, from, to) {
+    match first_hit_all(scene, from, to, options.probe_reach()) {
         None => to,
-        Some(h) => advance_to_plane(from, to, &Plane::facing(h.normal, h.point, from, to, skin)),
+        Some(h) => advance_to_plane(
+            from,
+            to,
+            &Plane::of_hit(h.normal, h.point, h.solid, from, to, options.skin),
+        ),
     }
 }

@@ -34,6 +34,7 @@ mod constraints;
 mod force;
 mod godobject;
 mod output;
+mod probe;
 
 pub use constraints::{
     Constraints, MAX_CONSTRAINTS, MIN_PAIR_SINE_SQUARED, MIN_TRIPLE_DETERMINANT, Plane,
@@ -42,3 +43,4 @@ pub use constraints::{
 pub use force::{contact_force, friction_target};
 pub use godobject::{DEFAULT_SKIN, MAX_PROXY_STEPS, Proxy, ProxyOptions, clamp_to_radius};
 pub use output::{Contact, TickOutput, TickStatus};
+pub use probe::{PROBE_REACH_OF_SKIN, Probe};

@@ -78,6 +78,19 @@ impl Tested {
 /// No allocation (a 1 KiB table on the stack), no lock, no panic; visits at most
 /// the grid's `dims[0] + dims[1] + dims[2]` cells. Non-finite input gives `None`.
 pub fn first_crossing(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -> Option<Crossing> {
+    first_crossing_where(surface, map, p0, p1, |_| true)
+}
+
+/// [`first_crossing`] counting only the crossings that `accept` keeps (for example only
+/// entering ones, `|hit| hit.entering`): the first accepted crossing, lowest triangle index
+/// on ties. Same real-time bounds.
+pub fn first_crossing_where(
+    surface: &Surface,
+    map: &VoxelMap,
+    p0: DVec3,
+    p1: DVec3,
+    accept: impl Fn(&SegmentHit) -> bool,
+) -> Option<Crossing> {
     let segment = Segment::new(p0, p1);
     // The common haptic case: a short segment inside one cell. Cells are convex, so every
     // triangle it can meet overlaps that cell and is listed there once: no walk, no table.
@@ -87,6 +100,7 @@ pub fn first_crossing(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -
         let mut best: Option<(SegmentHit, u32)> = None;
         for &t in map.triangles_in(cell) {
             if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+                && accept(&hit)
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
@@ -109,6 +123,7 @@ pub fn first_crossing(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -
                 continue;
             }
             if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+                && accept(&hit)
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
@@ -134,10 +149,22 @@ fn crossing_margin(map: &VoxelMap, p0: DVec3, p1: DVec3) -> f64 {
 /// # Performance
 /// `O(n)`: for tests and verification, never for a tick.
 pub fn first_crossing_brute_force(surface: &Surface, p0: DVec3, p1: DVec3) -> Option<Crossing> {
+    first_crossing_brute_force_where(surface, p0, p1, |_| true)
+}
+
+/// [`first_crossing_brute_force`] counting only the crossings that `accept` keeps: the
+/// oracle for [`first_crossing_where`].
+pub fn first_crossing_brute_force_where(
+    surface: &Surface,
+    p0: DVec3,
+    p1: DVec3,
+    accept: impl Fn(&SegmentHit) -> bool,
+) -> Option<Crossing> {
     let segment = Segment::new(p0, p1);
     let mut best: Option<(SegmentHit, u32)> = None;
     for t in 0..surface.triangle_count() as u32 {
         if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+            && accept(&hit)
             && best.is_none_or(|(b, _)| hit.t < b.t)
         {
             best = Some((hit, t));

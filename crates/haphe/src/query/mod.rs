@@ -14,6 +14,7 @@ mod walk;
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use crossing::{
     Crossing, all_crossings_brute_force, first_crossing, first_crossing_brute_force,
+    first_crossing_brute_force_where, first_crossing_where,
 };
 pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};

@@ -26,7 +26,8 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::mesh::TriId;
-use crate::query::{SurfacePoint, WalkStatus, first_crossing, walk_to_nearest};
+use crate::proxy::Probe;
+use crate::query::{SurfacePoint, WalkStatus, first_crossing_where, walk_to_nearest};
 
 /// A stable name for an object of a scene, chosen by the caller.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -68,7 +69,8 @@ impl SceneObject {
 /// Where a path first meets an object's surface, world frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit {
-    /// Parameter along the path, in `[0, 1]`.
+    /// Parameter along the move, `≥ 0`: a crossing within a probe's reach behind the start
+    /// counts as 0, one within reach past the end exceeds 1 (see [`Probe`]).
     pub t: f64,
     /// Index of the object in the scene ([`Scene::objects`]).
     pub object: usize,
@@ -78,6 +80,8 @@ pub struct Hit {
     pub point: DVec3,
     /// Unit face normal of the triangle, world frame (out of a solid).
     pub normal: DVec3,
+    /// The object is a closed solid (its outside is the free side).
+    pub solid: bool,
 }
 
 /// The objects the proxy renders, owned by the servo thread.
@@ -188,26 +192,33 @@ impl Scene {
         applied
     }
 
-    /// The first place where the world segment `p0 → p1` meets object `i` at its current
-    /// pose. `None` when it does not, or when `i` is out of range.
+    /// The first place where the proxy move `from → to` (world frame) meets object `i` at
+    /// its current pose, tested with a [`Probe`] reaching `reach` metres beyond the move.
+    /// `None` when it does not, or when `i` is out of range.
     ///
     /// # Real-time
-    /// A bounding-sphere test, then [`first_crossing`] in the object frame.
-    pub fn first_hit(&self, i: usize, p0: DVec3, p1: DVec3) -> Option<Hit> {
+    /// A bounding-sphere test, then [`first_crossing_where`] in the object frame.
+    pub fn first_hit(&self, i: usize, from: DVec3, to: DVec3, reach: f64) -> Option<Hit> {
         let o = self.objects.get(i)?;
         let shape = &*o.shape;
+        let solid = shape.is_solid();
+        let probe = Probe::new(from, to, reach, solid);
         let centre = o.pose.to_world(shape.bound_centre());
-        if segment_point_distance(p0, p1, centre) > shape.bound_radius() * BOUND_SLACK {
+        if segment_point_distance(probe.p0, probe.p1, centre) > shape.bound_radius() * BOUND_SLACK {
             return None;
         }
-        let a = o.pose.to_object(p0);
-        let b = o.pose.to_object(p1);
-        first_crossing(shape.surface(), shape.map(), a, b).map(|c| Hit {
-            t: c.t,
+        let a = o.pose.to_object(probe.p0);
+        let b = o.pose.to_object(probe.p1);
+        first_crossing_where(shape.surface(), shape.map(), a, b, |h| {
+            h.entering || !probe.entering_only
+        })
+        .map(|c| Hit {
+            t: probe.move_t(c.t),
             object: i,
             triangle: c.triangle,
             point: o.pose.to_world(c.point),
             normal: o.pose.vector_to_world(c.face_normal),
+            solid,
         })
     }
 

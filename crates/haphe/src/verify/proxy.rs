@@ -9,13 +9,13 @@ use serde::Serialize;
 
 use std::sync::Arc;
 
-use super::{KEPT_FAILURES, bounds};
+use super::{KEPT_FAILURES, bounds, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, advance_to_plane, clamp_to_radius,
-    friction_target,
+    Constraints, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, advance_to_plane,
+    clamp_to_radius, friction_target,
 };
-use crate::query::{Side, classify_point, first_crossing_brute_force, walk_to_nearest};
+use crate::query::{Side, classify_point, first_crossing_brute_force_where, walk_to_nearest};
 use crate::rng::SplitMix64;
 use crate::scene::{Material, Pose, Scene, Shape};
 
@@ -46,6 +46,7 @@ struct BruteHit {
     object: usize,
     point: DVec3,
     normal: DVec3,
+    solid: bool,
 }
 
 impl BruteProxy {
@@ -94,19 +95,27 @@ impl BruteProxy {
         }
     }
 
-    fn hit(&self, i: usize, p0: DVec3, p1: DVec3) -> Option<BruteHit> {
+    fn hit(&self, i: usize, from: DVec3, to: DVec3) -> Option<BruteHit> {
         let o = &self.objects[i];
-        let c = first_crossing_brute_force(
+        let solid = o.shape.is_solid();
+        let probe = Probe::new(from, to, self.options.probe_reach(), solid);
+        let c = first_crossing_brute_force_where(
             o.shape.surface(),
-            o.pose.to_object(p0),
-            o.pose.to_object(p1),
+            o.pose.to_object(probe.p0),
+            o.pose.to_object(probe.p1),
+            |h| h.entering || !solid,
         )?;
         Some(BruteHit {
-            t: c.t,
+            t: probe.move_t(c.t),
             object: i,
             point: o.pose.to_world(c.point),
             normal: o.pose.vector_to_world(c.face_normal),
+            solid,
         })
+    }
+
+    fn plane(&self, h: &BruteHit, from: DVec3, to: DVec3) -> Plane {
+        Plane::of_hit(h.normal, h.point, h.solid, from, to, self.options.skin)
     }
 
     fn first_hit(&self, p0: DVec3, p1: DVec3) -> Option<BruteHit> {
@@ -129,7 +138,6 @@ impl BruteProxy {
             return (self.position, false);
         }
         let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
-        let skin = self.options.skin;
         // Carry by moving objects.
         let mut p = self.position;
         for i in 0..self.objects.len() {
@@ -139,7 +147,7 @@ impl BruteProxy {
             }
             let from = o.pose.to_world(o.previous_pose.to_object(p));
             if let Some(h) = self.hit(i, from, p) {
-                p = advance_to_plane(from, p, &Plane::facing(h.normal, h.point, from, p, skin));
+                p = advance_to_plane(from, p, &self.plane(&h, from, p));
             }
         }
         let held = p;
@@ -158,7 +166,7 @@ impl BruteProxy {
                 p = target;
                 break;
             };
-            let plane = Plane::facing(h.normal, h.point, p, target, skin);
+            let plane = self.plane(&h, p, target);
             p = advance_to_plane(p, target, &plane);
             touch_down.get_or_insert(p);
             last_object = h.object;
@@ -184,11 +192,7 @@ impl BruteProxy {
             if target != p {
                 p = match self.first_hit(p, target) {
                     None => target,
-                    Some(h) => advance_to_plane(
-                        p,
-                        target,
-                        &Plane::facing(h.normal, h.point, p, target, skin),
-                    ),
+                    Some(h) => advance_to_plane(p, target, &self.plane(&h, p, target)),
                 };
             }
             self.sticking = sticking;
@@ -282,8 +286,8 @@ pub struct ProxyCheck {
     pub mismatches: usize,
     /// Largest distance between the two, metres.
     pub max_deviation_m: f64,
-    /// Ticks where the proxy is inside a solid object (by the voxel map and crossing
-    /// count): a break-through.
+    /// Ticks where the proxy is inside a solid object deeper than its skin (inside by the
+    /// voxel map, depth by brute force): a break-through.
     pub inside: usize,
     /// Ticks where a force was non-finite or above the maximum.
     pub bad_forces: usize,
@@ -333,6 +337,7 @@ pub fn check_proxy(scene: &Scene, path: &[DVec3], options: ProxyOptions) -> Prox
             .filter(|o| {
                 let q = o.pose.to_object(out.proxy);
                 classify_point(o.shape.surface(), o.shape.map(), q).0 == Side::Inside
+                    && distance_to_surface(o.shape.surface(), q) > options.skin
             })
             .count();
     }
