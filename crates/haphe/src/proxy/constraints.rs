@@ -40,19 +40,19 @@ impl Plane {
         }
     }
 
-    /// The constraint plane of a surface met by the move `from → to`: for a closed solid,
-    /// the outside of the face (its normal's side); for an open surface, the side the
-    /// move comes from ([`Plane::facing`]).
+    /// The constraint plane of a surface met by the move `from → to`: for a one-sided
+    /// surface, the front of the face (its normal's side); for a two-sided one, the side
+    /// the move comes from ([`Plane::facing`]).
     #[inline]
     pub fn of_hit(
         normal: DVec3,
         point: DVec3,
-        solid: bool,
+        one_sided: bool,
         from: DVec3,
         to: DVec3,
         skin: f64,
     ) -> Plane {
-        if solid {
+        if one_sided {
             Plane {
                 normal,
                 offset: normal.dot(point) + skin,

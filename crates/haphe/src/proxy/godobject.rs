@@ -251,7 +251,7 @@ fn carry(scene: &Scene, mut p: DVec3, options: &ProxyOptions) -> DVec3 {
         }
         let from = scene.previous_relative(i, p);
         if let Some(h) = scene.first_hit(i, from, p, options.probe_reach()) {
-            let plane = Plane::of_hit(h.normal, h.point, h.solid, from, p, options.skin);
+            let plane = Plane::of_hit(h.normal, h.point, h.one_sided, from, p, options.skin);
             p = advance_to_plane(from, p, &plane);
         }
     }
@@ -297,7 +297,14 @@ fn constrain(
             finished = true;
             break;
         };
-        let plane = Plane::of_hit(hit.normal, hit.point, hit.solid, p, target, options.skin);
+        let plane = Plane::of_hit(
+            hit.normal,
+            hit.point,
+            hit.one_sided,
+            p,
+            target,
+            options.skin,
+        );
         p = advance_to_plane(p, target, &plane);
         if last_hit.is_none() {
             touch_down = p;
@@ -328,7 +335,7 @@ fn move_checked(scene: &Scene, from: DVec3, to: DVec3, options: &ProxyOptions) -
         Some(h) => advance_to_plane(
             from,
             to,
-            &Plane::of_hit(h.normal, h.point, h.solid, from, to, options.skin),
+            &Plane::of_hit(h.normal, h.point, h.one_sided, from, to, options.skin),
         ),
     }
 }

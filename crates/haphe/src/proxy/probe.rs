@@ -13,18 +13,18 @@ pub const PROBE_REACH_OF_SKIN: f64 = 0.25;
 /// The watertight segment test decides crossings exactly, except where an end point lies
 /// within rounding of a surface: the crossing there may be reported for neither of two
 /// chained segments. A probe therefore reaches `reach` metres past `to`, so a move never
-/// ends within reach of a surface ahead of it; and, for a closed solid, whose free side is
-/// known (outside), also `reach` metres before `from`, counting only *entering* crossings,
-/// so a proxy that starts within rounding of a face it moves into still meets it (a
-/// surface it leaves is never a crossing of that kind). An open surface has no known
-/// side: its probe starts at `from`.
+/// ends within reach of a surface ahead of it; and, for a one-sided surface (a closed
+/// solid, by default), whose free side is known (the front), also `reach` metres before
+/// `from`, counting only *entering* crossings, so a proxy that starts within rounding of a
+/// face it moves into still meets it (a surface it leaves is never a crossing of that
+/// kind). A two-sided surface has no known side: its probe starts at `from`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Probe {
     /// Start of the tested segment.
     pub p0: DVec3,
     /// End of the tested segment.
     pub p1: DVec3,
-    /// Only entering crossings count (a closed solid).
+    /// Only entering crossings count (a one-sided surface).
     pub entering_only: bool,
     /// The probe parameter of `from`.
     from_t: f64,
@@ -34,27 +34,27 @@ pub struct Probe {
 
 impl Probe {
     /// The probe of the move `from → to`, reaching `reach` metres beyond it (behind
-    /// `from` too when `solid`).
+    /// `from` too when `one_sided`).
     #[inline]
-    pub fn new(from: DVec3, to: DVec3, reach: f64, solid: bool) -> Probe {
+    pub fn new(from: DVec3, to: DVec3, reach: f64, one_sided: bool) -> Probe {
         let d = to - from;
         let length = d.length();
         if !(length > 0.0 && length.is_finite() && reach >= 0.0) {
             return Probe {
                 p0: from,
                 p1: to,
-                entering_only: solid,
+                entering_only: one_sided,
                 from_t: 0.0,
                 scale: 1.0,
             };
         }
         let u = d / length;
-        let back = if solid { reach } else { 0.0 };
+        let back = if one_sided { reach } else { 0.0 };
         let total = length + back + reach;
         Probe {
             p0: from - back * u,
             p1: to + reach * u,
-            entering_only: solid,
+            entering_only: one_sided,
             from_t: back / total,
             scale: total / length,
         }

@@ -46,18 +46,43 @@ pub struct SceneObject {
     pub previous_pose: Pose,
     /// How the surface feels.
     pub material: Material,
+    /// Which sides of the surface can be touched.
+    pub sides: Sides,
+}
+
+/// Which sides of an object's surface the proxy touches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sides {
+    /// Only the front (the side the face normals point to): the outside of a closed solid,
+    /// or the top of an open terrain. The proxy passes through from the back.
+    Front,
+    /// Both sides: an open sheet felt from either side, or the inside of a closed room.
+    Both,
 }
 
 impl SceneObject {
-    /// An object at rest at `pose`.
+    /// An object at rest at `pose`: one-sided ([`Sides::Front`]) when its shape is a closed
+    /// solid, two-sided otherwise.
     pub fn new(id: ObjectId, shape: Arc<Shape>, pose: Pose, material: Material) -> SceneObject {
+        let sides = if shape.is_solid() {
+            Sides::Front
+        } else {
+            Sides::Both
+        };
         SceneObject {
             id,
             shape,
             pose,
             previous_pose: pose,
             material: material.sanitised(),
+            sides,
         }
+    }
+
+    /// The same object touched on `sides`.
+    pub fn with_sides(mut self, sides: Sides) -> SceneObject {
+        self.sides = sides;
+        self
     }
 
     /// Whether the object moved since the previous tick.
@@ -80,8 +105,8 @@ pub struct Hit {
     pub point: DVec3,
     /// Unit face normal of the triangle, world frame (out of a solid).
     pub normal: DVec3,
-    /// The object is a closed solid (its outside is the free side).
-    pub solid: bool,
+    /// Only the front of the surface is touched (its normal's side is the free side).
+    pub one_sided: bool,
 }
 
 /// The objects the proxy renders, owned by the servo thread.
@@ -201,8 +226,8 @@ impl Scene {
     pub fn first_hit(&self, i: usize, from: DVec3, to: DVec3, reach: f64) -> Option<Hit> {
         let o = self.objects.get(i)?;
         let shape = &*o.shape;
-        let solid = shape.is_solid();
-        let probe = Probe::new(from, to, reach, solid);
+        let one_sided = o.sides == Sides::Front;
+        let probe = Probe::new(from, to, reach, one_sided);
         let centre = o.pose.to_world(shape.bound_centre());
         if segment_point_distance(probe.p0, probe.p1, centre) > shape.bound_radius() * BOUND_SLACK {
             return None;
@@ -218,7 +243,7 @@ impl Scene {
             triangle: c.triangle,
             point: o.pose.to_world(c.point),
             normal: o.pose.vector_to_world(c.face_normal),
-            solid,
+            one_sided,
         })
     }
 

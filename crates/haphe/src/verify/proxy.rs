@@ -17,7 +17,7 @@ use crate::proxy::{
 };
 use crate::query::{Side, classify_point, first_crossing_brute_force_where, walk_to_nearest};
 use crate::rng::SplitMix64;
-use crate::scene::{Material, Pose, Scene, Shape};
+use crate::scene::{Material, Pose, Scene, Shape, Sides};
 
 /// Largest distance between the fast proxy and the brute-force one, metres.
 pub const PROXY_TOLERANCE_M: f64 = 1e-9;
@@ -28,6 +28,7 @@ struct BruteObject {
     pose: Pose,
     previous_pose: Pose,
     material: Material,
+    one_sided: bool,
 }
 
 /// The god-object by brute force: the oracle for [`Proxy`].
@@ -46,7 +47,7 @@ struct BruteHit {
     object: usize,
     point: DVec3,
     normal: DVec3,
-    solid: bool,
+    one_sided: bool,
 }
 
 impl BruteProxy {
@@ -61,6 +62,7 @@ impl BruteProxy {
                 pose: o.pose,
                 previous_pose: o.previous_pose,
                 material: o.material,
+                one_sided: o.sides == Sides::Front,
             })
             .collect();
         BruteProxy {
@@ -92,30 +94,31 @@ impl BruteProxy {
             o.pose = s.pose;
             o.previous_pose = s.previous_pose;
             o.material = s.material;
+            o.one_sided = s.sides == Sides::Front;
         }
     }
 
     fn hit(&self, i: usize, from: DVec3, to: DVec3) -> Option<BruteHit> {
         let o = &self.objects[i];
-        let solid = o.shape.is_solid();
-        let probe = Probe::new(from, to, self.options.probe_reach(), solid);
+        let one_sided = o.one_sided;
+        let probe = Probe::new(from, to, self.options.probe_reach(), one_sided);
         let c = first_crossing_brute_force_where(
             o.shape.surface(),
             o.pose.to_object(probe.p0),
             o.pose.to_object(probe.p1),
-            |h| h.entering || !solid,
+            |h| h.entering || !one_sided,
         )?;
         Some(BruteHit {
             t: probe.move_t(c.t),
             object: i,
             point: o.pose.to_world(c.point),
             normal: o.pose.vector_to_world(c.face_normal),
-            solid,
+            one_sided,
         })
     }
 
     fn plane(&self, h: &BruteHit, from: DVec3, to: DVec3) -> Plane {
-        Plane::of_hit(h.normal, h.point, h.solid, from, to, self.options.skin)
+        Plane::of_hit(h.normal, h.point, h.one_sided, from, to, self.options.skin)
     }
 
     fn first_hit(&self, p0: DVec3, p1: DVec3) -> Option<BruteHit> {
