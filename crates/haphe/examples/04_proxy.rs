@@ -38,7 +38,11 @@ fn show(label: &str, out: &TickOutput) {
         out.force.x,
         out.force.y,
         out.force.z,
-        if out.status.sticking { ", sticking" } else { "" }
+        if out.status.sticking {
+            ", sticking"
+        } else {
+            ""
+        }
     );
 }
 
@@ -52,7 +56,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         dynamic_friction: 0.4,
     };
     scene
-        .insert(SceneObject::new(ObjectId(1), shape(Catalog::Blob, 20_000)?, Pose::IDENTITY, rubber))
+        .insert(SceneObject::new(
+            ObjectId(1),
+            shape(Catalog::Blob, 20_000)?,
+            Pose::IDENTITY,
+            rubber,
+        ))
         .map_err(|(e, _)| e)?;
     let plate_pose = Pose::from_translation(DVec3::new(0.0, 0.0, 0.2));
     scene

@@ -1,0 +1,141 @@
+//! Scenes edited from another thread while the servo thread ticks, and force shading.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use haphe::DVec3;
+use haphe::map::MapOptions;
+use haphe::mesh::shapes;
+use haphe::mesh::{Surface, SurfaceOptions};
+use haphe::proxy::{Proxy, ProxyOptions};
+use haphe::scene::{
+    Edit, EditError, Material, ObjectId, Pose, Returned, Scene, SceneObject, Shape,
+};
+
+fn shape(mesh: haphe::mesh::Mesh) -> Arc<Shape> {
+    let surface = Surface::new(mesh, &SurfaceOptions::default()).expect("a usable surface");
+    Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"))
+}
+
+/// An editor thread inserts, moves and removes objects while the servo thread ticks; every
+/// object that leaves the scene comes back to the editor, and shapes are freed there.
+#[test]
+fn edits_from_another_thread() {
+    let ball = shape(shapes::sphere(0.05, 3));
+    let (mut scene, mut editor) = Scene::new(4);
+    let done = Arc::new(AtomicBool::new(false));
+    let servo_done = done.clone();
+    let servo = std::thread::spawn(move || {
+        let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.2), ProxyOptions::default());
+        let mut ticks = 0u64;
+        let mut contacts = 0u64;
+        let mut applied = 0usize;
+        while !servo_done.load(Ordering::Acquire) || ticks < 10_000 {
+            applied += scene.begin_tick();
+            // The device rests 1 cm below where the ball's top passes.
+            let out = proxy.tick(&scene, DVec3::new(0.0, 0.0, 0.04), DVec3::ZERO);
+            assert!(out.force.is_finite());
+            contacts += u64::from(out.contact.is_some());
+            ticks += 1;
+        }
+        (ticks, contacts, applied, scene)
+    });
+    let mut returned = 0;
+    let mut sent = 0;
+    for round in 0..200u32 {
+        let id = ObjectId(round % 3);
+        let object = SceneObject::new(id, ball.clone(), Pose::IDENTITY, Material::default());
+        let mut edits = vec![
+            Edit::Insert(object),
+            Edit::SetPose(id, Pose::from_translation(DVec3::new(0.0, 0.0, -0.01))),
+            Edit::Remove(ObjectId((round + 1) % 3)),
+        ];
+        while let Some(edit) = edits.pop() {
+            match editor.send(edit) {
+                Ok(()) => sent += 1,
+                Err((EditError::Busy, edit)) => {
+                    edits.push(edit);
+                    std::thread::yield_now();
+                }
+                Err((e, _)) => panic!("{e}"),
+            }
+            returned += editor.collect().len();
+        }
+        std::thread::sleep(std::time::Duration::from_micros(200));
+    }
+    done.store(true, Ordering::Release);
+    let (ticks, contacts, applied, scene) = servo.join().expect("the servo thread");
+    returned += editor.collect().len();
+    assert_eq!(applied, sent, "every edit applied");
+    // Inserted minus still in the scene came back (removed, or refused as duplicates).
+    assert_eq!(returned + scene.objects().len(), 200);
+    assert!(ticks >= 10_000);
+    assert!(contacts > 0, "the ball was touched");
+    // Only the scene and this thread still hold the shape.
+    assert_eq!(Arc::strong_count(&ball), 1 + scene.objects().len());
+}
+
+#[test]
+fn a_full_scene_refuses_and_hands_back() {
+    let ball = shape(shapes::sphere(0.05, 1));
+    let (mut scene, mut editor) = Scene::new(1);
+    let object = |id| {
+        SceneObject::new(
+            ObjectId(id),
+            ball.clone(),
+            Pose::IDENTITY,
+            Material::default(),
+        )
+    };
+    editor
+        .send(Edit::Insert(object(1)))
+        .expect("room in the ring");
+    scene.begin_tick();
+    editor
+        .send(Edit::Insert(object(2)))
+        .expect("room in the ring");
+    scene.begin_tick();
+    let back = editor.collect();
+    assert!(
+        matches!(back.as_slice(), [Returned::Refused(o, EditError::Full)] if o.id == ObjectId(2))
+    );
+    assert_eq!(scene.objects().len(), 1);
+}
+
+/// Force shading: on a coarse sphere, the rendered force on a face is much closer to the
+/// true (radial) normal than the flat face normal is.
+#[test]
+fn force_shading_follows_the_smooth_normal() {
+    // 320 triangles: every dihedral angle below the 30° crease angle (the 80-triangle
+    // sphere has 42° creases, which shading rightly keeps sharp).
+    let ball = shape(shapes::sphere(0.1, 2));
+    let mut scene = Scene::local(1);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            ball,
+            Pose::IDENTITY,
+            Material::default(),
+        ))
+        .expect("room");
+    let mut worst_face = 0.0f64;
+    let mut worst_force = 0.0f64;
+    let mut random = haphe::rng::SplitMix64::new(9);
+    for _ in 0..200 {
+        let dir = random.unit_vector();
+        let mut proxy = Proxy::new(dir * 0.15, ProxyOptions::default());
+        let out = proxy.tick(&scene, dir * 0.093, DVec3::ZERO);
+        let Some(c) = out.contact.filter(|c| c.constraints == 1) else {
+            continue;
+        };
+        let radial = c.point.normalize();
+        worst_face = worst_face.max(c.normal.angle_between(radial));
+        worst_force = worst_force.max(out.force.normalize().angle_between(radial));
+    }
+    assert!(worst_face > 0.08, "facets: {worst_face}");
+    println!("shaded {worst_force} rad, flat {worst_face} rad");
+    assert!(
+        worst_force < 0.5 * worst_face,
+        "shaded {worst_force} vs flat {worst_face}"
+    );
+}
