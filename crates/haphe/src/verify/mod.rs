@@ -12,7 +12,9 @@ mod proxy;
 mod samples;
 
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
-pub use proxy::{BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy, haptic_path};
+pub use proxy::{
+    BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy, haptic_path, haptic_path_in_contact,
+};
 pub use samples::{SegmentKind, bounds, points, segments, trajectory};
 
 use rayon::prelude::*;

@@ -220,18 +220,57 @@ pub fn haptic_path(
     rate_hz: f64,
     seed: u64,
 ) -> Vec<DVec3> {
+    path(scene, ticks, speeds, rate_hz, Style::Exploring, seed)
+}
+
+/// A haptic trajectory in steady contact, as a hand feels a surface: it starts outside,
+/// then slides from waypoint to nearby waypoint (a few percent of the object's size apart)
+/// at depths drawn uniformly in `depths` (metres below the surface; a negative depth is
+/// above it), at speeds drawn log-uniformly in `speeds` (m/s).
+pub fn haptic_path_in_contact(
+    scene: &Scene,
+    ticks: usize,
+    speeds: (f64, f64),
+    depths: (f64, f64),
+    rate_hz: f64,
+    seed: u64,
+) -> Vec<DVec3> {
+    path(scene, ticks, speeds, rate_hz, Style::Touching(depths), seed)
+}
+
+/// How a path moves over the surface.
+#[derive(Clone, Copy)]
+enum Style {
+    /// Deep presses, long strides, strikes across the object.
+    Exploring,
+    /// Shallow presses at these depths (metres), short strides.
+    Touching((f64, f64)),
+}
+
+fn path(
+    scene: &Scene,
+    ticks: usize,
+    speeds: (f64, f64),
+    rate_hz: f64,
+    style: Style,
+    seed: u64,
+) -> Vec<DVec3> {
     let mut random = SplitMix64::new(seed);
     let mut out = Vec::with_capacity(ticks);
     let dt = 1.0 / rate_hz;
+    let (near_share, stride) = match style {
+        Style::Exploring => (0.8, 0.1),
+        Style::Touching(_) => (1.0, 0.03),
+    };
     let waypoint = |random: &mut SplitMix64, near: Option<(usize, TriId, DVec3)>| {
         let i = near.map_or_else(|| random.index(scene.objects().len()), |n| n.0);
         let o = &scene.objects()[i];
         let surface = o.shape.surface();
         let (_, _, size) = bounds(surface);
         let (t, p_object) = match near {
-            Some((_, t, p)) if random.next_unit() < 0.8 => {
+            Some((_, t, p)) if random.next_unit() < near_share => {
                 let goal =
-                    o.pose.to_object(p) + random.unit_vector() * random.range(0.0, 0.1) * size;
+                    o.pose.to_object(p) + random.unit_vector() * random.range(0.0, stride) * size;
                 let (s, _) = walk_to_nearest(surface, t, goal);
                 (s.triangle, s.point)
             }
@@ -248,11 +287,11 @@ pub fn haptic_path(
             }
         };
         let n = surface.frame(t).normal;
-        let offset = if near.is_some() {
-            random.range(-0.08, 0.03) * size
-        } else {
+        let offset = match (near, style) {
             // The first waypoint, where the device starts: outside.
-            random.range(0.01, 0.03) * size
+            (None, _) => random.range(0.01, 0.03) * size,
+            (Some(_), Style::Exploring) => random.range(-0.08, 0.03) * size,
+            (Some(_), Style::Touching((lo, hi))) => -random.range(lo, hi),
         };
         (i, t, o.pose.to_world(p_object + offset * n))
     };
