@@ -25,6 +25,19 @@
 //!    the last triangle touched; the force is the spring–damper toward the proxy with
 //!    force shading, clamped ([`contact_force`]).
 //!
+//! # Real-time
+//!
+//! A tick allocates nothing, takes no lock and never panics, whatever the input (a
+//! non-finite device point gives zero force and [`TickStatus::input_rejected`]; a point
+//! beyond [`ProxyOptions::workspace_radius`] is pulled back to it). Every loop has a named
+//! cap: the objects of the scene (its fixed capacity), [`MAX_PROXY_STEPS`] constraint legs
+//! of at most [`MAX_CONSTRAINTS`] planes, the cells of a segment walk (the grid's
+//! `dims[0] + dims[1] + dims[2]`), and the surface walk's
+//! [`MAX_WALK_STEPS`](crate::query::MAX_WALK_STEPS) and
+//! [`MAX_FAN_SCAN`](crate::query::MAX_FAN_SCAN). Reaching a cap returns a valid proxy
+//! (outside every object) and says so in the status. The force is finite and never above
+//! [`ProxyOptions::max_force`].
+//!
 //! The constraint steps and the friction rule are plain functions ([`Constraints`],
 //! [`advance_to_plane`], [`friction_target`], [`contact_force`]) so that a brute-force
 //! proxy in the tests, which tests every triangle of every object, runs the same
