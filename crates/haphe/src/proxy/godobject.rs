@@ -47,7 +47,7 @@ impl ProxyOptions {
         self.skin * 1e-3
     }
 
-    /// How far crossing tests reach beyond a move, metres ([`PROBE_REACH_OF_SKIN`] of
+    /// How far crossing tests reach beyond a move, metres ([`PROBE_REACH_OF_SKIN`](super::PROBE_REACH_OF_SKIN) of
     /// the skin; see [`Probe`](super::Probe)).
     pub fn probe_reach(&self) -> f64 {
         self.skin * super::PROBE_REACH_OF_SKIN
