@@ -10,6 +10,7 @@ mod object;
 mod query;
 mod validate;
 mod verify;
+mod verify_proxy;
 
 use std::process::ExitCode;
 

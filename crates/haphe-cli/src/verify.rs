@@ -42,6 +42,10 @@ pub struct Args {
     /// Surface-walk targets (default: --samples).
     #[arg(long)]
     walks: Option<usize>,
+    /// Proxy ticks per kind of path (exploring, strikes, steady contact), compared with
+    /// the brute-force proxy on the model scaled to 0.2 m (default: --samples; 0 skips).
+    #[arg(long)]
+    ticks: Option<usize>,
     /// Seed of the samples (the same seed gives the same samples).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -115,6 +119,8 @@ struct Verification {
     crossings: Vec<CrossingRow>,
     inside: InsideRow,
     walk: WalkCheck,
+    /// The proxy against the brute-force proxy, when run.
+    proxy: Option<crate::verify_proxy::ProxyReport>,
     passed: bool,
 }
 
@@ -197,12 +203,18 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         args.seed,
     );
 
+    let ticks = args.ticks.unwrap_or(n);
+    let proxy = (ticks > 0)
+        .then(|| crate::verify_proxy::check(surface, ticks, args.seed))
+        .transpose()?;
+
     let passed = crossings
         .iter()
         .all(|r| r.check.mismatches == 0 && r.check.leaks == 0)
         && inside.check.mismatches == 0
         && walk.not_local_minimum == 0
-        && walk.not_nearest == 0;
+        && walk.not_nearest == 0
+        && proxy.as_ref().is_none_or(|p| p.passed());
     let report = Verification {
         file: args.file.display().to_string(),
         triangles: surface.triangle_count(),
@@ -214,6 +226,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         crossings,
         inside,
         walk,
+        proxy,
         passed,
     };
     let mut out = std::io::stdout().lock();
@@ -301,6 +314,37 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
             String::new()
         }
     )?;
+    if let Some(p) = &r.proxy {
+        writeln!(
+            out,
+            "\nproxy against the brute-force proxy (model scaled by {:.4} to 0.2 m; {:.1} s):\n",
+            p.scale, p.seconds
+        )?;
+        writeln!(
+            out,
+            "| path      | speeds (m/s) | ticks   | in contact | mismatches | largest gap (m) | inside | bad forces |"
+        )?;
+        writeln!(
+            out,
+            "|-----------|--------------|--------:|-----------:|-----------:|----------------:|-------:|-----------:|"
+        )?;
+        for row in &p.rows {
+            let c = &row.check;
+            writeln!(
+                out,
+                "| {:<9} | {:>5}–{:<6} | {:>7} | {:>10} | {:>10} | {:>15.1e} | {:>6} | {:>10} |",
+                row.path,
+                row.speeds_m_s.0,
+                row.speeds_m_s.1,
+                c.ticks,
+                c.contact_ticks,
+                c.mismatches,
+                c.max_deviation_m,
+                c.inside,
+                c.bad_forces
+            )?;
+        }
+    }
     writeln!(out, "\n{}", if r.passed { "PASSED" } else { "FAILED" })?;
     Ok(())
 }

@@ -337,6 +337,39 @@ pub struct ProxyCheck {
     pub failures: Vec<(usize, [f64; 3], [f64; 3])>,
 }
 
+impl ProxyCheck {
+    /// A check of no ticks.
+    pub fn empty() -> ProxyCheck {
+        ProxyCheck {
+            ticks: 0,
+            contact_ticks: 0,
+            mismatches: 0,
+            max_deviation_m: 0.0,
+            inside: 0,
+            bad_forces: 0,
+            failures: Vec::new(),
+        }
+    }
+
+    /// The sum of two checks (failures kept up to [`KEPT_FAILURES`], ticks of `other`
+    /// numbered after those of `self`).
+    pub fn merged(mut self, other: ProxyCheck) -> ProxyCheck {
+        let offset = self.ticks;
+        self.ticks += other.ticks;
+        self.contact_ticks += other.contact_ticks;
+        self.mismatches += other.mismatches;
+        self.max_deviation_m = self.max_deviation_m.max(other.max_deviation_m);
+        self.inside += other.inside;
+        self.bad_forces += other.bad_forces;
+        for (t, a, b) in other.failures {
+            if self.failures.len() < KEPT_FAILURES {
+                self.failures.push((t + offset, a, b));
+            }
+        }
+        self
+    }
+}
+
 /// Runs the fast proxy and the brute-force one along `path` in `scene` (at rest).
 pub fn check_proxy(scene: &Scene, path: &[DVec3], options: ProxyOptions) -> ProxyCheck {
     let start = path.first().copied().unwrap_or(DVec3::ZERO);
@@ -344,12 +377,7 @@ pub fn check_proxy(scene: &Scene, path: &[DVec3], options: ProxyOptions) -> Prox
     let mut brute = BruteProxy::new(scene, start, options);
     let mut check = ProxyCheck {
         ticks: path.len(),
-        contact_ticks: 0,
-        mismatches: 0,
-        max_deviation_m: 0.0,
-        inside: 0,
-        bad_forces: 0,
-        failures: Vec::new(),
+        ..ProxyCheck::empty()
     };
     let mut previous = start;
     for (tick, &hip) in path.iter().enumerate() {

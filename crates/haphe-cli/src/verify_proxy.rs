@@ -1,0 +1,141 @@
+//! `haphe verify --ticks N`: the proxy against the brute-force proxy on haptic paths over
+//! the model.
+
+use std::time::Instant;
+
+use haphe::map::MapOptions;
+use haphe::mesh::{Mesh, Surface, SurfaceOptions};
+use haphe::proxy::ProxyOptions;
+use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::verify::{ProxyCheck, check_proxy, haptic_path, haptic_path_in_contact};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Size the model is scaled to for the proxy check, metres: device speeds (m/s) and
+/// depths mean something only at the scale of a hand.
+pub const HAND_SCALE_M: f64 = 0.2;
+
+/// Ticks per independent path; longer runs use several paths with their own seeds, run
+/// in parallel and summed in order.
+const TICKS_PER_PATH: usize = 10_000;
+
+/// One kind of path and what the check found on it.
+#[derive(Debug, Serialize)]
+pub struct ProxyRow {
+    /// The kind of path.
+    pub path: &'static str,
+    /// Device speeds, m/s.
+    pub speeds_m_s: (f64, f64),
+    /// The check, summed over the paths of this kind.
+    #[serde(flatten)]
+    pub check: ProxyCheck,
+}
+
+/// The proxy check of one model.
+#[derive(Debug, Serialize)]
+pub struct ProxyReport {
+    /// Scale applied to the model (its largest side becomes [`HAND_SCALE_M`]).
+    pub scale: f64,
+    /// One row per kind of path.
+    pub rows: Vec<ProxyRow>,
+    /// Seconds for the whole check.
+    pub seconds: f64,
+}
+
+/// The path kinds: exploring (presses and slides, 0.01–2 m/s), strikes (2–10 m/s, up to
+/// 1 cm per tick), and steady contact (0.5–3 mm deep, 0.05–0.5 m/s).
+const KINDS: [(&str, (f64, f64)); 3] = [
+    ("exploring", (0.01, 2.0)),
+    ("strikes", (2.0, 10.0)),
+    ("contact", (0.05, 0.5)),
+];
+
+/// Runs `ticks` ticks of each kind of path on `surface` scaled to a hand's size, with a
+/// material with friction, comparing the proxy with the brute-force proxy at every tick.
+pub fn check(surface: &Surface, ticks: usize, seed: u64) -> anyhow::Result<ProxyReport> {
+    let start = Instant::now();
+    let (lo, hi) = surface.vertices().iter().fold(
+        (haphe::DVec3::INFINITY, haphe::DVec3::NEG_INFINITY),
+        |(lo, hi), &v| (lo.min(v), hi.max(v)),
+    );
+    let scale = HAND_SCALE_M / (hi - lo).max_element();
+    let mesh = Mesh {
+        vertices: surface
+            .vertices()
+            .iter()
+            .map(|&v| (v - lo) * scale)
+            .collect(),
+        triangles: surface.triangles().to_vec(),
+    };
+    let shape = Shape::build(
+        Surface::new(mesh, &SurfaceOptions::default())?,
+        &MapOptions::default(),
+    )?;
+    let material = Material {
+        stiffness: 800.0,
+        damping: 1.0,
+        static_friction: 0.5,
+        dynamic_friction: 0.3,
+    };
+    let shape = std::sync::Arc::new(shape);
+    // A scene per path (a scene belongs to one servo thread); the shape is shared.
+    let scene = || {
+        let mut scene = Scene::local(1);
+        let object = SceneObject::new(ObjectId(0), shape.clone(), Pose::IDENTITY, material);
+        scene.insert(object).map(|()| scene).map_err(|(e, _)| e)
+    };
+    scene()?;
+    let options = ProxyOptions::default();
+    let paths = ticks.div_ceil(TICKS_PER_PATH);
+    let jobs: Vec<(usize, usize)> = (0..KINDS.len())
+        .flat_map(|k| (0..paths).map(move |p| (k, p)))
+        .collect();
+    let checks: Vec<(usize, ProxyCheck)> = jobs
+        .par_iter()
+        .filter_map(|&(k, p)| {
+            let scene = scene().ok()?;
+            let n = TICKS_PER_PATH.min(ticks - p * TICKS_PER_PATH);
+            let seed = seed
+                .wrapping_mul(7919)
+                .wrapping_add((k * 100_003 + p) as u64);
+            let (name, speeds) = KINDS[k];
+            let path = if name == "contact" {
+                haptic_path_in_contact(&scene, n, speeds, (0.5e-3, 3e-3), 1e3, seed)
+            } else {
+                haptic_path(&scene, n, speeds, 1e3, seed)
+            };
+            Some((k, check_proxy(&scene, &path, options)))
+        })
+        .collect();
+    let rows = KINDS
+        .iter()
+        .enumerate()
+        .map(|(k, &(path, speeds_m_s))| {
+            let check = checks
+                .iter()
+                .filter(|(kk, _)| *kk == k)
+                .map(|(_, c)| c.clone())
+                .reduce(|a, b| a.merged(b))
+                .unwrap_or_else(ProxyCheck::empty);
+            ProxyRow {
+                path,
+                speeds_m_s,
+                check,
+            }
+        })
+        .collect();
+    Ok(ProxyReport {
+        scale,
+        rows,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+impl ProxyReport {
+    /// Whether every tick matched the oracle, stayed outside and rendered a bounded force.
+    pub fn passed(&self) -> bool {
+        self.rows
+            .iter()
+            .all(|r| r.check.mismatches == 0 && r.check.inside == 0 && r.check.bad_forces == 0)
+    }
+}
