@@ -429,7 +429,7 @@ proptest::proptest! {
         });
         let options = ProxyOptions { max_force, ..ProxyOptions::default() };
         let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.2), options);
-        let limit = if max_force.is_finite() && max_force > 0.0 { max_force } else { 0.0 };
+        let limit = if max_force.is_finite() && max_force >= haphe::proxy::MIN_MAX_FORCE { max_force } else { 0.0 };
         for hip in hips {
             let out = proxy.tick(&scene, hip, hip);
             proptest::prop_assert!(out.force.is_finite(), "{out:?}");

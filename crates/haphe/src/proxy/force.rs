@@ -5,6 +5,9 @@ use glam::DVec3;
 
 use crate::scene::Material;
 
+/// A maximum force below this (newtons) renders no force at all.
+pub const MIN_MAX_FORCE: f64 = 1e-9;
+
 /// The force on the device, newtons, world frame: the spring–damper
 /// `k (proxy − hip) − b v` toward the proxy, with force shading and a clamp.
 ///
@@ -44,7 +47,9 @@ pub fn contact_force(
     if !force.is_finite() {
         return (DVec3::ZERO, false);
     }
-    let max = if max_force.is_finite() && max_force > 0.0 {
+    // Below a nanonewton (far below any device) the maximum counts as zero: scaling by
+    // such tiny ratios loses the precision that keeps the result within the maximum.
+    let max = if max_force.is_finite() && max_force >= MIN_MAX_FORCE {
         max_force
     } else {
         0.0

@@ -23,7 +23,8 @@ pub const DEFAULT_SKIN: f64 = 1e-6;
 pub struct ProxyOptions {
     /// Distance kept from a touched surface, metres (see [`DEFAULT_SKIN`]).
     pub skin: f64,
-    /// Largest force rendered, newtons (the device's maximum continuous force).
+    /// Largest force rendered, newtons (the device's maximum continuous force); below
+    /// [`MIN_MAX_FORCE`](super::MIN_MAX_FORCE) no force is rendered.
     pub max_force: f64,
     /// Device points farther than this from the world origin are pulled back to it,
     /// metres: keeps every product in range whatever the input.

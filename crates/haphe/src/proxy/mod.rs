@@ -53,7 +53,7 @@ pub use constraints::{
     Constraints, MAX_CONSTRAINTS, MIN_PAIR_SINE_SQUARED, MIN_TRIPLE_DETERMINANT, Plane,
     advance_to_plane,
 };
-pub use force::{contact_force, friction_target};
+pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
 pub use godobject::{DEFAULT_SKIN, MAX_PROXY_STEPS, Proxy, ProxyOptions, clamp_to_radius};
 pub use output::{Contact, TickOutput, TickStatus};
 pub use probe::{PROBE_REACH_OF_SKIN, Probe};
