@@ -34,6 +34,7 @@
 )]
 #![deny(missing_docs)]
 
+mod array;
 pub mod map;
 pub mod mesh;
 pub mod query;
