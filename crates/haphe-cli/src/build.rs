@@ -88,8 +88,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
 
     let start = Instant::now();
     let bytes = encode(&surface, &map);
-    std::fs::write(&args.output, &bytes)
-        .with_context(|| format!("cannot write {}", args.output.display()))?;
+    crate::mapped::write_replacing(&args.output, &bytes)?;
     let t_write = start.elapsed();
 
     let stats = map.stats();

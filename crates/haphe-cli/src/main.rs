@@ -6,6 +6,7 @@ mod build;
 mod demo;
 mod generate;
 mod load;
+mod mapped;
 mod object;
 mod query;
 mod validate;

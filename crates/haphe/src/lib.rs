@@ -38,6 +38,7 @@
 )]
 #![deny(missing_docs)]
 
+mod array;
 pub mod map;
 pub mod mesh;
 pub mod proxy;

@@ -6,8 +6,9 @@ use std::sync::OnceLock;
 
 use haphe::DVec3;
 use haphe::map::{
-    CellSizeRule, CellState, FORMAT_VERSION, Grid, MAX_CLEARANCE, MapError, MapFileError,
-    MapOptions, OVERLAP_TOLERANCE_REL, VoxelMap, decode, encode, overlap_triangle_box,
+    CellSizeRule, CellState, FORMAT_VERSION, Grid, MAX_CLEARANCE, MapBytes, MapError, MapFileError,
+    MapOptions, OVERLAP_TOLERANCE_REL, VoxelMap, decode, decode_in_place, encode,
+    overlap_triangle_box,
 };
 use haphe::mesh::shapes::{self, Shape};
 use haphe::mesh::{Mesh, Surface, SurfaceOptions, TriId};

@@ -3,6 +3,7 @@
 
 use super::grid::Grid;
 use super::{CellSizeRule, CellState};
+use crate::array::Array;
 
 /// Cells along each side of a brick: `2^BRICK_BITS`.
 pub(crate) const BRICK_BITS: u32 = 3;
@@ -158,23 +159,23 @@ pub struct VoxelMap {
     pub(crate) brick_dims: [u32; 3],
     /// One entry per brick: [`UNIFORM`]-tagged (possibly [`GRADED`]) or a detailed brick
     /// index.
-    pub(crate) bricks: Vec<u32>,
+    pub(crate) bricks: Array<u32>,
     /// Per detailed brick: its surface cells.
-    pub(crate) surface_bits: Vec<BrickBits>,
+    pub(crate) surface_bits: Array<BrickBits>,
     /// Per detailed brick: its inside cells (never surface cells).
-    pub(crate) inside_bits: Vec<BrickBits>,
+    pub(crate) inside_bits: Array<BrickBits>,
     /// Per detailed brick: surface cells in the mask words before each word.
-    pub(crate) surface_before: Vec<[u16; MASK_WORDS]>,
+    pub(crate) surface_before: Array<[u16; MASK_WORDS]>,
     /// Per detailed brick (plus one): the index of its first surface cell.
-    pub(crate) surface_first: Vec<u32>,
+    pub(crate) surface_first: Array<u32>,
     /// [`NIBBLE_BYTES`] per clearance brick: the detailed bricks (same index), then the
     /// graded ones. A cell's clearance is a nibble (cell `l` in byte `l / 2`, low nibble
     /// first); 0 for a surface cell.
-    pub(crate) clearances: Vec<u8>,
+    pub(crate) clearances: Array<u8>,
     /// Per surface cell (plus one): where its triangles start in `triangle_refs`.
-    pub(crate) triangle_start: Vec<u32>,
+    pub(crate) triangle_start: Array<u32>,
     /// Triangle indices of all surface cells, cell after cell.
-    pub(crate) triangle_refs: Vec<u32>,
+    pub(crate) triangle_refs: Array<u32>,
     /// Triangles of the surface the map was built for.
     pub(crate) triangle_count: u32,
     /// Whether inside cells were classified (the surface is a solid).
@@ -317,15 +318,14 @@ impl VoxelMap {
 
     /// Bytes of heap memory the map holds.
     pub fn heap_bytes(&self) -> usize {
-        use std::mem::size_of;
-        (self.bricks.capacity()
-            + self.surface_first.capacity()
-            + self.triangle_start.capacity()
-            + self.triangle_refs.capacity())
-            * size_of::<u32>()
-            + (self.surface_bits.capacity() + self.inside_bits.capacity()) * size_of::<BrickBits>()
-            + self.surface_before.capacity() * size_of::<[u16; MASK_WORDS]>()
-            + self.clearances.capacity()
+        self.bricks.heap_bytes()
+            + self.surface_bits.heap_bytes()
+            + self.inside_bits.heap_bytes()
+            + self.surface_before.heap_bytes()
+            + self.surface_first.heap_bytes()
+            + self.clearances.heap_bytes()
+            + self.triangle_start.heap_bytes()
+            + self.triangle_refs.heap_bytes()
     }
 
     /// Number of detailed bricks.

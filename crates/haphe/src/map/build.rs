@@ -138,7 +138,11 @@ pub(super) fn build_on_grid(
 
     let solid = surface.is_solid();
     let mut map = assemble(&keys, grid, solid);
-    map.triangle_refs = keys.par_iter().map(|&k| k as u32).collect();
+    map.triangle_refs = keys
+        .par_iter()
+        .map(|&k| k as u32)
+        .collect::<Vec<u32>>()
+        .into();
     drop(keys);
     map.triangle_count = surface.triangle_count() as u32;
     map.cell_size_rule = rule;
@@ -149,14 +153,14 @@ pub(super) fn build_on_grid(
     }
     progress(PROGRESS_FILLED);
     compute_clearance(&mut map);
-    map.bricks.shrink_to_fit();
-    map.surface_bits.shrink_to_fit();
-    map.inside_bits.shrink_to_fit();
-    map.surface_before.shrink_to_fit();
-    map.surface_first.shrink_to_fit();
-    map.triangle_start.shrink_to_fit();
-    map.triangle_refs.shrink_to_fit();
-    map.clearances.shrink_to_fit();
+    map.bricks.to_mut().shrink_to_fit();
+    map.surface_bits.to_mut().shrink_to_fit();
+    map.inside_bits.to_mut().shrink_to_fit();
+    map.surface_before.to_mut().shrink_to_fit();
+    map.surface_first.to_mut().shrink_to_fit();
+    map.triangle_start.to_mut().shrink_to_fit();
+    map.triangle_refs.to_mut().shrink_to_fit();
+    map.clearances.to_mut().shrink_to_fit();
     Ok(map)
 }
 
@@ -198,7 +202,7 @@ fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
     }
     surface_first.push(triangle_start.len() as u32);
     triangle_start.push(keys.len() as u32);
-    let surface_before = surface_bits
+    let surface_before: Vec<[u16; MASK_WORDS]> = surface_bits
         .iter()
         .map(|bits| {
             let mut before = [0u16; MASK_WORDS];
@@ -211,14 +215,14 @@ fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
     VoxelMap {
         grid,
         brick_dims: bdims,
-        bricks,
-        inside_bits: vec![[0; MASK_WORDS]; surface_bits.len()],
-        surface_bits,
-        surface_before,
-        surface_first,
-        clearances: Vec::new(),
-        triangle_start,
-        triangle_refs: Vec::new(),
+        bricks: bricks.into(),
+        inside_bits: vec![[0; MASK_WORDS]; surface_bits.len()].into(),
+        surface_bits: surface_bits.into(),
+        surface_before: surface_before.into(),
+        surface_first: surface_first.into(),
+        clearances: Default::default(),
+        triangle_start: triangle_start.into(),
+        triangle_refs: Default::default(),
         triangle_count: 0,
         solid,
         cell_size_rule: CellSizeRule::Given,

@@ -149,7 +149,7 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
     drop((current, next, along_x, along_y));
 
     let detailed_count = map.detailed_count();
-    map.clearances = vec![0; (detailed_count + graded_count) * NIBBLE_BYTES];
+    map.clearances = vec![0; (detailed_count + graded_count) * NIBBLE_BYTES].into();
     for (&s, counter) in counted.iter().zip(&counts) {
         let brick = match targets[s] {
             Target::Detailed(d) => d,

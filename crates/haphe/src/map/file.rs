@@ -1,6 +1,6 @@
 //! Saving and loading a surface with its voxel map: one checked, sectioned file.
 //!
-//! # Layout (format version 1, all numbers little-endian)
+//! # Layout (format version 2, all numbers little-endian)
 //!
 //! | bytes | content |
 //! |---|---|
@@ -9,21 +9,27 @@
 //! | 12..16 | number of sections, `u32` |
 //! | 16..24 | total file length in bytes, `u64` |
 //! | 24..56 | reserved, zero |
-//! | 56..64 | checksum, `u64`: XXH3-64 of bytes `0..56` followed by bytes `64..end` |
+//! | 56..64 | checksum, `u64`: XXH3-64 of bytes `0..56` followed by the XXH3-64 (`u64`) of each 4 MiB chunk of bytes `64..end` |
 //! | 64.. | section table: per section `kind: u32`, `element size: u32`, `offset: u64`, `length in bytes: u64`, `reserved: u64` |
 //! | … | the sections, each starting at a multiple of 64 bytes, zero padding between |
 //!
 //! The sections, in this order: the mesh report (JSON), vertices (`3 × f64` each),
-//! triangles (`3 × u32`), neighbours (`3 × u32`), corner normals (`9 × f64`), fan starts and fan triangles (`u32`), the map parameters
+//! triangles (`3 × u32`), neighbours (`3 × u32`), barycentric frames (`12 × f64`), corner
+//! normals (`9 × f64`), fan starts and fan triangles (`u32`), the map parameters
 //! (grid, counts, how the cell size was chosen), the brick entries (`u32`), the surface and
 //! inside masks of the detailed bricks (`8 × u64` each), their surface counts per mask
 //! word (`8 × u16`) and first surface cells (`u32`), the clearance nibbles of detailed then
 //! graded bricks (256 bytes each), the triangle start of each surface cell (`u32`) and the
 //! triangle references (`u32`).
 //!
-//! Loading copies each array once out of the byte buffer (any alignment), checks the
-//! checksum first, then every invariant a query relies on, so a damaged or crafted file is
-//! refused with an error and can never cause a panic or an out-of-bounds index later.
+//! Every section starts at a multiple of 64 bytes, so on a little-endian machine a loaded
+//! surface and map use their arrays in place, as views of the one buffer the file was read
+//! or mapped into ([`decode_in_place`]): loading copies nothing and recomputes nothing. It
+//! checks the checksum first (the chunks in parallel), then every invariant a query relies
+//! on, so a damaged or crafted file is refused with an error and can never cause a panic
+//! or an out-of-bounds index later.
+
+use std::ops::Range;
 
 use bytemuck::Pod;
 use glam::DVec3;
@@ -31,6 +37,7 @@ use rayon::prelude::*;
 
 use super::bricks::{BrickBits, MASK_WORDS, VoxelMap};
 use super::validate::{MapParams, check_map, check_surface, map_params_bytes, parse_map_params};
+use crate::array::{Array, MapBytes};
 use crate::mesh::{MeshReport, OwnedSurfaceParts, Surface, SurfaceParts, TriFrame};
 
 /// The first eight bytes of a map file.
@@ -38,7 +45,7 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;
@@ -48,6 +55,9 @@ const CHECKSUM_AT: usize = 56;
 const SECTION_ALIGN: usize = 64;
 /// Bytes of one section-table entry.
 const TABLE_ENTRY_BYTES: usize = 32;
+/// The checksum hashes the body in chunks of this many bytes (in parallel), then the
+/// chunks' hashes.
+const CHECKSUM_CHUNK_BYTES: usize = 4 << 20;
 
 /// Why a map file could not be loaded.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -117,11 +127,12 @@ pub(crate) fn invalid(section: &'static str, reason: impl Into<String>) -> MapFi
 }
 
 /// The sections in file order: name and element size in bytes.
-const SECTIONS: [(&str, usize); 16] = [
+const SECTIONS: [(&str, usize); 17] = [
     ("report", 1),
     ("vertices", 24),
     ("triangles", 12),
     ("neighbours", 12),
+    ("frames", 96),
     ("corner normals", 72),
     ("fan starts", 4),
     ("fan triangles", 4),
@@ -139,6 +150,13 @@ const SECTIONS: [(&str, usize); 16] = [
 /// A little-endian word of an array.
 trait Word: Pod {
     fn le(self) -> Self;
+}
+
+impl Word for u8 {
+    #[inline]
+    fn le(self) -> Self {
+        self
+    }
 }
 
 impl Word for u16 {
@@ -191,8 +209,9 @@ fn take<T: Pod, W: Word>(bytes: &[u8]) -> Vec<T> {
 /// surface is refused by [`decode`].
 ///
 /// # Performance
-/// One pass over the arrays plus a checksum, at memory speed. About 170 bytes per
-/// triangle for the surface (the shading normals, 72, dominate) plus the map's 40 to 60.
+/// One pass over the arrays plus a checksum, at memory speed. About 230 bytes per
+/// triangle for the surface (the barycentric frames, 96, and the shading normals, 72,
+/// dominate) plus the map's 40 to 60.
 ///
 /// # Examples
 /// ```
@@ -214,6 +233,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
         parts.vertices.len() * 24,
         parts.triangles.len() * 12,
         parts.neighbours.len() * 12,
+        parts.frames.len() * 96,
         parts.corner_normals.len() * 72,
         parts.fan_start.len() * 4,
         parts.fan_triangles.len() * 4,
@@ -267,6 +287,8 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     start(&mut out);
     put::<[u32; 3], u32>(&mut out, parts.neighbours);
     start(&mut out);
+    put::<TriFrame, u64>(&mut out, parts.frames);
+    start(&mut out);
     put::<[DVec3; 3], u64>(&mut out, parts.corner_normals);
     start(&mut out);
     put::<u32, u32>(&mut out, parts.fan_start);
@@ -296,11 +318,20 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     out
 }
 
-/// XXH3-64 of the file without its checksum field.
+/// The checksum of a file: XXH3-64 of the header without its checksum field followed by
+/// the XXH3-64 of each [`CHECKSUM_CHUNK_BYTES`] chunk of the rest (hashed in parallel).
 fn checksum(bytes: &[u8]) -> u64 {
+    let chunks: Vec<u64> = bytes
+        .get(HEADER_BYTES..)
+        .unwrap_or(&[])
+        .par_chunks(CHECKSUM_CHUNK_BYTES)
+        .map(xxhash_rust::xxh3::xxh3_64)
+        .collect();
     let mut hasher = xxhash_rust::xxh3::Xxh3::new();
     hasher.update(bytes.get(..CHECKSUM_AT).unwrap_or(&[]));
-    hasher.update(bytes.get(HEADER_BYTES..).unwrap_or(&[]));
+    for chunk in chunks {
+        hasher.update(&chunk.to_le_bytes());
+    }
     hasher.digest()
 }
 
@@ -320,7 +351,18 @@ pub(crate) fn u64_at(bytes: &[u8], at: usize) -> u64 {
         .map_or(0, u64::from_le_bytes)
 }
 
-/// Loads a surface and its voxel map from the bytes [`encode`] wrote.
+/// Loads a surface and its voxel map from the bytes [`encode`] wrote, copying them once
+/// into an aligned buffer: [`decode_in_place`] of [`MapBytes::copy_from_slice`].
+///
+/// # Errors
+/// As [`decode_in_place`].
+pub fn decode(bytes: &[u8]) -> Result<(Surface, VoxelMap), MapFileError> {
+    decode_in_place(&MapBytes::copy_from_slice(bytes))
+}
+
+/// Loads a surface and its voxel map from the bytes [`encode`] wrote, using their arrays
+/// in place: the surface and map keep a reference to `bytes` and copy nothing (on a
+/// big-endian machine, the arrays are copied and byte-swapped).
 ///
 /// # Errors
 /// In the order checked: [`MapFileError::Truncated`] (shorter than a header),
@@ -329,17 +371,28 @@ pub(crate) fn u64_at(bytes: &[u8], at: usize) -> u64 {
 /// header's), [`MapFileError::ChecksumMismatch`], then [`MapFileError::Invalid`] naming
 /// the section and the index where the content breaks an invariant of [`Surface`] or
 /// [`VoxelMap`] (indices out of range, offsets not increasing, dimensions inconsistent,
-/// non-finite coordinates, a map built for another surface). The barycentric frames are
-/// recomputed; the shading normals and the clearances are checked for range, not
-/// recomputed: a crafted file with a valid checksum can make them wrong, never unsafe to
-/// use.
+/// non-finite coordinates, a map built for another surface). The barycentric frames, the
+/// shading normals and the clearances are checked for range, not recomputed: a crafted
+/// file with a valid checksum can make them wrong, never unsafe to use.
 ///
 /// # Performance
-/// One copy of each array out of `bytes` (any alignment), a checksum at memory speed,
-/// linear checks and the frames recomputed in parallel. The copies dominate: for a
-/// million triangles (about 220 MB) decoding takes about as long as copying the buffer
-/// once into fresh memory.
-pub fn decode(bytes: &[u8]) -> Result<(Surface, VoxelMap), MapFileError> {
+/// A checksum at memory speed (its chunks in parallel) and linear checks, nothing copied
+/// or recomputed: for a million triangles (about 270 MB) a few tens of milliseconds, most
+/// of it the checksum. Reading the file is the caller's: [`MapBytes::from_mmap`] of a
+/// mapped file costs no copy at all, [`MapBytes::read_from`] one copy into fresh memory.
+///
+/// # Examples
+/// ```
+/// use haphe::map::{decode_in_place, encode, MapBytes, MapOptions, VoxelMap};
+/// use haphe::mesh::{shapes, Surface, SurfaceOptions};
+/// let surface = Surface::new(shapes::sphere(0.1, 2), &SurfaceOptions::default()).unwrap();
+/// let map = VoxelMap::build(&surface, &MapOptions::default()).unwrap();
+/// let bytes = MapBytes::read_from(&encode(&surface, &map)[..]).unwrap();
+/// let (surface2, map2) = decode_in_place(&bytes).unwrap();
+/// assert_eq!((surface2.triangles(), &map2), (surface.triangles(), &map));
+/// ```
+pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileError> {
+    let bytes = file.as_slice();
     let found = bytes.len() as u64;
     let header = bytes.get(..HEADER_BYTES).ok_or(MapFileError::Truncated {
         expected: HEADER_BYTES as u64,
@@ -370,12 +423,13 @@ pub fn decode(bytes: &[u8]) -> Result<(Surface, VoxelMap), MapFileError> {
         return Err(MapFileError::ChecksumMismatch { stored, computed });
     }
 
-    let sections = section_slices(bytes)?;
+    let sections = section_ranges(bytes)?;
     let [
         report,
         vertices,
         triangles,
         neighbours,
+        frames,
         corner_normals,
         fan_start,
         fan_triangles,
@@ -390,43 +444,33 @@ pub fn decode(bytes: &[u8]) -> Result<(Surface, VoxelMap), MapFileError> {
         triangle_refs,
     ] = sections;
 
-    let report: MeshReport = serde_json::from_slice(report)
+    let report: MeshReport = serde_json::from_slice(&bytes[report])
         .map_err(|e| invalid("report", format!("not a mesh report: {e}")))?;
-    let mut parts: OwnedSurfaceParts = SurfaceParts {
-        vertices: take::<DVec3, u64>(vertices),
-        triangles: take::<[u32; 3], u32>(triangles),
-        neighbours: take::<[u32; 3], u32>(neighbours),
-        frames: Vec::new(),
-        corner_normals: take::<[DVec3; 3], u64>(corner_normals),
-        fan_start: take::<u32, u32>(fan_start),
-        fan_triangles: take::<u32, u32>(fan_triangles),
+    let parts: OwnedSurfaceParts = SurfaceParts {
+        vertices: array::<DVec3, u64>(file, vertices),
+        triangles: array::<[u32; 3], u32>(file, triangles),
+        neighbours: array::<[u32; 3], u32>(file, neighbours),
+        frames: array::<TriFrame, u64>(file, frames),
+        corner_normals: array::<[DVec3; 3], u64>(file, corner_normals),
+        fan_start: array::<u32, u32>(file, fan_start),
+        fan_triangles: array::<u32, u32>(file, fan_triangles),
         report,
     };
     check_surface(&parts)?;
-    // The barycentric frames are recomputed (in parallel, as `Surface::new` computes them):
-    // cheaper than reading 96 bytes per triangle, and consistent by construction.
-    parts.frames = parts
-        .triangles
-        .par_iter()
-        .map(|tri| {
-            let [a, b, c] = tri.map(|v| parts.vertices[v as usize]);
-            TriFrame::new(a, b, c)
-        })
-        .collect();
     let surface = Surface::from_parts(parts);
 
-    let params = parse_map_params(params)?;
+    let params = parse_map_params(&bytes[params])?;
     let map = VoxelMap {
         grid: params.grid,
         brick_dims: super::bricks::brick_dims(params.grid.dims()),
-        bricks: take::<u32, u32>(bricks),
-        surface_bits: take::<BrickBits, u64>(surface_bits),
-        inside_bits: take::<BrickBits, u64>(inside_bits),
-        surface_before: take::<[u16; MASK_WORDS], u16>(surface_before),
-        surface_first: take::<u32, u32>(surface_first),
-        clearances: clearances.to_vec(),
-        triangle_start: take::<u32, u32>(triangle_start),
-        triangle_refs: take::<u32, u32>(triangle_refs),
+        bricks: array::<u32, u32>(file, bricks),
+        surface_bits: array::<BrickBits, u64>(file, surface_bits),
+        inside_bits: array::<BrickBits, u64>(file, inside_bits),
+        surface_before: array::<[u16; MASK_WORDS], u16>(file, surface_before),
+        surface_first: array::<u32, u32>(file, surface_first),
+        clearances: array::<u8, u8>(file, clearances),
+        triangle_start: array::<u32, u32>(file, triangle_start),
+        triangle_refs: array::<u32, u32>(file, triangle_refs),
         triangle_count: params.triangle_count,
         solid: params.solid,
         cell_size_rule: params.cell_size_rule,
@@ -435,10 +479,22 @@ pub fn decode(bytes: &[u8]) -> Result<(Surface, VoxelMap), MapFileError> {
     Ok((surface, map))
 }
 
+/// The array of little-endian words `W` at `range` of `file`: a view in place on a
+/// little-endian machine, else a copy. `range` is inside the file and a whole number of
+/// elements (checked by [`section_ranges`]).
+fn array<T: Pod, W: Word>(file: &MapBytes, range: Range<usize>) -> Array<T> {
+    if cfg!(target_endian = "little")
+        && let Some(view) = Array::view(file, range.clone())
+    {
+        return view;
+    }
+    take::<T, W>(file.as_slice().get(range).unwrap_or(&[])).into()
+}
+
 /// The byte ranges of the sections, after checking the table: the expected kinds in
 /// order, element sizes, 64-byte aligned offsets in increasing order without overlap,
 /// lengths that are whole elements and inside the file.
-fn section_slices(bytes: &[u8]) -> Result<[&[u8]; SECTIONS.len()], MapFileError> {
+fn section_ranges(bytes: &[u8]) -> Result<[Range<usize>; SECTIONS.len()], MapFileError> {
     let count = u32_at(bytes, 12) as usize;
     if count != SECTIONS.len() {
         return Err(invalid(
@@ -452,7 +508,7 @@ fn section_slices(bytes: &[u8]) -> Result<[&[u8]; SECTIONS.len()], MapFileError>
     {
         return Err(invalid("header", "reserved bytes are not zero"));
     }
-    let mut slices: [&[u8]; SECTIONS.len()] = [&[]; SECTIONS.len()];
+    let mut slices: [Range<usize>; SECTIONS.len()] = std::array::from_fn(|_| 0..0);
     let mut end_of_previous = (HEADER_BYTES + count * TABLE_ENTRY_BYTES) as u64;
     for (kind, (&(name, elem), slice)) in SECTIONS.iter().zip(slices.iter_mut()).enumerate() {
         let at = HEADER_BYTES + kind * TABLE_ENTRY_BYTES;
@@ -482,7 +538,7 @@ fn section_slices(bytes: &[u8]) -> Result<[&[u8]; SECTIONS.len()], MapFileError>
             .checked_add(len)
             .filter(|&end| end <= bytes.len() as u64)
             .ok_or_else(|| invalid(name, format!("bytes {offset}+{len} run past the end")))?;
-        *slice = &bytes[offset as usize..end as usize];
+        *slice = offset as usize..end as usize;
         end_of_previous = end;
     }
     Ok(slices)

@@ -26,7 +26,9 @@
 //! Storage is sparse ([`VoxelMap`]): bricks of 8×8×8 cells, uniform bricks far from the
 //! surface cost four bytes each. The build is parallel and deterministic: the same surface
 //! and options give the same map, byte for byte, for any number of threads. [`encode`] and
-//! [`decode`] save and load a surface with its map in one checked file.
+//! [`decode`] save and load a surface with its map in one checked file;
+//! [`decode_in_place`] loads it without copying, its arrays used in place in the file's
+//! bytes ([`MapBytes`], read into one aligned buffer or mapped).
 //!
 //! # Choosing the cell size
 //!
@@ -47,8 +49,9 @@ mod overlap;
 mod validate;
 mod walk;
 
+pub use crate::array::MapBytes;
 pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
-pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, encode};
+pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode};
 pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL, PADDING_SLACK_REL};
 pub use overlap::overlap_triangle_box;
 pub use walk::{CellStep, CellWalk};

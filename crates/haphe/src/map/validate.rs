@@ -135,20 +135,40 @@ pub(crate) fn parse_map_params(bytes: &[u8]) -> Result<MapParams, MapFileError> 
     })
 }
 
+/// Values checked per vectorised chunk (the position of a fault is looked for only after
+/// a chunk fails).
+const CHECK_CHUNK: usize = 1024;
+
+/// The index of the first row of `width` values in `values` with a non-finite value.
+fn first_non_finite(values: &[f64], width: usize) -> Option<usize> {
+    let finite = values
+        .chunks(CHECK_CHUNK)
+        .all(|c| c.iter().fold(true, |ok, x| ok & x.is_finite()));
+    if finite {
+        return None;
+    }
+    values
+        .iter()
+        .position(|x| !x.is_finite())
+        .map(|i| i / width.max(1))
+}
+
 /// The invariants of [`Surface`] that later stages index with.
 pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
-    let (v, t) = (p.vertices.len(), p.triangles.len());
+    // The arrays as plain slices once (a loaded array is a view; see `crate::array`).
+    let (triangles, neighbours): (&[[u32; 3]], &[[u32; 3]]) = (&p.triangles, &p.neighbours);
+    let (fan_start, fan_triangles): (&[u32], &[u32]) = (&p.fan_start, &p.fan_triangles);
+    let (v, t) = (p.vertices.len(), triangles.len());
     if t == 0 || t >= NONE as usize || v >= NONE as usize {
         return Err(invalid(
             "triangles",
             format!("{t} triangles and {v} vertices"),
         ));
     }
-    if let Some(i) = p.vertices.iter().position(|x| !x.is_finite()) {
+    if let Some(i) = first_non_finite(bytemuck::cast_slice(&p.vertices), 3) {
         return Err(invalid("vertices", format!("vertex {i} is not finite")));
     }
-    if let Some(i) = p
-        .triangles
+    if let Some(i) = triangles
         .iter()
         .position(|tri| tri.iter().any(|&x| x as usize >= v))
     {
@@ -157,16 +177,15 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             format!("triangle {i} has a vertex index out of range (of {v})"),
         ));
     }
-    if p.neighbours.len() != t {
+    if neighbours.len() != t {
         return Err(invalid(
             "neighbours",
-            format!("{} rows for {t} triangles", p.neighbours.len()),
+            format!("{} rows for {t} triangles", neighbours.len()),
         ));
     }
-    for (i, row) in p.neighbours.iter().enumerate() {
+    for (i, row) in neighbours.iter().enumerate() {
         for &n in row {
-            let linked_back = p
-                .neighbours
+            let linked_back = neighbours
                 .get(n as usize)
                 .is_some_and(|back| n as usize != i && back.contains(&(i as u32)));
             if n != NONE && !linked_back {
@@ -179,26 +198,34 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             }
         }
     }
+    if p.frames.len() != t {
+        return Err(invalid(
+            "frames",
+            format!("{} frames for {t} triangles", p.frames.len()),
+        ));
+    }
+    if let Some(i) = first_non_finite(bytemuck::cast_slice(&p.frames), 12) {
+        return Err(invalid(
+            "frames",
+            format!("triangle {i} has a non-finite frame"),
+        ));
+    }
     if p.corner_normals.len() != t {
         return Err(invalid(
             "corner normals",
             format!("{} rows for {t} triangles", p.corner_normals.len()),
         ));
     }
-    if let Some(i) = p
-        .corner_normals
-        .iter()
-        .position(|n| n.iter().any(|x| !x.is_finite()))
-    {
+    if let Some(i) = first_non_finite(bytemuck::cast_slice(&p.corner_normals), 9) {
         return Err(invalid(
             "corner normals",
             format!("triangle {i} has a non-finite normal"),
         ));
     }
-    let starts = &p.fan_start;
+    let starts = fan_start;
     if starts.len() != v + 1
         || starts.first() != Some(&0)
-        || starts.last().map(|&x| x as usize) != Some(p.fan_triangles.len())
+        || starts.last().map(|&x| x as usize) != Some(fan_triangles.len())
         || starts.windows(2).any(|w| w[0] > w[1])
     {
         return Err(invalid(
@@ -206,18 +233,16 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             format!(
                 "{} starts for {v} vertices and {} fan entries: not 0, non-decreasing, up to the entries",
                 starts.len(),
-                p.fan_triangles.len()
+                fan_triangles.len()
             ),
         ));
     }
     for (vertex, w) in starts.windows(2).enumerate() {
-        let fan = p
-            .fan_triangles
+        let fan = fan_triangles
             .get(w[0] as usize..w[1] as usize)
             .unwrap_or(&[]);
         for &tri in fan {
-            let has_corner = p
-                .triangles
+            let has_corner = triangles
                 .get(tri as usize)
                 .is_some_and(|corners| corners.contains(&(vertex as u32)));
             if !has_corner {
@@ -409,7 +434,14 @@ fn check_detailed(map: &VoxelMap) -> Result<(), MapFileError> {
         }
     }
     let graded = map.clearances.get(detailed * NIBBLE_BYTES..).unwrap_or(&[]);
-    if let Some(i) = graded.iter().position(|&b| b & 0x0f == 0 || b & 0xf0 == 0) {
+    let has_zero_nibble = |b: &u8| b & 0x0f == 0 || b & 0xf0 == 0;
+    let clean = graded
+        .chunks(CHECK_CHUNK)
+        .all(|c| !c.iter().fold(false, |any, b| any | has_zero_nibble(b)));
+    if let Some(i) = (!clean)
+        .then(|| graded.iter().position(has_zero_nibble))
+        .flatten()
+    {
         return Err(invalid(
             "clearances",
             format!(
@@ -425,11 +457,28 @@ fn check_detailed(map: &VoxelMap) -> Result<(), MapFileError> {
 /// The cells of a brick whose clearance nibble is zero (`bytes` holds the brick's
 /// [`NIBBLE_BYTES`]; missing bytes count as zero).
 fn zero_nibbles(bytes: &[u8]) -> BrickBits {
+    const LOW: u64 = 0x0f0f_0f0f_0f0f_0f0f;
     let mut bits = [0u64; MASK_WORDS];
-    for local in 0..BRICK_CELLS {
-        let byte = bytes.get(local >> 1).copied().unwrap_or(0);
-        if (byte >> ((local & 1) * 4)) & 0xf == 0 {
-            bits[local >> 6] |= 1 << (local & 63);
+    for (word, out) in bits.iter_mut().enumerate() {
+        // 64 cells = 32 bytes = four u64 lanes of 16 nibbles each.
+        for lane in 0..4 {
+            let at = word * 32 + lane * 8;
+            let x = bytes
+                .get(at..at + 8)
+                .and_then(|b| b.try_into().ok())
+                .map_or(0, u64::from_le_bytes);
+            // Per byte: bit 0 set when the low nibble is zero, bit 1 when the high one is.
+            let (lo, hi) = (x & LOW, (x >> 4) & LOW);
+            let lo_zero = !((lo + LOW) >> 4) & 0x0101_0101_0101_0101;
+            let hi_zero = !((hi + LOW) >> 4) & 0x0101_0101_0101_0101;
+            let mut pairs = lo_zero | (hi_zero << 1);
+            // Gather the eight 2-bit groups into 16 bits (cell 2k is bit 2k).
+            let mut gathered = 0u64;
+            for k in 0..8 {
+                gathered |= (pairs & 3) << (2 * k);
+                pairs >>= 8;
+            }
+            *out |= gathered << (16 * lane);
         }
     }
     bits
@@ -455,18 +504,28 @@ fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
             ),
         ));
     }
-    for (s, w) in starts.windows(2).enumerate() {
-        let list = map
-            .triangle_refs
-            .get(w[0] as usize..w[1] as usize)
-            .unwrap_or(&[]);
-        let sorted = list.windows(2).all(|p| p[0] < p[1]);
-        if !sorted || list.last().is_some_and(|&x| x as usize >= t) {
-            return Err(invalid(
-                "triangle references",
-                format!("surface cell {s} lists triangles not increasing or out of range (of {t})"),
-            ));
-        }
+    // Every list increasing: the descents of the whole array are exactly those at list
+    // borders (counted in two linear passes, the first vectorised), and all below `t`.
+    let refs = &map.triangle_refs;
+    let descents: usize = refs.windows(2).map(|w| usize::from(w[0] >= w[1])).sum();
+    let at_borders: usize = starts
+        .iter()
+        .filter_map(|&s| Some(s as usize).filter(|&s| s > 0 && s < refs.len()))
+        .map(|s| usize::from(refs[s - 1] >= refs[s]))
+        .sum();
+    let max = refs.iter().fold(0u32, |m, &x| m.max(x));
+    if descents != at_borders || (!refs.is_empty() && max as usize >= t) {
+        let s = starts
+            .windows(2)
+            .position(|w| {
+                let list = refs.get(w[0] as usize..w[1] as usize).unwrap_or(&[]);
+                !list.windows(2).all(|p| p[0] < p[1]) || list.iter().any(|&x| x as usize >= t)
+            })
+            .unwrap_or(0);
+        return Err(invalid(
+            "triangle references",
+            format!("surface cell {s} lists triangles not increasing or out of range (of {t})"),
+        ));
     }
     Ok(())
 }

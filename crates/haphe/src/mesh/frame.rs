@@ -14,7 +14,8 @@ use glam::DVec3;
 /// `dual_c · (b − a) = 0`, `dual_c · (c − a) = 1`, both duals lie in the plane, and `normal`
 /// has unit length. A degenerate (zero-area) triangle (see [`is_degenerate_triangle`]) has all three vectors zero, so its
 /// coordinates come out as `(1, 0, 0)` and it is never taken as a hit.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 pub struct TriFrame {
     /// Corner `a`, metres, object frame.
     pub origin: DVec3,

@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use crate::array::Array;
+
 use super::edges::{EdgeTable, has_distinct_corners};
 use super::frame::TriFrame;
 use super::ids::{NONE, TriId, VertId};
@@ -51,13 +53,13 @@ pub enum SurfaceError {
 /// - `corner_normals(t)` are unit shading normals respecting the crease angle.
 #[derive(Debug, Clone)]
 pub struct Surface {
-    vertices: Vec<DVec3>,
-    triangles: Vec<[u32; 3]>,
-    neighbours: Vec<[u32; 3]>,
-    frames: Vec<TriFrame>,
-    corner_normals: Vec<[DVec3; 3]>,
-    fan_start: Vec<u32>,
-    fan_triangles: Vec<u32>,
+    vertices: Array<DVec3>,
+    triangles: Array<[u32; 3]>,
+    neighbours: Array<[u32; 3]>,
+    frames: Array<TriFrame>,
+    corner_normals: Array<[DVec3; 3]>,
+    fan_start: Array<u32>,
+    fan_triangles: Array<u32>,
     report: MeshReport,
 }
 
@@ -115,13 +117,13 @@ impl Surface {
             options.crease_angle_rad,
         );
         Ok(Surface {
-            vertices,
-            triangles,
-            neighbours,
-            frames,
-            corner_normals,
-            fan_start,
-            fan_triangles,
+            vertices: vertices.into(),
+            triangles: triangles.into(),
+            neighbours: neighbours.into(),
+            frames: frames.into(),
+            corner_normals: corner_normals.into(),
+            fan_start: fan_start.into(),
+            fan_triangles: fan_triangles.into(),
             report,
         })
     }
@@ -224,13 +226,13 @@ impl Surface {
 
     /// Bytes of memory the surface holds (without the report).
     pub fn heap_bytes(&self) -> usize {
-        use std::mem::size_of;
-        self.vertices.capacity() * size_of::<DVec3>()
-            + self.triangles.capacity() * size_of::<[u32; 3]>()
-            + self.neighbours.capacity() * size_of::<[u32; 3]>()
-            + self.frames.capacity() * size_of::<TriFrame>()
-            + self.corner_normals.capacity() * size_of::<[DVec3; 3]>()
-            + (self.fan_start.capacity() + self.fan_triangles.capacity()) * size_of::<u32>()
+        self.vertices.heap_bytes()
+            + self.triangles.heap_bytes()
+            + self.neighbours.heap_bytes()
+            + self.frames.heap_bytes()
+            + self.corner_normals.heap_bytes()
+            + self.fan_start.heap_bytes()
+            + self.fan_triangles.heap_bytes()
     }
 }
 
@@ -256,7 +258,7 @@ pub(crate) struct SurfaceParts<V, T, F, N, U> {
 
 /// Owned parts, as [`Surface::from_parts`] takes them.
 pub(crate) type OwnedSurfaceParts =
-    SurfaceParts<Vec<DVec3>, Vec<[u32; 3]>, Vec<TriFrame>, Vec<[DVec3; 3]>, Vec<u32>>;
+    SurfaceParts<Array<DVec3>, Array<[u32; 3]>, Array<TriFrame>, Array<[DVec3; 3]>, Array<u32>>;
 
 /// Borrowed parts, as [`Surface::parts`] gives them (the report is cloned).
 pub(crate) type SurfacePartsRef<'a> =

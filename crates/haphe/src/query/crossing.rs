@@ -23,37 +23,76 @@ pub struct Crossing {
     pub entering: bool,
 }
 
-/// Slots of the per-query table of triangles already tested (a power of two). A segment
-/// that meets more distinct triangles than fit simply tests some twice (the answer is the
-/// same); see [`first_crossing`].
+/// Triangles remembered in a plain list before the table of [`TESTED_SLOTS`] is used: most
+/// queries meet fewer, and a list needs no clearing.
+const TESTED_LIST: usize = 32;
+
+/// Slots of the per-query table of triangles already tested (a power of two), used once
+/// the list is full. A segment that meets more distinct triangles than fit simply tests
+/// some twice (the answer is the same); see [`first_crossing`].
 const TESTED_SLOTS: usize = 256;
 
-/// A fixed-size, allocation-free set of triangle indices (open addressing, no removal).
+/// A fixed-size, allocation-free set of triangle indices: a short list, then (only for
+/// the rare query that meets more triangles) a hash table with open addressing. Nothing
+/// is cleared per query beyond the list's length.
 pub(crate) struct Tested {
-    slots: [u32; TESTED_SLOTS],
+    list: [u32; TESTED_LIST],
     len: usize,
+    table: Option<[u32; TESTED_SLOTS]>,
+    table_len: usize,
 }
 
 impl Tested {
     pub fn new() -> Tested {
         Tested {
-            slots: [u32::MAX; TESTED_SLOTS],
+            list: [0; TESTED_LIST],
             len: 0,
+            table: None,
+            table_len: 0,
         }
     }
 
     /// Inserts `t`; `false` when it was already there. When the table is three quarters
     /// full, it answers `true` without remembering (`overflowed` says so).
+    #[inline]
     pub fn insert(&mut self, t: u32) -> bool {
+        if self.table.is_none() {
+            if self.list[..self.len].contains(&t) {
+                return false;
+            }
+            if self.len < TESTED_LIST {
+                self.list[self.len] = t;
+                self.len += 1;
+                return true;
+            }
+        }
+        self.insert_in_table(t)
+    }
+
+    #[cold]
+    fn insert_in_table(&mut self, t: u32) -> bool {
+        if self.table.is_none() {
+            self.table = Some([u32::MAX; TESTED_SLOTS]);
+            for k in 0..self.len {
+                self.table_insert(self.list[k]);
+            }
+        }
+        self.table_insert(t)
+    }
+
+    fn table_insert(&mut self, t: u32) -> bool {
         if self.overflowed() {
             return true;
         }
+        let Some(slots) = self.table.as_mut() else {
+            return true;
+        };
         let mut i = (t.wrapping_mul(0x9E37_79B1) >> 24) as usize % TESTED_SLOTS;
         loop {
-            match self.slots[i] {
+            match slots[i] {
                 u32::MAX => {
-                    self.slots[i] = t;
-                    self.len += 1;
+                    slots[i] = t;
+                    self.table_len += 1;
                     return true;
                 }
                 s if s == t => return false,
@@ -64,7 +103,7 @@ impl Tested {
 
     /// Whether the table stopped remembering.
     pub fn overflowed(&self) -> bool {
-        4 * self.len >= 3 * TESTED_SLOTS
+        4 * self.table_len >= 3 * TESTED_SLOTS
     }
 }
 
@@ -75,7 +114,8 @@ impl Tested {
 /// [`first_crossing_brute_force`], which this always equals.
 ///
 /// # Real-time
-/// No allocation (a 1 KiB table on the stack), no lock, no panic; visits at most
+/// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
+/// the stack), no lock, no panic; visits at most
 /// the grid's `dims[0] + dims[1] + dims[2]` cells. Non-finite input gives `None`.
 pub fn first_crossing(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -> Option<Crossing> {
     first_crossing_where(surface, map, p0, p1, |_| true)
