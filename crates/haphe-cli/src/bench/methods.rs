@@ -14,10 +14,12 @@
 
 use haphe::map::VoxelMap;
 use haphe::mesh::Surface;
+use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::query::{
     classify_point, closest_point_triangle, first_crossing, first_crossing_brute_force,
     nearest_point_brute_force, walk_to_nearest,
 };
+use haphe::scene::{Material, Scene};
 use haphe::verify::WindingOracle;
 use parry3d_f64::query::{PointQuery, Ray, RayCast};
 use parry3d_f64::shape::TriMesh;
@@ -47,6 +49,8 @@ pub enum Query {
     Walk,
     /// One closest point on the triangle the walk stands on: the least a query can cost.
     Floor,
+    /// A proxy tick along a path in steady contact: the whole haptic tick.
+    Contact,
     /// Building the structures from the welded mesh.
     Build,
     /// Loading a saved surface and map (checks included).
@@ -55,7 +59,7 @@ pub enum Query {
 
 impl Query {
     /// Every kind, in the order of the report.
-    pub const ALL: [Query; 9] = [
+    pub const ALL: [Query; 10] = [
         Query::FreeSpace,
         Query::Segment,
         Query::SegmentRandom,
@@ -63,12 +67,13 @@ impl Query {
         Query::InsideRandom,
         Query::Walk,
         Query::Floor,
+        Query::Contact,
         Query::Build,
         Query::Decode,
     ];
 
     /// The kinds timed one query at a time.
-    pub const TIMED: [Query; 7] = [
+    pub const TIMED: [Query; 8] = [
         Query::FreeSpace,
         Query::Segment,
         Query::SegmentRandom,
@@ -76,6 +81,7 @@ impl Query {
         Query::InsideRandom,
         Query::Walk,
         Query::Floor,
+        Query::Contact,
     ];
 
     /// The name in tables, JSON records and plot file names.
@@ -88,6 +94,7 @@ impl Query {
             Query::InsideRandom => "inside_random",
             Query::Walk => "walk",
             Query::Floor => "floor",
+            Query::Contact => "contact",
             Query::Build => "build",
             Query::Decode => "decode",
         }
@@ -125,6 +132,12 @@ impl Query {
             }
             Query::Floor => {
                 "floor: one `closest_point_triangle` on the triangle the walk stands on"
+            }
+            Query::Contact => {
+                "contact tick along a path in steady contact (0.5–3 mm deep, 0.05–0.5 m/s at \
+                 1 kHz, scaled to the object): haphe `Proxy::tick` (god-object: crossings, \
+                 constraint planes, surface walk, force); parry: the nearest-point proxy, \
+                 `project_local_point(hip, true)`, its point when inside, and the spring force"
             }
             Query::Build => {
                 "build from the welded mesh (haphe `Surface::new` + `VoxelMap::build`; parry \
@@ -175,6 +188,8 @@ pub struct Context<'a> {
     pub brute_samples: usize,
     /// The query streams.
     pub streams: &'a Streams,
+    /// A scene holding the mesh alone, at rest, for the proxy.
+    pub scene: &'a Scene,
 }
 
 /// The times of one method on one query kind.
@@ -266,6 +281,7 @@ fn chunk_lengths(query: Query, streams: &Streams) -> Vec<usize> {
             streams.near.iter().map(|t| t.positions.len()).collect()
         }
         Query::InsideRandom => lengths(&streams.random_points),
+        Query::Contact => lengths(&streams.contact),
         Query::Build | Query::Decode => Vec::new(),
     }
 }
@@ -278,6 +294,7 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
         parry,
         oracle,
         streams,
+        scene,
         ..
     } = cx;
     // Brute force on every `every`-th chunk: about `brute_samples` queries in all.
@@ -433,7 +450,52 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
             }),
             1,
         ),
+        Query::Contact => {
+            add(
+                Method::Haphe,
+                Box::new(move |c, out| {
+                    let path = &streams.contact[c];
+                    let mut proxy = Proxy::new(path[0], ProxyOptions::default());
+                    let mut previous = path[0];
+                    time_each(
+                        path.iter().copied(),
+                        |hip| {
+                            let velocity = (hip - previous) * TICK_RATE_HZ;
+                            previous = hip;
+                            proxy.tick(scene, hip, velocity)
+                        },
+                        out,
+                    )
+                }),
+                1,
+            );
+            if let Some(mesh) = parry {
+                let stiffness = Material::default().stiffness;
+                add(
+                    Method::Parry,
+                    Box::new(move |c, out| {
+                        time_each(
+                            streams.contact[c].iter().copied(),
+                            |hip| {
+                                let projection = mesh.project_local_point(hip, true);
+                                let proxy = if projection.is_inside {
+                                    projection.point
+                                } else {
+                                    hip
+                                };
+                                (proxy, stiffness * (proxy - hip))
+                            },
+                            out,
+                        )
+                    }),
+                    1,
+                );
+            }
+        }
         Query::Build | Query::Decode => {}
     }
     runners
 }
+
+/// The device rate the contact paths are sampled at, Hz.
+pub const TICK_RATE_HZ: f64 = 1e3;

@@ -39,11 +39,13 @@ mod timing;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{anyhow, bail};
 use haphe::mesh::shapes::Shape;
 use haphe::mesh::{Mesh, ReadOptions, Units, Weld};
+use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
 use haphe::verify::WindingOracle;
 
 use crate::load::load;
@@ -228,13 +230,29 @@ fn measure_mesh(
     if let Err(e) = &built.parry {
         eprintln!("haphe bench: {name}: parry refuses the mesh ({e}); no parry figures");
     }
-    let streams = Streams::new(&built.surface, &built.map, samples, seed);
+    let (shape, parry, cost) = (
+        Arc::new(haphe::scene::Shape::new(built.surface, built.map)),
+        built.parry,
+        built.cost,
+    );
+    let (surface, map) = (shape.surface(), shape.map());
+    let mut scene = Scene::local(1);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            shape.clone(),
+            Pose::IDENTITY,
+            Material::default(),
+        ))
+        .map_err(|(e, _)| anyhow!("{name}: {e}"))?;
+    let mut streams = Streams::new(surface, map, samples, seed);
+    streams.add_contact(&scene, seed);
     let small = triangles <= BRUTE_FORCE_MAX_TRIANGLES;
-    let oracle = small.then(|| WindingOracle::new(&built.surface));
+    let oracle = small.then(|| WindingOracle::new(surface));
     let cx = Context {
-        surface: &built.surface,
-        map: &built.map,
-        parry: built.parry.as_ref().ok(),
+        surface,
+        map,
+        parry: parry.as_ref().ok(),
         oracle: oracle.as_ref(),
         brute_samples: if small {
             (BRUTE_FORCE_TESTS_PER_SAMPLE * samples / triangles.max(1)).max(1)
@@ -242,6 +260,7 @@ fn measure_mesh(
             0
         },
         streams: &streams,
+        scene: &scene,
     };
     let measured = Query::TIMED
         .iter()
@@ -251,7 +270,7 @@ fn measure_mesh(
         name,
         family,
         triangles,
-        cost: built.cost,
+        cost,
         measured,
     })
 }

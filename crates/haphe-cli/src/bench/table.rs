@@ -227,6 +227,7 @@ fn targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
     for (query, what) in [
         (Query::FreeSpace, "free-space tick"),
         (Query::Walk, "coherent walk step"),
+        (Query::Contact, "contact tick"),
     ] {
         let worst = records
             .iter()
@@ -282,6 +283,7 @@ fn targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
             }
         }
     }
+    contact_targets(out, records)?;
     for (a, b) in extremes(records)
         .into_iter()
         .filter(|(a, _)| a.method == Method::Haphe && a.clock_overhead_ns.is_some())
@@ -306,6 +308,65 @@ fn targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
         }
     }
     writeln!(out)
+}
+
+/// The contact tick against parry's nearest-point proxy: at least 10× faster at p50 on
+/// the smallest meshes (about 1k triangles), at least 100× from about 1M triangles, and at
+/// p99.9 at least 10× at every size.
+fn contact_targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
+    let pairs: Vec<(&Record, &Record)> = records
+        .iter()
+        .filter(|r| r.query == Query::Contact && r.method == Method::Parry)
+        .filter_map(|p| {
+            records
+                .iter()
+                .find(|h| {
+                    h.query == Query::Contact && h.method == Method::Haphe && h.mesh == p.mesh
+                })
+                .map(|h| (h, p))
+        })
+        .collect();
+    let speedup =
+        |h: &Record, p: &Record, of: fn(&Record) -> f64| ratio(of(p), of(h)).unwrap_or(0.0);
+    for (what, goal, filter) in [
+        (
+            "contact tick ≥ 10× faster than parry's proxy at p50 (about 1k triangles)",
+            10.0,
+            (|t: usize| t < 5_000) as fn(usize) -> bool,
+        ),
+        (
+            "contact tick ≥ 100× faster than parry's proxy at p50 (about 1M triangles and more)",
+            100.0,
+            |t: usize| t >= 500_000,
+        ),
+    ] {
+        let worst = pairs
+            .iter()
+            .filter(|(h, _)| filter(h.triangles))
+            .map(|&(h, p)| (speedup(h, p, |r| r.p50_ns), h))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((x, h)) = worst {
+            verdict(
+                out,
+                x >= goal,
+                what,
+                &format!("worst {} ({})", times(Some(x)), h.mesh),
+            )?;
+        }
+    }
+    let worst = pairs
+        .iter()
+        .map(|&(h, p)| (speedup(h, p, |r| r.p999_ns), h))
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some((x, h)) = worst {
+        verdict(
+            out,
+            x >= 10.0,
+            "contact tick ≥ 10× faster than parry's proxy at p99.9, every size",
+            &format!("worst {} ({})", times(Some(x)), h.mesh),
+        )?;
+    }
+    Ok(())
 }
 
 fn verdict(out: &mut impl Write, met: bool, target: &str, detail: &str) -> io::Result<()> {

@@ -11,6 +11,8 @@ pub struct Pose {
     rotation: DQuat,
     /// Position of the object's origin in the world, metres.
     translation: DVec3,
+    /// The rotation is the identity (a pure translation): points move by adding only.
+    unrotated: bool,
 }
 
 impl Default for Pose {
@@ -24,6 +26,7 @@ impl Pose {
     pub const IDENTITY: Pose = Pose {
         rotation: DQuat::IDENTITY,
         translation: DVec3::ZERO,
+        unrotated: true,
     };
 
     /// A pose from a rotation (normalised here) and a translation in metres. A non-finite
@@ -42,6 +45,7 @@ impl Pose {
         Pose {
             rotation,
             translation,
+            unrotated: rotation == DQuat::IDENTITY,
         }
     }
 
@@ -63,24 +67,36 @@ impl Pose {
     /// `p_world` of a point given in the object frame.
     #[inline]
     pub fn to_world(&self, p_object: DVec3) -> DVec3 {
+        if self.unrotated {
+            return p_object + self.translation;
+        }
         self.rotation * p_object + self.translation
     }
 
     /// `p_object` of a point given in the world frame.
     #[inline]
     pub fn to_object(&self, p_world: DVec3) -> DVec3 {
+        if self.unrotated {
+            return p_world - self.translation;
+        }
         self.rotation.inverse() * (p_world - self.translation)
     }
 
     /// A direction (normal, velocity) from object axes to world axes.
     #[inline]
     pub fn vector_to_world(&self, v_object: DVec3) -> DVec3 {
+        if self.unrotated {
+            return v_object;
+        }
         self.rotation * v_object
     }
 
     /// A direction from world axes to object axes.
     #[inline]
     pub fn vector_to_object(&self, v_world: DVec3) -> DVec3 {
+        if self.unrotated {
+            return v_world;
+        }
         self.rotation.inverse() * v_world
     }
 }
