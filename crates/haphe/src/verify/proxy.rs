@@ -295,7 +295,15 @@ fn path(
         };
         (i, t, o.pose.to_world(p_object + offset * n))
     };
+    // The device starts outside every solid: a start that lands inside one (off a thin
+    // part, or across a hole) is drawn again.
     let mut at = waypoint(&mut random, None);
+    for _ in 0..MAX_START_DRAWS {
+        if !inside_a_solid(scene, at.2) {
+            break;
+        }
+        at = waypoint(&mut random, None);
+    }
     let mut p = at.2;
     while out.len() < ticks {
         let next = waypoint(&mut random, Some(at));
@@ -313,6 +321,18 @@ fn path(
         at = next;
     }
     out
+}
+
+/// Most draws of a path's starting point before the last one is kept.
+const MAX_START_DRAWS: usize = 100;
+
+/// Whether `p` (world frame) is inside one of the scene's solid objects.
+fn inside_a_solid(scene: &Scene, p: DVec3) -> bool {
+    scene.objects().iter().any(|o| {
+        o.shape.is_solid()
+            && classify_point(o.shape.surface(), o.shape.map(), o.pose.to_object(p)).0
+                == Side::Inside
+    })
 }
 
 /// The proxy against [`BruteProxy`] along a path.
