@@ -214,8 +214,9 @@ impl Segment {
     /// [`intersect_segment_triangle`]); `0` only for an edge parallel to the segment (or
     /// non-finite input).
     ///
-    /// Exactly, `E(P → Q) = −det[P − p0, Q − p0, p1 − p0] / |d[kz]|·(±1)` has the sign of
-    /// `−orient3d(P, Q, p1, p0)`; when that is 0 the line and the edge are coplanar and the
+    /// Exactly, `E(P → Q) = −det[P − p0, Q − p0, p1 − p0] / |d[kz]|` (the shear has
+    /// determinant 1, and the axis order is cyclic when `d[kz] > 0`, swapped otherwise), so
+    /// its sign is that of `−orient3d(P, Q, p1, p0)`; when that is 0 the line and the edge are coplanar and the
     /// perturbation decides: `E + ε·(−e.y) + ε²·e.x` with `e` the sheared `Q − P`, whose
     /// components have the signs of `(Q − P)[k]·d[kz] − d[k]·(Q − P)[kz]` times
     /// `sign(d[kz])`, for `k = ky` and `kx`. Every sign is computed exactly.
