@@ -9,12 +9,11 @@ use std::time::Instant;
 use anyhow::anyhow;
 use haphe::mesh::{ReadOptions, Surface};
 use haphe::verify::{
-    BruteCrossing, CrossingCheck, InsideCheck, SegmentKind, WalkCheck, WindingOracle, bounds,
-    check_crossings, check_inside, check_walk, distance_to_surface, points, segments,
+    CrossingCheck, InsideCheck, SegmentKind, WalkCheck, bounds, check_crossings_with_peer,
+    check_inside_with_peer, check_walk,
 };
 use parry3d_f64::query::{PointQuery, Ray, RayCast};
 use parry3d_f64::shape::{TriMesh, TriMeshFlags};
-use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::build::map_options;
@@ -66,35 +65,8 @@ struct CrossingRow {
     /// Of the segments from outside to inside a solid, those parry's ray cast finds no
     /// crossing on: where a parry-based renderer lets the user through.
     parry_leaks: Option<usize>,
-}
-
-/// parry's misses and leaks on the segments of one kind.
-fn parry_segments(
-    surface: &Surface,
-    mesh: &TriMesh,
-    segments: &[(haphe::DVec3, haphe::DVec3)],
-) -> (usize, usize) {
-    let brute = BruteCrossing::new(surface);
-    let oracle = surface.is_solid().then(|| WindingOracle::new(surface));
-    let counts: Vec<(bool, bool)> = segments
-        .par_iter()
-        .map(|&(p0, p1)| {
-            let crosses = brute.first_crossing(p0, p1).is_some();
-            let parry_hit = mesh
-                .cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false)
-                .is_some();
-            let outside_to_inside = oracle.as_ref().is_some_and(|o| {
-                (o.winding(p0) == 0) != (o.winding(p1) == 0)
-                    && distance_to_surface(surface, p0) > haphe::verify::ON_SURFACE_M
-                    && distance_to_surface(surface, p1) > haphe::verify::ON_SURFACE_M
-            });
-            (crosses && !parry_hit, outside_to_inside && !parry_hit)
-        })
-        .collect();
-    (
-        counts.iter().filter(|c| c.0).count(),
-        counts.iter().filter(|c| c.1).count(),
-    )
+    /// Seconds for the check (haphe, the oracles and parry together).
+    seconds: f64,
 }
 
 #[derive(Serialize)]
@@ -103,6 +75,8 @@ struct InsideRow {
     check: InsideCheck,
     /// Points (off the surface) where parry's `contains_point` disagrees with the oracle.
     parry_disagreements: Option<usize>,
+    /// Seconds for the check (haphe, the oracles and parry together).
+    seconds: f64,
 }
 
 #[derive(Serialize)]
@@ -119,6 +93,7 @@ struct Verification {
     crossings: Vec<CrossingRow>,
     inside: InsideRow,
     walk: WalkCheck,
+    walk_seconds: f64,
     /// The proxy against the brute-force proxy, when run.
     proxy: Option<crate::verify_proxy::ProxyReport>,
     passed: bool,
@@ -158,38 +133,50 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             } else {
                 args.random.unwrap_or(n)
             };
-            let check = check_crossings(surface, map, kind, n, seed);
-            let parry = parry
-                .as_ref()
-                .map(|mesh| parry_segments(surface, mesh, &segments(surface, kind, n, seed)));
+            let clock = Instant::now();
+            let peer = |p0: haphe::DVec3, p1: haphe::DVec3| {
+                parry.as_ref().is_some_and(|mesh| {
+                    mesh.cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false)
+                        .is_some()
+                })
+            };
+            let (check, parry_counts) = check_crossings_with_peer(
+                surface,
+                map,
+                kind,
+                n,
+                seed,
+                parry.is_some().then_some(&peer as _),
+            );
             CrossingRow {
                 check,
-                parry_misses: parry.map(|p| p.0),
-                parry_leaks: parry.map(|p| p.1),
+                parry_misses: parry_counts.map(|p| p.misses),
+                parry_leaks: parry_counts.map(|p| p.leaks),
+                seconds: clock.elapsed().as_secs_f64(),
             }
         })
         .collect();
 
     let n_points = args.points.unwrap_or(n);
-    let inside_check = check_inside(surface, map, n_points, args.seed);
-    let parry_disagreements = (surface.is_solid())
-        .then_some(parry.as_ref())
-        .flatten()
-        .map(|mesh| {
-            let oracle = WindingOracle::new(surface);
-            points(surface, n_points, args.seed)
-                .par_iter()
-                .filter(|&&p| {
-                    let inside = oracle.winding(p) != 0;
-                    mesh.contains_local_point(p) != inside
-                        && distance_to_surface(surface, p) > haphe::verify::ON_SURFACE_M
-                })
-                .count()
-        });
+    let clock = Instant::now();
+    let peer = |p: haphe::DVec3| {
+        parry
+            .as_ref()
+            .is_some_and(|mesh| mesh.contains_local_point(p))
+    };
+    let (inside_check, parry_disagreements) = check_inside_with_peer(
+        surface,
+        map,
+        n_points,
+        args.seed,
+        parry.is_some().then_some(&peer as _),
+    );
     let inside = InsideRow {
         check: inside_check,
         parry_disagreements,
+        seconds: clock.elapsed().as_secs_f64(),
     };
+    let clock = Instant::now();
 
     // Steps of 0.05–0.5 mm on a 0.2 m object, scaled to this object's size.
     let (_, _, size) = bounds(surface);
@@ -202,6 +189,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         (0.05e-3 * scale, 0.5e-3 * scale),
         args.seed,
     );
+    let walk_seconds = clock.elapsed().as_secs_f64();
 
     let ticks = args.ticks.unwrap_or(n);
     let proxy = (ticks > 0)
@@ -226,6 +214,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         crossings,
         inside,
         walk,
+        walk_seconds,
         proxy,
         passed,
     };

@@ -34,9 +34,10 @@ pub enum SideStatus {
 pub const MAX_SEARCH_RING: u32 = 4;
 
 /// Offset of the counting target inside the known cell, in cells from its centre: an
-/// irrational-looking vector so the counting segment is not parallel to the axis-aligned
-/// faces of CAD meshes (a segment lying in a face plane crosses nothing there, which would
-/// spoil the count).
+/// irrational-looking vector so the counting segment is rarely parallel to the
+/// axis-aligned faces of CAD meshes. (The count is exact either way — a face seen edge-on
+/// is never hit and its neighbours catch the crossing — but segments off the faces' planes
+/// stay on the fast path of the segment test.)
 const TARGET_JITTER: [f64; 3] = [0.123_456_7, -0.176_543_2, 0.211_111_3];
 
 /// Classifies `p` (metres, object frame) as inside or outside the surface.

@@ -5,6 +5,7 @@
 mod closest;
 mod crossing;
 pub(crate) use crossing::crossing_from_hit;
+mod exact;
 mod inside;
 mod segment_triangle;
 mod self_intersect;

@@ -67,8 +67,8 @@ pub struct Segment {
     shear_x: f64,
     /// `d[ky] / d[kz]`, dimensionless.
     shear_y: f64,
-    /// `1 / d[kz]`, 1/metres: scales heights along `kz` to the segment parameter.
-    shear_z: f64,
+    /// `d[kz] > 0`.
+    forward: bool,
     /// False for a zero-length or non-finite segment, which hits nothing.
     usable: bool,
 }
@@ -121,13 +121,12 @@ impl Segment {
         }
         let shear_x = kx.of(d) / dz;
         let shear_y = ky.of(d) / dz;
-        let shear_z = 1.0 / dz;
         let usable = p0.is_finite()
             && p1.is_finite()
             && dz != 0.0
             && shear_x.is_finite()
             && shear_y.is_finite()
-            && shear_z.is_finite();
+            && (1.0 / dz).is_finite();
         Segment {
             p0,
             p1,
@@ -136,7 +135,7 @@ impl Segment {
             ky,
             shear_x,
             shear_y,
-            shear_z,
+            forward: dz > 0.0,
             usable,
         }
     }
@@ -148,8 +147,8 @@ impl Segment {
         !self.usable
     }
 
-    /// Corner `p` translated by `−p0` and sheared: `(x, y)` in the plane `⊥ d` and the
-    /// unscaled height `p[kz] − p0[kz]`, metres.
+    /// Corner `p` translated by `−p0` and sheared: `(x, y)` in the plane `⊥ d`, and the L1
+    /// norm of `p − p0` (floored for the error bound), metres.
     ///
     /// The same corner gives the same bits in every triangle: this is what makes the edge
     /// functions of a shared edge exact negations of each other.
@@ -160,7 +159,7 @@ impl Segment {
         (
             self.kx.of(q) - self.shear_x * z,
             self.ky.of(q) - self.shear_y * z,
-            z,
+            (q.x.abs() + q.y.abs() + q.z.abs()).max(NORM_FLOOR),
         )
     }
 }
@@ -178,18 +177,63 @@ pub struct SegmentHit {
     pub entering: bool,
 }
 
-/// Whether an edge whose 2D edge function is exactly 0 counts as inside a triangle whose
-/// determinant has sign `positive`: the sign of the edge function for the query point moved
-/// by `(−ε, −ε²)` is `−sign(e.y)`, or `sign(e.x)` when `e.y = 0`, and the edge is inside when
-/// that sign is the triangle's. `e = (ex, ey)` is the sheared edge `Q − P` of `E(P → Q)`.
-#[inline]
-fn owns_zero_edge(ex: f64, ey: f64, positive: bool) -> bool {
-    let perturbed_positive = ey < 0.0 || (ey == 0.0 && ex > 0.0);
-    let perturbed_negative = ey > 0.0 || (ey == 0.0 && ex < 0.0);
-    if positive {
-        perturbed_positive
+/// Relative bound on the rounding error of a sheared edge function: `|E − Ẽ| ≤
+/// EDGE_ERROR · m_P · m_Q`, where `m` is the L1 norm of a corner minus `p0`.
+///
+/// Each sheared coordinate is within `7u (|q_k| + |q_z|)` of its exact value (`u = 2⁻⁵³`:
+/// the differences `p − p0` and `p1 − p0`, the shear quotient, its product and the
+/// subtraction; `|shear| ≤ 1` because `kz` is the largest component of `d`), so the two
+/// products and their difference are within about `33 u m_P m_Q`; the constant is twice
+/// that.
+const EDGE_ERROR: f64 = 64.0 * super::exact::ROUNDOFF;
+
+/// Smallest corner norm used in the bound (metres): below it the bound would underflow,
+/// and a floor this small keeps the bound above every underflow error.
+const NORM_FLOOR: f64 = 2.5e-121; // about 2⁻⁴⁰⁰
+
+/// Largest relative error accepted for the two plane orientations `t` is computed from;
+/// beyond it they are recomputed in double-double arithmetic.
+const PARAMETER_ERROR: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// The sign `−1`, `0` or `1` of `x` when it exceeds the error bound `bound`, `0` otherwise
+/// (and for NaN).
+#[inline(always)]
+fn certain_sign(x: f64, bound: f64) -> i8 {
+    if x > bound {
+        1
+    } else if x < -bound {
+        -1
     } else {
-        perturbed_negative
+        0
+    }
+}
+
+impl Segment {
+    /// The exact sign of the edge function `E(P → Q)` for the segment's line moved by the
+    /// infinitesimal `(−ε, −ε²)` of the sheared frame (the tie-break documented on
+    /// [`intersect_segment_triangle`]); `0` only for an edge parallel to the segment (or
+    /// non-finite input).
+    ///
+    /// Exactly, `E(P → Q) = −det[P − p0, Q − p0, p1 − p0] / |d[kz]|` (the shear has
+    /// determinant 1, and the axis order is cyclic when `d[kz] > 0`, swapped otherwise), so
+    /// its sign is that of `−orient3d(P, Q, p1, p0)`; when that is 0 the line and the edge are coplanar and the
+    /// perturbation decides: `E + ε·(−e.y) + ε²·e.x` with `e` the sheared `Q − P`, whose
+    /// components have the signs of `(Q − P)[k]·d[kz] − d[k]·(Q − P)[kz]` times
+    /// `sign(d[kz])`, for `k = ky` and `kx`. Every sign is computed exactly.
+    #[cold]
+    fn exact_edge_sign(&self, p: DVec3, q: DVec3) -> i8 {
+        let orientation = -super::exact::orient3d_sign(p, q, self.p1, self.p0);
+        if orientation != 0 {
+            return orientation;
+        }
+        let flip = if self.forward { 1 } else { -1 };
+        let (kx, ky, kz) = (self.kx as usize, self.ky as usize, self.kz as usize);
+        let points = [q, p, self.p1, self.p0];
+        let ey = super::exact::cross_of_differences_sign(points, ky, kz) * flip;
+        if ey != 0 {
+            return -ey;
+        }
+        super::exact::cross_of_differences_sign(points, kx, kz) * flip
     }
 }
 
@@ -199,11 +243,11 @@ fn owns_zero_edge(ex: f64, ey: f64, positive: bool) -> bool {
 /// Returns the crossing when the segment's line passes through the triangle (with the
 /// tie-break below on edges and vertices) at a parameter `0 ≤ t ≤ 1`. No hit when:
 ///
-/// - the segment is parallel to the triangle's plane (`det = 0`), including a segment lying
-///   in the plane;
+/// - the segment is parallel to the triangle's plane (exactly), including a segment lying
+///   in the plane: such a triangle is *seen edge-on* and is never hit;
 /// - the segment has zero length or a non-finite end point ([`Segment::is_degenerate`]);
-/// - a corner is not finite, or the products overflow, or the triangle seen along the
-///   segment is so small that `1 / det` overflows (area below about `1e-308` m²).
+/// - a corner is not finite, or the products overflow or underflow so far that no
+///   parameter can be formed (coordinates beyond about `1e±150`).
 ///
 /// # Method
 ///
@@ -221,117 +265,199 @@ fn owns_zero_edge(ex: f64, ey: f64, positive: bool) -> bool {
 /// unnormalised barycentric weights of `O` for the corners `a, b, c`. The line passes
 /// through the triangle when they share one sign; their sum is the determinant
 /// `det = U + V + W`, positive when the segment runs against the face normal `(b−a)×(c−a)`
-/// (it *enters* a solid). The crossing parameter is `t = (U·a_z + V·b_z + W·c_z) / det`
-/// with the sheared heights `·_z`.
+/// (it *enters* a solid).
 ///
-/// # Why it is watertight
+/// Every **decision** is exact, as if computed in real arithmetic on the `f64` inputs:
 ///
-/// A sheared corner depends only on the corner and the segment, never on the triangle, so
-/// two triangles that share an edge see the same two 2D points. `E(Q → P)` is computed as
-/// `P.x·Q.y − P.y·Q.x`, which in IEEE arithmetic (round to nearest, no fused multiply–add) is
-/// exactly `−E(P → Q)`: the triangles on the two sides of an edge always agree on which side
-/// of it the line passes. No epsilon is added anywhere — an epsilon would open gaps or
-/// overlaps between neighbours.
+/// - the sign of each edge function is taken from its `f64` value when that exceeds a
+///   bound on its rounding error, and otherwise computed exactly (`orient3d` of the edge
+///   and the segment's end points, Shewchuk's adaptive predicate);
+/// - whether the crossing lies on the segment is the exact side of `p0` and of `p1` with
+///   respect to the triangle's plane (the same filtered `orient3d`).
+///
+/// The **parameter** is `t = o0 / (o0 − o1)` with `o0, o1` the orientations of `p0, p1`
+/// against the triangle's plane, in `f64` when their error bounds allow a relative error
+/// below `2⁻⁴⁰`, in double-double otherwise (a segment almost in the triangle's plane,
+/// where the crossing point moves far along the segment for a rounding-sized change). The
+/// weights come from `U, V, W` (or, when `det` is within rounding of 0, from the crossing
+/// point projected on the triangle), clamped to `[0, 1]`.
 ///
 /// # Tie-break: who owns an edge or vertex
 ///
-/// When the line passes exactly through an edge (an edge function is exactly `0`), Woop's
-/// test accepts it for both triangles. Here such an edge counts as *inside* only for the
-/// triangle on one designated side of it, chosen by a fixed rule in the sheared 2D frame:
-/// **the query point is treated as if moved by an infinitesimal `(−ε, −ε²)`**, i.e. toward
-/// `−x`, and toward `−y` when that does not decide (symbolic perturbation, "simulation of
-/// simplicity"). For an edge `P → Q` with direction `e = Q − P` whose function is exactly 0,
-/// the perturbed function is `E + ε·(−e.y) + ε²·e.x`, whose sign is `−sign(e.y)`, or
-/// `sign(e.x)` when `e.y = 0`. Equivalently: with the triangle normalised to run
-/// counter-clockwise in the sheared `(x, y)` plane, an edge through the query point is inside
-/// when its normalised direction `n` has `n.y > 0 || (n.y == 0 && n.x < 0)` (the top-left
-/// rule of rasterisers, mirrored): a point on an edge belongs to the triangle on the edge's
-/// `−x` side, and a point on an edge parallel to `x` to the triangle below it.
+/// When the line passes exactly through an edge (an edge function is exactly `0`), the
+/// segment's line is treated as if moved by an infinitesimal `(−ε, −ε²)` in the sheared
+/// frame, i.e. toward `−kx` and, when that does not decide, toward `−ky` (symbolic
+/// perturbation, "simulation of simplicity"; a translation by a multiple of world axes
+/// `kx, ky`, which the shear leaves unchanged). For an edge `P → Q` whose function is
+/// exactly 0 and whose sheared direction is `e = Q − P`, the perturbed function is
+/// `E + ε·(−e.y) + ε²·e.x`, whose sign is `−sign(e.y)`, or `sign(e.x)` when `e.y = 0`;
+/// those signs are computed exactly too. Equivalently: a point on an edge belongs to the
+/// triangle on the edge's `−x` side, and a point on an edge parallel to `x` to the triangle
+/// below it (the top-left rule of rasterisers, mirrored). Only an edge parallel to `d` has
+/// no perturbed sign; it belongs only to triangles seen edge-on, which are never hit.
 ///
-/// Because the perturbed sign is a property of the edge (it flips exactly with `e`, as the
-/// edge function does), every triangle classifies the same perturbed point, which lies on
-/// no edge. So:
+/// # Why it is watertight, including segments in a face's plane
 ///
-/// - an edge shared by two triangles on opposite sides of it (seen along `d`) is owned by
-///   exactly one of them;
-/// - a vertex surrounded by its fan (seen along `d`) is owned by exactly one triangle of the
-///   fan: the one whose corner wedge contains the direction `(−1, −0)`;
-/// - where the surface folds over seen along `d` (a segment grazing a ridge, a silhouette
-///   edge or vertex), the perturbed point lies either in two overlapping triangles of
-///   opposite facing, one `entering` and one leaving, or in none: **0 or 2 hits**, never 1.
-///   The signed count (entering − leaving) stays exact, so parity and inside/outside
-///   counting stay right.
+/// Call `L'` the perturbed line. Because every sign above is the exact sign of `L'`
+/// against an edge, and the sign of an edge flips exactly with its direction, the answer
+/// for every triangle is the answer for `L'`, which is in general position:
 ///
-/// A triangle seen edge-on (`det = 0`, the segment parallel to its plane, including segments
-/// lying in the plane) has zero area in the projection and is never hit; its neighbours
-/// cover the line between them.
+/// - `L'` meets no edge (its perturbed function is never 0) except edges parallel to
+///   `d`, which are not near `L'`; so `L'` meets no vertex and no edge-on triangle (it
+///   would have to enter and leave such a triangle through its edges);
+/// - so `L'` meets the surface only at interior points of triangles that are not seen
+///   edge-on, transversally, and each such point is reported by exactly the one triangle
+///   that contains it, when its parameter is in `[0, 1]` (decided exactly).
+///
+/// Hence, for end points off the surface, the hits are exactly the crossings of the
+/// slightly moved segment: a transversal crossing through an edge or a vertex is reported
+/// once; where the surface folds over seen along `d` (a ridge, a silhouette), `L'` meets
+/// it 0 or 2 times (entering and leaving); and the signed count (entering − leaving) equals
+/// the change of winding number between the end points, so a segment from outside to
+/// inside a closed surface is never without a hit. This holds in particular when the
+/// segment lies in the plane of a face: that face is seen edge-on, and the faces around it
+/// that are not catch the crossing — which needs the *exact* signs, because the edges they
+/// meet at (the two long edges of a side wall, say) are different edges that only
+/// coincide in the projection along `d`, where rounding alone could put `O` outside both.
 ///
 /// # Limits
 ///
-/// - The edge functions are `f64` products without the higher-precision fallback of the
-///   paper, so a line passing within rounding of a vertex may be put in a wedge next to the
-///   true one. The signs stay consistent between triangles (they are computed once per
-///   edge, antisymmetrically), so a transversal crossing is still reported exactly once.
-/// - The test `0 ≤ t ≤ 1` uses each triangle's own plane and rounds. When an end point lies
-///   on the surface or within rounding of it, the crossing there may be reported for the
-///   segment ending at that point, for the next segment starting there, for both, or for
-///   neither. Callers chaining segments (one HIP to the next) must treat one end as open
-///   and handle a HIP resting on the surface explicitly.
+/// - The tests `0 ≤ t ≤ 1` are exact for the triangle's plane, but when an end point lies
+///   on the surface the crossing there may be reported for the segment ending at that
+///   point, for the next segment starting there, for both, or for neither (the tie-break
+///   moves the line sideways, not along itself). Callers chaining segments (one HIP to the
+///   next) must treat one end as open and handle a HIP resting on the surface explicitly.
+/// - Exactness assumes no product of coordinate differences underflows (differences of
+///   zero or above about `1e-150`): true for any mesh in metres or millimetres.
 ///
 /// # Real-time
-/// Allocation-free, constant time: about 30 multiplications, one division (only for a
-/// hit), no loop. Never panics.
+/// Allocation-free, constant time, no loop over input, never panics. The usual miss costs
+/// about 40 floating-point operations; a hit adds two filtered orientations (about 60); a
+/// line within rounding of an edge or a vertex, or a segment almost in a face's plane,
+/// takes the exact path (a few hundred operations, on the stack).
 #[inline]
 pub fn intersect_segment_triangle(segment: &Segment, [a, b, c]: [DVec3; 3]) -> Option<SegmentHit> {
     if !segment.usable {
         return None;
     }
-    let (ax, ay, az) = segment.shear(a);
-    let (bx, by, bz) = segment.shear(b);
-    let (cx, cy, cz) = segment.shear(c);
+    let (ax, ay, ma) = segment.shear(a);
+    let (bx, by, mb) = segment.shear(b);
+    let (cx, cy, mc) = segment.shear(c);
 
     // E(P → Q) = Q.x·P.y − Q.y·P.x, the same expression for every edge.
     let u = cx * by - cy * bx;
     let v = ax * cy - ay * cx;
     let w = bx * ay - by * ax;
+    let (bu, bv, bw) = (
+        EDGE_ERROR * mb * mc,
+        EDGE_ERROR * mc * ma,
+        EDGE_ERROR * ma * mb,
+    );
+    let (mut su, mut sv, mut sw) = (
+        certain_sign(u, bu),
+        certain_sign(v, bv),
+        certain_sign(w, bw),
+    );
+    if (su > 0 || sv > 0 || sw > 0) && (su < 0 || sv < 0 || sw < 0) {
+        return None;
+    }
+    if su == 0 {
+        su = segment.exact_edge_sign(b, c);
+    }
+    if sv == 0 {
+        sv = segment.exact_edge_sign(c, a);
+    }
+    if sw == 0 {
+        sw = segment.exact_edge_sign(a, b);
+    }
+    if su == 0 || su != sv || sv != sw {
+        return None;
+    }
+    let entering = su > 0;
 
-    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-        return None;
+    // On the segment: p0 in front of the plane (or on it) and p1 behind, or the reverse.
+    let (p0, p1) = (segment.p0, segment.p1);
+    let (o0, e0) = super::exact::orient3d_with_bound(a, b, c, p0);
+    let (o1, e1) = super::exact::orient3d_with_bound(a, b, c, p1);
+    let mut s0 = certain_sign(o0, e0);
+    if s0 == 0 {
+        s0 = super::exact::orient3d_sign(a, b, c, p0);
     }
-    let det = u + v + w;
-    if det == 0.0 || !det.is_finite() {
-        // Also rejects NaN edge functions (non-finite input): the sum is then NaN.
-        return None;
+    let mut s1 = certain_sign(o1, e1);
+    if s1 == 0 {
+        s1 = super::exact::orient3d_sign(a, b, c, p1);
     }
-    let positive = det > 0.0;
-    if (u == 0.0 || v == 0.0 || w == 0.0)
-        && !((u != 0.0 || owns_zero_edge(cx - bx, cy - by, positive))
-            && (v != 0.0 || owns_zero_edge(ax - cx, ay - cy, positive))
-            && (w != 0.0 || owns_zero_edge(bx - ax, by - ay, positive)))
-    {
-        return None;
-    }
-
-    // Heights along d, scaled so that the segment runs from 0 to 1.
-    let t_scaled = segment.shear_z * (u * az + v * bz + w * cz);
-    let (t_num, det_abs) = if positive {
-        (t_scaled, det)
+    // orient3d is positive behind the plane.
+    let on_segment = if entering {
+        s0 <= 0 && s1 >= 0
     } else {
-        (-t_scaled, -det)
+        s0 >= 0 && s1 <= 0
     };
-    if !(t_num >= 0.0 && t_num <= det_abs) {
+    if !on_segment {
         return None;
     }
-    let inverse = 1.0 / det;
-    if !inverse.is_finite() {
+    let t = if s0 == 0 {
+        0.0
+    } else if s1 == 0 {
+        1.0
+    } else {
+        let (o0, o1) = if e0 + e1 <= PARAMETER_ERROR * (o0.abs() + o1.abs()) {
+            (o0, o1)
+        } else {
+            (
+                super::exact::orient3d_double_double(a, b, c, p0),
+                super::exact::orient3d_double_double(a, b, c, p1),
+            )
+        };
+        o0 / (o0 - o1)
+    };
+    if !t.is_finite() {
         return None;
     }
+    let t = t.clamp(0.0, 1.0);
+
+    let det = u + v + w;
     let unit = |x: f64| x.clamp(0.0, 1.0);
+    let weights = if det.abs() > (bu + bv + bw) / PARAMETER_ERROR && det.is_finite() {
+        let inverse = 1.0 / det;
+        [unit(u * inverse), unit(v * inverse), unit(w * inverse)]
+    } else {
+        weights_in_plane([a, b, c], p0 + t * (p1 - p0))
+    };
+    if !weights.iter().all(|w| w.is_finite()) {
+        return None;
+    }
     Some(SegmentHit {
-        t: unit(t_scaled * inverse),
-        weights: [unit(u * inverse), unit(v * inverse), unit(w * inverse)],
-        entering: positive,
+        t,
+        weights,
+        entering,
     })
+}
+
+/// Barycentric weights of `x` projected on the plane of `[a, b, c]`, clamped to `[0, 1]`
+/// and normalised (a point on the triangle up to rounding); equal weights for a triangle
+/// without area.
+fn weights_in_plane([a, b, c]: [DVec3; 3], x: DVec3) -> [f64; 3] {
+    let n = (b - a).cross(c - a);
+    let area2 = n.length_squared();
+    let raw = [
+        n.dot((b - x).cross(c - x)) / area2,
+        n.dot((c - x).cross(a - x)) / area2,
+        n.dot((a - x).cross(b - x)) / area2,
+    ]
+    .map(|w| {
+        if w.is_finite() {
+            w.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    });
+    let sum = raw[0] + raw[1] + raw[2];
+    if sum > 0.0 {
+        raw.map(|w| w / sum)
+    } else {
+        [1.0 / 3.0; 3]
+    }
 }
 
 #[cfg(test)]
@@ -606,5 +732,31 @@ mod tests {
                 assert_eq!(hits[0].entering, sign > 0.0);
             }
         }
+    }
+
+    #[test]
+    fn the_exact_edge_sign_is_the_sign_of_the_sheared_edge_function() {
+        // Generic configurations, every dominant axis and direction: where the f64 edge
+        // function is far from 0, the exact path must give its sign.
+        let mut random = crate::rng::SplitMix64::new(5);
+        let mut checked = 0;
+        for _ in 0..2000 {
+            let p0 = random.point_in(DVec3::splat(-1.0), DVec3::splat(1.0));
+            let p1 = random.point_in(DVec3::splat(-1.0), DVec3::splat(1.0));
+            let (p, q) = (
+                random.point_in(DVec3::splat(-1.0), DVec3::splat(1.0)),
+                random.point_in(DVec3::splat(-1.0), DVec3::splat(1.0)),
+            );
+            let segment = Segment::new(p0, p1);
+            let (px, py, _) = segment.shear(p);
+            let (qx, qy, _) = segment.shear(q);
+            let e = qx * py - qy * px;
+            if e.abs() > 1e-9 {
+                assert_eq!(segment.exact_edge_sign(p, q), certain_sign(e, 0.0));
+                assert_eq!(segment.exact_edge_sign(q, p), -certain_sign(e, 0.0));
+                checked += 1;
+            }
+        }
+        assert!(checked > 1900, "{checked}");
     }
 }

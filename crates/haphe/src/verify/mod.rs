@@ -17,6 +17,7 @@ pub use proxy::{
 };
 pub use samples::{SegmentKind, bounds, points, segments, trajectory};
 
+use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -114,6 +115,36 @@ pub fn check_crossings(
     n: usize,
     seed: u64,
 ) -> CrossingCheck {
+    check_crossings_with_peer(surface, map, kind, n, seed, None).0
+}
+
+/// Whether a peer implementation (another library's ray cast, say) reports a crossing on
+/// the segment from `p0` to `p1`.
+pub type PeerCrossing<'a> = &'a (dyn Fn(DVec3, DVec3) -> bool + Sync);
+
+/// Whether a peer implementation classifies a point as inside.
+pub type PeerInside<'a> = &'a (dyn Fn(DVec3) -> bool + Sync);
+
+/// How a peer implementation fared on the same segments, judged by the same oracles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct PeerCrossings {
+    /// Segments that cross the surface (by brute force) where the peer reports nothing.
+    pub misses: usize,
+    /// Segments from outside to inside a solid (end points off the surface) where the peer
+    /// reports nothing: where a renderer built on it lets the user through.
+    pub leaks: usize,
+}
+
+/// [`check_crossings`], also judging a `peer` on the same segments in the same pass (the
+/// oracles run once per segment).
+pub fn check_crossings_with_peer(
+    surface: &Surface,
+    map: &VoxelMap,
+    kind: SegmentKind,
+    n: usize,
+    seed: u64,
+    peer: Option<PeerCrossing<'_>>,
+) -> (CrossingCheck, Option<PeerCrossings>) {
     let oracle = surface.is_solid().then(|| WindingOracle::new(surface));
     let brute_force = BruteCrossing::new(surface);
     /// What one segment showed.
@@ -122,6 +153,8 @@ pub fn check_crossings(
         mismatch: bool,
         outside_to_inside: bool,
         leak: bool,
+        peer_miss: bool,
+        peer_leak: bool,
         segment: [[f64; 3]; 2],
     }
     let results: Vec<Outcome> = segments(surface, kind, n, seed)
@@ -130,15 +163,25 @@ pub fn check_crossings(
             let fast = first_crossing(surface, map, p0, p1);
             let brute = brute_force.first_crossing(p0, p1);
             let bad = mismatch(fast, brute);
+            let peer_hit = peer.map(|peer| peer(p0, p1));
             let mut candidate = false;
             let mut leak = false;
+            let mut peer_leak = false;
             if let Some(oracle) = &oracle {
                 let (w0, w1) = (oracle.winding(p0), oracle.winding(p1));
                 if (w0 == 0) != (w1 == 0) {
-                    let off = |p| distance_to_surface(surface, p) > ON_SURFACE_M;
-                    // Distances only where it matters (they cost a pass over the mesh).
-                    candidate = fast.is_some() || (off(p0) && off(p1));
+                    // Distances only where they decide (they cost a pass over the mesh),
+                    // at most once.
+                    let mut off_surface = None;
+                    let mut off = || {
+                        *off_surface.get_or_insert_with(|| {
+                            distance_to_surface(surface, p0) > ON_SURFACE_M
+                                && distance_to_surface(surface, p1) > ON_SURFACE_M
+                        })
+                    };
+                    candidate = fast.is_some() || off();
                     leak = candidate && fast.is_none();
+                    peer_leak = peer_hit == Some(false) && off();
                 }
             }
             Outcome {
@@ -146,11 +189,13 @@ pub fn check_crossings(
                 mismatch: bad,
                 outside_to_inside: candidate,
                 leak,
+                peer_miss: brute.is_some() && peer_hit == Some(false),
+                peer_leak,
                 segment: [p0.to_array(), p1.to_array()],
             }
         })
         .collect();
-    CrossingCheck {
+    let check = CrossingCheck {
         kind,
         samples: n,
         crossing: results.iter().filter(|r| r.crosses).count(),
@@ -163,30 +208,54 @@ pub fn check_crossings(
             .take(KEPT_FAILURES)
             .map(|r| r.segment)
             .collect(),
-    }
+    };
+    let peer = peer.map(|_| PeerCrossings {
+        misses: results.iter().filter(|r| r.peer_miss).count(),
+        leaks: results.iter().filter(|r| r.peer_leak).count(),
+    });
+    (check, peer)
 }
 
 /// Checks [`classify_point`] against winding numbers on `n` random points.
 pub fn check_inside(surface: &Surface, map: &VoxelMap, n: usize, seed: u64) -> InsideCheck {
+    check_inside_with_peer(surface, map, n, seed, None).0
+}
+
+/// [`check_inside`], also counting the points off the surface (farther than
+/// [`ON_SURFACE_M`]) where a `peer` disagrees with the winding numbers, in the same pass;
+/// the peer is only asked on solids.
+pub fn check_inside_with_peer(
+    surface: &Surface,
+    map: &VoxelMap,
+    n: usize,
+    seed: u64,
+    peer: Option<PeerInside<'_>>,
+) -> (InsideCheck, Option<usize>) {
     let oracle = WindingOracle::new(surface);
     let solid = surface.is_solid();
-    let results: Vec<(bool, u8, [f64; 3])> = points(surface, n, seed)
+    let peer = peer.filter(|_| solid);
+    let results: Vec<(bool, u8, bool, [f64; 3])> = points(surface, n, seed)
         .par_iter()
         .map(|&p| {
             let (side, _) = classify_point(surface, map, p);
             let inside = solid && oracle.winding(p) != 0;
             let agrees = (side == Side::Inside) == inside;
+            let peer_agrees = peer.is_none_or(|peer| peer(p) == inside);
+            let mut near = None;
+            let mut on_surface =
+                || *near.get_or_insert_with(|| distance_to_surface(surface, p) <= ON_SURFACE_M);
             let verdict = if agrees {
                 0
-            } else if distance_to_surface(surface, p) <= ON_SURFACE_M {
+            } else if on_surface() {
                 1
             } else {
                 2
             };
-            (inside, verdict, p.to_array())
+            let peer_disagrees = !peer_agrees && !on_surface();
+            (inside, verdict, peer_disagrees, p.to_array())
         })
         .collect();
-    InsideCheck {
+    let check = InsideCheck {
         samples: n,
         inside: results.iter().filter(|r| r.0).count(),
         mismatches: results.iter().filter(|r| r.1 == 2).count(),
@@ -195,9 +264,11 @@ pub fn check_inside(surface: &Surface, map: &VoxelMap, n: usize, seed: u64) -> I
             .iter()
             .filter(|r| r.1 == 2)
             .take(KEPT_FAILURES)
-            .map(|r| r.2)
+            .map(|r| r.3)
             .collect(),
-    }
+    };
+    let peer = peer.map(|_| results.iter().filter(|r| r.2).count());
+    (check, peer)
 }
 
 /// Whether the surface is convex: closed and connected, with every edge convex (a closed

@@ -11,9 +11,14 @@ const RAY_DIRECTION: [f64; 3] = [0.573_462_1, 0.623_182_7, 0.531_740_9];
 
 /// Winding numbers by signed crossing counts: for a closed, outward-oriented surface the
 /// number of crossings of a ray from `p` going out minus those going in is the winding
-/// number of `p` (1 inside, 0 outside), exactly, with the same watertight test the
-/// queries use. A prefilter on the triangles' extents across the ray keeps each query at a
-/// few nanoseconds per triangle; every triangle is still considered.
+/// number of `p` (1 inside, 0 outside), exactly, with the same exact segment test the
+/// queries use.
+///
+/// # Performance
+/// Written apart from the voxel map: the triangles are binned once on a 2D grid over the
+/// plane across the ray, by their extents there (padded for rounding), so a query tests
+/// only the triangles whose extents contain the point's projection — a few dozen on usual
+/// meshes instead of all. The tests check it against the generalised winding number.
 pub struct WindingOracle<'a> {
     surface: &'a Surface,
     ray: DVec3,
@@ -21,7 +26,19 @@ pub struct WindingOracle<'a> {
     /// Per triangle: (min u, max u, min w, max w, max along the ray).
     extents: Vec<[f64; 5]>,
     length: f64,
+    /// The bin grid over `(u, w)`: lower corner, bins per unit, bins per side.
+    origin: [f64; 2],
+    scale: [f64; 2],
+    bins: [usize; 2],
+    /// Triangles of bin `k` are `members[starts[k]..starts[k + 1]]`.
+    starts: Vec<u32>,
+    members: Vec<u32>,
+    /// Largest `|u|, |w|` of any corner: slack in the bins.
+    reach: f64,
 }
+
+/// Relative slack of the extent filter, for the rounding of the projections.
+const PROJECTION_SLACK: f64 = 1e-9;
 
 impl<'a> WindingOracle<'a> {
     /// Prepares the oracle for `surface`.
@@ -29,7 +46,7 @@ impl<'a> WindingOracle<'a> {
         let ray = DVec3::from_array(RAY_DIRECTION).normalize();
         let u = ray.any_orthonormal_vector();
         let w = ray.cross(u);
-        let extents = (0..surface.triangle_count() as u32)
+        let extents: Vec<[f64; 5]> = (0..surface.triangle_count() as u32)
             .map(|t| {
                 let c = surface.corners(TriId(t));
                 let pu = c.map(|p| p.dot(u));
@@ -45,6 +62,59 @@ impl<'a> WindingOracle<'a> {
             })
             .collect();
         let (_, _, size) = super::samples::bounds(surface);
+        let reach = extents
+            .iter()
+            .map(|e| e[0].abs().max(e[1].abs()).max(e[2].abs()).max(e[3].abs()))
+            .fold(0.0, f64::max);
+        // Twice the largest slack a query near the surface uses.
+        let pad = 2.0 * PROJECTION_SLACK * (1.0 + reach);
+        let lo = extents
+            .iter()
+            .fold([f64::INFINITY; 2], |m, e| [m[0].min(e[0]), m[1].min(e[2])]);
+        let hi = extents.iter().fold([f64::NEG_INFINITY; 2], |m, e| {
+            [m[0].max(e[1]), m[1].max(e[3])]
+        });
+        let side = ((extents.len() as f64).sqrt().ceil() as usize).clamp(1, 2048);
+        let origin = [lo[0] - pad, lo[1] - pad];
+        let span = [
+            (hi[0] - lo[0] + 2.0 * pad).max(f64::MIN_POSITIVE),
+            (hi[1] - lo[1] + 2.0 * pad).max(f64::MIN_POSITIVE),
+        ];
+        let bins = [side, side];
+        let scale = [side as f64 / span[0], side as f64 / span[1]];
+        let bin_range = |e: &[f64; 5]| {
+            let index = |x: f64, k: usize| {
+                (((x - origin[k]) * scale[k]).floor().max(0.0) as usize).min(bins[k] - 1)
+            };
+            (
+                index(e[0] - pad, 0)..=index(e[1] + pad, 0),
+                index(e[2] - pad, 1)..=index(e[3] + pad, 1),
+            )
+        };
+        let mut counts = vec![0u32; bins[0] * bins[1] + 1];
+        for e in &extents {
+            let (iu, iw) = bin_range(e);
+            for i in iu {
+                for j in iw.clone() {
+                    counts[i * bins[1] + j + 1] += 1;
+                }
+            }
+        }
+        for k in 1..counts.len() {
+            counts[k] += counts[k - 1];
+        }
+        let starts = counts.clone();
+        let mut members = vec![0u32; *counts.last().unwrap_or(&0) as usize];
+        for (t, e) in extents.iter().enumerate() {
+            let (iu, iw) = bin_range(e);
+            for i in iu {
+                for j in iw.clone() {
+                    let k = i * bins[1] + j;
+                    members[counts[k] as usize] = t as u32;
+                    counts[k] += 1;
+                }
+            }
+        }
         WindingOracle {
             surface,
             ray,
@@ -52,6 +122,12 @@ impl<'a> WindingOracle<'a> {
             extents,
             // From any point of interest (within a few sizes of the object) past the object.
             length: 16.0 * size,
+            origin,
+            scale,
+            bins,
+            starts,
+            members,
+            reach,
         }
     }
 
@@ -62,12 +138,35 @@ impl<'a> WindingOracle<'a> {
             p.dot(self.across[1]),
             p.dot(self.ray),
         );
-        // Relative slack in the prefilter, for the rounding of the projections.
-        let slack = 1e-9 * (1.0 + pu.abs().max(pw.abs()));
+        let slack = PROJECTION_SLACK * (1.0 + pu.abs().max(pw.abs()));
+        // The bins cover every extent padded by twice the slack of any point with
+        // |u|, |w| ≤ 1 + 2·reach; a point farther out (whose slack is larger) scans all.
+        let mut cell = [0usize; 2];
+        let mut binned = true;
+        for (k, x) in [pu, pw].into_iter().enumerate() {
+            let f = (x - self.origin[k]) * self.scale[k];
+            if f >= 0.0 && f < self.bins[k] as f64 {
+                cell[k] = f as usize;
+            } else {
+                binned = false;
+            }
+        }
+        let all: Vec<u32>;
+        let members: &[u32] = if binned {
+            let k = cell[0] * self.bins[1] + cell[1];
+            &self.members[self.starts[k] as usize..self.starts[k + 1] as usize]
+        } else if pu.abs().max(pw.abs()) <= 1.0 + 2.0 * self.reach {
+            // Outside the padded range of every extent: the ray meets nothing.
+            return 0;
+        } else {
+            all = (0..self.extents.len() as u32).collect();
+            &all
+        };
         let length = self.length + (p.length() * 2.0);
         let segment = Segment::new(p, p + self.ray * length);
         let mut winding = 0;
-        for (t, e) in self.extents.iter().enumerate() {
+        for &t in members {
+            let e = &self.extents[t as usize];
             if pu < e[0] - slack
                 || pu > e[1] + slack
                 || pw < e[2] - slack
@@ -76,8 +175,7 @@ impl<'a> WindingOracle<'a> {
             {
                 continue;
             }
-            if let Some(hit) =
-                intersect_segment_triangle(&segment, self.surface.corners(TriId(t as u32)))
+            if let Some(hit) = intersect_segment_triangle(&segment, self.surface.corners(TriId(t)))
             {
                 winding += if hit.entering { -1 } else { 1 };
             }

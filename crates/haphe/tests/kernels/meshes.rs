@@ -124,6 +124,93 @@ pub fn solids() -> &'static [Solid] {
             Solid::new("concave corner", concave_corner(0.25, 2), false, true),
             Solid::new("torus", torus(0.07, 0.03, 24, 12), false, false),
             Solid::new("blob", blob(0.1, 2, 0.03, 11), false, false),
+            Solid::new("pocket", pocket(), false, true),
+            Solid::new("slanted pocket", slanted(pocket()), false, true),
         ]
     })
+}
+
+/// The unit cube (metres) with a pocket `[0.25, 0.75] × [0.25, 0.75] × [0.5, 1]` cut from its top:
+/// the pocket's walls are perpendicular to its floor and to the top face.
+pub fn pocket() -> Mesh {
+    // Vertices on the lattice {0, 0.25, 0.75, 1} × {0, 0.25, 0.75, 1} × {0, 0.5, 1}: the
+    // solid is the union of unit-lattice boxes, triangulated face by face.
+    let xs = [0.0, 0.25, 0.75, 1.0];
+    let zs = [0.0, 0.5, 1.0];
+    let filled = |i: usize, j: usize, k: usize| !(i == 1 && j == 1 && k == 1);
+    let mut vertices = Vec::new();
+    let mut index = HashMap::new();
+    let mut vertex = |p: [usize; 3], vertices: &mut Vec<DVec3>| -> u32 {
+        *index.entry(p).or_insert_with(|| {
+            vertices.push(DVec3::new(xs[p[0]], xs[p[1]], zs[p[2]]));
+            (vertices.len() - 1) as u32
+        })
+    };
+    let mut triangles = Vec::new();
+    let inside = |i: isize, j: isize, k: isize| {
+        (0..3).contains(&i)
+            && (0..3).contains(&j)
+            && (0..2).contains(&k)
+            && filled(i as usize, j as usize, k as usize)
+    };
+    for i in 0..3isize {
+        for j in 0..3isize {
+            for k in 0..2isize {
+                if !inside(i, j, k) {
+                    continue;
+                }
+                // The six faces of box (i, j, k) that border empty space, wound outward.
+                for (axis, sign) in [(0, 1), (0, -1), (1, 1), (1, -1), (2, 1), (2, -1)] {
+                    let mut n = [i, j, k];
+                    n[axis] += sign;
+                    if inside(n[0], n[1], n[2]) {
+                        continue;
+                    }
+                    let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+                    let base = |du: usize, dv: usize| {
+                        let mut c = [i as usize, j as usize, k as usize];
+                        if sign > 0 {
+                            c[axis] += 1;
+                        }
+                        c[u] += du;
+                        c[v] += dv;
+                        c
+                    };
+                    let q = [base(0, 0), base(1, 0), base(1, 1), base(0, 1)]
+                        .map(|c| vertex(c, &mut vertices));
+                    if sign > 0 {
+                        triangles.push([q[0], q[1], q[2]]);
+                        triangles.push([q[0], q[2], q[3]]);
+                    } else {
+                        triangles.push([q[0], q[2], q[1]]);
+                        triangles.push([q[0], q[3], q[2]]);
+                    }
+                }
+            }
+        }
+    }
+    Mesh {
+        vertices,
+        triangles,
+    }
+}
+
+/// `mesh` under a linear map with small dyadic entries and positive determinant: still
+/// exact (a few more bits per coordinate), but no face is axis-aligned any more, so the
+/// shear of a segment in a face's plane rounds.
+pub fn slanted(mut mesh: Mesh) -> Mesh {
+    for v in &mut mesh.vertices {
+        *v = slant(*v);
+    }
+    mesh
+}
+
+/// The map of [`slanted`], on one point.
+pub fn slant(p: DVec3) -> DVec3 {
+    let m = [[1.0, 0.5, 0.25], [0.125, 1.0, 0.5], [0.25, 0.375, 1.0]];
+    DVec3::new(
+        m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z,
+        m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z,
+        m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z,
+    )
 }
