@@ -62,8 +62,14 @@ fn demo_fast_prints_sane_figures_and_draws_the_plot() {
     let force = figure(&text, "max force");
     assert!(force > 0.3 && force <= 3.3 + 1e-9, "max force {force} N");
     assert!(figure(&text, "tick time") > 0.0);
-    assert!(figure(&text, "achieved rate") > 1000.0, "faster than real time");
-    assert!(text.contains("object 0:") && text.contains("object 1:"), "both objects touched");
+    assert!(
+        figure(&text, "achieved rate") > 1000.0,
+        "faster than real time"
+    );
+    assert!(
+        text.contains("object 0:") && text.contains("object 1:"),
+        "both objects touched"
+    );
     let bytes = std::fs::read(&png).expect("the plot is written");
     assert!(bytes.starts_with(b"\x89PNG") && bytes.len() > 10_000);
     let trace = std::fs::read_to_string(&csv).expect("the trace is written");
@@ -86,16 +92,37 @@ fn replay_gives_byte_identical_traces() {
     let dir = scratch("replay");
     let recorded = dir.join("recorded.csv");
     ok(&[
-        "simulate", "--shape", "torus", "--triangles", "2000", "--path", "circle", "--seconds",
-        "2", "--out", s(&recorded),
+        "simulate",
+        "--shape",
+        "torus",
+        "--triangles",
+        "2000",
+        "--path",
+        "circle",
+        "--seconds",
+        "2",
+        "--out",
+        s(&recorded),
     ]);
     let (a, b) = (dir.join("a.csv"), dir.join("b.csv"));
     for out in [&a, &b] {
         let text = ok(&[
-            "simulate", "--shape", "torus", "--triangles", "2000", "--replay", s(&recorded),
-            "--out", s(out),
+            "simulate",
+            "--shape",
+            "torus",
+            "--triangles",
+            "2000",
+            "--replay",
+            s(&recorded),
+            "--out",
+            s(out),
         ]);
-        assert!(text.contains("the trace ended"), "{text}");
+        assert_eq!(
+            figure(&text, "ticks"),
+            2000.0,
+            "every sample replayed: {text}"
+        );
+        assert!(figure(&text, "contact") > 0.2, "{text}");
     }
     let (a, b) = (std::fs::read(&a).expect("a"), std::fs::read(&b).expect("b"));
     assert!(a.len() > 100_000);
@@ -134,7 +161,15 @@ motion = { kind = "oscillating", amplitude = [0.0, 0.0, 0.005], frequency = 1.0 
 "#,
     )
     .expect("write");
-    let text = ok(&["simulate", "--scene", s(&good), "--path", "press", "--seconds", "2"]);
+    let text = ok(&[
+        "simulate",
+        "--scene",
+        s(&good),
+        "--path",
+        "press",
+        "--seconds",
+        "2",
+    ]);
     assert!(text.contains("2 object(s)"), "{text}");
     assert!(figure(&text, "max penetration") > 0.5, "{text}");
 
@@ -147,15 +182,27 @@ motion = { kind = "oscillating", amplitude = [0.0, 0.0, 0.005], frequency = 1.0 
     let out = haphe(&["simulate", "--scene", s(&bad)]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2));
-    assert!(err.contains("bad.toml: object 2 (line 4)") && err.contains("teapot"), "{err}");
+    assert!(
+        err.contains("bad.toml: object 2 (line 4)") && err.contains("teapot"),
+        "{err}"
+    );
 
-    std::fs::write(&bad, "[[object]]\nshape = \"sphere\"\nposition = [0.0, 1.0]\n").expect("write");
-    let err = String::from_utf8_lossy(&haphe(&["simulate", "--scene", s(&bad)]).stderr).into_owned();
+    std::fs::write(
+        &bad,
+        "[[object]]\nshape = \"sphere\"\nposition = [0.0, 1.0]\n",
+    )
+    .expect("write");
+    let err =
+        String::from_utf8_lossy(&haphe(&["simulate", "--scene", s(&bad)]).stderr).into_owned();
     assert!(err.contains("bad.toml: line 3"), "{err}");
 
     std::fs::write(&bad, "[[object]]\nshape = \"box\"\ncolour = \"red\"\n").expect("write");
-    let err = String::from_utf8_lossy(&haphe(&["simulate", "--scene", s(&bad)]).stderr).into_owned();
-    assert!(err.contains("bad.toml: line 3") && err.contains("colour"), "{err}");
+    let err =
+        String::from_utf8_lossy(&haphe(&["simulate", "--scene", s(&bad)]).stderr).into_owned();
+    assert!(
+        err.contains("bad.toml: line 3") && err.contains("colour"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -163,11 +210,22 @@ fn every_path_runs_with_and_without_the_hand() {
     for path in ["press", "slide", "circle", "explore", "strike"] {
         for hand in ["--hand", "--no-hand"] {
             let text = ok(&[
-                "simulate", "--shape", "box", "--triangles", "1000", "--path", path, hand,
-                "--seconds", "1.5",
+                "simulate",
+                "--shape",
+                "box",
+                "--triangles",
+                "1000",
+                "--path",
+                path,
+                hand,
+                "--seconds",
+                "1.5",
             ]);
             assert!(figure(&text, "contact") > 0.05, "{path} {hand}: {text}");
-            assert!(figure(&text, "max force") <= 3.3 + 1e-9, "{path} {hand}: {text}");
+            assert!(
+                figure(&text, "max force") <= 3.3 + 1e-9,
+                "{path} {hand}: {text}"
+            );
         }
     }
 }
@@ -175,10 +233,23 @@ fn every_path_runs_with_and_without_the_hand() {
 #[test]
 fn realtime_smoke_run_reports_lateness() {
     let text = ok(&[
-        "simulate", "--shape", "sphere", "--triangles", "1000", "--path", "press", "--rate",
-        "2000", "--seconds", "0.3", "--realtime",
+        "simulate",
+        "--shape",
+        "sphere",
+        "--triangles",
+        "1000",
+        "--path",
+        "press",
+        "--rate",
+        "2000",
+        "--seconds",
+        "0.3",
+        "--realtime",
     ]);
     println!("{text}");
-    assert!(text.contains("lateness") && text.contains("overruns"), "{text}");
+    assert!(
+        text.contains("lateness") && text.contains("overruns"),
+        "{text}"
+    );
     assert!(figure(&text, "ticks") > 0.0);
 }

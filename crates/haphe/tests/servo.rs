@@ -13,8 +13,8 @@ use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
 use haphe::servo::{
     Device, DeviceError, DeviceFault, DeviceSpec, DeviceState, HandOptions, HipTrace, Motion,
     ObjectMotion, Path, PathKind, Phase, RealtimeOptions, ReplayDevice, ScriptedDevice, Servo,
-    ServoLoop, ServoOptions, SimulatedHand, StopReason, TickRecord, scripted_path,
-    simulated_spec, write_csv_header,
+    ServoLoop, ServoOptions, SimulatedHand, StopReason, TickRecord, scripted_path, simulated_spec,
+    write_csv_header,
 };
 
 fn shape(which: Catalog, triangles: usize) -> Arc<Shape> {
@@ -26,7 +26,12 @@ fn shape(which: Catalog, triangles: usize) -> Arc<Shape> {
 fn scene_of(shape: Arc<Shape>, material: Material) -> Scene {
     let mut scene = Scene::local(4);
     scene
-        .insert(SceneObject::new(ObjectId(7), shape, Pose::IDENTITY, material))
+        .insert(SceneObject::new(
+            ObjectId(7),
+            shape,
+            Pose::IDENTITY,
+            material,
+        ))
         .expect("room");
     scene
 }
@@ -131,13 +136,21 @@ fn sliding_with_friction_sticks_and_slips() {
         let n = r.force.z;
         let t = r.force.truncate().length();
         assert!(n > 0.5, "pressing: {}", r.force);
-        assert!(t <= 0.6 * n * (1.0 + 1e-9) + 1e-12, "outside the static cone at {}", r.t);
+        assert!(
+            t <= 0.6 * n * (1.0 + 1e-9) + 1e-12,
+            "outside the static cone at {}",
+            r.t
+        );
         if r.status.sticking {
             stick += 1;
             assert_eq!(r.proxy, r0.proxy, "a sticking proxy does not move");
         } else {
             slip += 1;
-            assert!((t / n - 0.4).abs() < 1e-6, "slipping on the dynamic cone: {}", t / n);
+            assert!(
+                (t / n - 0.4).abs() < 1e-6,
+                "slipping on the dynamic cone: {}",
+                t / n
+            );
             if r0.status.sticking {
                 stick_to_slip += 1;
             }
@@ -146,7 +159,10 @@ fn sliding_with_friction_sticks_and_slips() {
     let travelled = slide[slide.len() - 1].proxy.x - slide[0].proxy.x;
     println!("stick {stick}, slip {slip}, breakaways {stick_to_slip}, travelled {travelled} m");
     assert!(stick > 100 && slip > 100, "stick {stick}, slip {slip}");
-    assert!(stick_to_slip >= 3, "stick and slip alternate: {stick_to_slip}");
+    assert!(
+        stick_to_slip >= 3,
+        "stick and slip alternate: {stick_to_slip}"
+    );
     assert!(travelled > 0.03, "the proxy slid along: {travelled} m");
 }
 
@@ -164,9 +180,15 @@ fn assert_never_through(records: &[TickRecord], what: &str) {
         );
         contact += usize::from(r.in_contact());
     }
-    let deepest = records.iter().map(|r| r.hip.z).fold(f64::INFINITY, f64::min);
+    let deepest = records
+        .iter()
+        .map(|r| r.hip.z)
+        .fold(f64::INFINITY, f64::min);
     assert!(contact > 50, "{what}: contact ticks {contact}");
-    assert!(deepest < -PLATE_TOP, "{what}: the hand went through: {deepest}");
+    assert!(
+        deepest < -PLATE_TOP,
+        "{what}: the hand went through: {deepest}"
+    );
 }
 
 /// A fast strike on the thin plate: the hand's point goes through the 0.1 mm plate between
@@ -180,7 +202,10 @@ fn a_fast_strike_never_goes_through_the_thin_plate() {
         let hand = SimulatedHand::new(path, HandOptions::default());
         let mut servo = Servo::new(hand, scene, options(rate)).expect("servo");
         let records = run(&mut servo, 2.0);
-        let fastest = records.iter().map(|r| r.velocity.length()).fold(0.0, f64::max);
+        let fastest = records
+            .iter()
+            .map(|r| r.velocity.length())
+            .fold(0.0, f64::max);
         assert!(fastest > 1.0, "a fast strike: {fastest} m/s");
         assert_never_through(&records, &format!("hand at {rate} Hz"));
     }
@@ -272,7 +297,11 @@ fn safe_start_holds_until_the_device_is_outside() {
         .expect("it comes out");
     for r in &records[..first_out] {
         assert_eq!(r.force, DVec3::ZERO);
-        assert!(r.hip.length() < 0.1 + 1e-3, "held only while inside: {}", r.hip);
+        assert!(
+            r.hip.length() < 0.1 + 1e-3,
+            "held only while inside: {}",
+            r.hip
+        );
     }
     assert!(records[first_out].hip.length() > 0.099);
     assert_eq!(servo.stats().held_ticks, first_out as u64);

@@ -34,7 +34,12 @@ fn servo_ticks_allocate_nothing() {
     let torus = shape(Catalog::Torus, 5_000);
     let (mut scene, mut editor) = Scene::new(8);
     scene
-        .insert(SceneObject::new(ObjectId(0), blob, Pose::IDENTITY, material))
+        .insert(SceneObject::new(
+            ObjectId(0),
+            blob,
+            Pose::IDENTITY,
+            material,
+        ))
         .expect("room");
     let plate_pose = Pose::from_translation(DVec3::new(0.3, 0.0, 0.0));
     scene
@@ -137,6 +142,10 @@ fn servo_ticks_allocate_nothing() {
         });
     });
     // 20 000 samples, and the tick that found the trace ended.
-    assert_eq!(servo.stats().ticks, 20_001, "the replay ends with the trace");
+    assert_eq!(
+        servo.stats().ticks,
+        20_001,
+        "the replay ends with the trace"
+    );
     assert_eq!(info.count_total, 0, "the replay allocated");
 }

@@ -64,7 +64,8 @@ pub struct Args {
     /// Servo rate, Hz (1 to 40000).
     #[arg(long, default_value_t = 1000.0)]
     rate: f64,
-    /// Length of the run, seconds (default 5, or the length of the replayed trace).
+    /// Length of the run, seconds (default 5, or the length of the replayed trace; a
+    /// replay stops when its trace ends).
     #[arg(long)]
     seconds: Option<f64>,
     /// Run on the wall clock on a real-time thread (default: a virtual clock, as fast as
@@ -100,7 +101,10 @@ pub struct Args {
 /// Runs `haphe simulate`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     if !(args.rate.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&args.rate)) {
-        bail!("--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {}", args.rate);
+        bail!(
+            "--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {}",
+            args.rate
+        );
     }
     let material = Material {
         stiffness: args.stiffness,
@@ -140,7 +144,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let build_seconds = started.elapsed().as_secs_f64();
     let device = if let Some(file) = &args.replay {
         let name = file.display().to_string();
-        let reader = BufReader::new(File::open(file).with_context(|| format!("cannot read {name}"))?);
+        let reader =
+            BufReader::new(File::open(file).with_context(|| format!("cannot read {name}"))?);
         DeviceChoice::Replay(HipTrace::read(&name, reader)?)
     } else if args.no_hand && !args.hand {
         DeviceChoice::Scripted(args.path)
@@ -214,7 +219,8 @@ impl TraceOut {
         let file =
             File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
         let mut writer = BufWriter::with_capacity(1 << 20, file);
-        write_csv_header(&mut writer).with_context(|| format!("cannot write {}", path.display()))?;
+        write_csv_header(&mut writer)
+            .with_context(|| format!("cannot write {}", path.display()))?;
         Ok(TraceOut {
             writer,
             path: path.to_path_buf(),
@@ -267,7 +273,8 @@ impl Session {
         let seconds = match (&self.device, self.seconds) {
             (_, Some(s)) if s.is_finite() && s > 0.0 => s,
             (_, Some(s)) => bail!("--seconds must be positive, not {s}"),
-            (DeviceChoice::Replay(t), None) => t.end_time() - t.start_time(),
+            // Every sample, the last one included.
+            (DeviceChoice::Replay(t), None) => t.end_time() - t.start_time() + 1.0 / self.rate_hz,
             (_, None) => DEFAULT_SECONDS,
         };
         let device: Box<dyn Device> = match self.device {

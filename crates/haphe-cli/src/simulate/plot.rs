@@ -68,7 +68,10 @@ fn draw(path: &Path, title: &str, points: &[PlotPoint]) -> Result<(), Box<dyn Er
         .max(0.1)
         * 1.1;
     let mut chart = ChartBuilder::on(&depth_area)
-        .caption("penetration (device point behind the proxy)", ("sans-serif", 18))
+        .caption(
+            "penetration (device point behind the proxy)",
+            ("sans-serif", 18),
+        )
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(55)

@@ -140,7 +140,9 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
         let spec = spanned.get_ref();
         let (key, name) = match (&spec.shape, &spec.mesh) {
             (Some(_), Some(_)) => bail!("{place}: give either `shape` or `mesh`, not both"),
-            (None, None) => bail!("{place}: give `shape = \"blob\"` (or another built-in shape) or `mesh = \"FILE\"`"),
+            (None, None) => bail!(
+                "{place}: give `shape = \"blob\"` (or another built-in shape) or `mesh = \"FILE\"`"
+            ),
             (Some(shape), None) => {
                 if spec.units.is_some() {
                     bail!("{place}: `units` applies to a mesh file, not to a built-in shape");
@@ -184,7 +186,11 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
             }
         }
         if m.dynamic_friction > m.static_friction {
-            bail!("{place}: dynamic_friction ({}) may not exceed static_friction ({})", m.dynamic_friction, m.static_friction);
+            bail!(
+                "{place}: dynamic_friction ({}) may not exceed static_friction ({})",
+                m.dynamic_friction,
+                m.static_friction
+            );
         }
         let material = Material {
             stiffness: m.stiffness,
@@ -234,15 +240,12 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
 
 /// The units named in a scene file or on the command line.
 pub fn parse_units(s: &str) -> anyhow::Result<Units> {
-    s.parse::<Units>()
-        .map_err(|e| anyhow!("units {s:?}: {e}"))
+    s.parse::<Units>().map_err(|e| anyhow!("units {s:?}: {e}"))
 }
 
 fn build_shape(spec: &ObjectSpec, base: &Path, map: &MapOptions) -> anyhow::Result<Shape> {
     if let Some(name) = &spec.shape {
-        let which: Catalog = name
-            .parse()
-            .map_err(|e| anyhow!("shape {name:?}: {e}"))?;
+        let which: Catalog = name.parse().map_err(|e| anyhow!("shape {name:?}: {e}"))?;
         let n = spec.triangles.unwrap_or(DEFAULT_TRIANGLES);
         return shape_of(which, n, map);
     }

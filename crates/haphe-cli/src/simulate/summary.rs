@@ -138,7 +138,8 @@ pub fn print(
             StopReason::Finished => String::new(),
             StopReason::Requested => " (stopped)".into(),
             StopReason::Fault(haphe::servo::DeviceFault::Ended) => " (the trace ended)".into(),
-            StopReason::Fault(f) => format!(" (stopped by a device fault: {f}; zero force written)"),
+            StopReason::Fault(f) =>
+                format!(" (stopped by a device fault: {f}; zero force written)"),
         }
     )?;
     let objects: Vec<String> = s

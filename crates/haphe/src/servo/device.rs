@@ -282,11 +282,7 @@ mod tests {
 
     #[test]
     fn round_trip_and_forces_are_not_scaled() {
-        let m = DeviceMapping::new(
-            DQuat::from_rotation_z(0.3),
-            2.5,
-            DVec3::new(0.1, -0.2, 0.3),
-        );
+        let m = DeviceMapping::new(DQuat::from_rotation_z(0.3), 2.5, DVec3::new(0.1, -0.2, 0.3));
         let p = DVec3::new(0.01, 0.02, -0.03);
         assert!(m.position_to_device(m.position_to_world(p)).distance(p) < 1e-15);
         let f = DVec3::new(1.0, 2.0, 3.0);

@@ -149,7 +149,11 @@ impl Device for SimulatedHand {
         if !self.open {
             return Err(DeviceFault::NotOpen);
         }
-        self.force = if force.is_finite() { force } else { DVec3::ZERO };
+        self.force = if force.is_finite() {
+            force
+        } else {
+            DVec3::ZERO
+        };
         Ok(())
     }
 

@@ -77,9 +77,7 @@ mod tests {
         let linear = ObjectMotion {
             id,
             base,
-            motion: Motion::Linear {
-                velocity: DVec3::Y,
-            },
+            motion: Motion::Linear { velocity: DVec3::Y },
         };
         assert_eq!(linear.pose_at(2.0).translation(), DVec3::new(1.0, 2.0, 0.0));
         let osc = ObjectMotion {

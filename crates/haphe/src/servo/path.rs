@@ -167,7 +167,9 @@ mod tests {
 
     #[test]
     fn equal_steps_on_a_line_give_constant_speed() {
-        let keys: Vec<(f64, DVec3)> = (0..6).map(|i| (f64::from(i), DVec3::Z * -f64::from(i))).collect();
+        let keys: Vec<(f64, DVec3)> = (0..6)
+            .map(|i| (f64::from(i), DVec3::Z * -f64::from(i)))
+            .collect();
         let path = Path::from_keys(&keys).expect("valid");
         for t in [1.0, 1.5, 2.25, 3.9] {
             assert!((path.sample(t).1.z + 1.0).abs() < 1e-12, "{t}");

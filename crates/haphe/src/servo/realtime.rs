@@ -174,7 +174,9 @@ fn set_up_thread(options: &RealtimeOptions) -> RealtimeSetup {
     if options.realtime_priority {
         match fifo_priority() {
             Ok(()) => setup.realtime_priority = true,
-            Err(why) => setup.notes.push(format!("real-time priority not granted ({why})")),
+            Err(why) => setup
+                .notes
+                .push(format!("real-time priority not granted ({why})")),
         }
     }
     match core_affinity::get_core_ids() {
@@ -184,7 +186,9 @@ fn set_up_thread(options: &RealtimeOptions) -> RealtimeSetup {
                 Some(&core) if core_affinity::set_for_current(core) => {
                     setup.pinned_core = Some(core.id);
                 }
-                Some(_) => setup.notes.push(format!("pinning to core {wanted} refused")),
+                Some(_) => setup
+                    .notes
+                    .push(format!("pinning to core {wanted} refused")),
                 None => setup.notes.push(format!("no core {wanted} to pin to")),
             }
         }
@@ -277,8 +281,12 @@ fn run_thread<D: Device>(
         let record = servo.tick_at(offset.as_secs_f64());
         let done = Instant::now();
         let stats = servo.stats_mut();
-        stats.lateness.record(nanos(began.saturating_duration_since(deadline)));
-        stats.compute.record(nanos(done.saturating_duration_since(began)));
+        stats
+            .lateness
+            .record(nanos(began.saturating_duration_since(deadline)));
+        stats
+            .compute
+            .record(nanos(done.saturating_duration_since(began)));
         if done > deadline + period {
             stats.overruns += 1;
         }

@@ -28,8 +28,8 @@ pub const SLIDE_SPEED: f64 = 0.05;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum PathKind {
-    /// Come down onto the top of the first object, press [`PRESS_DEPTH_M`] into it, hold,
-    /// lift.
+    /// Come down onto the top of the first object (its highest point near the middle),
+    /// press [`PRESS_DEPTH_M`] into it, hold, lift.
     Press,
     /// Press into the top of the first object and slide across it along `x` at
     /// [`SLIDE_SPEED`], following its height, then lift.
@@ -78,7 +78,9 @@ impl FromStr for PathKind {
         PathKind::ALL
             .into_iter()
             .find(|k| k.name() == s)
-            .ok_or_else(|| format!("unknown path {s:?}: expected press, slide, circle, explore or strike"))
+            .ok_or_else(|| {
+                format!("unknown path {s:?}: expected press, slide, circle, explore or strike")
+            })
     }
 }
 
@@ -107,6 +109,33 @@ pub fn surface_below(scene: &Scene, x: f64, y: f64) -> Option<DVec3> {
         .map(|h| h.point)
 }
 
+/// Probes per side of the grid that looks for the top of an object.
+const TOP_PROBES: i32 = 9;
+
+/// The highest surface point under a grid of vertical probes over the middle of the disc
+/// of radius `r` around `c` (metres, world frame): the top of the object there, even when
+/// its centre is a hole (a torus).
+fn highest_point(scene: &Scene, c: DVec3, r: f64) -> Option<DVec3> {
+    let half = TOP_PROBES / 2;
+    let step = 0.7 * r / f64::from(half.max(1));
+    let mut best: Option<DVec3> = None;
+    // Nearest the centre first, so that among equal heights the central point wins.
+    let mut offsets: Vec<(i32, i32)> = (-half..=half)
+        .flat_map(|i| (-half..=half).map(move |j| (i, j)))
+        .collect();
+    offsets.sort_by_key(|&(i, j)| i * i + j * j);
+    for (i, j) in offsets {
+        let x = c.x + f64::from(i) * step;
+        let y = c.y + f64::from(j) * step;
+        if let Some(p) = surface_below(scene, x, y)
+            && best.is_none_or(|b| p.z > b.z + 1e-9)
+        {
+            best = Some(p);
+        }
+    }
+    best
+}
+
 /// A scripted path of `kind` over `scene`, lasting `seconds` (at least one second), in
 /// the world frame. `seed` drives [`PathKind::Explore`].
 ///
@@ -118,14 +147,18 @@ pub fn scripted_path(
     seconds: f64,
     seed: u64,
 ) -> Result<Path, PathError> {
-    let seconds = if seconds.is_finite() { seconds.max(1.0) } else { 1.0 };
+    let seconds = if seconds.is_finite() {
+        seconds.max(1.0)
+    } else {
+        1.0
+    };
     let (_, hi) = scene_bounds(scene).ok_or(PathError::EmptyScene)?;
     let first = &scene.objects()[0];
     let c = first.pose.to_world(first.shape.bound_centre());
     let r = first.shape.bound_radius();
     let hover_z = hi.z + HOVER_M;
     let top_at = |x: f64, y: f64| surface_below(scene, x, y).unwrap_or(DVec3::new(x, y, c.z));
-    let top = top_at(c.x, c.y);
+    let top = highest_point(scene, c, r).unwrap_or(DVec3::new(c.x, c.y, c.z));
     let above = |p: DVec3| DVec3::new(p.x, p.y, hover_z);
     let under = |p: DVec3, depth: f64| p - DVec3::Z * depth;
     let t = seconds;
@@ -158,7 +191,7 @@ pub fn scripted_path(
             keys
         }
         PathKind::Circle => {
-            let radius = 0.3 * r;
+            let radius = 0.5 * r;
             let on = |a: f64| {
                 let (x, y) = (c.x + radius * a.cos(), c.y + radius * a.sin());
                 under(top_at(x, y), PRESS_DEPTH_M)
@@ -170,7 +203,10 @@ pub fn scripted_path(
             let n = 64;
             for k in 1..=n {
                 let s = f64::from(k) / f64::from(n);
-                keys.push((0.15 * t + s * 0.7 * t, on(s * turns * std::f64::consts::TAU)));
+                keys.push((
+                    0.15 * t + s * 0.7 * t,
+                    on(s * turns * std::f64::consts::TAU),
+                ));
             }
             let end = keys[keys.len() - 1].1;
             keys.push((t, above(end)));
@@ -186,7 +222,10 @@ pub fn scripted_path(
                 let oc = o.pose.to_world(o.shape.bound_centre());
                 let reach = 0.6 * o.shape.bound_radius();
                 let mut pick = || {
-                    let (x, y) = (oc.x + rng.range(-reach, reach), oc.y + rng.range(-reach, reach));
+                    let (x, y) = (
+                        oc.x + rng.range(-reach, reach),
+                        oc.y + rng.range(-reach, reach),
+                    );
                     top_at(x, y)
                 };
                 let (a, b) = (pick(), pick());

@@ -109,7 +109,11 @@ impl Histogram {
         if self.count == 0 {
             return 0;
         }
-        let q = if q.is_finite() { q.clamp(0.0, 1.0) } else { 1.0 };
+        let q = if q.is_finite() {
+            q.clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
         let rank = ((q * self.count as f64).ceil() as u64).clamp(1, self.count);
         let mut seen = 0u64;
         for (b, &c) in self.counts.iter().enumerate() {
@@ -193,7 +197,10 @@ mod tests {
             assert!(b < BUCKETS && b >= last, "{v}");
             last = b;
             let mid = value_of(b);
-            assert!(mid.abs_diff(v) as f64 <= 1.0 + v as f64 / 64.0, "{v} -> {mid}");
+            assert!(
+                mid.abs_diff(v) as f64 <= 1.0 + v as f64 / 64.0,
+                "{v} -> {mid}"
+            );
         }
     }
 

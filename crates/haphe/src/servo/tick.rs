@@ -118,8 +118,7 @@ impl<D: Device> Servo<D> {
     /// [`ServoError::Rate`] for a rate out of range; [`ServoError::Device`] when the device
     /// cannot be opened or calibrated.
     pub fn new(mut device: D, scene: Scene, options: ServoOptions) -> Result<Servo<D>, ServoError> {
-        if !(options.rate_hz.is_finite()
-            && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&options.rate_hz))
+        if !(options.rate_hz.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&options.rate_hz))
         {
             return Err(ServoError::Rate {
                 rate_hz: options.rate_hz,
@@ -321,7 +320,11 @@ impl<D: Device> Servo<D> {
     ///
     /// # Real-time
     /// The loop itself allocates nothing; `on_tick` runs on this thread between ticks.
-    pub fn run_simulated(&mut self, ticks: u64, mut on_tick: impl FnMut(&TickRecord)) -> StopReason {
+    pub fn run_simulated(
+        &mut self,
+        ticks: u64,
+        mut on_tick: impl FnMut(&TickRecord),
+    ) -> StopReason {
         let start = Instant::now();
         let period = self.period();
         let first = self.stats.ticks;
@@ -330,7 +333,9 @@ impl<D: Device> Servo<D> {
             let began = Instant::now();
             let record = self.tick_at(k as f64 * period);
             let ns = began.elapsed().as_nanos();
-            self.stats.compute.record(u64::try_from(ns).unwrap_or(u64::MAX));
+            self.stats
+                .compute
+                .record(u64::try_from(ns).unwrap_or(u64::MAX));
             on_tick(&record);
             if let Some(f) = record.fault {
                 stop = StopReason::Fault(f);
