@@ -103,6 +103,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         rate_hz: args.rate,
         seconds: Some(seconds),
         realtime: args.realtime,
+        spin_seconds: None,
         seed: 3,
         max_force: 3.3,
         out: args.out.clone(),

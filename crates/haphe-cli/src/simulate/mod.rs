@@ -72,6 +72,10 @@ pub struct Args {
     /// possible).
     #[arg(long)]
     realtime: bool,
+    /// With --realtime: spin (instead of sleeping) for this last part before each
+    /// deadline, microseconds (default: 200, at most 30 % of the period).
+    #[arg(long, value_name = "US")]
+    spin_us: Option<f64>,
     /// Write every tick to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     out: Option<PathBuf>,
@@ -160,6 +164,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         rate_hz: args.rate,
         seconds: args.seconds,
         realtime: args.realtime,
+        spin_seconds: args.spin_us.map(|us| us * 1e-6),
         seed: args.seed,
         max_force: args.max_force,
         out: args.out.clone(),
@@ -198,6 +203,7 @@ pub struct Session {
     pub rate_hz: f64,
     pub seconds: Option<f64>,
     pub realtime: bool,
+    pub spin_seconds: Option<f64>,
     pub seed: u64,
     pub max_force: f64,
     pub out: Option<PathBuf>,
@@ -322,7 +328,11 @@ impl Session {
             }
         };
         let (stats, stop, setup, dropped) = if self.realtime {
-            let running = ServoLoop::spawn(servo, Some(seconds), RealtimeOptions::default())?;
+            let realtime = RealtimeOptions {
+                spin_seconds: self.spin_seconds,
+                ..RealtimeOptions::default()
+            };
+            let running = ServoLoop::spawn(servo, Some(seconds), realtime)?;
             let run = running.wait(&mut on_tick)?;
             let stats = run.servo.stats().clone();
             (stats, run.stop, Some(run.setup), run.dropped_records)

@@ -77,7 +77,8 @@ pub use hand::{HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HandOptions, SimulatedHand};
 pub use motion::{Motion, ObjectMotion};
 pub use path::{Path, PathError};
 pub use realtime::{
-    DEFAULT_SPIN_S, FIFO_PRIORITY, RealtimeOptions, RealtimeRun, RealtimeSetup, ServoLoop,
+    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, FIFO_PRIORITY, RealtimeOptions, RealtimeRun,
+    RealtimeSetup, ServoLoop,
 };
 pub use replay::{HipTrace, ReplayDevice, TraceError};
 pub use scripted::{

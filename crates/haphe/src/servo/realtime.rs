@@ -12,10 +12,18 @@ use super::device::Device;
 use super::tick::{Servo, ServoError, StopReason};
 use super::trace::TickRecord;
 
-/// Longest time the loop sleeps before spinning to a deadline, when the period is long,
-/// seconds: the operating system's wake-up is often late by tens of microseconds, so the
-/// last part is spun.
+/// Longest part of a period spun before a deadline (instead of sleeping), seconds: the
+/// operating system's wake-up is often late by tens of microseconds, so the last part is
+/// spun. At high rates the default is [`DEFAULT_SPIN_FRACTION`] of the period instead.
 pub const DEFAULT_SPIN_S: f64 = 200e-6;
+
+/// Default spin at high rates, as a fraction of the period. A real-time thread that never
+/// sleeps is throttled by Linux (by default 50 ms in every second, `sched_rt_runtime_us`),
+/// and one that spins most of the period competes with everything else on its core;
+/// measured on a loaded 2-core virtual machine at 10 kHz, spinning 30 µs of 100 µs gave
+/// the fewest overruns (60–100 µs: more, and 50 ms stalls from throttling; 15 µs: wake-ups
+/// late by 15 µs at the median).
+pub const DEFAULT_SPIN_FRACTION: f64 = 0.3;
 
 /// Priority asked for the servo thread on Linux (SCHED_FIFO, 1–99): high, below the
 /// kernel's own per-CPU threads (99).
@@ -31,7 +39,7 @@ pub struct RealtimeOptions {
     /// the least work; pinning is skipped when there is a single core).
     pub core: Option<usize>,
     /// Spin (instead of sleeping) for this last part before each deadline, seconds.
-    /// `None`: [`DEFAULT_SPIN_S`], at most 60 % of the period.
+    /// `None`: [`DEFAULT_SPIN_S`], at most [`DEFAULT_SPIN_FRACTION`] of the period.
     pub spin_seconds: Option<f64>,
     /// Capacity of the record ring to the reading thread, ticks; records that find it
     /// full are dropped and counted.
@@ -255,7 +263,7 @@ fn run_thread<D: Device>(
     let spin_s = options
         .spin_seconds
         .filter(|s| s.is_finite() && *s >= 0.0)
-        .unwrap_or_else(|| DEFAULT_SPIN_S.min(0.6 / rate));
+        .unwrap_or_else(|| DEFAULT_SPIN_S.min(DEFAULT_SPIN_FRACTION / rate));
     let spin = Duration::from_secs_f64(spin_s);
     let max_ticks = seconds
         .filter(|s| s.is_finite() && *s >= 0.0)

@@ -36,8 +36,8 @@ pub enum PathKind {
     Slide,
     /// Press into the top of the first object and draw circles on it.
     Circle,
-    /// Random strokes on the tops of all objects: touch down, slide, lift, move on
-    /// (deterministic for a seed).
+    /// Random strokes on the tops of all objects, one a second: move over the scene to
+    /// the next stroke, come down, slide, lift (deterministic for a seed).
     Explore,
     /// Hit the top of the first object at [`STRIKE_SPEED`] aiming 4 cm below its surface,
     /// hold, lift.
@@ -231,6 +231,8 @@ pub fn scripted_path(
                 let (a, b) = (pick(), pick());
                 let depth = PRESS_DEPTH_M * rng.range(0.3, 1.5);
                 let t0 = s as f64 * dt;
+                // Over the top of everything to the next stroke, then straight down.
+                keys.push((t0 + 0.1 * dt, above(a)));
                 keys.push((t0 + 0.25 * dt, a + DVec3::Z * 0.003));
                 keys.push((t0 + 0.35 * dt, under(a, depth)));
                 for k in 1..=6 {
