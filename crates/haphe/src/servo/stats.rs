@@ -104,7 +104,7 @@ impl Histogram {
     }
 
     /// The `q`-quantile (`0 ≤ q ≤ 1`), nanoseconds, within 1/64 of the true value, and
-    /// never above the maximum; 0 when empty.
+    /// never above the maximum (the largest rank is the maximum, exactly); 0 when empty.
     pub fn quantile(&self, q: f64) -> u64 {
         if self.count == 0 {
             return 0;
@@ -115,6 +115,9 @@ impl Histogram {
             1.0
         };
         let rank = ((q * self.count as f64).ceil() as u64).clamp(1, self.count);
+        if rank == self.count {
+            return self.max;
+        }
         let mut seen = 0u64;
         for (b, &c) in self.counts.iter().enumerate() {
             seen += c;
