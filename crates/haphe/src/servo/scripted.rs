@@ -216,7 +216,7 @@ pub fn scripted_path(
             let mut rng = SplitMix64::new(seed);
             let strokes = (seconds / 1.0).round().max(1.0) as usize;
             let dt = t / strokes as f64;
-            let mut keys = vec![(0.0, DVec3::new(c.x, c.y, hover_z))];
+            let mut keys = Vec::new();
             for s in 0..strokes {
                 let o = &scene.objects()[rng.index(scene.objects().len())];
                 let oc = o.pose.to_world(o.shape.bound_centre());
@@ -232,7 +232,8 @@ pub fn scripted_path(
                 let depth = PRESS_DEPTH_M * rng.range(0.3, 1.5);
                 let t0 = s as f64 * dt;
                 // Over the top of everything to the next stroke, then straight down.
-                keys.push((t0 + 0.1 * dt, above(a)));
+                // The path starts hovering over the first stroke.
+                keys.push((if s == 0 { 0.0 } else { t0 + 0.1 * dt }, above(a)));
                 keys.push((t0 + 0.25 * dt, a + DVec3::Z * 0.003));
                 keys.push((t0 + 0.35 * dt, under(a, depth)));
                 for k in 1..=6 {
@@ -242,7 +243,9 @@ pub fn scripted_path(
                 }
                 keys.push((t0 + 0.9 * dt, b + DVec3::Z * 0.01));
             }
-            keys.push((t, DVec3::new(c.x, c.y, hover_z)));
+            // End lifted off the last stroke.
+            let last = keys[keys.len() - 1].1;
+            keys.push((t, last + DVec3::Z * 0.02));
             keys
         }
         PathKind::Strike => {
