@@ -1,15 +1,21 @@
-//! `haphe demo`: the README's main command. Until the simulated haptic session exists it
-//! runs the mesh stage and the collision core on the built-in procedural models and prints
-//! what a user of the library gets from them.
+//! `haphe demo`: the README's main command. A simulated hand explores a built-in scene —
+//! a noisy blob beside a thin plate 0.1 mm thick, with friction — for a few seconds of
+//! simulated time at 1 kHz; the servo loop renders it, and the demo prints what a haptics
+//! user wants to know and draws the run.
 
-use std::io::Write;
+use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::Instant;
 
-use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::Shape;
-use haphe::mesh::{MeshReport, Surface, SurfaceOptions, Usability, Weld, weld};
-use haphe::verify::{CrossingCheck, SegmentKind, check_crossings};
+use haphe::DVec3;
+use haphe::map::MapOptions;
+use haphe::mesh::shapes::Shape as Catalog;
+use haphe::scene::{Material, ObjectId, Pose, SceneObject};
+use haphe::servo::{HandOptions, PathKind};
+
+use crate::simulate::scene_file::{LoadedObject, shape_of};
+use crate::simulate::{DeviceChoice, Session};
 
 /// Arguments of `haphe demo`.
 #[derive(clap::Args, Debug)]
@@ -17,96 +23,95 @@ pub struct Args {
     /// Triangles per built-in model.
     #[arg(long, default_value_t = 20_000)]
     triangles: usize,
+    /// Seconds of simulated time.
+    #[arg(long, default_value_t = 6.0)]
+    seconds: f64,
+    /// Servo rate, Hz.
+    #[arg(long, default_value_t = 1000.0)]
+    rate: f64,
+    /// Where to draw the run (PNG).
+    #[arg(long, default_value = "haphe-demo.png")]
+    plot: PathBuf,
+    /// Also write every tick to this CSV file.
+    #[arg(long, value_name = "FILE.csv")]
+    out: Option<PathBuf>,
+    /// A quick run for tests: 2000-triangle models, 3 s.
+    #[arg(long)]
+    fast: bool,
+    /// Run on the wall clock on a real-time thread instead of the virtual clock.
+    #[arg(long)]
+    realtime: bool,
 }
 
-/// Probe segments per kind in the demo's check.
-const PROBES_PER_KIND: usize = 200;
-
-/// Runs the demo; fails (exit 2) if a built-in model is not a valid solid or a probe
-/// segment disagrees with brute force.
+/// Runs the demo.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    let mut out = std::io::stdout().lock();
-    writeln!(
-        out,
-        "haphe demo: the mesh stage and the collision core on the built-in models (about 0.2 m across, ~{} triangles each)\n",
-        args.triangles
-    )?;
-    writeln!(
-        out,
-        "| model          | triangles | verdict | genus | volume (m³) | weld+validate | topology | map      | bytes/triangle | probe segments | wrong | leaks |"
-    )?;
-    writeln!(
-        out,
-        "|----------------|----------:|---------|------:|------------:|--------------:|---------:|---------:|---------------:|---------------:|------:|------:|"
-    )?;
-    let mut all_solid = true;
-    let mut all_right = true;
-    for shape in Shape::ALL {
-        let generated = shape.with_triangles(args.triangles);
-
-        // The same path a file takes: weld (a no-op here: shared vertices already), validate.
-        let start = Instant::now();
-        let (mesh, _) = weld(&generated, Weld::Exact);
-        let report = MeshReport::of(&mesh);
-        let t_validate = start.elapsed();
-
-        let start = Instant::now();
-        let surface = Surface::new(mesh, &SurfaceOptions::default())?;
-        let t_topology = start.elapsed();
-
-        let start = Instant::now();
-        let map = VoxelMap::build(&surface, &MapOptions::default())?;
-        let t_map = start.elapsed();
-
-        // Probe segments through vertices and edges, against every-triangle testing.
-        let probes: Vec<CrossingCheck> = [
-            SegmentKind::Random,
-            SegmentKind::ThroughVertex,
-            SegmentKind::ThroughEdge,
-        ]
-        .into_iter()
-        .map(|kind| check_crossings(&surface, &map, kind, PROBES_PER_KIND, 1))
-        .collect();
-        let wrong: usize = probes.iter().map(|c| c.mismatches).sum();
-        let leaks: usize = probes.iter().map(|c| c.leaks).sum();
-
-        all_solid &= report.usable_as == Usability::Solid;
-        all_right &= wrong == 0 && leaks == 0;
-        let bytes = surface.heap_bytes() + map.heap_bytes();
-        writeln!(
-            out,
-            "| {:<14} | {:>9} | {:<7} | {:>5} | {:>11.4e} | {:>10.1} ms | {:>5.1} ms | {:>5.1} ms | {:>14.0} | {:>14} | {:>5} | {:>5} |",
-            shape.name(),
-            report.triangles,
-            format!("{:?}", report.usable_as).to_lowercase(),
-            report.genus.map_or("-".to_owned(), |g| g.to_string()),
-            report.volume.unwrap_or(f64::NAN),
-            t_validate.as_secs_f64() * 1e3,
-            t_topology.as_secs_f64() * 1e3,
-            t_map.as_secs_f64() * 1e3,
-            bytes as f64 / surface.triangle_count() as f64,
-            3 * PROBES_PER_KIND,
-            wrong,
-            leaks,
-        )?;
-    }
-    writeln!(
-        out,
-        "\nEvery model is a closed, oriented, manifold solid: {}",
-        if all_solid { "yes" } else { "NO" }
-    )?;
-    writeln!(
-        out,
-        "Probe segments (random, through vertices, through edges): first crossings equal to testing every triangle, and no segment from outside to inside missed: {}",
-        if all_right { "yes" } else { "NO" }
-    )?;
-    writeln!(
-        out,
-        "Next: `haphe validate FILE` on your own meshes (see `haphe validate --help`)."
-    )?;
-    Ok(if all_solid && all_right {
-        ExitCode::SUCCESS
+    let (triangles, seconds) = if args.fast {
+        (2_000, 3.0)
     } else {
-        ExitCode::from(2)
-    })
+        (args.triangles, args.seconds)
+    };
+    let map = MapOptions::default();
+    let started = Instant::now();
+    let blob = Arc::new(shape_of(Catalog::Blob, triangles, &map)?);
+    let plate = Arc::new(shape_of(Catalog::ThinPlate, triangles, &map)?);
+    let objects = vec![
+        LoadedObject {
+            name: "blob".into(),
+            object: SceneObject::new(
+                ObjectId(0),
+                blob,
+                Pose::IDENTITY,
+                Material {
+                    stiffness: 600.0,
+                    damping: 1.0,
+                    static_friction: 0.3,
+                    dynamic_friction: 0.2,
+                },
+            ),
+            motion: None,
+        },
+        LoadedObject {
+            name: "thin-plate".into(),
+            object: SceneObject::new(
+                ObjectId(1),
+                plate,
+                Pose::from_translation(DVec3::new(0.25, 0.0, 0.0)),
+                Material {
+                    stiffness: 1000.0,
+                    damping: 1.0,
+                    static_friction: 0.5,
+                    dynamic_friction: 0.4,
+                },
+            ),
+            motion: None,
+        },
+    ];
+    let build_seconds = started.elapsed().as_secs_f64();
+    let session = Session {
+        title: format!(
+            "haphe demo: a simulated hand explores a blob and a 0.1 mm thin plate for {seconds} s at {} Hz ({})",
+            args.rate,
+            if args.realtime {
+                "wall clock"
+            } else {
+                "simulated time"
+            }
+        ),
+        objects,
+        build_seconds,
+        device: DeviceChoice::Hand(PathKind::Explore, HandOptions::default()),
+        rate_hz: args.rate,
+        seconds: Some(seconds),
+        realtime: args.realtime,
+        spin_seconds: None,
+        seed: 3,
+        max_force: 3.3,
+        out: args.out.clone(),
+        plot: Some(args.plot.clone()),
+    };
+    session.run(&mut std::io::stdout().lock())?;
+    println!(
+        "\nNext: `haphe simulate --shape torus --path slide --plot slide.png`, or your own mesh with `--mesh FILE` (see `haphe simulate --help`)."
+    );
+    Ok(ExitCode::SUCCESS)
 }

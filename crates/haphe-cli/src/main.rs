@@ -9,6 +9,7 @@ mod load;
 mod mapped;
 mod object;
 mod query;
+mod simulate;
 mod validate;
 mod verify;
 mod verify_proxy;
@@ -38,7 +39,9 @@ enum Command {
     Verify(verify::Args),
     /// Write a procedural test mesh (binary STL).
     Generate(generate::Args),
-    /// A short run on built-in procedural models (no files needed).
+    /// Run a simulated haptic session (simulated hand, scripted path or replayed trace).
+    Simulate(simulate::Args),
+    /// A simulated hand explores built-in models; summary and plot (no files needed).
     Demo(demo::Args),
     /// Time haphe's queries beside parry3d-f64 and brute force, on procedural meshes and files.
     Bench(bench::Args),
@@ -52,6 +55,7 @@ fn main() -> ExitCode {
         Command::Query(args) => query::run(&args),
         Command::Verify(args) => verify::run(&args),
         Command::Generate(args) => generate::run(&args),
+        Command::Simulate(args) => simulate::run(&args),
         Command::Demo(args) => demo::run(&args),
         Command::Bench(args) => bench::run(&args),
     };

@@ -1,4 +1,5 @@
-//! The `haphe` binary end to end: exit codes, JSON fields, error messages, demo.
+//! The `haphe` binary end to end: exit codes, JSON fields, error messages (the demo and
+//! `simulate` are in `simulate.rs`).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -131,26 +132,6 @@ fn generated_meshes_validate_as_solids() {
         let expected_genus = if shape == "torus" { 1 } else { 0 };
         assert_eq!(v["genus"], expected_genus, "{shape}");
     }
-}
-
-#[test]
-fn demo_runs_and_reports_every_model_as_a_solid() {
-    let out = haphe(&["demo", "--triangles", "500"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = stdout(&out);
-    for shape in SHAPES {
-        let row = text
-            .lines()
-            .find(|l| l.starts_with(&format!("| {shape} ")))
-            .unwrap_or_else(|| panic!("a row for {shape}:\n{text}"));
-        assert!(row.contains("| solid "), "{row}");
-    }
-    assert!(text.contains("closed, oriented, manifold solid: yes"));
-    assert!(text.contains("no segment from outside to inside missed: yes"));
 }
 
 #[test]

@@ -29,9 +29,19 @@
 //!    shading and the rendered force, ticked against a scene.
 //! 5. [`scene`] — many objects, each a shared [`scene::Shape`] at a rigid pose with a
 //!    material, edited from other threads without locking the servo thread.
+//! 6. [`servo`] — the fixed-rate loop: a [`servo::Device`] read and written every tick,
+//!    simulated devices (a hand, scripted paths, replayed traces), safe start, traces and
+//!    tick statistics.
 //!
-//! Stages up to the proxy touch no files, threads, clocks or globals: readers take bytes,
-//! so they can be fuzzed, and only the command-line tool opens paths.
+//! Stages up to the scene touch no files, threads, clocks or globals: readers take bytes,
+//! so they can be fuzzed, and only the command-line tool opens paths. The servo stage owns
+//! the clock and the servo thread.
+//!
+//! ## What a tick may do
+//!
+//! Everything the servo thread runs each tick (device read, scene edits, proxy, force,
+//! statistics) allocates nothing, takes no lock, does no I/O and never panics; bad input
+//! gives zero force and a status. Tests prove the first rule with a counting allocator.
 #![cfg_attr(
     not(test),
     warn(clippy::unwrap_used, clippy::expect_used, clippy::panic)
@@ -45,6 +55,7 @@ pub mod proxy;
 pub mod query;
 pub mod rng;
 pub mod scene;
+pub mod servo;
 pub mod verify;
 
 pub use glam;

@@ -1,0 +1,378 @@
+//! `haphe simulate`: a haptic session without hardware — a simulated hand (or a scripted
+//! device, or a replayed trace) on a mesh, a built-in shape or a scene file, ticked by the
+//! servo loop on a virtual clock or on the wall clock; a per-tick CSV trace, a summary and
+//! a plot.
+
+pub mod plot;
+pub mod scene_file;
+pub mod summary;
+
+use std::fs::File;
+use std::io::{BufReader, BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{Context, anyhow, bail};
+use haphe::map::MapOptions;
+use haphe::mesh::Units;
+use haphe::mesh::shapes::Shape as Catalog;
+use haphe::proxy::ProxyOptions;
+use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
+use haphe::servo::{
+    Device, HandOptions, HipTrace, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind,
+    RealtimeOptions, ReplayDevice, ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand,
+    StopReason, TickRecord, scripted_path, write_csv_header,
+};
+
+use self::scene_file::{LoadedObject, load_scene, mesh_shape, shape_of};
+use self::summary::{RunInfo, Summary};
+
+/// Arguments of `haphe simulate`.
+#[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape"])))]
+pub struct Args {
+    /// A mesh file (OBJ, STL, PLY, OFF) placed at the origin.
+    #[arg(long, value_name = "FILE")]
+    mesh: Option<PathBuf>,
+    /// A scene file (TOML): objects, poses, materials, motions (see the README).
+    #[arg(long, value_name = "FILE.toml")]
+    scene: Option<PathBuf>,
+    /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
+    #[arg(long, value_name = "NAME")]
+    shape: Option<String>,
+    /// Triangles of the built-in shape.
+    #[arg(long, default_value_t = 20_000)]
+    triangles: usize,
+    /// Length unit of the mesh file: m, mm, cm, in, or metres per unit.
+    #[arg(long, default_value = "m", value_parser = crate::validate::parse_units)]
+    units: Units,
+    /// The motion: press, slide, circle, explore or strike (over the top of the objects).
+    #[arg(long, default_value = "explore")]
+    path: PathKind,
+    /// The simulated hand (a mass–spring–damper arm pushed back by the force) follows the
+    /// path (the default).
+    #[arg(long, overrides_with = "no_hand")]
+    hand: bool,
+    /// The device point follows the path exactly, whatever the force.
+    #[arg(long = "no-hand", overrides_with = "hand")]
+    no_hand: bool,
+    /// Replay a recorded device trace, CSV `t,x,y,z` (instead of --path).
+    #[arg(long, value_name = "HIP.csv")]
+    replay: Option<PathBuf>,
+    /// Servo rate, Hz (1 to 40000).
+    #[arg(long, default_value_t = 1000.0)]
+    rate: f64,
+    /// Length of the run, seconds (default 5, or the length of the replayed trace; a
+    /// replay stops when its trace ends).
+    #[arg(long)]
+    seconds: Option<f64>,
+    /// Run on the wall clock on a real-time thread (default: a virtual clock, as fast as
+    /// possible).
+    #[arg(long)]
+    realtime: bool,
+    /// With --realtime: spin (instead of sleeping) for this last part before each
+    /// deadline, microseconds (default: 200, at most 30 % of the period).
+    #[arg(long, value_name = "US")]
+    spin_us: Option<f64>,
+    /// Write every tick to this CSV file.
+    #[arg(long, value_name = "FILE.csv")]
+    out: Option<PathBuf>,
+    /// Draw force, penetration and the side view of the path to this PNG.
+    #[arg(long, value_name = "FILE.png")]
+    plot: Option<PathBuf>,
+    /// Seed of the explore path.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Stiffness of a --mesh or --shape object, N/m.
+    #[arg(long, default_value_t = 600.0)]
+    stiffness: f64,
+    /// Damping of a --mesh or --shape object, N·s/m.
+    #[arg(long, default_value_t = 1.0)]
+    damping: f64,
+    /// Static friction coefficient of a --mesh or --shape object.
+    #[arg(long, default_value_t = 0.3)]
+    static_friction: f64,
+    /// Dynamic friction coefficient of a --mesh or --shape object.
+    #[arg(long, default_value_t = 0.2)]
+    dynamic_friction: f64,
+    /// Largest force rendered, N (the simulated device's maximum is 3.3 N).
+    #[arg(long, default_value_t = 3.3)]
+    max_force: f64,
+}
+
+/// Runs `haphe simulate`.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    if !(args.rate.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&args.rate)) {
+        bail!(
+            "--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {}",
+            args.rate
+        );
+    }
+    let material = Material {
+        stiffness: args.stiffness,
+        damping: args.damping,
+        static_friction: args.static_friction,
+        dynamic_friction: args.dynamic_friction,
+    };
+    let map = MapOptions::default();
+    let started = Instant::now();
+    let (objects, what) = if let Some(file) = &args.scene {
+        (load_scene(file, &map)?, file.display().to_string())
+    } else if let Some(file) = &args.mesh {
+        let shape = Arc::new(mesh_shape(file, args.units, &map)?);
+        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
+        (
+            vec![LoadedObject {
+                name: file.display().to_string(),
+                object: o,
+                motion: None,
+            }],
+            file.display().to_string(),
+        )
+    } else {
+        let name = args.shape.as_deref().unwrap_or("blob");
+        let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
+        let shape = Arc::new(shape_of(which, args.triangles, &map)?);
+        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
+        (
+            vec![LoadedObject {
+                name: name.to_string(),
+                object: o,
+                motion: None,
+            }],
+            format!("the built-in {name}"),
+        )
+    };
+    let build_seconds = started.elapsed().as_secs_f64();
+    let device = if let Some(file) = &args.replay {
+        let name = file.display().to_string();
+        let reader =
+            BufReader::new(File::open(file).with_context(|| format!("cannot read {name}"))?);
+        DeviceChoice::Replay(HipTrace::read(&name, reader)?)
+    } else if args.no_hand && !args.hand {
+        DeviceChoice::Scripted(args.path)
+    } else {
+        DeviceChoice::Hand(args.path, HandOptions::default())
+    };
+    let session = Session {
+        title: format!("haphe simulate: {} on {what}", device.describe()),
+        objects,
+        build_seconds,
+        device,
+        rate_hz: args.rate,
+        seconds: args.seconds,
+        realtime: args.realtime,
+        spin_seconds: args.spin_us.map(|us| us * 1e-6),
+        seed: args.seed,
+        max_force: args.max_force,
+        out: args.out.clone(),
+        plot: args.plot.clone(),
+    };
+    session.run(&mut std::io::stdout().lock())?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Which simulated device drives the run.
+pub enum DeviceChoice {
+    /// The simulated hand following a scripted path.
+    Hand(PathKind, HandOptions),
+    /// The device point on the scripted path exactly.
+    Scripted(PathKind),
+    /// A recorded trace.
+    Replay(HipTrace),
+}
+
+impl DeviceChoice {
+    fn describe(&self) -> String {
+        match self {
+            DeviceChoice::Hand(p, _) => format!("the simulated hand, path {p}"),
+            DeviceChoice::Scripted(p) => format!("a scripted device (no hand), path {p}"),
+            DeviceChoice::Replay(t) => format!("a replayed trace of {} samples", t.len()),
+        }
+    }
+}
+
+/// Everything a run needs.
+pub struct Session {
+    pub title: String,
+    pub objects: Vec<LoadedObject>,
+    pub build_seconds: f64,
+    pub device: DeviceChoice,
+    pub rate_hz: f64,
+    pub seconds: Option<f64>,
+    pub realtime: bool,
+    pub spin_seconds: Option<f64>,
+    pub seed: u64,
+    pub max_force: f64,
+    pub out: Option<PathBuf>,
+    pub plot: Option<PathBuf>,
+}
+
+/// Default length of a run, seconds.
+pub const DEFAULT_SECONDS: f64 = 5.0;
+
+/// The CSV trace writer, when asked for.
+struct TraceOut {
+    writer: BufWriter<File>,
+    path: PathBuf,
+    error: Option<std::io::Error>,
+}
+
+impl TraceOut {
+    fn create(path: &Path) -> anyhow::Result<TraceOut> {
+        let file =
+            File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+        let mut writer = BufWriter::with_capacity(1 << 20, file);
+        write_csv_header(&mut writer)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        Ok(TraceOut {
+            writer,
+            path: path.to_path_buf(),
+            error: None,
+        })
+    }
+
+    fn add(&mut self, r: &TickRecord) {
+        if self.error.is_none()
+            && let Err(e) = r.write_csv(&mut self.writer)
+        {
+            self.error = Some(e);
+        }
+    }
+
+    fn finish(mut self) -> anyhow::Result<()> {
+        if let Some(e) = self.error.take() {
+            return Err(e).with_context(|| format!("cannot write {}", self.path.display()));
+        }
+        self.writer
+            .flush()
+            .with_context(|| format!("cannot write {}", self.path.display()))
+    }
+}
+
+impl Session {
+    /// Builds the scene and device, runs, prints the summary, writes trace and plot.
+    pub fn run(self, out: &mut impl Write) -> anyhow::Result<()> {
+        let capacity = self.objects.len() + 4;
+        let mut scene = Scene::local(capacity);
+        let mut motions: Vec<ObjectMotion> = Vec::new();
+        let mut names = Vec::new();
+        let mut triangles = 0usize;
+        for o in self.objects {
+            triangles += o.object.shape.surface().triangles().len();
+            names.push(format!(
+                "{} (id {}, {} triangles, {:.0} N/m, friction {}/{})",
+                o.name,
+                o.object.id.0,
+                o.object.shape.surface().triangles().len(),
+                o.object.material.stiffness,
+                o.object.material.static_friction,
+                o.object.material.dynamic_friction
+            ));
+            motions.extend(o.motion);
+            scene
+                .insert(o.object)
+                .map_err(|(e, _)| anyhow!("cannot add an object: {e}"))?;
+        }
+        let seconds = match (&self.device, self.seconds) {
+            (_, Some(s)) if s.is_finite() && s > 0.0 => s,
+            (_, Some(s)) => bail!("--seconds must be positive, not {s}"),
+            // Every sample, the last one included.
+            (DeviceChoice::Replay(t), None) => t.end_time() - t.start_time() + 1.0 / self.rate_hz,
+            (_, None) => DEFAULT_SECONDS,
+        };
+        let device: Box<dyn Device> = match self.device {
+            DeviceChoice::Hand(kind, hand) => Box::new(SimulatedHand::new(
+                scripted_path(kind, &scene, seconds, self.seed)?,
+                hand,
+            )),
+            DeviceChoice::Scripted(kind) => Box::new(ScriptedDevice::new(scripted_path(
+                kind, &scene, seconds, self.seed,
+            )?)),
+            DeviceChoice::Replay(trace) => Box::new(ReplayDevice::new(trace)),
+        };
+        let options = ServoOptions {
+            rate_hz: self.rate_hz,
+            proxy: ProxyOptions {
+                max_force: self.max_force,
+                ..ProxyOptions::default()
+            },
+            ..ServoOptions::default()
+        };
+        let mut servo = Servo::new(device, scene, options)?;
+        servo.set_motions(motions);
+        let max_force = servo.options().proxy.max_force;
+
+        writeln!(out, "{}", self.title)?;
+        writeln!(
+            out,
+            "scene: {} object(s), {triangles} triangles, surfaces and maps built in {:.2} s",
+            names.len(),
+            self.build_seconds
+        )?;
+        for n in &names {
+            writeln!(out, "  {n}")?;
+        }
+        let ticks = (seconds * self.rate_hz).round().max(1.0) as u64;
+        let mut summary = Summary::new(ticks);
+        let mut trace = match &self.out {
+            Some(p) => Some(TraceOut::create(p)?),
+            None => None,
+        };
+        let mut on_tick = |r: &TickRecord| {
+            summary.add(r);
+            if let Some(t) = trace.as_mut() {
+                t.add(r);
+            }
+        };
+        let (stats, stop, setup, dropped) = if self.realtime {
+            let realtime = RealtimeOptions {
+                spin_seconds: self.spin_seconds,
+                ..RealtimeOptions::default()
+            };
+            let running = ServoLoop::spawn(servo, Some(seconds), realtime)?;
+            let run = running.wait(&mut on_tick)?;
+            let stats = run.servo.stats().clone();
+            (stats, run.stop, Some(run.setup), run.dropped_records)
+        } else {
+            let stop = servo.run_simulated(ticks, &mut on_tick);
+            servo.close();
+            (servo.stats().clone(), stop, None, 0)
+        };
+        writeln!(out, "\nrun:")?;
+        summary::print(
+            out,
+            &summary,
+            &stats,
+            &RunInfo {
+                rate_hz: self.rate_hz,
+                realtime: self.realtime,
+                max_force,
+                stop,
+                setup: setup.as_ref(),
+                dropped_records: dropped,
+            },
+        )?;
+        if let Some(t) = trace {
+            let path = t.path.clone();
+            t.finish()?;
+            writeln!(out, "trace: {} ({} ticks)", path.display(), summary.ticks)?;
+        }
+        if let Some(p) = &self.plot {
+            plot::write(p, &self.title, &summary.plot)?;
+            writeln!(
+                out,
+                "plot: {} (force and penetration over time; the path seen from the side)",
+                p.display()
+            )?;
+        }
+        if let StopReason::Fault(f) = stop
+            && f != haphe::servo::DeviceFault::Ended
+        {
+            bail!("the device faulted: {f}");
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,255 @@
+//! What a haptics user wants to know about a run, gathered record by record, and the
+//! samples kept for the plot.
+
+use std::io::Write;
+
+use haphe::DVec3;
+use haphe::servo::{Phase, RealtimeSetup, StopReason, TickRecord, TickStats};
+
+/// Most samples kept for the plot; longer runs are decimated evenly.
+pub const PLOT_SAMPLES: usize = 20_000;
+
+/// One plotted sample.
+#[derive(Debug, Clone, Copy)]
+pub struct PlotPoint {
+    pub t: f64,
+    pub hip: DVec3,
+    pub proxy: DVec3,
+    pub force: f64,
+    pub penetration: f64,
+    pub contact: bool,
+}
+
+/// Figures accumulated over the records of a run.
+#[derive(Debug, Default)]
+pub struct Summary {
+    pub ticks: u64,
+    pub contact_ticks: u64,
+    pub touches: u64,
+    pub sticking_ticks: u64,
+    pub clamped_ticks: u64,
+    pub held_ticks: u64,
+    pub max_penetration: f64,
+    pub penetration_sum: f64,
+    pub max_force: f64,
+    pub max_speed: f64,
+    pub last_t: f64,
+    /// Contact ticks per object id.
+    pub per_object: Vec<(u32, u64)>,
+    was_in_contact: bool,
+    every: u64,
+    pub plot: Vec<PlotPoint>,
+}
+
+impl Summary {
+    /// A summary that keeps about [`PLOT_SAMPLES`] plot samples of `expected_ticks`.
+    pub fn new(expected_ticks: u64) -> Summary {
+        Summary {
+            every: (expected_ticks / PLOT_SAMPLES as u64).max(1),
+            plot: Vec::with_capacity(PLOT_SAMPLES + 1),
+            ..Summary::default()
+        }
+    }
+
+    /// Adds one record.
+    pub fn add(&mut self, r: &TickRecord) {
+        self.ticks += 1;
+        self.last_t = r.t;
+        let contact = r.in_contact();
+        if let Some(id) = r.object {
+            self.contact_ticks += 1;
+            self.penetration_sum += r.penetration;
+            match self.per_object.iter_mut().find(|(o, _)| *o == id.0) {
+                Some((_, n)) => *n += 1,
+                None => self.per_object.push((id.0, 1)),
+            }
+        }
+        self.touches += u64::from(contact && !self.was_in_contact);
+        self.was_in_contact = contact;
+        self.sticking_ticks += u64::from(r.status.sticking);
+        self.clamped_ticks += u64::from(r.status.force_clamped);
+        self.held_ticks += u64::from(r.phase == Phase::Holding);
+        self.max_penetration = self.max_penetration.max(r.penetration);
+        self.max_force = self.max_force.max(r.force.length());
+        self.max_speed = self.max_speed.max(r.velocity.length());
+        if r.tick.is_multiple_of(self.every) {
+            self.plot.push(PlotPoint {
+                t: r.t,
+                hip: r.hip,
+                proxy: r.proxy,
+                force: r.force.length(),
+                penetration: r.penetration,
+                contact,
+            });
+        }
+    }
+}
+
+/// Formats nanoseconds as µs with a sensible precision.
+fn us(ns: u64) -> String {
+    let v = ns as f64 / 1e3;
+    if v < 10.0 {
+        format!("{v:.2} µs")
+    } else if v < 1000.0 {
+        format!("{v:.1} µs")
+    } else {
+        format!("{:.2} ms", v / 1e3)
+    }
+}
+
+/// How a run was made, for the report.
+pub struct RunInfo<'a> {
+    pub rate_hz: f64,
+    pub realtime: bool,
+    pub max_force: f64,
+    pub stop: StopReason,
+    pub setup: Option<&'a RealtimeSetup>,
+    pub dropped_records: u64,
+}
+
+/// Prints the summary.
+pub fn print(
+    out: &mut impl Write,
+    s: &Summary,
+    stats: &TickStats,
+    info: &RunInfo<'_>,
+) -> std::io::Result<()> {
+    let period = 1.0 / info.rate_hz;
+    let seconds = s.ticks as f64 * period;
+    let pct = |n: u64| {
+        if s.ticks == 0 {
+            0.0
+        } else {
+            100.0 * n as f64 / s.ticks as f64
+        }
+    };
+    let clock = if info.realtime {
+        "wall clock"
+    } else {
+        "simulated time"
+    };
+    writeln!(
+        out,
+        "  ticks             {} at {} Hz = {:.3} s of {clock}{}",
+        s.ticks,
+        info.rate_hz,
+        seconds,
+        match info.stop {
+            StopReason::Finished => String::new(),
+            StopReason::Requested => " (stopped)".into(),
+            StopReason::Fault(haphe::servo::DeviceFault::Ended) => " (the trace ended)".into(),
+            StopReason::Fault(f) =>
+                format!(" (stopped by a device fault: {f}; zero force written)"),
+        }
+    )?;
+    let objects: Vec<String> = s
+        .per_object
+        .iter()
+        .map(|(id, n)| format!("object {id}: {:.3} s", *n as f64 * period))
+        .collect();
+    writeln!(
+        out,
+        "  contact           {:.3} s ({:.1} % of ticks), {} touch(es){}",
+        s.contact_ticks as f64 * period,
+        pct(s.contact_ticks),
+        s.touches,
+        if objects.is_empty() {
+            String::new()
+        } else {
+            format!("; {}", objects.join(", "))
+        }
+    )?;
+    let mean = if s.contact_ticks > 0 {
+        s.penetration_sum / s.contact_ticks as f64
+    } else {
+        0.0
+    };
+    writeln!(
+        out,
+        "  max penetration   {:.3} mm (mean in contact {:.3} mm)",
+        s.max_penetration * 1e3,
+        mean * 1e3
+    )?;
+    writeln!(
+        out,
+        "  max force         {:.3} N (device maximum {} N; clamped on {} ticks)",
+        s.max_force, info.max_force, s.clamped_ticks
+    )?;
+    writeln!(
+        out,
+        "  friction          sticking on {} ticks ({:.1} % of contact)",
+        s.sticking_ticks,
+        if s.contact_ticks > 0 {
+            100.0 * s.sticking_ticks as f64 / s.contact_ticks as f64
+        } else {
+            0.0
+        }
+    )?;
+    writeln!(out, "  fastest hand      {:.3} m/s", s.max_speed)?;
+    writeln!(
+        out,
+        "  safe start        held {} tick(s) at zero force (device inside an object)",
+        s.held_ticks
+    )?;
+    let c = &stats.compute;
+    writeln!(
+        out,
+        "  tick time         p50 {}  p99 {}  p99.9 {}  max {}",
+        us(c.quantile(0.5)),
+        us(c.quantile(0.99)),
+        us(c.quantile(0.999)),
+        us(c.max())
+    )?;
+    if info.realtime {
+        let l = &stats.lateness;
+        writeln!(
+            out,
+            "  lateness          p50 {}  p99 {}  p99.9 {}  max {}",
+            us(l.quantile(0.5)),
+            us(l.quantile(0.99)),
+            us(l.quantile(0.999)),
+            us(l.max())
+        )?;
+        writeln!(
+            out,
+            "  overruns          {} ({:.4} % of ticks; a tick that ended after the next deadline), {} deadline(s) skipped",
+            stats.overruns,
+            100.0 * stats.overrun_fraction(),
+            stats.skipped
+        )?;
+        writeln!(
+            out,
+            "  achieved rate     {:.1} Hz (asked {} Hz)",
+            stats.achieved_rate(),
+            info.rate_hz
+        )?;
+        if let Some(setup) = info.setup {
+            let mut how = vec![if setup.realtime_priority {
+                "FIFO real-time priority".to_string()
+            } else {
+                "normal priority".to_string()
+            }];
+            if let Some(core) = setup.pinned_core {
+                how.push(format!("pinned to core {core}"));
+            }
+            how.extend(setup.notes.iter().cloned());
+            writeln!(out, "  servo thread      {}", how.join("; "))?;
+        }
+        if info.dropped_records > 0 {
+            writeln!(
+                out,
+                "  records dropped   {} (the writer fell behind)",
+                info.dropped_records
+            )?;
+        }
+    } else {
+        writeln!(
+            out,
+            "  achieved rate     {:.0} ticks/s as fast as possible ({:.3} s of compute; {:.0}x the asked rate)",
+            stats.achieved_rate(),
+            stats.wall_seconds,
+            stats.achieved_rate() / info.rate_hz
+        )?;
+    }
+    Ok(())
+}

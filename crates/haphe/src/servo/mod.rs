@@ -1,0 +1,90 @@
+//! Stage 6 — the servo loop: a fixed-rate tick that reads a [`Device`], moves the scene's
+//! scripted objects, ticks the [`Proxy`](crate::proxy::Proxy) and writes the force; the
+//! device abstraction; simulated devices that need no hardware; recorded traces; and
+//! tick statistics.
+//!
+//! # The pieces
+//!
+//! - [`Device`] — what a haptic device offers (open, calibrate, read position, velocity
+//!   and buttons, write force, close; a [`DeviceSpec`] with maximum force, stiffness and
+//!   workspace), in SI units and the device frame; a [`DeviceMapping`] places the device
+//!   workspace in the world (`world_from_device`, with workspace scaling).
+//! - Simulated devices: the [`SimulatedHand`] (a mass–spring–damper arm that follows a
+//!   [`Path`] and is pushed back by the rendered force), the [`ScriptedDevice`] (follows a
+//!   path exactly) and the [`ReplayDevice`] (replays a [`HipTrace`] read from CSV
+//!   `t,x,y,z`). [`scripted_path`] builds press, slide, circle, explore and strike paths
+//!   over a scene.
+//! - [`Servo`] — the tick function with safe start and fault handling, and
+//!   [`Servo::run_simulated`], which runs it on a virtual clock as fast as possible.
+//! - [`ServoLoop`] — the same tick on a dedicated thread on the wall clock: absolute
+//!   deadlines (sleep, then spin), FIFO priority and core pinning where permitted, records
+//!   handed out through a wait-free ring.
+//! - [`TickStats`] — compute time and lateness histograms ([`Histogram`], preallocated)
+//!   and counters; [`TickRecord`] — one tick, written as CSV by
+//!   [`TickRecord::write_csv`] under [`CSV_HEADER`].
+//!
+//! # Frames and units
+//!
+//! Devices speak in the device frame; the servo maps the device point into the world
+//! (`p_world = offset + scale · R · p_device`) and the world force back (rotated, not
+//! scaled). Records are in the world frame. Time is seconds since the loop started.
+//!
+//! # Real-time
+//!
+//! A tick allocates nothing, takes no lock, does no I/O and never panics; the test
+//! `tests/servo_alloc.rs` runs the loop with the simulated hand, a moving object and the
+//! statistics under a counting allocator.
+//!
+//! # Examples
+//!
+//! ```
+//! use std::sync::Arc;
+//! use haphe::DVec3;
+//! use haphe::map::MapOptions;
+//! use haphe::mesh::{Surface, SurfaceOptions, shapes::Shape as Catalog};
+//! use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+//! use haphe::servo::{HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, scripted_path};
+//!
+//! let surface = Surface::new(Catalog::Sphere.with_triangles(500), &SurfaceOptions::default())?;
+//! let shape = Arc::new(Shape::build(surface, &MapOptions::default())?);
+//! let mut scene = Scene::local(1);
+//! scene.insert(SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, Material::default()))
+//!     .map_err(|(e, _)| e)?;
+//! let path = scripted_path(PathKind::Press, &scene, 2.0, 1)?;
+//! let hand = SimulatedHand::new(path, HandOptions::default());
+//! let mut servo = Servo::new(hand, scene, ServoOptions::default())?;
+//! let mut deepest = 0.0f64;
+//! servo.run_simulated(2000, |r| deepest = deepest.max(r.penetration));
+//! assert!(deepest > 1e-3 && deepest < 5e-3, "{deepest}");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod device;
+mod hand;
+mod motion;
+mod path;
+mod realtime;
+mod replay;
+mod scripted;
+mod stats;
+mod tick;
+mod trace;
+
+pub use device::{
+    Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
+};
+pub use hand::{HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HandOptions, SimulatedHand};
+pub use motion::{Motion, ObjectMotion};
+pub use path::{Path, PathError};
+pub use realtime::{
+    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, FIFO_PRIORITY, RealtimeOptions, RealtimeRun,
+    RealtimeSetup, ServoLoop,
+};
+pub use replay::{HipTrace, ReplayDevice, TraceError};
+pub use scripted::{
+    HOVER_M, PRESS_DEPTH_M, PathKind, SLIDE_SPEED, STRIKE_SPEED, ScriptedDevice, scene_bounds,
+    scripted_path, simulated_spec, surface_below,
+};
+pub use stats::{Histogram, TickStats};
+pub use tick::{MAX_RATE_HZ, MIN_RATE_HZ, Servo, ServoError, ServoOptions, StopReason};
+pub use trace::{CSV_HEADER, Phase, TickRecord, write_csv_header};

@@ -1,0 +1,324 @@
+//! [`ServoLoop`]: the servo on a dedicated thread, ticking on absolute deadlines of the
+//! wall clock, with real-time priority and core pinning where the system permits.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use rtrb::{Consumer, RingBuffer};
+
+use super::device::Device;
+use super::tick::{Servo, ServoError, StopReason};
+use super::trace::TickRecord;
+
+/// Longest part of a period spun before a deadline (instead of sleeping), seconds: the
+/// operating system's wake-up is often late by tens of microseconds, so the last part is
+/// spun. At high rates the default is [`DEFAULT_SPIN_FRACTION`] of the period instead.
+pub const DEFAULT_SPIN_S: f64 = 200e-6;
+
+/// Default spin at high rates, as a fraction of the period. A real-time thread that never
+/// sleeps is throttled by Linux (by default 50 ms in every second, `sched_rt_runtime_us`),
+/// and one that spins most of the period competes with everything else on its core;
+/// measured on a loaded 2-core virtual machine at 10 kHz, spinning 30 µs of 100 µs gave
+/// the fewest overruns (60–100 µs: more, and 50 ms stalls from throttling; 15 µs: wake-ups
+/// late by 15 µs at the median).
+pub const DEFAULT_SPIN_FRACTION: f64 = 0.3;
+
+/// Priority asked for the servo thread on Linux (SCHED_FIFO, 1–99): high, below the
+/// kernel's own per-CPU threads (99).
+pub const FIFO_PRIORITY: u8 = 80;
+
+/// How the servo thread is scheduled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RealtimeOptions {
+    /// Ask for real-time (FIFO) priority; without permission the thread keeps the normal
+    /// priority, quietly, and [`RealtimeSetup`] says so.
+    pub realtime_priority: bool,
+    /// Pin the thread to this core (`None`: the last core, where the system tends to put
+    /// the least work; pinning is skipped when there is a single core).
+    pub core: Option<usize>,
+    /// Spin (instead of sleeping) for this last part before each deadline, seconds.
+    /// `None`: [`DEFAULT_SPIN_S`], at most [`DEFAULT_SPIN_FRACTION`] of the period.
+    pub spin_seconds: Option<f64>,
+    /// Capacity of the record ring to the reading thread, ticks; records that find it
+    /// full are dropped and counted.
+    pub record_capacity: usize,
+}
+
+impl Default for RealtimeOptions {
+    /// Real-time priority, the last core, the default spin, one second of records at
+    /// 40 kHz.
+    fn default() -> RealtimeOptions {
+        RealtimeOptions {
+            realtime_priority: true,
+            core: None,
+            spin_seconds: None,
+            record_capacity: 40_000,
+        }
+    }
+}
+
+/// What the system granted the servo thread.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct RealtimeSetup {
+    /// The thread runs with FIFO real-time priority.
+    pub realtime_priority: bool,
+    /// The core the thread is pinned to.
+    pub pinned_core: Option<usize>,
+    /// Why a request was not granted, for the report.
+    pub notes: Vec<String>,
+}
+
+/// How a real-time run went.
+#[derive(Debug)]
+pub struct RealtimeRun<D: Device> {
+    /// The servo, with its statistics (and zero force written).
+    pub servo: Servo<D>,
+    /// What the system granted.
+    pub setup: RealtimeSetup,
+    /// Why the run ended.
+    pub stop: StopReason,
+    /// Records dropped because the reading thread fell behind.
+    pub dropped_records: u64,
+}
+
+/// A [`Servo`] running on its own thread at its rate on the wall clock.
+///
+/// Tick `k` has the absolute deadline `start + k · period`. The thread sleeps until
+/// shortly before it and spins the rest, reads the clock (lateness = now − deadline),
+/// runs the tick, and records compute time and lateness in the servo's
+/// [`TickStats`](super::TickStats) (preallocated histograms). A tick that ends after
+/// the next deadline is an **overrun**; when the loop falls more than a period behind, it
+/// skips the deadlines already past (counted as `skipped`) instead of racing to catch up.
+/// Each tick's [`TickRecord`] goes to the reading thread through a wait-free ring
+/// ([`ServoLoop::drain`]).
+///
+/// The simulated devices take the scheduled time of a tick as their clock, so what they
+/// do does not depend on the lateness of the loop.
+#[derive(Debug)]
+pub struct ServoLoop<D: Device + 'static> {
+    stop: Arc<AtomicBool>,
+    records: Consumer<TickRecord>,
+    handle: JoinHandle<RealtimeRun<D>>,
+}
+
+impl<D: Device + 'static> ServoLoop<D> {
+    /// Starts `servo` on a new thread for `seconds` (`None`: until [`stop`](Self::stop)).
+    ///
+    /// # Errors
+    /// [`ServoError::Spawn`] when the thread cannot be started.
+    pub fn spawn(
+        servo: Servo<D>,
+        seconds: Option<f64>,
+        options: RealtimeOptions,
+    ) -> Result<ServoLoop<D>, ServoError> {
+        let (producer, consumer) = RingBuffer::new(options.record_capacity.max(1));
+        let stop = Arc::new(AtomicBool::new(false));
+        let flag = Arc::clone(&stop);
+        let handle = std::thread::Builder::new()
+            .name("haphe-servo".into())
+            .spawn(move || run_thread(servo, seconds, options, &flag, producer))
+            .map_err(ServoError::Spawn)?;
+        Ok(ServoLoop {
+            stop,
+            records: consumer,
+            handle,
+        })
+    }
+
+    /// Takes the records waiting in the ring, oldest first. Call it often (every few
+    /// milliseconds) so that none are dropped.
+    pub fn drain(&mut self, mut f: impl FnMut(&TickRecord)) -> usize {
+        let mut n = 0;
+        while let Ok(r) = self.records.pop() {
+            f(&r);
+            n += 1;
+        }
+        n
+    }
+
+    /// Whether the thread has ended (its time ran out, or a fault).
+    pub fn is_finished(&self) -> bool {
+        self.handle.is_finished()
+    }
+
+    /// Asks the thread to stop, waits for it, and hands the run back. Every record not yet
+    /// drained goes to `f`.
+    ///
+    /// # Errors
+    /// [`ServoError::Panicked`] if the servo thread panicked.
+    pub fn stop(mut self, mut f: impl FnMut(&TickRecord)) -> Result<RealtimeRun<D>, ServoError> {
+        self.stop.store(true, Ordering::Relaxed);
+        while !self.handle.is_finished() {
+            self.drain(&mut f);
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        let run = self.handle.join().map_err(|_| ServoError::Panicked)?;
+        while let Ok(r) = self.records.pop() {
+            f(&r);
+        }
+        Ok(run)
+    }
+
+    /// Waits until the thread ends by itself (its time ran out, or a fault), handing
+    /// the records to `f` as they come, then hands the run back.
+    ///
+    /// # Errors
+    /// [`ServoError::Panicked`] if the servo thread panicked.
+    pub fn wait(mut self, mut f: impl FnMut(&TickRecord)) -> Result<RealtimeRun<D>, ServoError> {
+        while !self.handle.is_finished() {
+            if self.drain(&mut f) == 0 {
+                std::thread::sleep(Duration::from_millis(2));
+            }
+        }
+        self.stop(f)
+    }
+}
+
+/// Asks for FIFO priority and pins the thread, as permitted.
+fn set_up_thread(options: &RealtimeOptions) -> RealtimeSetup {
+    let mut setup = RealtimeSetup::default();
+    if options.realtime_priority {
+        match fifo_priority() {
+            Ok(()) => setup.realtime_priority = true,
+            Err(why) => setup
+                .notes
+                .push(format!("real-time priority not granted ({why})")),
+        }
+    }
+    match core_affinity::get_core_ids() {
+        Some(cores) if cores.len() > 1 || options.core.is_some() => {
+            let wanted = options.core.unwrap_or(cores.len() - 1);
+            match cores.iter().find(|c| c.id == wanted) {
+                Some(&core) if core_affinity::set_for_current(core) => {
+                    setup.pinned_core = Some(core.id);
+                }
+                Some(_) => setup
+                    .notes
+                    .push(format!("pinning to core {wanted} refused")),
+                None => setup.notes.push(format!("no core {wanted} to pin to")),
+            }
+        }
+        Some(_) => setup.notes.push("one core: not pinned".into()),
+        None => setup.notes.push("core pinning unsupported here".into()),
+    }
+    setup
+}
+
+#[cfg(unix)]
+fn fifo_priority() -> Result<(), String> {
+    use thread_priority::{
+        RealtimeThreadSchedulePolicy, ThreadPriority, ThreadPriorityValue, ThreadSchedulePolicy,
+        set_thread_priority_and_policy, thread_native_id,
+    };
+    let value = ThreadPriorityValue::try_from(FIFO_PRIORITY).map_err(|e| e.to_string())?;
+    set_thread_priority_and_policy(
+        thread_native_id(),
+        ThreadPriority::Crossplatform(value),
+        ThreadSchedulePolicy::Realtime(RealtimeThreadSchedulePolicy::Fifo),
+    )
+    .map_err(|e| format!("{e:?}"))
+}
+
+#[cfg(not(unix))]
+fn fifo_priority() -> Result<(), String> {
+    thread_priority::set_current_thread_priority(thread_priority::ThreadPriority::Max)
+        .map_err(|e| format!("{e:?}"))
+}
+
+/// Sleeps until `spin` before `deadline`, then spins to it.
+#[inline]
+fn wait_until(deadline: Instant, spin: Duration) {
+    loop {
+        let now = Instant::now();
+        if now >= deadline {
+            return;
+        }
+        let left = deadline - now;
+        if left > spin {
+            std::thread::sleep(left - spin);
+        } else {
+            std::hint::spin_loop();
+        }
+    }
+}
+
+fn nanos(d: Duration) -> u64 {
+    u64::try_from(d.as_nanos()).unwrap_or(u64::MAX)
+}
+
+/// The servo thread.
+fn run_thread<D: Device>(
+    mut servo: Servo<D>,
+    seconds: Option<f64>,
+    options: RealtimeOptions,
+    stop_flag: &AtomicBool,
+    mut producer: rtrb::Producer<TickRecord>,
+) -> RealtimeRun<D> {
+    let setup = set_up_thread(&options);
+    let rate = servo.options().rate_hz;
+    let period_ns = ((1e9 / rate).round() as u64).max(1);
+    let period = Duration::from_nanos(period_ns);
+    let spin_s = options
+        .spin_seconds
+        .filter(|s| s.is_finite() && *s >= 0.0)
+        .unwrap_or_else(|| DEFAULT_SPIN_S.min(DEFAULT_SPIN_FRACTION / rate));
+    let spin = Duration::from_secs_f64(spin_s);
+    let max_ticks = seconds
+        .filter(|s| s.is_finite() && *s >= 0.0)
+        .map(|s| (s * rate).round() as u64);
+    let mut dropped = 0u64;
+    let mut stop = StopReason::Finished;
+
+    // Everything above may allocate; nothing below does.
+    let start = Instant::now();
+    let mut k: u64 = 0;
+    loop {
+        if max_ticks.is_some_and(|m| k >= m) {
+            break;
+        }
+        if stop_flag.load(Ordering::Relaxed) {
+            stop = StopReason::Requested;
+            break;
+        }
+        let offset = Duration::from_nanos(k.saturating_mul(period_ns));
+        let deadline = start + offset;
+        wait_until(deadline, spin);
+        let began = Instant::now();
+        let record = servo.tick_at(offset.as_secs_f64());
+        let done = Instant::now();
+        let stats = servo.stats_mut();
+        stats
+            .lateness
+            .record(nanos(began.saturating_duration_since(deadline)));
+        stats
+            .compute
+            .record(nanos(done.saturating_duration_since(began)));
+        if done > deadline + period {
+            stats.overruns += 1;
+        }
+        if producer.push(record).is_err() {
+            dropped += 1;
+        }
+        if let Some(f) = record.fault {
+            stop = StopReason::Fault(f);
+            break;
+        }
+        k += 1;
+        // More than a period behind: skip the deadlines already past.
+        let behind = nanos(done.saturating_duration_since(start)) / period_ns;
+        if behind > k {
+            stats.skipped += behind + 1 - k;
+            k = behind + 1;
+        }
+    }
+    servo.zero_force();
+    servo.stats_mut().wall_seconds += start.elapsed().as_secs_f64();
+    RealtimeRun {
+        servo,
+        setup,
+        stop,
+        dropped_records: dropped,
+    }
+}

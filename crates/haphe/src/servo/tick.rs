@@ -1,0 +1,369 @@
+//! [`Servo`]: the tick function — read the device, move the objects, tick the proxy,
+//! write the force — with safe start and fault handling, and a simulation mode that runs
+//! it on a virtual clock.
+
+use std::time::Instant;
+
+use glam::DVec3;
+
+use super::device::{Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
+use super::motion::ObjectMotion;
+use super::stats::TickStats;
+use super::trace::{Phase, TickRecord};
+use crate::proxy::{Proxy, ProxyOptions, TickStatus};
+use crate::query::{Side, classify_point};
+use crate::scene::Scene;
+
+/// Lowest servo rate accepted, Hz.
+pub const MIN_RATE_HZ: f64 = 1.0;
+/// Highest servo rate accepted, Hz.
+pub const MAX_RATE_HZ: f64 = 40_000.0;
+
+/// Settings of a [`Servo`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ServoOptions {
+    /// Ticks per second, Hz, within [`MIN_RATE_HZ`]..=[`MAX_RATE_HZ`].
+    pub rate_hz: f64,
+    /// The proxy's settings; its `max_force` is lowered to the device's if larger.
+    pub proxy: ProxyOptions,
+    /// Where the device workspace sits in the world.
+    pub mapping: DeviceMapping,
+    /// Safe start: after the device point is found outside every object, the force rises
+    /// linearly from zero over this time, seconds (0: at once).
+    pub ramp_seconds: f64,
+}
+
+impl Default for ServoOptions {
+    /// 1 kHz, the default proxy, the identity mapping, a 50 ms ramp.
+    fn default() -> ServoOptions {
+        ServoOptions {
+            rate_hz: 1000.0,
+            proxy: ProxyOptions::default(),
+            mapping: DeviceMapping::IDENTITY,
+            ramp_seconds: 0.05,
+        }
+    }
+}
+
+/// Why a servo could not be set up or run.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ServoError {
+    /// The rate is outside the accepted range.
+    #[error("servo rate {rate_hz} Hz is outside {MIN_RATE_HZ}..={MAX_RATE_HZ} Hz")]
+    Rate {
+        /// The rate asked for, Hz.
+        rate_hz: f64,
+    },
+    /// The device could not be opened or calibrated.
+    #[error(transparent)]
+    Device(#[from] DeviceError),
+    /// The servo thread could not be started.
+    #[error("cannot start the servo thread: {0}")]
+    Spawn(#[source] std::io::Error),
+    /// The servo thread panicked (the device was sent zero force as it unwound).
+    #[error("the servo thread panicked")]
+    Panicked,
+}
+
+/// Why a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// It ran the ticks (or the time) asked for.
+    Finished,
+    /// It was asked to stop.
+    Requested,
+    /// The device faulted (a replay that ended reports [`DeviceFault::Ended`]).
+    Fault(DeviceFault),
+}
+
+/// The servo's tick function over a device and a scene, with its statistics.
+///
+/// Each [`tick_at`](Servo::tick_at):
+///
+/// 1. starts the scene's tick ([`Scene::begin_tick`]: edits from other threads are
+///    applied, poses remembered) and moves the scripted objects ([`ObjectMotion`]);
+/// 2. reads the device and maps its point into the world;
+/// 3. **safe start**: until the device point is outside every solid object, no proxy is
+///    placed and the force is zero ([`Phase::Holding`]); then the proxy starts at the
+///    device point and the force ramps up over
+///    [`ramp_seconds`](ServoOptions::ramp_seconds);
+/// 4. ticks the [`Proxy`] and writes its force (mapped to the device frame).
+///
+/// Any device fault writes zero force and stops the servo ([`Phase::Faulted`]); dropping
+/// the servo writes zero force and closes the device.
+///
+/// # Real-time
+/// `tick_at` allocates nothing, takes no lock and never panics (given a device that keeps
+/// the [`Device`] contract); its work is bounded by the proxy's caps and the number of
+/// objects.
+#[derive(Debug)]
+pub struct Servo<D: Device> {
+    device: D,
+    spec: DeviceSpec,
+    scene: Scene,
+    motions: Vec<ObjectMotion>,
+    proxy: Proxy,
+    options: ServoOptions,
+    phase: Phase,
+    ramp_start: f64,
+    stats: TickStats,
+    closed: bool,
+}
+
+impl<D: Device> Servo<D> {
+    /// Opens and calibrates `device` and prepares to render `scene`.
+    ///
+    /// # Errors
+    /// [`ServoError::Rate`] for a rate out of range; [`ServoError::Device`] when the device
+    /// cannot be opened or calibrated.
+    pub fn new(mut device: D, scene: Scene, options: ServoOptions) -> Result<Servo<D>, ServoError> {
+        if !(options.rate_hz.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&options.rate_hz))
+        {
+            return Err(ServoError::Rate {
+                rate_hz: options.rate_hz,
+            });
+        }
+        let spec = device.spec();
+        let mut options = options;
+        if spec.max_force.is_finite() && spec.max_force >= 0.0 {
+            options.proxy.max_force = options.proxy.max_force.min(spec.max_force);
+        }
+        if !(options.ramp_seconds.is_finite() && options.ramp_seconds >= 0.0) {
+            options.ramp_seconds = 0.0;
+        }
+        device.open()?;
+        device.calibrate()?;
+        Ok(Servo {
+            device,
+            spec,
+            scene,
+            motions: Vec::new(),
+            proxy: Proxy::new(DVec3::ZERO, options.proxy),
+            options,
+            phase: Phase::Holding,
+            ramp_start: 0.0,
+            stats: TickStats::new(),
+            closed: false,
+        })
+    }
+
+    /// Objects that move on their own, by script: their poses are set now, for the time
+    /// of the next tick (so that they do not jump at it), and at the start of every tick.
+    pub fn set_motions(&mut self, motions: Vec<ObjectMotion>) {
+        let t = self.stats.ticks as f64 * self.period();
+        for m in &motions {
+            self.scene.set_pose(m.id, m.pose_at(t));
+        }
+        self.motions = motions;
+    }
+
+    /// The settings in use (with the proxy's maximum force lowered to the device's).
+    pub fn options(&self) -> &ServoOptions {
+        &self.options
+    }
+
+    /// Seconds between ticks.
+    pub fn period(&self) -> f64 {
+        1.0 / self.options.rate_hz
+    }
+
+    /// The device's specification.
+    pub fn spec(&self) -> &DeviceSpec {
+        &self.spec
+    }
+
+    /// The device.
+    pub fn device(&self) -> &D {
+        &self.device
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The proxy.
+    pub fn proxy(&self) -> &Proxy {
+        &self.proxy
+    }
+
+    /// Where the servo is in its start-up.
+    pub fn phase(&self) -> Phase {
+        self.phase
+    }
+
+    /// The statistics so far.
+    pub fn stats(&self) -> &TickStats {
+        &self.stats
+    }
+
+    pub(super) fn stats_mut(&mut self) -> &mut TickStats {
+        &mut self.stats
+    }
+
+    /// Whether the world point `p` is inside a solid object of the scene.
+    fn inside_any(&self, p: DVec3) -> bool {
+        self.scene.objects().iter().any(|o| {
+            let shape = &*o.shape;
+            shape.is_solid()
+                && o.pose.to_world(shape.bound_centre()).distance(p) <= shape.bound_radius()
+                && classify_point(shape.surface(), shape.map(), o.pose.to_object(p)).0
+                    == Side::Inside
+        })
+    }
+
+    /// Writes zero force and marks the servo faulted.
+    fn fault(&mut self, mut record: TickRecord, fault: DeviceFault) -> TickRecord {
+        let _ = self.device.write_force(DVec3::ZERO);
+        self.phase = Phase::Faulted;
+        record.force = DVec3::ZERO;
+        record.phase = Phase::Faulted;
+        record.fault = Some(fault);
+        record
+    }
+
+    /// One servo tick at the scheduled time `t`, seconds since the start (simulated
+    /// devices and scripted motions use it as their clock).
+    ///
+    /// # Real-time
+    /// No allocation, lock or panic; see [`Servo`].
+    pub fn tick_at(&mut self, t: f64) -> TickRecord {
+        let mut record = TickRecord {
+            tick: self.stats.ticks,
+            t,
+            hip: DVec3::ZERO,
+            velocity: DVec3::ZERO,
+            proxy: self.proxy.position(),
+            force: DVec3::ZERO,
+            object: None,
+            triangle: None,
+            penetration: 0.0,
+            status: TickStatus::default(),
+            phase: self.phase,
+            fault: None,
+        };
+        self.stats.ticks += 1;
+        if self.phase == Phase::Faulted || self.closed {
+            let _ = self.device.write_force(DVec3::ZERO);
+            return record;
+        }
+        self.scene.begin_tick();
+        for m in &self.motions {
+            self.scene.set_pose(m.id, m.pose_at(t));
+        }
+        let state = match self.device.read(t) {
+            Ok(s) => s,
+            Err(f) => return self.fault(record, f),
+        };
+        let mapping = self.options.mapping;
+        let hip = mapping.position_to_world(state.position);
+        let velocity = mapping.velocity_to_world(state.velocity);
+        record.hip = hip;
+        record.velocity = velocity;
+        record.proxy = hip;
+
+        if self.phase == Phase::Holding {
+            if hip.is_finite() && velocity.is_finite() && !self.inside_any(hip) {
+                self.proxy.reset(hip);
+                self.ramp_start = t;
+                self.phase = if self.options.ramp_seconds > 0.0 {
+                    Phase::Ramping
+                } else {
+                    Phase::Running
+                };
+            } else {
+                self.stats.held_ticks += 1;
+            }
+        }
+        if self.phase != Phase::Holding {
+            let out = self.proxy.tick(&self.scene, hip, velocity);
+            let gain = if self.phase == Phase::Ramping {
+                let g = (t - self.ramp_start) / self.options.ramp_seconds;
+                if g >= 1.0 {
+                    self.phase = Phase::Running;
+                }
+                g.clamp(0.0, 1.0)
+            } else {
+                1.0
+            };
+            record.phase = self.phase;
+            record.proxy = out.proxy;
+            record.force = out.force * gain;
+            record.status = out.status;
+            if let Some(c) = out.contact {
+                record.object = Some(c.id);
+                record.triangle = Some(c.triangle);
+                record.penetration = c.penetration;
+                self.stats.contact_ticks += 1;
+            }
+            let s = out.status;
+            self.stats.clamped_ticks += u64::from(s.force_clamped);
+            self.stats.rejected_ticks += u64::from(s.input_rejected);
+            self.stats.capped_ticks += u64::from(s.step_cap_hit || s.walk_cap_hit);
+        }
+        if let Err(f) = self
+            .device
+            .write_force(mapping.force_to_device(record.force))
+        {
+            return self.fault(record, f);
+        }
+        record
+    }
+
+    /// Simulation mode: runs up to `ticks` ticks on a virtual clock (tick `k` at
+    /// `k / rate` seconds, as fast as the machine goes), timing each tick's computation,
+    /// and hands every record to `on_tick`. Stops early at a device fault. Repeated calls
+    /// continue the clock.
+    ///
+    /// The same device, scene and options give the same records, bit for bit.
+    ///
+    /// # Real-time
+    /// The loop itself allocates nothing; `on_tick` runs on this thread between ticks.
+    pub fn run_simulated(
+        &mut self,
+        ticks: u64,
+        mut on_tick: impl FnMut(&TickRecord),
+    ) -> StopReason {
+        let start = Instant::now();
+        let period = self.period();
+        let first = self.stats.ticks;
+        let mut stop = StopReason::Finished;
+        for k in first..first.saturating_add(ticks) {
+            let began = Instant::now();
+            let record = self.tick_at(k as f64 * period);
+            let ns = began.elapsed().as_nanos();
+            self.stats
+                .compute
+                .record(u64::try_from(ns).unwrap_or(u64::MAX));
+            on_tick(&record);
+            if let Some(f) = record.fault {
+                stop = StopReason::Fault(f);
+                break;
+            }
+        }
+        self.stats.wall_seconds += start.elapsed().as_secs_f64();
+        stop
+    }
+
+    /// Writes zero force (ignoring a fault). Called when a run stops.
+    pub fn zero_force(&mut self) {
+        let _ = self.device.write_force(DVec3::ZERO);
+    }
+
+    /// Writes zero force and closes the device; later ticks do nothing but write zero
+    /// force. Also done when the servo is dropped.
+    pub fn close(&mut self) {
+        if !self.closed {
+            self.zero_force();
+            self.device.close();
+            self.closed = true;
+        }
+    }
+}
+
+impl<D: Device> Drop for Servo<D> {
+    fn drop(&mut self) {
+        self.close();
+    }
+}

@@ -1,0 +1,146 @@
+//! What the servo loop records every tick, and the CSV form of it.
+
+use std::io::{self, Write};
+
+use glam::DVec3;
+
+use super::device::DeviceFault;
+use crate::mesh::TriId;
+use crate::proxy::TickStatus;
+use crate::scene::ObjectId;
+
+/// Where the loop is in its start-up.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Phase {
+    /// Safe start: the device point is inside an object, so no proxy is placed and the
+    /// force is zero until it comes out.
+    #[default]
+    Holding,
+    /// The proxy was placed; the force is ramped up from zero.
+    Ramping,
+    /// Normal rendering.
+    Running,
+    /// A fault stopped the loop; the force is zero.
+    Faulted,
+}
+
+impl Phase {
+    /// A short name for traces.
+    pub fn name(self) -> &'static str {
+        match self {
+            Phase::Holding => "holding",
+            Phase::Ramping => "ramping",
+            Phase::Running => "running",
+            Phase::Faulted => "faulted",
+        }
+    }
+}
+
+/// One tick as recorded: a small `Copy` value, so recording never allocates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TickRecord {
+    /// Tick number, from 0.
+    pub tick: u64,
+    /// Scheduled time of the tick, seconds since the loop started.
+    pub t: f64,
+    /// The device point (HIP), metres, world frame.
+    pub hip: DVec3,
+    /// Its velocity, m/s, world frame.
+    pub velocity: DVec3,
+    /// The proxy, metres, world frame (the HIP while holding).
+    pub proxy: DVec3,
+    /// The force written to the device, newtons, world frame (after the start ramp).
+    pub force: DVec3,
+    /// The object touched (its name), when in contact.
+    pub object: Option<ObjectId>,
+    /// The triangle under the proxy, when in contact.
+    pub triangle: Option<TriId>,
+    /// Depth of the HIP behind the proxy along the contact normal, metres (0 when free).
+    pub penetration: f64,
+    /// What the proxy tick reported (all false while holding).
+    pub status: TickStatus,
+    /// Where the loop is in its start-up.
+    pub phase: Phase,
+    /// The fault that stopped the loop at this tick, if any.
+    pub fault: Option<DeviceFault>,
+}
+
+impl TickRecord {
+    /// Whether the proxy is in contact.
+    pub fn in_contact(&self) -> bool {
+        self.object.is_some()
+    }
+
+    /// The status column: the phase while not running, else the most important flag
+    /// (`rejected`, `wedged`, `capped`, `clamped`), else `sticking`, `contact` or `free`.
+    pub fn status_name(&self) -> &'static str {
+        let s = &self.status;
+        if self.fault.is_some() {
+            "fault"
+        } else if self.phase == Phase::Holding || self.phase == Phase::Faulted {
+            self.phase.name()
+        } else if s.input_rejected {
+            "rejected"
+        } else if s.wedged {
+            "wedged"
+        } else if s.step_cap_hit || s.walk_cap_hit {
+            "capped"
+        } else if s.force_clamped {
+            "clamped"
+        } else if self.phase == Phase::Ramping {
+            "ramping"
+        } else if s.sticking {
+            "sticking"
+        } else if s.in_contact {
+            "contact"
+        } else {
+            "free"
+        }
+    }
+
+    /// Writes the record as one CSV line with the columns of [`CSV_HEADER`]. Numbers
+    /// are written in Rust's shortest round-trip form, so the same run gives the same
+    /// bytes.
+    ///
+    /// # Errors
+    /// Those of the writer.
+    pub fn write_csv(&self, w: &mut impl Write) -> io::Result<()> {
+        let v = |p: DVec3| (p.x, p.y, p.z);
+        let (hx, hy, hz) = v(self.hip);
+        let (px, py, pz) = v(self.proxy);
+        let (fx, fy, fz) = v(self.force);
+        write!(
+            w,
+            "{},{hx},{hy},{hz},{px},{py},{pz},{fx},{fy},{fz},{},",
+            self.t,
+            u8::from(self.in_contact())
+        )?;
+        if let Some(o) = self.object {
+            write!(w, "{}", o.0)?;
+        }
+        w.write_all(b",")?;
+        if let Some(t) = self.triangle {
+            write!(w, "{}", t.0)?;
+        }
+        writeln!(
+            w,
+            ",{},{},{}",
+            self.status_name(),
+            self.penetration,
+            u8::from(self.status.sticking)
+        )
+    }
+}
+
+/// The header of a trace CSV, without the line end: time (s), HIP and proxy (m, world),
+/// force (N, world), contact (0/1), object id and triangle (empty when free), status
+/// ([`TickRecord::status_name`]), penetration (m) and sticking (0/1).
+pub const CSV_HEADER: &str = "t,hip_x,hip_y,hip_z,proxy_x,proxy_y,proxy_z,force_x,force_y,force_z,contact,object,triangle,status,penetration,sticking";
+
+/// Writes [`CSV_HEADER`] and a line end.
+///
+/// # Errors
+/// Those of the writer.
+pub fn write_csv_header(w: &mut impl Write) -> io::Result<()> {
+    writeln!(w, "{CSV_HEADER}")
+}

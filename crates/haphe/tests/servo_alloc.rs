@@ -1,0 +1,151 @@
+//! The servo path allocates nothing with the device and the statistics in the loop: the
+//! simulated hand exploring two objects, one of them moving by script, another moved and
+//! re-inserted by edits from "another thread", with tick timing and counters, run in
+//! simulation mode on this thread under a counting allocator; and the same for replay.
+
+use std::sync::Arc;
+
+use haphe::DVec3;
+use haphe::map::MapOptions;
+use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::{Surface, SurfaceOptions};
+use haphe::scene::{Edit, Material, ObjectId, Pose, Returned, Scene, SceneObject, Shape};
+use haphe::servo::{
+    HandOptions, HipTrace, Motion, ObjectMotion, PathKind, ReplayDevice, Servo, ServoOptions,
+    SimulatedHand, TickRecord, scripted_path,
+};
+
+fn shape(which: Catalog, triangles: usize) -> Arc<Shape> {
+    let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())
+        .expect("a usable surface");
+    Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"))
+}
+
+#[test]
+fn servo_ticks_allocate_nothing() {
+    let material = Material {
+        stiffness: 800.0,
+        damping: 1.0,
+        static_friction: 0.5,
+        dynamic_friction: 0.3,
+    };
+    let blob = shape(Catalog::Blob, 20_000);
+    let plate = shape(Catalog::ThinPlate, 5_000);
+    let torus = shape(Catalog::Torus, 5_000);
+    let (mut scene, mut editor) = Scene::new(8);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            blob,
+            Pose::IDENTITY,
+            material,
+        ))
+        .expect("room");
+    let plate_pose = Pose::from_translation(DVec3::new(0.3, 0.0, 0.0));
+    scene
+        .insert(SceneObject::new(ObjectId(1), plate, plate_pose, material))
+        .expect("room");
+    let path = scripted_path(PathKind::Explore, &scene, 20.0, 5).expect("a path");
+    let hand = SimulatedHand::new(path, HandOptions::default());
+    let mut servo = Servo::new(hand, scene, ServoOptions::default()).expect("servo");
+    servo.set_motions(vec![ObjectMotion {
+        id: ObjectId(1),
+        base: plate_pose,
+        motion: Motion::Oscillating {
+            amplitude: DVec3::new(0.0, 0.0, 0.005),
+            frequency: 1.0,
+        },
+    }]);
+
+    let mut records = vec![
+        TickRecord {
+            tick: 0,
+            t: 0.0,
+            hip: DVec3::ZERO,
+            velocity: DVec3::ZERO,
+            proxy: DVec3::ZERO,
+            force: DVec3::ZERO,
+            object: None,
+            triangle: None,
+            penetration: 0.0,
+            status: Default::default(),
+            phase: Default::default(),
+            fault: None,
+        };
+        20_000
+    ];
+    let mut spare = Some(SceneObject::new(
+        ObjectId(2),
+        torus,
+        Pose::from_translation(DVec3::new(-0.3, 0.0, 0.0)),
+        material,
+    ));
+    let mut total = 0;
+    let mut n = 0usize;
+    for chunk in 0..20 {
+        // Another thread's edits, sent between blocks of ticks.
+        if let Some(o) = spare.take() {
+            let _ = editor.send(Edit::Insert(o));
+        } else {
+            let _ = editor.send(Edit::Remove(ObjectId(2)));
+        }
+        let _ = editor.send(Edit::SetPose(
+            ObjectId(0),
+            Pose::from_translation(DVec3::new(0.0, 0.0, 1e-4 * f64::from(chunk))),
+        ));
+        let info = allocation_counter::measure(|| {
+            servo.run_simulated(1_000, |r| {
+                records[n] = *r;
+                n += 1;
+            });
+        });
+        total += info.count_total;
+        for r in editor.collect() {
+            if let Returned::Removed(o) = r {
+                spare = Some(o);
+            }
+        }
+    }
+    let contact = records.iter().filter(|r| r.in_contact()).count();
+    let stats = servo.stats();
+    println!(
+        "{n} ticks, {contact} in contact, compute p50 {} ns p99 {} ns max {} ns",
+        stats.compute.quantile(0.5),
+        stats.compute.quantile(0.99),
+        stats.compute.max()
+    );
+    assert_eq!(n, 20_000);
+    assert_eq!(stats.compute.count(), 20_000);
+    assert!(contact > 5_000, "{contact}");
+    assert_eq!(total, 0, "the servo path allocated");
+
+    // Replay of what was just recorded, on the same terms.
+    let mut csv = Vec::new();
+    for r in &records {
+        r.write_csv(&mut csv).expect("write");
+    }
+    let trace = HipTrace::read("recorded", csv.as_slice()).expect("reads back");
+    let mut scene = Scene::local(2);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            shape(Catalog::Blob, 2_000),
+            Pose::IDENTITY,
+            material,
+        ))
+        .expect("room");
+    let mut servo =
+        Servo::new(ReplayDevice::new(trace), scene, ServoOptions::default()).expect("servo");
+    let info = allocation_counter::measure(|| {
+        servo.run_simulated(25_000, |r| {
+            std::hint::black_box(r);
+        });
+    });
+    // 20 000 samples, and the tick that found the trace ended.
+    assert_eq!(
+        servo.stats().ticks,
+        20_001,
+        "the replay ends with the trace"
+    );
+    assert_eq!(info.count_total, 0, "the replay allocated");
+}
