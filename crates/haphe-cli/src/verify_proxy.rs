@@ -7,7 +7,7 @@ use haphe::map::MapOptions;
 use haphe::mesh::{Mesh, Surface, SurfaceOptions};
 use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
-use haphe::verify::{ProxyCheck, check_proxy, haptic_path, haptic_path_in_contact};
+use haphe::verify::{ProxyCheck, bounds, check_proxy, haptic_path, haptic_path_in_contact};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -54,10 +54,7 @@ const KINDS: [(&str, (f64, f64)); 3] = [
 /// material with friction, comparing the proxy with the brute-force proxy at every tick.
 pub fn check(surface: &Surface, ticks: usize, seed: u64) -> anyhow::Result<ProxyReport> {
     let start = Instant::now();
-    let (lo, hi) = surface.vertices().iter().fold(
-        (haphe::DVec3::INFINITY, haphe::DVec3::NEG_INFINITY),
-        |(lo, hi), &v| (lo.min(v), hi.max(v)),
-    );
+    let (lo, hi, _) = bounds(surface);
     let scale = HAND_SCALE_M / (hi - lo).max_element();
     let mesh = Mesh {
         vertices: surface

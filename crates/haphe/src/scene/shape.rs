@@ -20,13 +20,9 @@ impl Shape {
     /// A shape from a surface and the map built for it (for example both from
     /// [`decode`](crate::map::decode)).
     pub fn new(surface: Surface, map: VoxelMap) -> Shape {
-        let (lo, hi) = surface
-            .vertices()
-            .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &v| {
-                (lo.min(v), hi.max(v))
-            });
-        let bound_centre = 0.5 * (lo + hi);
+        let report = surface.report();
+        let bound_centre =
+            0.5 * (DVec3::from_array(report.bounds_min) + DVec3::from_array(report.bounds_max));
         let bound_radius = surface
             .vertices()
             .iter()
