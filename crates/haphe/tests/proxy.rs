@@ -522,6 +522,54 @@ fn sliding_exactly_on_the_surface_then_pressing() {
     }
 }
 
+/// The device arrives on a face moving within its plane (through the face's edge, which
+/// the watertight test may hand to the face seen edge-on), then moves on within that
+/// plane into the solid, where the plane runs inside a wall. Which side of the plane the
+/// test's tie-break leans to depends on the direction of motion, so the proxy could rest
+/// on the face and then slip under the wall's edge; it touched the face on arrival, so
+/// the wall stops it. The shape: the concave corner sheared by `z += x / 2` (exact in
+/// binary), whose floor `z = x / 2` runs into the solid at `x < 0` and `y < 0`.
+#[test]
+fn arriving_on_a_face_within_its_plane_then_moving_into_a_wall() {
+    let s = 0.25;
+    let mut mesh = shapes::concave_corner(s, 1);
+    for v in &mut mesh.vertices {
+        v.z += 0.5 * v.x;
+    }
+    let scene = scene_of(shape(mesh), Material::default());
+    let o = &scene.objects()[0];
+    let on_floor = DVec3::new(0.0625, 0.0625, 0.03125);
+    let (along_x, along_y) = (DVec3::new(1.0, 0.0, 0.5), DVec3::Y);
+    let mut checked = 0;
+    for from in [along_x, along_y] {
+        for into in [-along_x, -along_y, -along_x - along_y] {
+            for steps in [1, 4] {
+                let start = on_floor + from * 0.5 * s;
+                let mut path = vec![start];
+                path.extend((1..=steps).map(|k| start.lerp(on_floor, k as f64 / steps as f64)));
+                path.extend((1..=20).map(|k| on_floor + into * (k as f64 / 128.0)));
+                let check = check_proxy(&scene, &path, ProxyOptions::default());
+                assert_eq!(check.mismatches, 0, "{from} {into} {steps}: {check:?}");
+                assert_eq!(check.inside, 0, "{from} {into} {steps}: {check:?}");
+                let mut proxy = Proxy::new(start, ProxyOptions::default());
+                let mut last = None;
+                for &hip in &path {
+                    let out = proxy.tick(&scene, hip, DVec3::ZERO);
+                    let q = o.pose.to_object(out.proxy);
+                    let side = classify_point(o.shape.surface(), o.shape.map(), q).0;
+                    assert_ne!(side, Side::Inside, "{from} {into} {steps}: {out:?}");
+                    last = Some(out);
+                    checked += 1;
+                }
+                // The path ends inside the solid: the proxy is held at a wall.
+                let last = last.unwrap();
+                assert!(last.contact.is_some(), "{from} {into} {steps}: {last:?}");
+            }
+        }
+    }
+    assert!(checked > 100);
+}
+
 /// An open square sheet in the plane z = 0, 0.2 m across, normal +z, `n × n` quads.
 fn sheet(n: u32) -> Mesh {
     let mut vertices = Vec::new();

@@ -242,6 +242,17 @@ pub(crate) fn first_hit_all(scene: &Scene, p0: DVec3, p1: DVec3, reach: f64) -> 
     best
 }
 
+/// The surface within `reach` of the world point `p` of the lowest-index object that has
+/// one (see [`Scene::touching`]).
+pub(crate) fn touching_any(scene: &Scene, p: DVec3, reach: f64) -> Option<Hit> {
+    (0..scene.objects().len()).find_map(|i| scene.touching(i, p, reach))
+}
+
+/// The constraint plane of `hit`, met by the move `from → to`.
+fn hit_plane(hit: &Hit, from: DVec3, to: DVec3, options: &ProxyOptions) -> Plane {
+    Plane::of_hit(hit.normal, hit.point, hit.one_sided, from, to, options.skin)
+}
+
 /// Moving objects carry the proxy: for each object that moved since the previous tick (in
 /// index order), the proxy's motion relative to it is tested in its frame and stopped a
 /// skin's width before its surface.
@@ -252,8 +263,7 @@ fn carry(scene: &Scene, mut p: DVec3, options: &ProxyOptions) -> DVec3 {
         }
         let from = scene.previous_relative(i, p);
         if let Some(h) = scene.first_hit(i, from, p, options.probe_reach()) {
-            let plane = Plane::of_hit(h.normal, h.point, h.one_sided, from, p, options.skin);
-            p = advance_to_plane(from, p, &plane);
+            p = advance_to_plane(from, p, &hit_plane(&h, from, p, options));
         }
     }
     p
@@ -293,20 +303,28 @@ fn constrain(
             finished = true;
             break;
         }
-        let Some(hit) = first_hit_all(scene, p, target, options.probe_reach()) else {
-            p = target;
-            finished = true;
-            break;
+        let (hit, plane) = match first_hit_all(scene, p, target, options.probe_reach()) {
+            Some(hit) => {
+                let plane = hit_plane(&hit, p, target, options);
+                p = advance_to_plane(p, target, &plane);
+                (hit, plane)
+            }
+            None => match touching_any(scene, target, options.probe_reach()) {
+                // A free move that ends on a surface (or within a probe's reach of it,
+                // moving along it) touches it: its plane becomes a constraint, so that the
+                // proxy never rests where the next probe could start on the surface.
+                Some(hit) => {
+                    let plane = hit_plane(&hit, p, target, options);
+                    p = target;
+                    (hit, plane)
+                }
+                None => {
+                    p = target;
+                    finished = true;
+                    break;
+                }
+            },
         };
-        let plane = Plane::of_hit(
-            hit.normal,
-            hit.point,
-            hit.one_sided,
-            p,
-            target,
-            options.skin,
-        );
-        p = advance_to_plane(p, target, &plane);
         if last_hit.is_none() {
             touch_down = p;
         }
@@ -333,10 +351,6 @@ fn move_checked(scene: &Scene, from: DVec3, to: DVec3, options: &ProxyOptions) -
     }
     match first_hit_all(scene, from, to, options.probe_reach()) {
         None => to,
-        Some(h) => advance_to_plane(
-            from,
-            to,
-            &Plane::of_hit(h.normal, h.point, h.one_sided, from, to, options.skin),
-        ),
+        Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
     }
 }

@@ -16,7 +16,13 @@
 //!    lowest object index on ties), the proxy stops where the line meets that triangle's
 //!    plane moved out by the skin, the plane becomes a constraint, and it aims again. At
 //!    most three planes (a face, a concave edge, a concave corner) and
-//!    [`MAX_PROXY_STEPS`] legs.
+//!    [`MAX_PROXY_STEPS`] legs. A leg that meets nothing but ends within a probe's reach
+//!    of a surface ([`ProxyOptions::probe_reach`]; the nearest triangle, lowest object
+//!    index first) *touches* it: the leg stands, and that triangle's plane moved out by
+//!    the skin becomes a constraint too. So the proxy never rests on a surface, where the
+//!    next leg, running along the surface's plane, could slip through its edge unseen
+//!    (the watertight test decides crossings exactly only for end points off the
+//!    surface).
 //! 3. **Friction.** In contact, with friction, the proxy stays where it rested while the
 //!    tangential force is inside the static friction cone, and otherwise slips to the
 //!    edge of the dynamic cone ([`friction_target`]); that last move is tested for

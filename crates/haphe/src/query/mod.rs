@@ -1,12 +1,14 @@
 //! Stage 3 — queries against one object, in its object frame: the geometric kernels
 //! (watertight segment–triangle, closest point on a triangle, triangle–triangle), segment
-//! crossing through the voxel map, inside/outside, and the barycentric surface walk.
+//! crossing through the voxel map, inside/outside, the nearest triangle within a radius, and
+//! the barycentric surface walk.
 
 mod closest;
 mod crossing;
 pub(crate) use crossing::crossing_from_hit;
 mod exact;
 mod inside;
+mod near;
 mod segment_triangle;
 mod self_intersect;
 mod triangle_triangle;
@@ -18,6 +20,7 @@ pub use crossing::{
     first_crossing_brute_force_where, first_crossing_where,
 };
 pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
+pub use near::{NearTriangle, nearest_within, nearest_within_brute_force};
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use self_intersect::{
     LISTED_SELF_INTERSECTIONS, SelfIntersections, TOUCH_TOLERANCE_REL, self_intersections,

@@ -27,7 +27,9 @@ use glam::DVec3;
 
 use crate::mesh::TriId;
 use crate::proxy::Probe;
-use crate::query::{SurfacePoint, WalkStatus, first_crossing_where, walk_to_nearest};
+use crate::query::{
+    SurfacePoint, WalkStatus, first_crossing_where, nearest_within, walk_to_nearest,
+};
 
 /// A stable name for an object of a scene, chosen by the caller.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -244,6 +246,34 @@ impl Scene {
             point: o.pose.to_world(c.point),
             normal: o.pose.vector_to_world(c.face_normal),
             one_sided,
+        })
+    }
+
+    /// The triangle of object `i` nearest to the world point `p` among those within
+    /// `radius` metres of it, as a [`Hit`] at the end of a move (`t = 1`) whose point is
+    /// the triangle's point closest to `p`: how the proxy notices a surface it came to
+    /// rest on (or within a probe's reach of) without crossing it. `None` when there is
+    /// none, or when `i` is out of range.
+    ///
+    /// # Real-time
+    /// A bounding-sphere test, then [`nearest_within`] in the object frame.
+    pub fn touching(&self, i: usize, p: DVec3, radius: f64) -> Option<Hit> {
+        let o = self.objects.get(i)?;
+        let shape = &*o.shape;
+        let centre = o.pose.to_world(shape.bound_centre());
+        if p.distance(centre) > shape.bound_radius() * BOUND_SLACK + radius {
+            return None;
+        }
+        let near = nearest_within(shape.surface(), shape.map(), o.pose.to_object(p), radius)?;
+        Some(Hit {
+            t: 1.0,
+            object: i,
+            triangle: near.triangle,
+            point: o.pose.to_world(near.closest.point),
+            normal: o
+                .pose
+                .vector_to_world(shape.surface().frame(near.triangle).normal),
+            one_sided: o.sides == Sides::Front,
         })
     }
 

@@ -15,7 +15,10 @@ use crate::proxy::{
     Constraints, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, advance_to_plane,
     clamp_to_radius, friction_target,
 };
-use crate::query::{Side, classify_point, first_crossing_brute_force_where, walk_to_nearest};
+use crate::query::{
+    Side, classify_point, first_crossing_brute_force_where, nearest_within_brute_force,
+    walk_to_nearest,
+};
 use crate::rng::SplitMix64;
 use crate::scene::{Material, Pose, Scene, Shape, Sides};
 
@@ -117,6 +120,26 @@ impl BruteProxy {
         })
     }
 
+    /// The surface within a probe's reach of `p`, lowest object index first.
+    fn touching(&self, p: DVec3) -> Option<BruteHit> {
+        self.objects.iter().enumerate().find_map(|(i, o)| {
+            let near = nearest_within_brute_force(
+                o.shape.surface(),
+                o.pose.to_object(p),
+                self.options.probe_reach(),
+            )?;
+            Some(BruteHit {
+                t: 1.0,
+                object: i,
+                point: o.pose.to_world(near.closest.point),
+                normal: o
+                    .pose
+                    .vector_to_world(o.shape.surface().frame(near.triangle).normal),
+                one_sided: o.one_sided,
+            })
+        })
+    }
+
     fn plane(&self, h: &BruteHit, from: DVec3, to: DVec3) -> Plane {
         Plane::of_hit(h.normal, h.point, h.one_sided, from, to, self.options.skin)
     }
@@ -165,12 +188,24 @@ impl BruteProxy {
             if target == p {
                 break;
             }
-            let Some(h) = self.first_hit(p, target) else {
-                p = target;
-                break;
+            let (h, plane) = match self.first_hit(p, target) {
+                Some(h) => {
+                    let plane = self.plane(&h, p, target);
+                    p = advance_to_plane(p, target, &plane);
+                    (h, plane)
+                }
+                None => match self.touching(target) {
+                    Some(h) => {
+                        let plane = self.plane(&h, p, target);
+                        p = target;
+                        (h, plane)
+                    }
+                    None => {
+                        p = target;
+                        break;
+                    }
+                },
             };
-            let plane = self.plane(&h, p, target);
-            p = advance_to_plane(p, target, &plane);
             touch_down.get_or_insert(p);
             last_object = h.object;
             if !planes.push(plane) {
@@ -305,6 +340,9 @@ fn path(
         at = waypoint(&mut random, None);
     }
     let mut p = at.2;
+    if ticks > 0 {
+        out.push(p);
+    }
     while out.len() < ticks {
         let next = waypoint(&mut random, Some(at));
         let speed = (speeds.0.ln() + random.next_unit() * (speeds.1 / speeds.0).ln()).exp();

@@ -1,0 +1,162 @@
+//! The nearest triangle within a small radius of a point: how the proxy notices a surface
+//! it has come to rest on without crossing it.
+
+use glam::DVec3;
+
+use super::closest::{ClosestPoint, closest_point_triangle};
+use crate::map::VoxelMap;
+use crate::mesh::{Surface, TriId};
+
+/// A triangle within the searched radius of a point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NearTriangle {
+    /// The triangle.
+    pub triangle: TriId,
+    /// Its point closest to the query point (object frame), with weights and feature.
+    pub closest: ClosestPoint,
+    /// Distance from the query point to `closest.point`, metres.
+    pub distance: f64,
+}
+
+/// The triangle nearest to `p` (metres, object frame) among those within `radius` metres of
+/// it, found through the map's cells that overlap the cube of half-side `radius` around
+/// `p`; the lowest triangle index among equally near ones. Always equals
+/// [`nearest_within_brute_force`].
+///
+/// # Real-time
+/// No allocation, no lock, no panic. Visits the cells the cube overlaps: at most 8 when
+/// `radius` is below a cell (the proxy asks for a fraction of a micrometre), never more than
+/// the grid holds; each triangle listed there costs one plane height and, when that is
+/// within `radius`, one closest-point kernel. Non-finite input gives `None`.
+pub fn nearest_within(
+    surface: &Surface,
+    map: &VoxelMap,
+    p: DVec3,
+    radius: f64,
+) -> Option<NearTriangle> {
+    if !(p.is_finite() && radius >= 0.0 && radius.is_finite()) {
+        return None;
+    }
+    let grid = map.grid();
+    let lo = grid.to_grid(p - DVec3::splat(radius)).floor();
+    let hi = grid.to_grid(p + DVec3::splat(radius)).floor();
+    let dims = grid.dims();
+    let mut range = [[0u32; 2]; 3];
+    for axis in 0..3 {
+        let top = f64::from(dims[axis]) - 1.0;
+        if !(hi[axis] >= 0.0 && lo[axis] <= top) {
+            return None;
+        }
+        range[axis] = [lo[axis].max(0.0) as u32, hi[axis].min(top) as u32];
+    }
+    let mut best = None;
+    // A triangle within `radius` of `p` reaches into the cube, so it is listed in a cell
+    // the cube overlaps (the cell lists are conservative).
+    for x in range[0][0]..=range[0][1] {
+        for y in range[1][0]..=range[1][1] {
+            for z in range[2][0]..=range[2][1] {
+                for &t in map.triangles_in([x, y, z]) {
+                    consider(surface, TriId(t), p, radius, &mut best);
+                }
+            }
+        }
+    }
+    best
+}
+
+/// [`nearest_within`] by testing every triangle: the oracle.
+///
+/// # Performance
+/// `O(n)`: for tests and verification, never for a tick.
+pub fn nearest_within_brute_force(
+    surface: &Surface,
+    p: DVec3,
+    radius: f64,
+) -> Option<NearTriangle> {
+    if !(p.is_finite() && radius >= 0.0 && radius.is_finite()) {
+        return None;
+    }
+    let mut best = None;
+    for t in 0..surface.triangle_count() {
+        consider(surface, TriId(t as u32), p, radius, &mut best);
+    }
+    best
+}
+
+/// Keeps triangle `t` in `best` when it lies within `radius` of `p` and is nearer than
+/// the kept one (lower index on ties). The plane height, a lower bound of the distance,
+/// skips most triangles before the closest-point kernel.
+#[inline(always)]
+fn consider(surface: &Surface, t: TriId, p: DVec3, radius: f64, best: &mut Option<NearTriangle>) {
+    let frame = surface.frame(t);
+    if frame.normal.dot(p - frame.origin).abs() > radius {
+        return;
+    }
+    let closest = closest_point_triangle(p, surface.corners(t));
+    let distance = p.distance(closest.point);
+    if distance <= radius
+        && best.is_none_or(|b: NearTriangle| {
+            distance < b.distance || (distance == b.distance && t.0 < b.triangle.0)
+        })
+    {
+        *best = Some(NearTriangle {
+            triangle: t,
+            closest,
+            distance,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::MapOptions;
+    use crate::mesh::SurfaceOptions;
+    use crate::mesh::shapes;
+
+    #[test]
+    fn equals_brute_force_near_and_on_a_sphere() {
+        let surface = Surface::new(shapes::sphere(0.1, 3), &SurfaceOptions::default()).unwrap();
+        let map = VoxelMap::build(&surface, &MapOptions::default()).unwrap();
+        let mut rng = crate::rng::SplitMix64::new(7);
+        let mut found = 0;
+        for i in 0..4000 {
+            let t = TriId((i % surface.triangle_count()) as u32);
+            let c = surface.corners(t);
+            let w = [rng.next_unit(), rng.next_unit(), rng.next_unit()];
+            let s: f64 = w.iter().sum();
+            let on = (c[0] * w[0] + c[1] * w[1] + c[2] * w[2]) / s;
+            let off = rng.unit_vector();
+            let p = on + off * 10f64.powf(rng.range(-8.0, -3.0));
+            let radius = 10f64.powf(rng.range(-8.0, -3.0));
+            let fast = nearest_within(&surface, &map, p, radius);
+            assert_eq!(
+                fast,
+                nearest_within_brute_force(&surface, p, radius),
+                "{p:?} {radius}"
+            );
+            found += usize::from(fast.is_some());
+        }
+        assert!(found > 1000, "only {found} points had a triangle in reach");
+    }
+
+    #[test]
+    fn a_vertex_shared_by_many_triangles_goes_to_the_lowest_index() {
+        let mesh = shapes::cuboid(DVec3::splat(0.05), [2, 2, 2]);
+        let surface = Surface::new(mesh, &SurfaceOptions::default()).unwrap();
+        let map = VoxelMap::build(&surface, &MapOptions::default()).unwrap();
+        let corner = surface.vertices()[0];
+        let near = nearest_within(&surface, &map, corner, 1e-9).expect("on the surface");
+        assert_eq!(near.distance, 0.0);
+        let lowest = (0..surface.triangle_count() as u32)
+            .find(|&t| surface.triangles()[t as usize].contains(&0))
+            .unwrap();
+        assert_eq!(near.triangle, TriId(lowest));
+        assert_eq!(
+            nearest_within(&surface, &map, corner + DVec3::splat(1.0), 1e-3),
+            None
+        );
+        assert_eq!(nearest_within(&surface, &map, DVec3::NAN, 1e-3), None);
+        assert_eq!(nearest_within(&surface, &map, corner, f64::NAN), None);
+    }
+}
