@@ -197,13 +197,37 @@ pub fn distance_to_surface(surface: &Surface, p: DVec3) -> f64 {
 /// [`first_crossing_brute_force`]: crate::query::first_crossing_brute_force
 pub struct BruteCrossing<'a> {
     surface: &'a Surface,
-    /// Per triangle: min corner, max corner.
-    boxes: Vec<[DVec3; 2]>,
+    boxes: TriangleBoxes,
 }
 
 impl<'a> BruteCrossing<'a> {
     /// Prepares the boxes of `surface`'s triangles.
     pub fn new(surface: &'a Surface) -> BruteCrossing<'a> {
+        BruteCrossing {
+            surface,
+            boxes: TriangleBoxes::new(surface),
+        }
+    }
+
+    /// The first crossing of the segment from `p0` to `p1`, testing every triangle whose
+    /// box the segment meets.
+    pub fn first_crossing(&self, p0: DVec3, p1: DVec3) -> Option<crate::query::Crossing> {
+        self.boxes
+            .first_crossing_where(self.surface, p0, p1, |_| true)
+    }
+}
+
+/// The bounding box of every triangle of a surface, grown by a relative hair: a slab test
+/// against them skips most triangles of a brute-force crossing query without changing its
+/// answer.
+pub(crate) struct TriangleBoxes {
+    /// Per triangle: min corner, max corner.
+    boxes: Vec<[DVec3; 2]>,
+}
+
+impl TriangleBoxes {
+    /// The boxes of `surface`'s triangles.
+    pub(crate) fn new(surface: &Surface) -> TriangleBoxes {
         let boxes = (0..surface.triangle_count() as u32)
             .map(|t| {
                 let [a, b, c] = surface.corners(TriId(t));
@@ -216,12 +240,22 @@ impl<'a> BruteCrossing<'a> {
                 [lo - DVec3::splat(pad), hi + DVec3::splat(pad)]
             })
             .collect();
-        BruteCrossing { surface, boxes }
+        TriangleBoxes { boxes }
     }
 
-    /// The first crossing of the segment from `p0` to `p1`, testing every triangle whose
-    /// box the segment meets.
-    pub fn first_crossing(&self, p0: DVec3, p1: DVec3) -> Option<crate::query::Crossing> {
+    /// The first crossing of the segment from `p0` to `p1` with `surface` (whose boxes
+    /// these are) that `accept` keeps, testing every triangle whose box the segment meets:
+    /// the same answer as [`first_crossing_brute_force_where`], lowest `t`, then lowest
+    /// triangle index.
+    ///
+    /// [`first_crossing_brute_force_where`]: crate::query::first_crossing_brute_force_where
+    pub(crate) fn first_crossing_where(
+        &self,
+        surface: &Surface,
+        p0: DVec3,
+        p1: DVec3,
+        accept: impl Fn(&crate::query::SegmentHit) -> bool,
+    ) -> Option<crate::query::Crossing> {
         let segment = Segment::new(p0, p1);
         let d = p1 - p0;
         let inv = DVec3::ONE / d;
@@ -251,13 +285,13 @@ impl<'a> BruteCrossing<'a> {
             if !hit || best.is_some_and(|(b, _)| t0 > b.t) {
                 continue;
             }
-            if let Some(h) =
-                intersect_segment_triangle(&segment, self.surface.corners(TriId(t as u32)))
+            if let Some(h) = intersect_segment_triangle(&segment, surface.corners(TriId(t as u32)))
+                && accept(&h)
                 && best.is_none_or(|(b, _)| h.t < b.t)
             {
                 best = Some((h, t as u32));
             }
         }
-        best.map(|(hit, t)| crate::query::crossing_from_hit(self.surface, hit, t))
+        best.map(|(hit, t)| crate::query::crossing_from_hit(surface, hit, t))
     }
 }

@@ -1,7 +1,8 @@
 //! The proxy against a brute-force god-object on haptic trajectories.
 //!
 //! [`BruteProxy`] runs the semantics documented in [`crate::proxy`] with no voxel map and
-//! no surface walk: every crossing is found by testing every triangle of every object. The
+//! no surface walk: every crossing is found by testing every triangle of every object (each
+//! after a slab test against its bounding box, which never changes the answer). The
 //! fast [`Proxy`] must stay within [`PROXY_TOLERANCE_M`] of it at every tick.
 
 use glam::DVec3;
@@ -9,16 +10,14 @@ use serde::Serialize;
 
 use std::sync::Arc;
 
+use super::oracle::TriangleBoxes;
 use super::{KEPT_FAILURES, bounds, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
     Constraints, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, advance_to_plane,
     clamp_to_radius, friction_target,
 };
-use crate::query::{
-    Side, classify_point, first_crossing_brute_force_where, nearest_within_brute_force,
-    walk_to_nearest,
-};
+use crate::query::{Side, classify_point, nearest_within_brute_force, walk_to_nearest};
 use crate::rng::SplitMix64;
 use crate::scene::{Material, Pose, Scene, Shape, Sides};
 
@@ -28,6 +27,8 @@ pub const PROXY_TOLERANCE_M: f64 = 1e-9;
 /// One object as the oracle sees it.
 struct BruteObject {
     shape: Arc<Shape>,
+    /// Every triangle's box, to skip most triangles of each crossing query.
+    boxes: TriangleBoxes,
     pose: Pose,
     previous_pose: Pose,
     material: Material,
@@ -61,6 +62,7 @@ impl BruteProxy {
             .objects()
             .iter()
             .map(|o| BruteObject {
+                boxes: TriangleBoxes::new(o.shape.surface()),
                 shape: o.shape.clone(),
                 pose: o.pose,
                 previous_pose: o.previous_pose,
@@ -105,7 +107,7 @@ impl BruteProxy {
         let o = &self.objects[i];
         let one_sided = o.one_sided;
         let probe = Probe::new(from, to, self.options.probe_reach(), one_sided);
-        let c = first_crossing_brute_force_where(
+        let c = o.boxes.first_crossing_where(
             o.shape.surface(),
             o.pose.to_object(probe.p0),
             o.pose.to_object(probe.p1),
