@@ -19,7 +19,8 @@ use crate::load::{load, weld_mode};
 pub const EXIT_CODES: &str = "\
 Exit codes (the worst file decides):
   0  every file is a valid closed solid (closed, manifold, consistently oriented, not inside out)
-  1  some file is usable only as an open, two-sided surface
+  1  some file is usable only as an open, two-sided surface, or is closed but passes
+     through itself (no inside where it does)
   2  some file is unusable (no triangle with area) or unreadable
 
 JSON (--json) prints one object per file and line: file, format, seconds, weld, then the report:
@@ -167,7 +168,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         loaded.weld.merged,
                         loaded.weld.unreferenced,
                     )?;
-                    write!(out, "{report}")?;
+                    write!(out, "{}", report.text(crossing_itself))?;
                     if let Some(s) = intersections.as_ref().filter(|s| s.count > 0) {
                         writeln!(
                             out,

@@ -282,11 +282,12 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
     let i = &r.inside.check;
     writeln!(
         out,
-        "\ninside/outside: {} points, {} inside, {} mismatches vs winding numbers ({} excused within 1 nm of the surface), parry disagreements: {}",
+        "\ninside/outside: {} points, {} inside, {} mismatches vs winding numbers ({} excused within 1 nm of the surface, {} where parts overlap: winding number not 0 or 1), parry disagreements: {}",
         i.samples,
         i.inside,
         i.mismatches,
         i.on_surface,
+        i.undefined,
         opt(r.inside.parry_disagreements)
     )?;
     let w = &r.walk;

@@ -31,7 +31,9 @@ pub use frame::{
 pub use ids::{NONE, TriId, VertId};
 pub use normals::DEFAULT_CREASE_ANGLE_RAD;
 pub use read::{Format, ReadOptions, Units, read_mesh, read_unwelded};
-pub use report::{ComponentReport, Defects, EdgeUse, MAX_NESTING_WORK, MeshReport, Usability};
+pub use report::{
+    ComponentReport, Defects, EdgeUse, MAX_NESTING_WORK, MeshReport, ReportText, Usability,
+};
 pub(crate) use topology::{OwnedSurfaceParts, SurfaceParts};
 pub use topology::{Surface, SurfaceError, SurfaceOptions};
 pub use weld::{Weld, WeldStats, weld};

@@ -9,6 +9,7 @@ pub(crate) use analyse::analyse_with_edges;
 pub use nesting::MAX_NESTING_WORK;
 mod nesting;
 mod text;
+pub use text::ReportText;
 
 use serde::{Deserialize, Serialize};
 

@@ -21,25 +21,55 @@ fn list<T: fmt::Debug>(f: &mut fmt::Formatter<'_>, what: &str, items: &[T]) -> f
     writeln!(f)
 }
 
+/// The text of a report whose surface is known to pass through itself or not (found with
+/// the voxel map, [`self_intersections`](crate::query::self_intersections), which the
+/// report alone does not run): see [`MeshReport::text`].
+pub struct ReportText<'a> {
+    report: &'a MeshReport,
+    passes_through_itself: bool,
+}
+
+impl MeshReport {
+    /// The text `haphe validate` prints; a closed, manifold, oriented surface that
+    /// `passes_through_itself` gets the verdict that it is not a valid solid after all
+    /// (inside and outside are not defined where it does).
+    pub fn text(&self, passes_through_itself: bool) -> ReportText<'_> {
+        ReportText {
+            report: self,
+            passes_through_itself,
+        }
+    }
+}
+
 impl fmt::Display for MeshReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let verdict = match self.usable_as {
+        self.text(false).fmt(f)
+    }
+}
+
+impl fmt::Display for ReportText<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let verdict = match self.report.usable_as {
+            Usability::Solid if self.passes_through_itself => {
+                "not a valid solid: closed, but it passes through itself"
+            }
             Usability::Solid => "a valid closed solid",
             Usability::Surface => "usable only as an open (two-sided) surface",
             Usability::Unusable => "unusable",
         };
+        let report = self.report;
         writeln!(f, "  verdict: {verdict}")?;
         writeln!(
             f,
             "  {} triangles, {} vertices, {} edges, {} component(s), {}",
-            self.triangles,
-            self.vertices,
-            self.edges,
-            self.components,
-            if self.closed { "closed" } else { "open" }
+            report.triangles,
+            report.vertices,
+            report.edges,
+            report.components,
+            if report.closed { "closed" } else { "open" }
         )?;
-        let [x0, y0, z0] = self.bounds_min;
-        let [x1, y1, z1] = self.bounds_max;
+        let [x0, y0, z0] = report.bounds_min;
+        let [x1, y1, z1] = report.bounds_max;
         writeln!(
             f,
             "  bounds: [{x0:.6}, {y0:.6}, {z0:.6}] .. [{x1:.6}, {y1:.6}, {z1:.6}] m  (size {:.6} x {:.6} x {:.6} m)",
@@ -47,16 +77,16 @@ impl fmt::Display for MeshReport {
             y1 - y0,
             z1 - z0
         )?;
-        write!(f, "  area: {:.6e} m²", self.area)?;
-        match self.volume {
+        write!(f, "  area: {:.6e} m²", report.area)?;
+        match report.volume {
             Some(v) => write!(f, ", volume: {v:.6e} m³")?,
             None => write!(f, ", volume: none (not a closed, oriented surface)")?,
         }
-        match self.genus {
+        match report.genus {
             Some(g) => writeln!(f, ", genus: {g}")?,
             None => writeln!(f)?,
         }
-        let d = &self.defects;
+        let d = &report.defects;
         list(f, "boundary edges", &d.boundary_edges)?;
         let edges = |uses: &[super::EdgeUse]| {
             uses.iter()
