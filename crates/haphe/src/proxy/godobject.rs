@@ -27,7 +27,8 @@ pub struct ProxyOptions {
     /// [`MIN_MAX_FORCE`](super::MIN_MAX_FORCE) no force is rendered.
     pub max_force: f64,
     /// Device points farther than this from the world origin are pulled back to it,
-    /// metres: keeps every product in range whatever the input.
+    /// metres (at most [`MAX_WORKSPACE_RADIUS`]): keeps every product in range whatever the
+    /// input.
     pub workspace_radius: f64,
 }
 
@@ -218,11 +219,29 @@ impl Proxy {
     }
 }
 
-/// `p` pulled back onto the sphere of `radius` (metres) around the origin when beyond it.
+/// Largest workspace radius honoured, metres: a larger (or non-finite)
+/// [`ProxyOptions::workspace_radius`] counts as this, so that squared coordinates never
+/// overflow.
+pub const MAX_WORKSPACE_RADIUS: f64 = 1e9;
+
+/// `p` pulled back onto the sphere of `radius` (metres, at most [`MAX_WORKSPACE_RADIUS`])
+/// around the origin when beyond it, and whether it was. Exact for any finite `p`, however
+/// large (its length is never squared beyond range); a non-finite `p` is returned as is.
 pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
-    let r = p.length();
-    if r > radius && r.is_finite() {
-        (p * (radius / r), true)
+    let radius = if radius >= 0.0 {
+        radius.min(MAX_WORKSPACE_RADIUS)
+    } else {
+        0.0
+    };
+    let largest = p.abs().max_element();
+    if !largest.is_finite() || largest == 0.0 {
+        return (p, false);
+    }
+    // The direction from p scaled to a largest component of 1: no overflow, no underflow.
+    let scaled = p / largest;
+    let r = scaled.length() * largest;
+    if r > radius {
+        (scaled.normalize() * radius, true)
     } else {
         (p, false)
     }
@@ -352,5 +371,35 @@ fn move_checked(scene: &Scene, from: DVec3, to: DVec3, options: &ProxyOptions) -
     match first_hit_all(scene, from, to, options.probe_reach()) {
         None => to,
         Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clamp_to_radius_survives_huge_and_tiny_points() {
+        let (p, clamped) = clamp_to_radius(DVec3::new(-0.1, 1e300, 0.2), 1e3);
+        assert!(clamped);
+        assert_eq!(p.y, 1e3);
+        assert!(p.x.abs() < 1e-290 && p.z.abs() < 1e-290);
+        let (p, clamped) = clamp_to_radius(DVec3::splat(f64::MAX), 2.0);
+        assert!(clamped && (p.length() - 2.0).abs() < 1e-15);
+        assert_eq!(
+            clamp_to_radius(DVec3::splat(1e-320), 1.0),
+            (DVec3::splat(1e-320), false)
+        );
+        assert_eq!(
+            clamp_to_radius(DVec3::new(3.0, 4.0, 0.0), 5.0),
+            (DVec3::new(3.0, 4.0, 0.0), false)
+        );
+        let (p, clamped) = clamp_to_radius(DVec3::new(3.0, 4.0, 0.0), 2.5);
+        assert!(clamped && p.distance(DVec3::new(1.5, 2.0, 0.0)) < 1e-15);
+        // A radius beyond the cap, or not a number, is the cap (or nothing).
+        let (p, _) = clamp_to_radius(DVec3::new(1e12, 0.0, 0.0), f64::INFINITY);
+        assert_eq!(p.x, MAX_WORKSPACE_RADIUS);
+        assert_eq!(clamp_to_radius(DVec3::X, f64::NAN), (DVec3::ZERO, true));
+        assert_eq!(clamp_to_radius(DVec3::NAN, 1.0).1, false);
     }
 }

@@ -60,6 +60,8 @@ pub use constraints::{
     advance_to_plane,
 };
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
-pub use godobject::{DEFAULT_SKIN, MAX_PROXY_STEPS, Proxy, ProxyOptions, clamp_to_radius};
+pub use godobject::{
+    DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions, clamp_to_radius,
+};
 pub use output::{Contact, TickOutput, TickStatus};
 pub use probe::{PROBE_REACH_OF_SKIN, Probe};
