@@ -132,11 +132,7 @@ pub fn first_crossing_where(
     accept: impl Fn(&SegmentHit) -> bool,
 ) -> Option<Crossing> {
     let segment = Segment::new(p0, p1);
-    // The common haptic case: a short segment inside one cell. Cells are convex, so every
-    // triangle it can meet overlaps that cell and is listed there once: no walk, no table.
-    if let Some(cell) = map.grid().cell_of(p0)
-        && map.grid().cell_of(p1) == Some(cell)
-    {
+    if let Some(cell) = map.grid().cell_of(p0) {
         let mut best: Option<(SegmentHit, u32)> = None;
         let margin = plane_margin(map);
         for &t in map.triangles_in(cell) {
@@ -150,7 +146,19 @@ pub fn first_crossing_where(
                 best = Some((hit, t));
             }
         }
-        return best.map(|(hit, t)| crossing_from_hit(surface, hit, t));
+        // The common haptic cases. Cells are convex and list every triangle that overlaps
+        // them, so a crossing at a point inside the start cell is tested here: when the
+        // whole segment lies in that cell (a short move), the best hit is the answer, and
+        // so it is when the hit comes before the segment leaves the cell (a press whose
+        // surface is near the proxy), with a margin for the rounding of the cell's
+        // boundaries. No walk, no table of tested triangles.
+        if map.grid().cell_of(p1) == Some(cell)
+            || best.is_some_and(|(hit, _)| {
+                hit.t < exit_parameter(map, cell, p0, p1) - crossing_margin(map, p0, p1)
+            })
+        {
+            return best.map(|(hit, t)| crossing_from_hit(surface, hit, t));
+        }
     }
     let mut tested = Tested::new();
     let mut best: Option<(SegmentHit, u32)> = None;
@@ -176,6 +184,23 @@ pub fn first_crossing_where(
         }
     }
     best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
+}
+
+/// The parameter `t` at which the segment `p0 + t (p1 − p0)`, starting in `cell`, leaves
+/// that cell's box (up to rounding; `+∞` for a zero-length segment).
+#[inline]
+fn exit_parameter(map: &VoxelMap, cell: [u32; 3], p0: DVec3, p1: DVec3) -> f64 {
+    let (lo, hi) = map.grid().cell_bounds(cell);
+    let d = p1 - p0;
+    let mut exit = f64::INFINITY;
+    for k in 0..3 {
+        if d[k] > 0.0 {
+            exit = exit.min((hi[k] - p0[k]) / d[k]);
+        } else if d[k] < 0.0 {
+            exit = exit.min((lo[k] - p0[k]) / d[k]);
+        }
+    }
+    exit
 }
 
 /// Whether both ends of the segment lie on the same side of triangle `t`'s plane, each
