@@ -104,6 +104,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         seconds: Some(seconds),
         realtime: args.realtime,
         spin_seconds: None,
+        fifo: true,
         seed: 3,
         max_force: 3.3,
         out: args.out.clone(),

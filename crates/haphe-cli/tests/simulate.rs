@@ -253,3 +253,29 @@ fn realtime_smoke_run_reports_lateness() {
     );
     assert!(figure(&text, "ticks") > 0.0);
 }
+
+/// `--normal-priority` keeps the time-shared priority and may spin the whole period.
+#[test]
+fn realtime_at_normal_priority_spins_the_whole_period() {
+    let text = ok(&[
+        "simulate",
+        "--shape",
+        "sphere",
+        "--triangles",
+        "1000",
+        "--path",
+        "press",
+        "--rate",
+        "5000",
+        "--seconds",
+        "0.2",
+        "--realtime",
+        "--spin-us",
+        "200",
+        "--normal-priority",
+    ]);
+    println!("{text}");
+    assert!(text.contains("servo thread      normal priority"), "{text}");
+    assert!(!text.contains("FIFO"), "{text}");
+    assert!(figure(&text, "ticks") > 0.0);
+}

@@ -76,6 +76,12 @@ pub struct Args {
     /// deadline, microseconds (default: 200, at most 30 % of the period).
     #[arg(long, value_name = "US")]
     spin_us: Option<f64>,
+    /// With --realtime: keep the normal, time-shared priority instead of asking for FIFO
+    /// real-time priority. Linux throttles a real-time thread that never sleeps (by
+    /// default 50 ms in every second); a normal thread may spin the whole period
+    /// (`--spin-us` equal to it) on its own core.
+    #[arg(long)]
+    normal_priority: bool,
     /// Write every tick to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     out: Option<PathBuf>,
@@ -165,6 +171,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         seconds: args.seconds,
         realtime: args.realtime,
         spin_seconds: args.spin_us.map(|us| us * 1e-6),
+        fifo: !args.normal_priority,
         seed: args.seed,
         max_force: args.max_force,
         out: args.out.clone(),
@@ -204,6 +211,8 @@ pub struct Session {
     pub seconds: Option<f64>,
     pub realtime: bool,
     pub spin_seconds: Option<f64>,
+    /// Ask for FIFO real-time priority (with `realtime`).
+    pub fifo: bool,
     pub seed: u64,
     pub max_force: f64,
     pub out: Option<PathBuf>,
@@ -330,6 +339,7 @@ impl Session {
         let (stats, stop, setup, dropped) = if self.realtime {
             let realtime = RealtimeOptions {
                 spin_seconds: self.spin_seconds,
+                realtime_priority: self.fifo,
                 ..RealtimeOptions::default()
             };
             let running = ServoLoop::spawn(servo, Some(seconds), realtime)?;
