@@ -527,7 +527,8 @@ fn sliding_exactly_on_the_surface_then_pressing() {
 /// plane into the solid, where the plane runs inside a wall. Which side of the plane the
 /// test's tie-break leans to depends on the direction of motion, so the proxy could rest
 /// on the face and then slip under the wall's edge; it touched the face on arrival, so
-/// the wall stops it. The shape: the concave corner sheared by `z += x / 2` (exact in
+/// the wall stops it; so does a proxy placed on the face, which touches it on its first
+/// tick. The shape: the concave corner sheared by `z += x / 2` (exact in
 /// binary), whose floor `z = x / 2` runs into the solid at `x < 0` and `y < 0`.
 #[test]
 fn arriving_on_a_face_within_its_plane_then_moving_into_a_wall() {
@@ -543,8 +544,13 @@ fn arriving_on_a_face_within_its_plane_then_moving_into_a_wall() {
     let mut checked = 0;
     for from in [along_x, along_y] {
         for into in [-along_x, -along_y, -along_x - along_y] {
-            for steps in [1, 4] {
-                let start = on_floor + from * 0.5 * s;
+            // No step: the proxy is placed on the floor (`Proxy::new` there).
+            for steps in [0, 1, 4] {
+                let start = if steps == 0 {
+                    on_floor
+                } else {
+                    on_floor + from * 0.5 * s
+                };
                 let mut path = vec![start];
                 path.extend((1..=steps).map(|k| start.lerp(on_floor, k as f64 / steps as f64)));
                 path.extend((1..=20).map(|k| on_floor + into * (k as f64 / 128.0)));

@@ -83,6 +83,8 @@ pub struct Proxy {
     options: ProxyOptions,
     last: Option<LastContact>,
     sticking: bool,
+    /// Placed (by [`Proxy::new`] or [`Proxy::reset`]) and not ticked yet.
+    placed: bool,
 }
 
 impl Proxy {
@@ -99,6 +101,7 @@ impl Proxy {
             options,
             last: None,
             sticking: false,
+            placed: true,
         }
     }
 
@@ -143,7 +146,8 @@ impl Proxy {
 
         let mut p = carry(scene, self.position, &self.options);
         let held = p;
-        let sweep = constrain(scene, p, hip, &self.options, &mut status);
+        let placed = std::mem::take(&mut self.placed);
+        let sweep = constrain(scene, p, hip, placed, &self.options, &mut status);
         p = sweep.position;
 
         let Some((hit, plane)) = sweep.last_hit else {
@@ -305,12 +309,22 @@ fn constrain(
     scene: &Scene,
     mut p: DVec3,
     hip: DVec3,
+    placed: bool,
     options: &ProxyOptions,
     status: &mut TickStatus,
 ) -> Sweep {
     let mut planes = Constraints::NONE;
     let mut last_hit = None;
     let mut touch_down = p;
+    // A proxy placed on a surface (within a probe's reach) touches it when the device
+    // point lies behind its plane, as if it had come to rest there.
+    if placed && let Some(hit) = touching_any(scene, p, options.probe_reach()) {
+        let plane = hit_plane(&hit, p, hip, options);
+        if plane.height(hip) < 0.0 {
+            planes.push(plane);
+            last_hit = Some((hit, plane));
+        }
+    }
     let mut finished = false;
     for _ in 0..MAX_PROXY_STEPS {
         let Some(target) = planes.closest_feasible(hip, options.plane_tolerance()) else {

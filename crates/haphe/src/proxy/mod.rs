@@ -22,7 +22,9 @@
 //!    the skin becomes a constraint too. So the proxy never rests on a surface, where the
 //!    next leg, running along the surface's plane, could slip through its edge unseen
 //!    (the watertight test decides crossings exactly only for end points off the
-//!    surface).
+//!    surface). A proxy placed ([`Proxy::new`], [`Proxy::reset`]) within a probe's reach
+//!    of a surface touches it on its first tick when the device point lies behind that
+//!    surface's constraint plane.
 //! 3. **Friction.** In contact, with friction, the proxy stays where it rested while the
 //!    tangential force is inside the static friction cone, and otherwise slips to the
 //!    edge of the dynamic cone ([`friction_target`]); that last move is tested for

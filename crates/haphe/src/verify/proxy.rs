@@ -42,6 +42,8 @@ pub struct BruteProxy {
     position: DVec3,
     in_contact: bool,
     sticking: bool,
+    /// Placed and not ticked yet (see [`Proxy::new`]).
+    placed: bool,
 }
 
 /// A crossing found by brute force, world frame.
@@ -76,6 +78,7 @@ impl BruteProxy {
             position,
             in_contact: false,
             sticking: false,
+            placed: true,
         }
     }
 
@@ -89,6 +92,7 @@ impl BruteProxy {
         self.position = proxy.position();
         self.in_contact = in_contact;
         self.sticking = sticking;
+        self.placed = false;
     }
 
     /// Reads the objects' poses and materials from the scene, which must hold the same
@@ -183,6 +187,16 @@ impl BruteProxy {
         let mut planes = Constraints::NONE;
         let mut touch_down = None;
         let mut last_object = 0;
+        if std::mem::take(&mut self.placed)
+            && let Some(h) = self.touching(p)
+        {
+            let plane = self.plane(&h, p, hip);
+            if plane.height(hip) < 0.0 {
+                planes.push(plane);
+                touch_down = Some(p);
+                last_object = h.object;
+            }
+        }
         for _ in 0..MAX_PROXY_STEPS {
             let Some(target) = planes.closest_feasible(hip, self.options.plane_tolerance()) else {
                 break;
