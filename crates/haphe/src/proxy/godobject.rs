@@ -414,6 +414,6 @@ mod tests {
         let (p, _) = clamp_to_radius(DVec3::new(1e12, 0.0, 0.0), f64::INFINITY);
         assert_eq!(p.x, MAX_WORKSPACE_RADIUS);
         assert_eq!(clamp_to_radius(DVec3::X, f64::NAN), (DVec3::ZERO, true));
-        assert_eq!(clamp_to_radius(DVec3::NAN, 1.0).1, false);
+        assert!(!clamp_to_radius(DVec3::NAN, 1.0).1);
     }
 }
