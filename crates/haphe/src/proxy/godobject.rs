@@ -27,8 +27,8 @@ pub struct ProxyOptions {
     /// [`MIN_MAX_FORCE`](super::MIN_MAX_FORCE) no force is rendered.
     pub max_force: f64,
     /// Device points farther than this from the world origin are pulled back to it,
-    /// metres (at most [`MAX_WORKSPACE_RADIUS`]): keeps every product in range whatever the
-    /// input.
+    /// metres (at most [`MAX_WORKSPACE_RADIUS`]; a negative or NaN radius pulls every point
+    /// to the origin): keeps every product in range whatever the input.
     pub workspace_radius: f64,
 }
 
@@ -126,7 +126,9 @@ impl Proxy {
     ///
     /// # Real-time
     /// No allocation, no lock, no panic for any input; at most one carry query per moved
-    /// object, [`MAX_PROXY_STEPS`] crossing queries, one friction query and one walk.
+    /// object, [`MAX_PROXY_STEPS`] crossing queries and as many touching searches (plus one
+    /// on the first tick after [`Proxy::new`] or [`Proxy::reset`]), one friction query and
+    /// one walk.
     /// A non-finite input leaves the proxy where it was and gives zero force.
     pub fn tick(&mut self, scene: &Scene, hip: DVec3, velocity: DVec3) -> TickOutput {
         let mut status = TickStatus::default();
