@@ -18,16 +18,22 @@ pub struct NearTriangle {
     pub distance: f64,
 }
 
+/// Most cells searched along each axis by [`nearest_within`]: the cell of the point and its
+/// two neighbours.
+pub const MAX_NEAR_CELLS_PER_AXIS: u32 = 3;
+
 /// The triangle nearest to `p` (metres, object frame) among those within `radius` metres of
 /// it, found through the map's cells that overlap the cube of half-side `radius` around
-/// `p`; the lowest triangle index among equally near ones. Always equals
-/// [`nearest_within_brute_force`].
+/// `p`; the lowest triangle index among equally near ones. Equals
+/// [`nearest_within_brute_force`] whenever `radius` is at most a cell (the proxy asks for
+/// a fraction of a micrometre); a larger radius is searched only in the cells next to
+/// `p`'s ([`MAX_NEAR_CELLS_PER_AXIS`]).
 ///
 /// # Real-time
 /// No allocation, no lock, no panic. Visits the cells the cube overlaps: at most 8 when
-/// `radius` is below a cell (the proxy asks for a fraction of a micrometre), never more than
-/// the grid holds; each triangle listed there costs one plane height and, when that is
-/// within `radius`, one closest-point kernel. Non-finite input gives `None`.
+/// `radius` is below a cell, never more than 27; each triangle listed there costs one
+/// plane height and, when that is within `radius`, one closest-point kernel. Non-finite
+/// input gives `None`.
 pub fn nearest_within(
     surface: &Surface,
     map: &VoxelMap,
@@ -38,8 +44,15 @@ pub fn nearest_within(
         return None;
     }
     let grid = map.grid();
-    let lo = grid.to_grid(p - DVec3::splat(radius)).floor();
-    let hi = grid.to_grid(p + DVec3::splat(radius)).floor();
+    let centre = grid.to_grid(p).floor();
+    let lo = grid
+        .to_grid(p - DVec3::splat(radius))
+        .floor()
+        .max(centre - 1.0);
+    let hi = grid
+        .to_grid(p + DVec3::splat(radius))
+        .floor()
+        .min(centre + 1.0);
     let dims = grid.dims();
     let mut range = [[0u32; 2]; 3];
     for axis in 0..3 {
