@@ -1,7 +1,8 @@
 //! Stage 3 benches, one query at a time on a procedural blob of about 10 000 triangles:
 //! the closest point on one triangle (the floor every query is compared with), the
 //! watertight segment–triangle test, segment crossing through the map, inside/outside,
-//! and one coherent step of the surface walk.
+//! one coherent step of the surface walk, and the proxy's touching search (the nearest
+//! triangle within a quarter micrometre) near and on the surface.
 //!
 //! The inputs come from the deterministic generators of `haphe::verify` with fixed seeds:
 //! coherent trajectories near the surface (steps of 0.05–0.5 mm, a hand at 0.05–0.5 m/s
@@ -18,9 +19,10 @@ use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
 use haphe::mesh::shapes::Shape;
 use haphe::mesh::{Surface, SurfaceOptions, TriId};
+use haphe::proxy::ProxyOptions;
 use haphe::query::{
     Segment, classify_point, closest_point_triangle, first_crossing, intersect_segment_triangle,
-    walk_to_nearest,
+    nearest_within, walk_to_nearest,
 };
 use haphe::verify::{bounds, trajectory};
 
@@ -32,11 +34,13 @@ const STEPS: usize = 250;
 /// Seed of the first trajectory.
 const SEED: u64 = 0x00BE_0C40;
 
-/// One coherent step: the triangle the walk stood on, the previous and the new position.
+/// One coherent step: the triangle the walk stood on, the previous and the new position,
+/// and the surface point nearest to the new one.
 struct Step {
     triangle: TriId,
     from: DVec3,
     to: DVec3,
+    on: DVec3,
 }
 
 /// The steps of the input cycle, with the triangle of each step found by walking.
@@ -48,12 +52,14 @@ fn steps(surface: &Surface) -> Vec<Step> {
         let (mut t, targets) =
             trajectory(surface, STEPS, (0.05e-3 * scale, 0.5e-3 * scale), SEED + k);
         for pair in targets.windows(2) {
+            let walked = walk_to_nearest(surface, t, pair[1]).0;
             steps.push(Step {
                 triangle: t,
                 from: pair[0],
                 to: pair[1],
+                on: walked.point,
             });
-            t = walk_to_nearest(surface, t, pair[1]).0.triangle;
+            t = walked.triangle;
         }
     }
     steps
@@ -101,6 +107,13 @@ fn query_stage(c: &mut Criterion) {
         b.iter(cycle(&steps, |s| {
             walk_to_nearest(surface, s.triangle, s.to)
         }))
+    });
+    let reach = ProxyOptions::default().probe_reach();
+    group.bench_function("nearest_within_reach_near_surface", |b| {
+        b.iter(cycle(&steps, |s| nearest_within(surface, map, s.to, reach)))
+    });
+    group.bench_function("nearest_within_reach_on_surface", |b| {
+        b.iter(cycle(&steps, |s| nearest_within(surface, map, s.on, reach)))
     });
     group.finish();
 }
