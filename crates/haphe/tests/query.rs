@@ -4,9 +4,10 @@
 
 mod support;
 
+use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
 use haphe::mesh::shapes::{self, Shape};
-use haphe::mesh::{Mesh, ReadOptions, Surface, SurfaceOptions, read_mesh};
+use haphe::mesh::{Mesh, ReadOptions, Surface, SurfaceOptions, TriId, read_mesh, relative_height};
 use haphe::verify::{SegmentKind, check_crossings, check_inside, check_walk, points};
 use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{TriMesh, TriMeshFlags};
@@ -52,7 +53,7 @@ fn convex_shapes_walk_to_the_nearest_point() {
         ("sphere", shapes::sphere(0.1, 3)),
         (
             "box",
-            shapes::cuboid(haphe::DVec3::new(0.1, 0.06, 0.03), [5, 4, 3]),
+            shapes::cuboid(DVec3::new(0.1, 0.06, 0.03), [5, 4, 3]),
         ),
     ] {
         let (surface, _) = object(mesh);
@@ -144,7 +145,7 @@ fn in_face_plane_segments_leaked_or_mismatched_on_shared_models() {
         let bytes = std::fs::read(dir.join("models").join(name)).expect("readable");
         let mesh = read_mesh(name, &bytes, &ReadOptions::default()).expect("loads");
         let (surface, map) = object(mesh);
-        let (p0, p1) = (haphe::DVec3::from_array(p0), haphe::DVec3::from_array(p1));
+        let (p0, p1) = (DVec3::from_array(p0), DVec3::from_array(p1));
         let oracle = haphe::verify::WindingOracle::new(&surface);
         let change = oracle.winding(p1) - oracle.winding(p0);
         let all = haphe::query::all_crossings_brute_force(&surface, p0, p1);
@@ -189,5 +190,76 @@ fn the_binned_winding_oracle_equals_the_generalised_winding_number() {
             let plain = haphe::query::winding_number(&surface, p).round() as i64;
             assert_eq!(oracle.winding(p), plain, "{shape} at {p}");
         }
+    }
+}
+
+/// A closed box of side 0.1 m whose top face is cut along its diagonal into slivers that
+/// grow geometrically from a relative height of about 2e-8 (just above degenerate) at one
+/// corner: where the frames behind the crossing prefilter are least accurate.
+fn box_with_sliver_top() -> Mesh {
+    let s = 0.1;
+    let mut vertices = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(s, 0.0, 0.0),
+        DVec3::new(s, s, 0.0),
+        DVec3::new(0.0, s, 0.0),
+        DVec3::new(0.0, 0.0, s),
+        DVec3::new(s, 0.0, s),
+        DVec3::new(s, s, s),
+        DVec3::new(0.0, s, s),
+    ];
+    let mut triangles: Vec<[u32; 3]> = vec![
+        [0, 1, 2],
+        [0, 2, 3],
+        [0, 1, 5],
+        [0, 5, 4],
+        [1, 2, 6],
+        [1, 6, 5],
+        [2, 3, 7],
+        [2, 7, 6],
+        [3, 0, 4],
+        [3, 4, 7],
+    ];
+    // The top diagonal from corner 4 to corner 6, cut at 1 - 1e-8·2^k of its length.
+    let (a, c) = (vertices[4], vertices[6]);
+    let mut diagonal = vec![4u32];
+    for k in (1..27).rev() {
+        let f = 1.0 - 1e-8 * 2f64.powi(k);
+        vertices.push(a + f * (c - a));
+        diagonal.push(vertices.len() as u32 - 1);
+    }
+    diagonal.push(6);
+    for pair in diagonal.windows(2) {
+        triangles.push([pair[0], 5, pair[1]]);
+        triangles.push([pair[0], pair[1], 7]);
+    }
+    // Every face outward (the box is convex).
+    let centre = DVec3::splat(s / 2.0);
+    for t in &mut triangles {
+        let [p, q, r] = t.map(|v| vertices[v as usize]);
+        if (q - p).cross(r - p).dot((p + q + r) / 3.0 - centre) < 0.0 {
+            t.swap(1, 2);
+        }
+    }
+    Mesh {
+        vertices,
+        triangles,
+    }
+}
+
+#[test]
+fn slivers_down_to_a_relative_height_of_2e_8_agree_with_brute_force() {
+    let (surface, map) = object(box_with_sliver_top());
+    assert!(surface.is_solid());
+    let thinnest = (0..surface.triangle_count())
+        .map(|t| {
+            let [a, b, c] = surface.corners(TriId(t as u32));
+            relative_height(a, b, c)
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(thinnest < 1e-7 && thinnest > 1e-9, "{thinnest}");
+    for kind in SegmentKind::ALL {
+        let c = check_crossings(&surface, &map, kind, 4_000, 23);
+        assert_eq!((c.mismatches, c.leaks), (0, 0), "{kind:?}: {c:?}");
     }
 }

@@ -136,7 +136,7 @@ pub fn first_crossing_where(
         let mut best: Option<(SegmentHit, u32)> = None;
         let margin = plane_margin(map);
         for &t in map.triangles_in(cell) {
-            if same_side(surface, t, p0, p1, margin) {
+            if cannot_cross(surface, t, p0, p1, margin) {
                 continue;
             }
             if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
@@ -172,7 +172,7 @@ pub fn first_crossing_where(
             break;
         }
         for &t in map.triangles_in(visit.cell) {
-            if !tested.insert(t) || same_side(surface, t, p0, p1, plane_margin) {
+            if !tested.insert(t) || cannot_cross(surface, t, p0, p1, plane_margin) {
                 continue;
             }
             if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
@@ -203,22 +203,47 @@ fn exit_parameter(map: &VoxelMap, cell: [u32; 3], p0: DVec3, p1: DVec3) -> f64 {
     exit
 }
 
-/// Whether both ends of the segment lie on the same side of triangle `t`'s plane, each
-/// farther from it than `margin` metres: then the segment cannot cross the triangle, and
-/// the watertight test (which would say so too) is skipped. Two dot products instead of
-/// the test's shear of three corners.
+/// Whether the segment `p0 → p1` certainly misses triangle `t`, by two tests on the
+/// triangle's frame that are cheaper than the watertight test's shear of three corners:
+/// both ends lie on the same side of the triangle's plane, or both lie beyond the same
+/// edge (outside the same side plane of the triangle's prism, where one barycentric
+/// weight of their projections is negative). Each test keeps a margin above the rounding
+/// of the frame and of the products (see [`FRAME_DIRECTION_ERROR`]), so it only skips
+/// triangles the watertight test would miss too: it never changes an answer.
 #[inline(always)]
-fn same_side(surface: &Surface, t: u32, p0: DVec3, p1: DVec3, margin: f64) -> bool {
+fn cannot_cross(surface: &Surface, t: u32, p0: DVec3, p1: DVec3, margin: f64) -> bool {
     let frame = surface.frame(TriId(t));
-    let h0 = frame.normal.dot(p0 - frame.origin);
-    let h1 = frame.normal.dot(p1 - frame.origin);
-    (h0 > margin && h1 > margin) || (h0 < -margin && h1 < -margin)
+    let d0 = p0 - frame.origin;
+    let d1 = p1 - frame.origin;
+    let extent = d0.abs().max(d1.abs()).max_element();
+    let h0 = frame.normal.dot(d0);
+    let h1 = frame.normal.dot(d1);
+    let height_margin = margin + FRAME_DIRECTION_ERROR * extent;
+    if (h0 > height_margin && h1 > height_margin) || (h0 < -height_margin && h1 < -height_margin) {
+        return true;
+    }
+    let (u0, v0) = (frame.dual_b.dot(d0), frame.dual_c.dot(d0));
+    let (u1, v1) = (frame.dual_b.dot(d1), frame.dual_c.dot(d1));
+    let weight_margin = FRAME_DIRECTION_ERROR
+        * (frame.dual_b.abs().element_sum() + frame.dual_c.abs().element_sum())
+        * extent;
+    (u0 < -weight_margin && u1 < -weight_margin)
+        || (v0 < -weight_margin && v1 < -weight_margin)
+        || (1.0 - u0 - v0 < -weight_margin && 1.0 - u1 - v1 < -weight_margin)
 }
 
-/// The distance from a triangle's plane (metres) beyond which [`same_side`] trusts the
-/// sign of a height: a billionth of a cell, some five orders of magnitude above the
-/// rounding of heights at the coordinates a map covers, so the shortcut never changes an
-/// answer of the watertight test.
+/// Bound on the relative error of a triangle frame's normal and duals (and so on the
+/// error of a height or weight computed from them, relative to the distance from the
+/// triangle's first corner): the cross product behind them loses about `ε / h` where `h`
+/// is the smallest altitude over the longest edge, at most `2e-7` for a triangle that is
+/// not degenerate ([`DEGENERATE_MAX_RELATIVE_HEIGHT`](crate::mesh::DEGENERATE_MAX_RELATIVE_HEIGHT));
+/// fifty times that, so that [`cannot_cross`] never skips a triangle the watertight test
+/// would hit.
+const FRAME_DIRECTION_ERROR: f64 = 1e-5;
+
+/// The distance from a triangle's plane (metres) beyond which [`cannot_cross`] trusts the
+/// sign of a height of a point at its first corner: a billionth of a cell, some five
+/// orders of magnitude above the rounding of heights at the coordinates a map covers.
 fn plane_margin(map: &VoxelMap) -> f64 {
     1e-9 * map.grid().cell_size()
 }

@@ -44,23 +44,23 @@ pub fn nearest_within(
         return None;
     }
     let grid = map.grid();
-    let centre = grid.to_grid(p).floor();
-    let lo = grid
-        .to_grid(p - DVec3::splat(radius))
-        .floor()
-        .max(centre - 1.0);
-    let hi = grid
-        .to_grid(p + DVec3::splat(radius))
-        .floor()
-        .min(centre + 1.0);
+    let (centre, low, high) = (
+        grid.to_grid(p),
+        grid.to_grid(p - DVec3::splat(radius)),
+        grid.to_grid(p + DVec3::splat(radius)),
+    );
     let dims = grid.dims();
     let mut range = [[0u32; 2]; 3];
     for axis in 0..3 {
-        let top = f64::from(dims[axis]) - 1.0;
-        if !(hi[axis] >= 0.0 && lo[axis] <= top) {
+        let c = floor_to_int(centre[axis]);
+        let lo = floor_to_int(low[axis]).max(c.saturating_sub(1)).max(0);
+        let hi = floor_to_int(high[axis])
+            .min(c.saturating_add(1))
+            .min(i64::from(dims[axis]) - 1);
+        if lo > hi {
             return None;
         }
-        range[axis] = [lo[axis].max(0.0) as u32, hi[axis].min(top) as u32];
+        range[axis] = [lo as u32, hi as u32];
     }
     let mut best = None;
     // A triangle within `radius` of `p` reaches into the cube, so it is listed in a cell
@@ -75,6 +75,18 @@ pub fn nearest_within(
         }
     }
     best
+}
+
+/// `⌊x⌋` as an integer, inline (`f64::floor` is a library call on the baseline x86-64
+/// target); saturates far beyond any grid, where the caller's range check refuses it.
+#[inline(always)]
+fn floor_to_int(x: f64) -> i64 {
+    let i = x as i64;
+    if (i as f64) > x {
+        i.saturating_sub(1)
+    } else {
+        i
+    }
 }
 
 /// [`nearest_within`] by testing every triangle: the oracle.
