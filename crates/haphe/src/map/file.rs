@@ -45,7 +45,7 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;
@@ -133,7 +133,7 @@ const SECTIONS: [(&str, usize); 17] = [
     ("triangles", 12),
     ("neighbours", 12),
     ("frames", 96),
-    ("corner normals", 72),
+    ("corner normals", 36),
     ("fan starts", 4),
     ("fan triangles", 4),
     ("map parameters", 1),
@@ -209,8 +209,8 @@ fn take<T: Pod, W: Word>(bytes: &[u8]) -> Vec<T> {
 /// surface is refused by [`decode`].
 ///
 /// # Performance
-/// One pass over the arrays plus a checksum, at memory speed. About 230 bytes per
-/// triangle for the surface (the barycentric frames, 96, and the shading normals, 72,
+/// One pass over the arrays plus a checksum, at memory speed. About 190 bytes per
+/// triangle for the surface (the barycentric frames, 96, and the shading normals, 36,
 /// dominate) plus the map's 40 to 60.
 ///
 /// # Examples
@@ -234,7 +234,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
         parts.triangles.len() * 12,
         parts.neighbours.len() * 12,
         parts.frames.len() * 96,
-        parts.corner_normals.len() * 72,
+        parts.corner_normals.len() * 36,
         parts.fan_start.len() * 4,
         parts.fan_triangles.len() * 4,
         params.len(),
@@ -289,7 +289,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     start(&mut out);
     put::<TriFrame, u64>(&mut out, parts.frames);
     start(&mut out);
-    put::<[DVec3; 3], u64>(&mut out, parts.corner_normals);
+    put::<[[f32; 3]; 3], u32>(&mut out, parts.corner_normals);
     start(&mut out);
     put::<u32, u32>(&mut out, parts.fan_start);
     start(&mut out);
@@ -451,7 +451,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         triangles: array::<[u32; 3], u32>(file, triangles),
         neighbours: array::<[u32; 3], u32>(file, neighbours),
         frames: array::<TriFrame, u64>(file, frames),
-        corner_normals: array::<[DVec3; 3], u64>(file, corner_normals),
+        corner_normals: array::<[[f32; 3]; 3], u32>(file, corner_normals),
         fan_start: array::<u32, u32>(file, fan_start),
         fan_triangles: array::<u32, u32>(file, fan_triangles),
         report,

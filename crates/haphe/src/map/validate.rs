@@ -140,16 +140,16 @@ pub(crate) fn parse_map_params(bytes: &[u8]) -> Result<MapParams, MapFileError> 
 const CHECK_CHUNK: usize = 1024;
 
 /// The index of the first row of `width` values in `values` with a non-finite value.
-fn first_non_finite(values: &[f64], width: usize) -> Option<usize> {
+fn first_non_finite<F: Copy + Into<f64>>(values: &[F], width: usize) -> Option<usize> {
     let finite = values
         .chunks(CHECK_CHUNK)
-        .all(|c| c.iter().fold(true, |ok, x| ok & x.is_finite()));
+        .all(|c| c.iter().fold(true, |ok, &x| ok & x.into().is_finite()));
     if finite {
         return None;
     }
     values
         .iter()
-        .position(|x| !x.is_finite())
+        .position(|&x| !x.into().is_finite())
         .map(|i| i / width.max(1))
 }
 
@@ -165,7 +165,7 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             format!("{t} triangles and {v} vertices"),
         ));
     }
-    if let Some(i) = first_non_finite(bytemuck::cast_slice(&p.vertices), 3) {
+    if let Some(i) = first_non_finite::<f64>(bytemuck::cast_slice(&p.vertices), 3) {
         return Err(invalid("vertices", format!("vertex {i} is not finite")));
     }
     if let Some(i) = triangles
@@ -204,7 +204,7 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             format!("{} frames for {t} triangles", p.frames.len()),
         ));
     }
-    if let Some(i) = first_non_finite(bytemuck::cast_slice(&p.frames), 12) {
+    if let Some(i) = first_non_finite::<f64>(bytemuck::cast_slice(&p.frames), 12) {
         return Err(invalid(
             "frames",
             format!("triangle {i} has a non-finite frame"),
@@ -216,7 +216,7 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             format!("{} rows for {t} triangles", p.corner_normals.len()),
         ));
     }
-    if let Some(i) = first_non_finite(bytemuck::cast_slice(&p.corner_normals), 9) {
+    if let Some(i) = first_non_finite::<f32>(bytemuck::cast_slice(&p.corner_normals), 9) {
         return Err(invalid(
             "corner normals",
             format!("triangle {i} has a non-finite normal"),

@@ -11,6 +11,10 @@ use super::frame::TriFrame;
 /// their normals are not blended, so the edge is felt as an edge.
 pub const DEFAULT_CREASE_ANGLE_RAD: f64 = std::f64::consts::PI / 6.0;
 
+/// The shading normals of a triangle's three corners, single precision (36 bytes a
+/// triangle instead of 72: a force direction needs far less than the 1e-7 that keeps).
+pub(crate) type CornerNormals = [[f32; 3]; 3];
+
 /// Corner normals: for corner `i` of triangle `t` at vertex `v`, the angle-weighted average
 /// of the face normals of the triangles around `v` that bend less than `crease_angle_rad`
 /// from `t` (always including `t` itself). Unit length; a degenerate triangle gets zeros.
@@ -22,7 +26,7 @@ pub(crate) fn corner_normals<'a>(
     frames: &[TriFrame],
     fan: impl Fn(u32) -> &'a [u32] + Sync,
     crease_angle_rad: f64,
-) -> Vec<[DVec3; 3]> {
+) -> Vec<CornerNormals> {
     let cos_crease = crease_angle_rad.clamp(0.0, std::f64::consts::PI).cos();
     // Face normals and corner angles once, compactly: the loop below visits each triangle
     // once per corner of each of its neighbours around a vertex.
@@ -40,7 +44,7 @@ pub(crate) fn corner_normals<'a>(
         .map(|(t, tri)| {
             let n_t = normal[t];
             if n_t == DVec3::ZERO {
-                return [DVec3::ZERO; 3];
+                return [[0.0; 3]; 3];
             }
             tri.map(|v| {
                 let sum: DVec3 = fan(v)
@@ -52,7 +56,7 @@ pub(crate) fn corner_normals<'a>(
                         angle[s][i] * normal[s]
                     })
                     .sum();
-                sum.try_normalize().unwrap_or(n_t)
+                sum.try_normalize().unwrap_or(n_t).as_vec3().to_array()
             })
         })
         .collect()

@@ -7,7 +7,7 @@ use crate::array::Array;
 use super::edges::{EdgeTable, has_distinct_corners};
 use super::frame::TriFrame;
 use super::ids::{NONE, TriId, VertId};
-use super::normals::{DEFAULT_CREASE_ANGLE_RAD, corner_normals};
+use super::normals::{CornerNormals, DEFAULT_CREASE_ANGLE_RAD, corner_normals};
 use super::{Mesh, MeshReport, Usability};
 
 /// How to build a [`Surface`].
@@ -57,7 +57,7 @@ pub struct Surface {
     triangles: Array<[u32; 3]>,
     neighbours: Array<[u32; 3]>,
     frames: Array<TriFrame>,
-    corner_normals: Array<[DVec3; 3]>,
+    corner_normals: Array<CornerNormals>,
     fan_start: Array<u32>,
     fan_triangles: Array<u32>,
     report: MeshReport,
@@ -197,17 +197,18 @@ impl Surface {
         &self.frames[t.index()]
     }
 
-    /// The unit shading normals at the corners of `t` (object frame).
+    /// The unit shading normals at the corners of `t` (object frame; stored in single
+    /// precision, unit length within about 1e-7).
     #[inline]
-    pub fn corner_normals(&self, t: TriId) -> &[DVec3; 3] {
-        &self.corner_normals[t.index()]
+    pub fn corner_normals(&self, t: TriId) -> [DVec3; 3] {
+        self.corner_normals[t.index()].map(|n| DVec3::from_array(n.map(f64::from)))
     }
 
     /// The shading normal at barycentric weights `w` of `t`: the corner normals blended
     /// and normalised (object frame, unit length; the face normal if the blend vanishes).
     #[inline]
     pub fn shading_normal(&self, t: TriId, w: [f64; 3]) -> DVec3 {
-        let [n0, n1, n2] = self.corner_normals[t.index()];
+        let [n0, n1, n2] = self.corner_normals(t);
         (w[0] * n0 + w[1] * n1 + w[2] * n2)
             .try_normalize()
             .unwrap_or(self.frames[t.index()].normal)
@@ -258,11 +259,11 @@ pub(crate) struct SurfaceParts<V, T, F, N, U> {
 
 /// Owned parts, as [`Surface::from_parts`] takes them.
 pub(crate) type OwnedSurfaceParts =
-    SurfaceParts<Array<DVec3>, Array<[u32; 3]>, Array<TriFrame>, Array<[DVec3; 3]>, Array<u32>>;
+    SurfaceParts<Array<DVec3>, Array<[u32; 3]>, Array<TriFrame>, Array<CornerNormals>, Array<u32>>;
 
 /// Borrowed parts, as [`Surface::parts`] gives them (the report is cloned).
 pub(crate) type SurfacePartsRef<'a> =
-    SurfaceParts<&'a [DVec3], &'a [[u32; 3]], &'a [TriFrame], &'a [[DVec3; 3]], &'a [u32]>;
+    SurfaceParts<&'a [DVec3], &'a [[u32; 3]], &'a [TriFrame], &'a [CornerNormals], &'a [u32]>;
 
 impl Surface {
     /// Reassembles a surface from trusted parts (a saved file, after its checks), without
