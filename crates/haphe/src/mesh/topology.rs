@@ -220,6 +220,16 @@ impl Surface {
         self.report.usable_as == Usability::Solid
     }
 
+    /// The smallest axis-aligned box `(min, max)` holding every vertex, metres, object
+    /// frame: every triangle lies in it.
+    #[inline]
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        (
+            DVec3::from_array(self.report.bounds_min),
+            DVec3::from_array(self.report.bounds_max),
+        )
+    }
+
     /// The validation report of the mesh this surface was built from.
     pub fn report(&self) -> &MeshReport {
         &self.report

@@ -131,6 +131,9 @@ pub fn first_crossing_where(
     p1: DVec3,
     accept: impl Fn(&SegmentHit) -> bool,
 ) -> Option<Crossing> {
+    if super::beyond_bounds(surface, p0, p1, 0.0) {
+        return None;
+    }
     let segment = Segment::new(p0, p1);
     if let Some(cell) = map.grid().cell_of(p0) {
         let mut best: Option<(SegmentHit, u32)> = None;

@@ -42,7 +42,8 @@ const TARGET_JITTER: [f64; 3] = [0.123_456_7, -0.176_543_2, 0.211_111_3];
 
 /// Classifies `p` (metres, object frame) as inside or outside the surface.
 ///
-/// Outside the grid and in outside/inside cells the cell answers. In a surface cell of a
+/// Beyond the surface's bounding box ([`Surface::bounds`]) the point is outside; outside
+/// the grid and in outside/inside cells the cell answers. In a surface cell of a
 /// solid, crossings of the segment from `p` to a point in the nearest non-surface cell are
 /// counted with the watertight test: an odd count flips that cell's state. Points exactly
 /// on the surface may go either way. An open (non-solid) surface has no inside.
@@ -51,6 +52,9 @@ const TARGET_JITTER: [f64; 3] = [0.123_456_7, -0.176_543_2, 0.211_111_3];
 /// No allocation, no lock, no panic; at most `(2·MAX_SEARCH_RING + 1)³` cell lookups and
 /// one bounded segment walk.
 pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, SideStatus) {
+    if super::beyond_bounds(surface, p, p, 0.0) {
+        return (Side::Outside, SideStatus::Cell);
+    }
     let Some(cell) = map.grid().cell_of(p) else {
         return (Side::Outside, SideStatus::Cell);
     };

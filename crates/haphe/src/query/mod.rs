@@ -3,6 +3,10 @@
 //! crossing through the voxel map, inside/outside, the nearest triangle within a radius, and
 //! the barycentric surface walk.
 
+use glam::DVec3;
+
+use crate::mesh::Surface;
+
 mod closest;
 mod crossing;
 pub(crate) use crossing::crossing_from_hit;
@@ -13,6 +17,19 @@ mod segment_triangle;
 mod self_intersect;
 mod triangle_triangle;
 mod walk;
+
+/// Whether the segment `p0 → p1` (metres, object frame) lies entirely beyond one face of
+/// the surface's bounding box, farther than `margin` metres (strict comparisons of the
+/// given coordinates: exact), so that it meets no triangle: the early exit of every query
+/// near a flat object, whose box is thin. `false` for non-finite input.
+#[inline]
+pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64) -> bool {
+    let (lo, hi) = surface.bounds();
+    (0..3).any(|k| {
+        (p0[k] > hi[k] + margin && p1[k] > hi[k] + margin)
+            || (p0[k] < lo[k] - margin && p1[k] < lo[k] - margin)
+    })
+}
 
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use crossing::{

@@ -40,7 +40,10 @@ pub fn nearest_within(
     p: DVec3,
     radius: f64,
 ) -> Option<NearTriangle> {
-    if !(p.is_finite() && radius >= 0.0 && radius.is_finite()) {
+    if !(p.is_finite() && radius >= 0.0 && radius.is_finite())
+        // Beyond the box by more than the radius (and the rounding of the distances).
+        || super::beyond_bounds(surface, p, p, radius + 1e-12 * p.abs().max_element())
+    {
         return None;
     }
     let grid = map.grid();
