@@ -214,7 +214,7 @@ fn exit_parameter(map: &VoxelMap, cell: [u32; 3], p0: DVec3, p1: DVec3) -> f64 {
 /// of the frame and of the products (see [`FRAME_DIRECTION_ERROR`]), so it only skips
 /// triangles the watertight test would miss too: it never changes an answer.
 #[inline(always)]
-fn cannot_cross(surface: &Surface, t: u32, p0: DVec3, p1: DVec3, margin: f64) -> bool {
+pub(crate) fn cannot_cross(surface: &Surface, t: u32, p0: DVec3, p1: DVec3, margin: f64) -> bool {
     let frame = surface.frame(TriId(t));
     let d0 = p0 - frame.origin;
     let d1 = p1 - frame.origin;
@@ -247,7 +247,7 @@ const FRAME_DIRECTION_ERROR: f64 = 1e-5;
 /// The distance from a triangle's plane (metres) beyond which [`cannot_cross`] trusts the
 /// sign of a height of a point at its first corner: a billionth of a cell, some five
 /// orders of magnitude above the rounding of heights at the coordinates a map covers.
-fn plane_margin(map: &VoxelMap) -> f64 {
+pub(crate) fn plane_margin(map: &VoxelMap) -> f64 {
     1e-9 * map.grid().cell_size()
 }
 

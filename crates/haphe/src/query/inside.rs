@@ -79,9 +79,11 @@ pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, Sid
     let segment = Segment::new(p, target);
     let mut tested = Tested::new();
     let mut crossings = 0usize;
+    let margin = super::crossing::plane_margin(map);
     for visit in map.grid().walk(p, target) {
         for &t in map.triangles_in(visit.cell) {
             if tested.insert(t)
+                && !super::crossing::cannot_cross(surface, t, p, target, margin)
                 && intersect_segment_triangle(&segment, surface.corners(TriId(t))).is_some()
             {
                 crossings += 1;
@@ -103,6 +105,19 @@ pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, Sid
 fn nearest_known_cell(map: &VoxelMap, cell: [u32; 3]) -> Option<([u32; 3], CellState)> {
     let dims = map.grid().dims().map(i64::from);
     let c = cell.map(i64::from);
+    // The six face neighbours first, in the order the ring below visits them: the nearest
+    // cells of the first ring, so the first known one is what the whole ring would give.
+    for (axis, step) in [(0, -1), (1, -1), (2, -1), (2, 1), (1, 1), (0, 1)] {
+        let mut n = c;
+        n[axis] += step;
+        if (0..dims[axis]).contains(&n[axis]) {
+            let n = n.map(|x| x as u32);
+            let state = map.state(n);
+            if state != CellState::Surface {
+                return Some((n, state));
+            }
+        }
+    }
     for r in 1..=MAX_SEARCH_RING as i64 {
         let mut best: Option<([u32; 3], CellState, i64)> = None;
         for dx in -r..=r {
