@@ -6,6 +6,7 @@ use glam::DVec3;
 use super::constraints::{Constraints, Plane, advance_to_plane};
 use super::force::{contact_force, friction_target};
 use super::output::{Contact, TickOutput, TickStatus};
+use super::rest::Rest;
 use crate::mesh::TriId;
 use crate::scene::{Hit, Material, Scene};
 
@@ -82,6 +83,8 @@ pub struct Proxy {
     position: DVec3,
     options: ProxyOptions,
     last: Option<LastContact>,
+    /// The last constraint of the previous tick (see [`Rest`]).
+    rest: Option<Rest>,
     sticking: bool,
     /// Placed (by [`Proxy::new`] or [`Proxy::reset`]) and not ticked yet.
     placed: bool,
@@ -100,6 +103,7 @@ impl Proxy {
             },
             options,
             last: None,
+            rest: None,
             sticking: false,
             placed: true,
         }
@@ -108,6 +112,12 @@ impl Proxy {
     /// The proxy position, metres, world frame.
     pub fn position(&self) -> DVec3 {
         self.position
+    }
+
+    /// The last constraint of the previous tick, which the next tick keeps while the
+    /// device point stays behind it.
+    pub(crate) fn rest(&self) -> Option<Rest> {
+        self.rest
     }
 
     /// The settings.
@@ -126,15 +136,16 @@ impl Proxy {
     ///
     /// # Real-time
     /// No allocation, no lock, no panic for any input; at most one carry query per moved
-    /// object, [`MAX_PROXY_STEPS`] crossing queries and as many touching searches (plus one
-    /// on the first tick after [`Proxy::new`] or [`Proxy::reset`]), one friction query and
-    /// one walk.
+    /// object, one resting test (one triangle), [`MAX_PROXY_STEPS`] crossing queries and as
+    /// many touching searches (plus one on the first tick after [`Proxy::new`] or
+    /// [`Proxy::reset`]), one friction query and one walk.
     /// A non-finite input leaves the proxy where it was and gives zero force.
     pub fn tick(&mut self, scene: &Scene, hip: DVec3, velocity: DVec3) -> TickOutput {
         let mut status = TickStatus::default();
         if !hip.is_finite() || !velocity.is_finite() {
             status.input_rejected = true;
             self.last = None;
+            self.rest = None;
             self.sticking = false;
             return TickOutput {
                 proxy: self.position,
@@ -149,8 +160,12 @@ impl Proxy {
         let mut p = carry(scene, self.position, &self.options);
         let held = p;
         let placed = std::mem::take(&mut self.placed);
-        let sweep = constrain(scene, p, hip, placed, &self.options, &mut status);
+        let sweep = constrain(scene, p, hip, placed, self.rest, &self.options, &mut status);
         p = sweep.position;
+        self.rest = sweep.last_hit.map(|(hit, _)| Rest {
+            object: hit.object,
+            triangle: hit.triangle,
+        });
 
         let Some((hit, plane)) = sweep.last_hit else {
             self.position = p;
@@ -312,6 +327,7 @@ fn constrain(
     mut p: DVec3,
     hip: DVec3,
     placed: bool,
+    rest: Option<Rest>,
     options: &ProxyOptions,
     status: &mut TickStatus,
 ) -> Sweep {
@@ -338,28 +354,37 @@ fn constrain(
             finished = true;
             break;
         }
-        let (hit, plane) = match first_hit_all(scene, p, target, options.probe_reach()) {
-            Some(hit) => {
-                let plane = hit_plane(&hit, p, target, options);
-                p = advance_to_plane(p, target, &plane);
-                (hit, plane)
+        // The first leg of a tick keeps the surface the proxy rests on when the device
+        // point is still behind it (no search along that leg: the proxy does not move).
+        let resting = match rest {
+            Some(r) if planes.is_empty() => {
+                scene.rests_on(r.object, r.triangle, p, target, options.skin)
             }
-            None => match touching_any(scene, target, options.probe_reach()) {
-                // A free move that ends on a surface (or within a probe's reach of it,
-                // moving along it) touches it: its plane becomes a constraint, so that the
-                // proxy never rests where the next probe could start on the surface.
+            _ => None,
+        };
+        let (hit, plane) =
+            match resting.or_else(|| first_hit_all(scene, p, target, options.probe_reach())) {
                 Some(hit) => {
                     let plane = hit_plane(&hit, p, target, options);
-                    p = target;
+                    p = advance_to_plane(p, target, &plane);
                     (hit, plane)
                 }
-                None => {
-                    p = target;
-                    finished = true;
-                    break;
-                }
-            },
-        };
+                None => match touching_any(scene, target, options.probe_reach()) {
+                    // A free move that ends on a surface (or within a probe's reach of it,
+                    // moving along it) touches it: its plane becomes a constraint, so that the
+                    // proxy never rests where the next probe could start on the surface.
+                    Some(hit) => {
+                        let plane = hit_plane(&hit, p, target, options);
+                        p = target;
+                        (hit, plane)
+                    }
+                    None => {
+                        p = target;
+                        finished = true;
+                        break;
+                    }
+                },
+            };
         if last_hit.is_none() {
             touch_down = p;
         }

@@ -25,6 +25,13 @@
 //!    surface). A proxy placed ([`Proxy::new`], [`Proxy::reset`]) within a probe's reach
 //!    of a surface touches it on its first tick when the device point lies behind that
 //!    surface's constraint plane.
+//!
+//!    A proxy *resting* on a surface keeps it (the god-object's constraint kept from one
+//!    tick to the next): when the last constraint of the previous tick was triangle `T`,
+//!    the proxy lies on the free side of `T`'s plane no farther than its constraint plane,
+//!    the device point lies behind `T`'s plane and the line toward it meets that plane
+//!    inside `T`, the first leg takes `T`'s constraint plane without a crossing search
+//!    (the proxy does not move along that leg; every later leg is tested as above).
 //! 3. **Friction.** In contact, with friction, the proxy stays where it rested while the
 //!    tangential force is inside the static friction cone, and otherwise slips to the
 //!    edge of the dynamic cone ([`friction_target`]); that last move is tested for
@@ -57,6 +64,7 @@ mod force;
 mod godobject;
 mod output;
 mod probe;
+mod rest;
 
 pub use constraints::{
     Constraints, MAX_CONSTRAINTS, MIN_PAIR_SINE_SQUARED, MIN_TRIPLE_DETERMINANT, Plane,
@@ -68,3 +76,4 @@ pub use godobject::{
 };
 pub use output::{Contact, TickOutput, TickStatus};
 pub use probe::{PROBE_REACH_OF_SKIN, Probe};
+pub(crate) use rest::{Rest, rests_on};

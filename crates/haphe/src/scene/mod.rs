@@ -249,6 +249,38 @@ impl Scene {
         })
     }
 
+    /// Triangle `triangle` of object `i` as the surface the proxy at `from` still rests on
+    /// with the device point at `to` (see the proxy's resting rule), as a [`Hit`] at the
+    /// start of the move (`t = 0`). `None` when it is not, or when `i` is out of range.
+    pub(crate) fn rests_on(
+        &self,
+        i: usize,
+        triangle: TriId,
+        from: DVec3,
+        to: DVec3,
+        skin: f64,
+    ) -> Option<Hit> {
+        let o = self.objects.get(i)?;
+        let one_sided = o.sides == Sides::Front;
+        let (point, normal) = crate::proxy::rests_on(
+            o.shape.surface(),
+            &o.pose,
+            one_sided,
+            triangle,
+            from,
+            to,
+            skin,
+        )?;
+        Some(Hit {
+            t: 0.0,
+            object: i,
+            triangle,
+            point,
+            normal,
+            one_sided,
+        })
+    }
+
     /// The triangle of object `i` nearest to the world point `p` among those within
     /// `radius` metres of it, as a [`Hit`] at the end of a move (`t = 1`) whose point is
     /// the triangle's point closest to `p`: how the proxy notices a surface it came to

@@ -14,8 +14,8 @@ use super::oracle::TriangleBoxes;
 use super::{KEPT_FAILURES, bounds, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, advance_to_plane,
-    clamp_to_radius, friction_target,
+    Constraints, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, Rest, advance_to_plane,
+    clamp_to_radius, friction_target, rests_on,
 };
 use crate::query::{Side, classify_point, nearest_within_brute_force, walk_to_nearest};
 use crate::rng::SplitMix64;
@@ -44,6 +44,8 @@ pub struct BruteProxy {
     sticking: bool,
     /// Placed and not ticked yet (see [`Proxy::new`]).
     placed: bool,
+    /// The last constraint of the previous tick.
+    rest: Option<Rest>,
 }
 
 /// A crossing found by brute force, world frame.
@@ -51,6 +53,7 @@ pub struct BruteProxy {
 struct BruteHit {
     t: f64,
     object: usize,
+    triangle: TriId,
     point: DVec3,
     normal: DVec3,
     one_sided: bool,
@@ -79,6 +82,7 @@ impl BruteProxy {
             in_contact: false,
             sticking: false,
             placed: true,
+            rest: None,
         }
     }
 
@@ -93,6 +97,7 @@ impl BruteProxy {
         self.in_contact = in_contact;
         self.sticking = sticking;
         self.placed = false;
+        self.rest = proxy.rest();
     }
 
     /// Reads the objects' poses and materials from the scene, which must hold the same
@@ -120,6 +125,7 @@ impl BruteProxy {
         Some(BruteHit {
             t: probe.move_t(c.t),
             object: i,
+            triangle: c.triangle,
             point: o.pose.to_world(c.point),
             normal: o.pose.vector_to_world(c.face_normal),
             one_sided,
@@ -137,12 +143,35 @@ impl BruteProxy {
             Some(BruteHit {
                 t: 1.0,
                 object: i,
+                triangle: near.triangle,
                 point: o.pose.to_world(near.closest.point),
                 normal: o
                     .pose
                     .vector_to_world(o.shape.surface().frame(near.triangle).normal),
                 one_sided: o.one_sided,
             })
+        })
+    }
+
+    /// The surface the proxy rests on (see [`Proxy`]'s resting rule).
+    fn resting(&self, rest: Rest, p: DVec3, target: DVec3) -> Option<BruteHit> {
+        let o = self.objects.get(rest.object)?;
+        let (point, normal) = rests_on(
+            o.shape.surface(),
+            &o.pose,
+            o.one_sided,
+            rest.triangle,
+            p,
+            target,
+            self.options.skin,
+        )?;
+        Some(BruteHit {
+            t: 0.0,
+            object: rest.object,
+            triangle: rest.triangle,
+            point,
+            normal,
+            one_sided: o.one_sided,
         })
     }
 
@@ -167,6 +196,7 @@ impl BruteProxy {
         if !hip.is_finite() {
             self.in_contact = false;
             self.sticking = false;
+            self.rest = None;
             return (self.position, false);
         }
         let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
@@ -187,6 +217,7 @@ impl BruteProxy {
         let mut planes = Constraints::NONE;
         let mut touch_down = None;
         let mut last_object = 0;
+        let mut rest = None;
         if std::mem::take(&mut self.placed)
             && let Some(h) = self.touching(p)
         {
@@ -195,6 +226,10 @@ impl BruteProxy {
                 planes.push(plane);
                 touch_down = Some(p);
                 last_object = h.object;
+                rest = Some(Rest {
+                    object: h.object,
+                    triangle: h.triangle,
+                });
             }
         }
         for _ in 0..MAX_PROXY_STEPS {
@@ -204,7 +239,11 @@ impl BruteProxy {
             if target == p {
                 break;
             }
-            let (h, plane) = match self.first_hit(p, target) {
+            let resting = match self.rest {
+                Some(r) if planes.is_empty() => self.resting(r, p, target),
+                _ => None,
+            };
+            let (h, plane) = match resting.or_else(|| self.first_hit(p, target)) {
                 Some(h) => {
                     let plane = self.plane(&h, p, target);
                     p = advance_to_plane(p, target, &plane);
@@ -224,10 +263,15 @@ impl BruteProxy {
             };
             touch_down.get_or_insert(p);
             last_object = h.object;
+            rest = Some(Rest {
+                object: h.object,
+                triangle: h.triangle,
+            });
             if !planes.push(plane) {
                 break;
             }
         }
+        self.rest = rest;
         let Some(touch_down) = touch_down else {
             self.position = p;
             self.in_contact = false;
