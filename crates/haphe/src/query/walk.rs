@@ -24,6 +24,11 @@ pub const MAX_WALK_STEPS: usize = 256;
 /// walk reports [`WalkStatus::BoundHit`] if it stops there.
 pub const MAX_FAN_SCAN: usize = 512;
 
+/// Smallest barycentric weight of a target's projection for [`walk_to_nearest`] to take it
+/// as the nearest point without the closest-point kernel: far above the rounding of the
+/// weights, so the kernel would find the same face.
+const FACE_WEIGHT_MARGIN: f64 = 1e-9;
+
 /// A point on the surface with what a haptic renderer needs there (object frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
@@ -74,6 +79,23 @@ pub fn walk_to_nearest(
         TriId(0)
     };
     let start = usable_near(surface, start);
+    // The coherent case: the target lies over the start triangle, well inside its edges,
+    // so its projection on the plane is the nearest point of the triangle, on the face,
+    // and a local minimum (no neighbour can be closer than the face under the target).
+    let frame = surface.frame(start);
+    let weights = frame.barycentric(target);
+    if target.is_finite() && weights.iter().all(|&w| w > FACE_WEIGHT_MARGIN) {
+        let point = target - frame.height(target) * frame.normal;
+        let closest = ClosestPoint {
+            point,
+            weights,
+            feature: Feature::Face,
+        };
+        return (
+            surface_point(surface, (start, closest), target),
+            WalkStatus::Converged,
+        );
+    }
     let mut current = (
         start,
         closest_point_triangle(target, surface.corners(start)),
