@@ -198,6 +198,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     });
     let records = json::records(&results);
     let header = table::Header {
+        machine: machine(),
         threads,
         seed: args.seed,
         samples,
@@ -282,4 +283,30 @@ fn short_count(n: usize) -> String {
         n if n >= 1_000 && n % 1_000 == 0 => format!("{}k", n / 1_000),
         n => n.to_string(),
     }
+}
+
+/// The machine a run measured, as far as the system tells: processor model, logical CPUs
+/// this process may use, memory (Linux `/proc`; "unknown" elsewhere).
+pub fn machine() -> String {
+    let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+    let model = cpuinfo
+        .lines()
+        .find_map(|l| l.strip_prefix("model name"))
+        .and_then(|l| l.split_once(':'))
+        .map_or("unknown processor", |(_, m)| m.trim());
+    let cpus = std::thread::available_parallelism().map_or(0, usize::from);
+    let meminfo = std::fs::read_to_string("/proc/meminfo").unwrap_or_default();
+    let memory = meminfo
+        .lines()
+        .find_map(|l| l.strip_prefix("MemTotal:"))
+        .and_then(|l| l.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
+        .map_or_else(
+            || "unknown memory".to_owned(),
+            |kib| format!("{:.0} GiB", kib / (1024.0 * 1024.0)),
+        );
+    format!(
+        "{model}, {cpus} logical CPU(s) available to this process, {memory}, {} {}",
+        std::env::consts::OS,
+        std::env::consts::ARCH
+    )
 }

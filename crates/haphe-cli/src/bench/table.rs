@@ -9,6 +9,8 @@ use super::methods::{Method, Query};
 
 /// Run-wide facts printed above the tables.
 pub struct Header {
+    /// The machine the run measured ([`machine`](super::machine)).
+    pub machine: String,
     /// Threads of the build pool (builds are parallel; queries run on one thread).
     pub threads: usize,
     /// Seed of the query streams.
@@ -45,6 +47,7 @@ pub fn write(out: &mut impl Write, records: &[Record], header: &Header) -> io::R
         header.threads,
         header.wall.as_secs_f64()
     )?;
+    writeln!(out, "Machine: {}.\n", header.machine)?;
     writeln!(
         out,
         "Times are per query in ns (µs or ms where marked), each query timed on its own. The \
