@@ -243,9 +243,47 @@ pub(crate) fn cell_centre_units(c: [u32; 3]) -> DVec3 {
     DVec3::from_array(c.map(f64::from)) + DVec3::splat(0.5)
 }
 
+/// `⌊x⌋` as an integer, inline (`f64::floor` is a library call on the baseline x86-64
+/// target), as `x.floor() as i64` for every input: saturating far beyond any grid (where
+/// callers' range checks refuse the cell), 0 for NaN.
+#[inline(always)]
+pub(crate) fn floor_to_int(x: f64) -> i64 {
+    let i = x as i64;
+    if (i as f64) > x {
+        i.saturating_sub(1)
+    } else {
+        i
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn floor_to_int_is_floor_as_integer() {
+        for x in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            2.999,
+            -2.999,
+            1e18,
+            -1e18,
+            1e300,
+            -1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+        ] {
+            assert_eq!(floor_to_int(x), x.floor() as i64, "{x}");
+        }
+    }
 
     fn grid() -> Grid {
         Grid::new(DVec3::new(-1.0, -2.0, 0.5), 0.25, [8, 4, 2]).expect("valid grid")

@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::grid::Grid;
+use super::grid::{Grid, floor_to_int};
 
 /// One cell a segment passes through, with the part of the segment inside it: the points
 /// `p0 + t·(p1 − p0)` for `t` in `[t_enter, t_exit]`.
@@ -82,7 +82,7 @@ impl Grid {
             ..empty
         };
         for axis in 0..3 {
-            let cell = (start[axis].floor() as i64).clamp(0, dims[axis] - 1);
+            let cell = floor_to_int(start[axis]).clamp(0, dims[axis] - 1);
             walk.cell[axis] = cell;
             if d[axis] > 0.0 {
                 walk.step[axis] = 1;

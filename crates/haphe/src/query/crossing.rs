@@ -134,7 +134,10 @@ pub fn first_crossing_where(
     if super::beyond_bounds(surface, p0, p1, 0.0) {
         return None;
     }
-    let segment = Segment::new(p0, p1);
+    // Prepared on first use: most queries of a haptic tick skip every triangle before the
+    // exact test.
+    let mut prepared: Option<Segment> = None;
+    let mut segment = || *prepared.get_or_insert_with(|| Segment::new(p0, p1));
     if let Some(cell) = map.grid().cell_of(p0) {
         let mut best: Option<(SegmentHit, u32)> = None;
         let margin = plane_margin(map);
@@ -142,7 +145,7 @@ pub fn first_crossing_where(
             if cannot_cross(surface, t, p0, p1, margin) {
                 continue;
             }
-            if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+            if let Some(hit) = intersect_segment_triangle(&segment(), surface.corners(TriId(t)))
                 && accept(&hit)
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
@@ -178,7 +181,7 @@ pub fn first_crossing_where(
             if !tested.insert(t) || cannot_cross(surface, t, p0, p1, plane_margin) {
                 continue;
             }
-            if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
+            if let Some(hit) = intersect_segment_triangle(&segment(), surface.corners(TriId(t)))
                 && accept(&hit)
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {

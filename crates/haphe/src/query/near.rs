@@ -5,6 +5,7 @@ use glam::DVec3;
 
 use super::closest::{ClosestPoint, closest_point_triangle};
 use crate::map::VoxelMap;
+use crate::map::floor_to_int;
 use crate::mesh::{Surface, TriId};
 
 /// A triangle within the searched radius of a point.
@@ -78,18 +79,6 @@ pub fn nearest_within(
         }
     }
     best
-}
-
-/// `⌊x⌋` as an integer, inline (`f64::floor` is a library call on the baseline x86-64
-/// target); saturates far beyond any grid, where the caller's range check refuses it.
-#[inline(always)]
-fn floor_to_int(x: f64) -> i64 {
-    let i = x as i64;
-    if (i as f64) > x {
-        i.saturating_sub(1)
-    } else {
-        i
-    }
 }
 
 /// [`nearest_within`] by testing every triangle: the oracle.
