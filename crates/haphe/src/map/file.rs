@@ -15,7 +15,7 @@
 //!
 //! The sections, in this order: the mesh report (JSON), vertices (`3 × f64` each),
 //! triangles (`3 × u32`), neighbours (`3 × u32`), barycentric frames (`12 × f64`), corner
-//! normals (`9 × f64`), fan starts and fan triangles (`u32`), the map parameters
+//! normals (`9 × f32`), fan starts and fan triangles (`u32`), the map parameters
 //! (grid, counts, how the cell size was chosen), the brick entries (`u32`), the surface and
 //! inside masks of the detailed bricks (`8 × u64` each), their surface counts per mask
 //! word (`8 × u16`) and first surface cells (`u32`), the clearance nibbles of detailed then
