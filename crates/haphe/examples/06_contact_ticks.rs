@@ -56,13 +56,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     }
     let at = |q: f64| contact_ns[((contact_ns.len() - 1) as f64 * q) as usize];
-    if contact_ns.is_empty() {
-        println!(
-            "{which} ({} triangles): no tick in contact",
-            scene.objects()[0].shape.surface().triangle_count()
-        );
-        return Ok(());
-    }
     println!(
         "{which} ({triangles} triangles): {} of {} ticks in contact; tick time p50 {} ns, p99 {} ns, p99.9 {} ns, max {} ns (clock included)",
         contact_ns.len(),
