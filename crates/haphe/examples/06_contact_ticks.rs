@@ -34,6 +34,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
     let shape = Arc::new(Shape::build(surface, &MapOptions::default())?);
+    // Every triangle's clear zone now, as a servo loop does before it starts: no tick
+    // below computes one.
+    shape.prepare_clear_zones();
     let mut scene = Scene::local(1);
     let object = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, Material::default());
     scene.insert(object).map_err(|(e, _)| e)?;
@@ -41,12 +44,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let mut proxy = Proxy::new(path[0], ProxyOptions::default());
     let mut contact_ns = Vec::with_capacity(path.len());
+    let mut cleared = 0;
     for &hip in &path {
         let started = Instant::now();
         let out = proxy.tick(&scene, hip, DVec3::ZERO);
         let ns = started.elapsed().as_nanos() as u64;
         if out.contact.is_some() {
             contact_ns.push(ns);
+            cleared += usize::from(out.status.cleared);
         }
     }
     contact_ns.sort_unstable();
@@ -57,7 +62,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let at = |q: f64| contact_ns[((contact_ns.len() - 1) as f64 * q) as usize];
     println!(
-        "{which} ({triangles} triangles): {} of {} ticks in contact; tick time p50 {} ns, p99 {} ns, p99.9 {} ns, max {} ns (clock included)",
+        "{which} ({triangles} triangles): {} of {} ticks in contact ({cleared} of them moved in a clear zone, without searches); tick time p50 {} ns, p99 {} ns, p99.9 {} ns, max {} ns (clock included)",
         contact_ns.len(),
         path.len(),
         at(0.5),

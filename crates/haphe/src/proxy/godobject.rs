@@ -188,7 +188,18 @@ impl Proxy {
                 None => (sweep.touch_down, true),
             };
             let (target, sticking) = friction_target(anchor, p, hip, &material, was_sticking);
-            p = move_checked(scene, p, target, &self.options);
+            p = if scene.clear_move(
+                hit.object,
+                hit.triangle,
+                p,
+                target,
+                self.options.probe_reach(),
+            ) {
+                status.cleared = true;
+                target
+            } else {
+                move_checked(scene, p, target, &self.options)
+            };
             self.sticking = sticking;
         } else {
             self.sticking = false;
@@ -362,6 +373,20 @@ fn constrain(
             }
             _ => None,
         };
+        // A leg that stays in the clear zone of the surface last met (or rested on)
+        // meets nothing and ends touching nothing: the searches would find nothing.
+        let slid_on = last_hit
+            .map(|(h, _)| (h.object, h.triangle))
+            .or(rest.map(|r| (r.object, r.triangle)));
+        if resting.is_none()
+            && let Some((object, triangle)) = slid_on
+            && scene.clear_move(object, triangle, p, target, options.probe_reach())
+        {
+            status.cleared = true;
+            p = target;
+            finished = true;
+            break;
+        }
         let (hit, plane) =
             match resting.or_else(|| first_hit_all(scene, p, target, options.probe_reach())) {
                 Some(hit) => {

@@ -53,6 +53,10 @@ pub struct TickStatus {
     pub wedged: bool,
     /// The contact walk reached its cap; the contact point is the best found.
     pub walk_cap_hit: bool,
+    /// A move of the proxy was shown clear by the zone of the triangle it slides on
+    /// ([`Scene::clear_move`](crate::scene::Scene::clear_move)), so its crossing and
+    /// touching searches were skipped (the result is the same).
+    pub cleared: bool,
 }
 
 /// The result of one proxy tick.

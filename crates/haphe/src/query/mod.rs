@@ -1,7 +1,7 @@
 //! Stage 3 — queries against one object, in its object frame: the geometric kernels
 //! (watertight segment–triangle, closest point on a triangle, triangle–triangle), segment
-//! crossing through the voxel map, inside/outside, the nearest triangle within a radius, and
-//! the barycentric surface walk.
+//! crossing through the voxel map, inside/outside, the nearest triangle within a radius, the
+//! barycentric surface walk, and the clear zones that let a sliding proxy skip its searches.
 
 use glam::DVec3;
 
@@ -17,6 +17,7 @@ mod segment_triangle;
 mod self_intersect;
 mod triangle_triangle;
 mod walk;
+mod zone;
 
 /// Whether the segment `p0 → p1` (metres, object frame) lies entirely beyond one face of
 /// the surface's bounding box, farther than `margin` metres (strict comparisons of the
@@ -47,3 +48,5 @@ pub use walk::{
     MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, nearest_point_brute_force,
     walk_to_nearest,
 };
+pub use zone::{ClearZone, MAX_ZONE_CELLS, ZONE_HEIGHT_OF_CELL, ZONE_SPREAD};
+pub(crate) use zone::{zone_from_bits, zone_height};

@@ -281,6 +281,53 @@ impl Scene {
         })
     }
 
+    /// Whether the proxy move `from → to` (world frame) provably meets no surface of any
+    /// object, with every probe of it reaching `reach` metres: both ends lie in the
+    /// [`ClearZone`](crate::query::ClearZone) of `triangle` of object `i` (the surface the
+    /// proxy slides on), and every other object's bounding sphere is farther than `reach`
+    /// from the move. Then [`Scene::first_hit`] finds nothing for any object and
+    /// [`Scene::touching`] finds nothing at `to`, so a tick may skip both searches.
+    /// `false` whenever that is not shown (including `i` or `triangle` out of range).
+    ///
+    /// # Real-time
+    /// One zone (computed on the triangle's first use, see [`Shape::clear_zone`]), two
+    /// frame changes, one sphere test per other object; no allocation, no panic.
+    pub fn clear_move(
+        &self,
+        i: usize,
+        triangle: TriId,
+        from: DVec3,
+        to: DVec3,
+        reach: f64,
+    ) -> bool {
+        let Some(o) = self.objects.get(i) else {
+            return false;
+        };
+        let surface = o.shape.surface();
+        if triangle.index() >= surface.triangle_count() {
+            return false;
+        }
+        let zone = o.shape.clear_zone(triangle);
+        if !zone.clears(
+            surface.frame(triangle),
+            o.pose.to_object(from),
+            o.pose.to_object(to),
+            reach,
+        ) {
+            return false;
+        }
+        self.objects.iter().enumerate().all(|(j, other)| {
+            j == i || {
+                let shape = &*other.shape;
+                let centre = other.pose.to_world(shape.bound_centre());
+                // Twice the reach, and the rounding of coordinates far from the origin.
+                let slack = 2.0 * reach + 1e-12 * centre.abs().max_element().max(1.0);
+                segment_point_distance(from, to, centre)
+                    > shape.bound_radius() * BOUND_SLACK + slack
+            }
+        })
+    }
+
     /// The triangle of object `i` nearest to the world point `p` among those within
     /// `radius` metres of it, as a [`Hit`] at the end of a move (`t = 1`) whose point is
     /// the triangle's point closest to `p`: how the proxy notices a surface it came to

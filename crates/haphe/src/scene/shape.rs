@@ -1,19 +1,28 @@
 //! Shapes: a surface and its voxel map, built once and shared by every object that uses it.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use glam::DVec3;
 
 use crate::map::{MapError, MapOptions, VoxelMap};
-use crate::mesh::Surface;
+use crate::mesh::{Surface, TriId};
+use crate::query::{ClearZone, zone_from_bits, zone_height};
 
 /// An immutable collision shape: a [`Surface`] with its [`VoxelMap`] and a bounding sphere,
 /// in the object frame. Shared between objects (and threads) behind an
-/// [`Arc`](std::sync::Arc); nothing in it changes after it is built.
+/// [`Arc`](std::sync::Arc); the geometry never changes after it is built. The only thing
+/// that does is a cache: each triangle's [`ClearZone`], computed the first time a proxy
+/// slides on the triangle (or all at once by [`Shape::prepare_clear_zones`]) and kept in
+/// an atomic slot (8 bytes a triangle), so that reading it takes no lock.
 #[derive(Debug)]
 pub struct Shape {
     surface: Surface,
     map: VoxelMap,
     bound_centre: DVec3,
     bound_radius: f64,
+    /// Packed [`ClearZone`] per triangle, 0 until computed.
+    zones: Box<[AtomicU64]>,
+    zone_height: f32,
 }
 
 impl Shape {
@@ -28,11 +37,17 @@ impl Shape {
             .iter()
             .map(|v| v.distance(bound_centre))
             .fold(0.0, f64::max);
+        let zones = (0..surface.triangle_count())
+            .map(|_| AtomicU64::new(0))
+            .collect();
+        let zone_height = zone_height(&map);
         Shape {
             surface,
             map,
             bound_centre,
             bound_radius,
+            zones,
+            zone_height,
         }
     }
 
@@ -68,5 +83,39 @@ impl Shape {
     /// Radius of that sphere, metres.
     pub fn bound_radius(&self) -> f64 {
         self.bound_radius
+    }
+
+    /// The clear zone of triangle `t` ([`ClearZone::NONE`] when out of range), computed on
+    /// first use and cached.
+    ///
+    /// # Real-time
+    /// No lock, no allocation, no panic. A cached zone costs one atomic load; the first
+    /// call for a triangle computes it ([`ClearZone::of`]: at most
+    /// [`MAX_ZONE_CELLS`](crate::query::MAX_ZONE_CELLS) cells read). Two threads computing
+    /// the same zone at once store the same value.
+    #[inline]
+    pub fn clear_zone(&self, t: TriId) -> ClearZone {
+        let Some(slot) = self.zones.get(t.index()) else {
+            return ClearZone::NONE;
+        };
+        let bits = slot.load(Ordering::Relaxed);
+        if bits != 0 {
+            return zone_from_bits(bits, self.zone_height);
+        }
+        let zone = ClearZone::of(&self.surface, &self.map, t);
+        slot.store(zone.to_bits(), Ordering::Relaxed);
+        zone
+    }
+
+    /// Computes every triangle's clear zone now, on every core (rayon), so that no tick
+    /// computes one: for a servo loop that must keep its worst tick short from the first
+    /// contact on. Returns how many zones were computed (those not cached yet).
+    pub fn prepare_clear_zones(&self) -> usize {
+        use rayon::prelude::*;
+        (0..self.zones.len())
+            .into_par_iter()
+            .filter(|&t| self.zones[t].load(Ordering::Relaxed) == 0)
+            .map(|t| self.clear_zone(TriId(t as u32)))
+            .count()
     }
 }

@@ -1,0 +1,272 @@
+//! Clear zones: the room in front of (and behind) a triangle where a short proxy move
+//! provably meets nothing, so that the tick can skip its crossing and touching searches.
+//!
+//! A proxy sliding on a face moves a skin's width above it. Over a convex or flat patch of
+//! surface nothing else comes near that path: every triangle around lies below the face's
+//! plane. The zone of triangle `T` records how far the triangles near `T` rise above (and
+//! sink below) `T`'s plane; a move whose two ends stay over `T`'s neighbourhood, higher
+//! than that rise plus the probe's reach and lower than the zone's height, is then farther
+//! than the reach from every triangle — no crossing and no touching, exactly as the
+//! searches would find.
+
+use glam::DVec3;
+
+use crate::map::{VoxelMap, floor_to_int};
+use crate::mesh::{Surface, TriFrame, TriId};
+
+/// How far a zone spreads beyond its triangle, in barycentric weight: its footprint holds
+/// the points whose weights are all at least `-ZONE_SPREAD` (the triangle scaled by
+/// `1 + 3·ZONE_SPREAD` about its centroid, so about one ring of neighbours).
+pub const ZONE_SPREAD: f64 = 0.5;
+
+/// Height of a zone over its triangle's plane (and depth behind it) as a fraction of the
+/// map's cell size; also the distance the gathered cells reach beyond the zone.
+pub const ZONE_HEIGHT_OF_CELL: f64 = 0.0625;
+
+/// Most map cells read to build one zone; a triangle whose zone would read more (a large
+/// triangle over fine cells) gets [`ClearZone::NONE`].
+pub const MAX_ZONE_CELLS: u64 = 512;
+
+/// Relative rounding allowed in a zone's heights and in the tests against it: far above
+/// the rounding of a plane height in `f64`, far below any skin.
+const ZONE_ROUNDING: f64 = 1e-9;
+
+/// The clear zone of one triangle `T` (object frame, metres).
+///
+/// Every triangle other than `T` either rises at most `front` metres above `T`'s plane
+/// (on the side of its normal) and sinks at most `back` metres behind it, or keeps at
+/// least `height` metres from the zone: the points whose barycentric weights in `T` are
+/// all at least `-`[`ZONE_SPREAD`] and whose height over `T`'s plane lies within
+/// `±height`. So a point of the zone at height `h > front` is at least
+/// `min(h − front, height)` from every triangle, `T` included (behind the plane, likewise
+/// with `back`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClearZone {
+    /// Highest rise of a nearby triangle over `T`'s plane, metres (rounded up; ≥ 0).
+    pub front: f32,
+    /// Deepest sink of a nearby triangle behind `T`'s plane, metres (rounded up; ≥ 0).
+    pub back: f32,
+    /// Height (and depth) of the zone, and the distance every other triangle keeps from
+    /// it, metres (rounded down).
+    pub height: f32,
+}
+
+impl ClearZone {
+    /// A zone that clears nothing (degenerate triangle, or one too large for its cells).
+    pub const NONE: ClearZone = ClearZone {
+        front: f32::INFINITY,
+        back: f32::INFINITY,
+        height: 0.0,
+    };
+
+    /// The zone of triangle `t` of `surface`, from the triangles that `map` lists in the
+    /// cells around it.
+    ///
+    /// # Performance
+    /// Reads at most [`MAX_ZONE_CELLS`] cells and every triangle listed there (a few
+    /// microseconds for a triangle about a cell wide). No allocation.
+    pub fn of(surface: &Surface, map: &VoxelMap, t: TriId) -> ClearZone {
+        if t.index() >= surface.triangle_count() {
+            return ClearZone::NONE;
+        }
+        let frame = surface.frame(t);
+        let grid = map.grid();
+        let height = grid.cell_size() * ZONE_HEIGHT_OF_CELL;
+        if frame.is_degenerate() || !(height > 0.0 && height.is_finite()) {
+            return ClearZone::NONE;
+        }
+        let corners = surface.corners(t);
+        let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
+        let scale = 1.0 + 3.0 * ZONE_SPREAD;
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for v in corners {
+            let spread = centroid + scale * (v - centroid);
+            for lift in [-height, height] {
+                let x = spread + lift * frame.normal;
+                (lo, hi) = (lo.min(x), hi.max(x));
+            }
+        }
+        // The zone, grown by its height (what other triangles keep from it) and a little
+        // for the rounding of the cell lookup.
+        let grow = height * (1.0 + ZONE_ROUNDING);
+        let (lo, hi) = (lo - DVec3::splat(grow), hi + DVec3::splat(grow));
+        let (glo, ghi) = (grid.to_grid(lo), grid.to_grid(hi));
+        let dims = grid.dims();
+        let mut range = [[0u32; 2]; 3];
+        let mut cells = 1u64;
+        for axis in 0..3 {
+            let a = floor_to_int(glo[axis]).max(0);
+            let b = floor_to_int(ghi[axis]).min(i64::from(dims[axis]) - 1);
+            if a > b {
+                // The zone lies beyond the grid, where there is no triangle at all.
+                return ClearZone {
+                    front: 0.0,
+                    back: 0.0,
+                    height: round_down(height),
+                };
+            }
+            range[axis] = [a as u32, b as u32];
+            cells *= (b - a + 1) as u64;
+        }
+        if cells > MAX_ZONE_CELLS {
+            return ClearZone::NONE;
+        }
+        // Only the cells that meet the grown zone matter: it lies within `2·height` of the
+        // plane and within `height` of the spread triangle's edges (in its plane).
+        let spread = corners.map(|v| centroid + scale * (v - centroid));
+        let mut sides = [(DVec3::ZERO, 0.0); 4];
+        sides[0] = (frame.normal, 0.0);
+        for i in 0..3 {
+            let edge = spread[(i + 2) % 3] - spread[(i + 1) % 3];
+            let out = edge.cross(frame.normal).normalize_or_zero();
+            sides[i + 1] = (out, out.dot(spread[(i + 1) % 3] - frame.origin));
+        }
+        let half = 0.5 * grid.cell_size();
+        let meets = |c: [u32; 3]| {
+            let centre = grid.cell_centre(c) - frame.origin;
+            let (n, _) = sides[0];
+            let within_slab = n.dot(centre).abs() - half * n.abs().element_sum() <= 2.0 * grow;
+            within_slab
+                && sides[1..]
+                    .iter()
+                    .all(|&(m, at)| m.dot(centre) - at - half * m.abs().element_sum() <= grow)
+        };
+        let (mut front, mut back) = (0.0f64, 0.0f64);
+        let (triangles, vertices) = (surface.triangles(), surface.vertices());
+        // Triangles already measured (a triangle is listed in every cell it overlaps):
+        // a small open-addressed set on the stack; when it is full, measuring again is
+        // merely slower.
+        let mut seen = [u32::MAX; SEEN_SLOTS];
+        for x in range[0][0]..=range[0][1] {
+            for y in range[1][0]..=range[1][1] {
+                for z in range[2][0]..=range[2][1] {
+                    if !meets([x, y, z]) {
+                        continue;
+                    }
+                    for &u in map.triangles_in([x, y, z]) {
+                        if u == t.0 || !first_sight(&mut seen, u) {
+                            continue;
+                        }
+                        for v in triangles[u as usize] {
+                            let h = frame.height(vertices[v as usize]);
+                            if h > front {
+                                front = h;
+                            }
+                            if -h > back {
+                                back = -h;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // The rounding of those heights: a few ulps of the zone's extent.
+        let slack = ZONE_ROUNDING * (hi - lo).max_element();
+        ClearZone {
+            front: round_up(front + slack),
+            back: round_up(back + slack),
+            height: round_down(height),
+        }
+    }
+
+    /// Whether the straight move `from → to` (object frame) of a point, with every point
+    /// within `reach` metres of it, keeps more than `reach` from every triangle of the
+    /// surface: both ends lie in the zone of `frame`'s triangle (its frame), on the same
+    /// side of its plane and beyond that side's rise by more than `reach`. Then no probe of
+    /// the move meets a triangle and no triangle lies within `reach` of its end.
+    ///
+    /// # Real-time
+    /// Constant time, no allocation, no panic; `false` for non-finite input.
+    #[inline]
+    pub fn clears(&self, frame: &TriFrame, from: DVec3, to: DVec3, reach: f64) -> bool {
+        let (h0, h1) = (frame.height(from), frame.height(to));
+        let (near, far, rise) = if h0 > 0.0 && h1 > 0.0 {
+            (h0.min(h1), h0.max(h1), f64::from(self.front))
+        } else if h0 < 0.0 && h1 < 0.0 {
+            (-h0.max(h1), -h0.min(h1), f64::from(self.back))
+        } else {
+            return false;
+        };
+        let height = f64::from(self.height);
+        // The rounding of the heights just computed, and of the frame change before them.
+        let slack = ZONE_ROUNDING * height
+            + 1e-15
+                * (from - frame.origin)
+                    .abs()
+                    .max_element()
+                    .max((to - frame.origin).abs().max_element());
+        let inside = |w: [f64; 3]| w.iter().all(|&w| w >= -ZONE_SPREAD);
+        far <= height - slack
+            && near - rise > reach + slack
+            && height > reach + slack
+            && inside(frame.barycentric(from))
+            && inside(frame.barycentric(to))
+    }
+
+    /// The zone packed into 64 bits (never 0, which [`ClearZone::from_bits`] never sees).
+    pub(crate) fn to_bits(self) -> u64 {
+        // `height` is not stored: it is the same for every triangle of a map.
+        u64::from(self.front.to_bits()) | (u64::from(self.back.to_bits()) << 32) | ZONE_SET
+    }
+}
+
+/// Slots of the set of triangles already measured while building a zone.
+const SEEN_SLOTS: usize = 256;
+
+/// Whether `u` is not in `seen` yet; adds it when there is room near its slot.
+#[inline]
+fn first_sight(seen: &mut [u32; SEEN_SLOTS], u: u32) -> bool {
+    let start = (u.wrapping_mul(0x9E37_79B1) >> 24) as usize;
+    for k in 0..4 {
+        let slot = &mut seen[(start + k) % SEEN_SLOTS];
+        if *slot == u {
+            return false;
+        }
+        if *slot == u32::MAX {
+            *slot = u;
+            return true;
+        }
+    }
+    true
+}
+
+/// Marks a stored zone (a rise is never negative, so its sign bit is free).
+const ZONE_SET: u64 = 1 << 31;
+
+/// A zone unpacked from [`ClearZone::to_bits`], with the map's zone height.
+pub(crate) fn zone_from_bits(bits: u64, height: f32) -> ClearZone {
+    ClearZone {
+        front: f32::from_bits((bits as u32) & !(ZONE_SET as u32)),
+        back: f32::from_bits((bits >> 32) as u32),
+        height,
+    }
+}
+
+/// The zone height of a map's triangles, metres (rounded down).
+pub(crate) fn zone_height(map: &VoxelMap) -> f32 {
+    round_down(map.grid().cell_size() * ZONE_HEIGHT_OF_CELL)
+}
+
+/// `x` as an `f32` no smaller than it (infinity for NaN).
+fn round_up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) >= x {
+        f
+    } else if x.is_nan() {
+        f32::INFINITY
+    } else {
+        f.next_up()
+    }
+}
+
+/// `x` as an `f32` no larger than it (0 for NaN).
+fn round_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) <= x {
+        f
+    } else if x.is_nan() {
+        0.0
+    } else {
+        f.next_down()
+    }
+}
