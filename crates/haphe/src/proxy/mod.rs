@@ -28,10 +28,17 @@
 //!
 //!    A proxy *resting* on a surface keeps it (the god-object's constraint kept from one
 //!    tick to the next): when the last constraint of the previous tick was triangle `T`,
-//!    the proxy lies on the free side of `T`'s plane no farther than its constraint plane,
-//!    the device point lies behind `T`'s plane and the line toward it meets that plane
-//!    inside `T`, the first leg takes `T`'s constraint plane without a crossing search
-//!    (the proxy does not move along that leg; every later leg is tested as above).
+//!    the proxy lies on the free side of `T`'s plane no farther than its constraint plane
+//!    (or a thousandth of the skin beyond it, the rounding of the projection that put it
+//!    there), the device point lies behind `T`'s plane and the line toward it meets that
+//!    plane inside `T`, the first leg takes `T`'s constraint plane without a crossing
+//!    search (the proxy does not move along that leg, except onto the plane from that
+//!    hair in front of it; every later leg is tested as above).
+//!
+//!    A leg that stays in the *clear zone* of the triangle last met or rested on
+//!    ([`Scene::clear_move`](crate::scene::Scene::clear_move)) is known to meet nothing
+//!    and to end farther than a probe's reach from every surface, so its searches are
+//!    skipped; the result is the one they would give.
 //! 3. **Friction.** In contact, with friction, the proxy stays where it rested while the
 //!    tangential force is inside the static friction cone, and otherwise slips to the
 //!    edge of the dynamic cone ([`friction_target`]); that last move is tested for

@@ -8,6 +8,11 @@ use super::constraints::Plane;
 use crate::mesh::{Surface, TriId};
 use crate::scene::Pose;
 
+/// How far beyond its constraint plane (as a fraction of the skin) a resting proxy may
+/// lie: the rounding of the projection that put it there, which can land a hair in front.
+/// The first leg then moves it onto the plane.
+pub(crate) const REST_TOLERANCE_OF_SKIN: f64 = 1e-3;
+
 /// The object (index in the scene) and triangle of the last constraint of a tick.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Rest {
@@ -19,14 +24,16 @@ pub(crate) struct Rest {
 /// `pose` with `surface` when the device point is at `to`: `from` lies on the free side
 /// of the triangle's plane (the front for a `one_sided` surface, else the side it is on),
 /// no farther from it than its constraint plane (the triangle's plane moved out by `skin`
-/// metres), `to` lies strictly behind the triangle's plane, and the line from `from` to
+/// metres) and [`REST_TOLERANCE_OF_SKIN`] of the skin, `to` lies strictly behind the
+/// triangle's plane, and the line from `from` to
 /// `to` meets that plane inside the triangle. Returns that point and the unit face normal
 /// (world frame).
 ///
 /// Then the triangle's constraint plane is the first constraint of the tick, as the move
 /// toward the device point would have found it, without a crossing search along that
-/// move: the proxy does not move along it (it already lies on or behind the plane), and
-/// every move it then makes is tested as usual.
+/// move: the proxy does not move along it (it already lies on or behind the plane, or
+/// within that tolerance in front, and then moves onto it), and every move it then makes
+/// is tested as usual.
 ///
 /// # Real-time
 /// Constant time: one triangle's frame, no allocation, no panic (a triangle out of range,
@@ -60,7 +67,7 @@ pub(crate) fn rests_on(
     }
     let (point, normal) = (pose.to_world(x), pose.vector_to_world(frame.normal));
     let plane = Plane::of_hit(normal, point, one_sided, from, to, skin);
-    (plane.height(from) <= 0.0).then_some((point, normal))
+    (plane.height(from) <= skin * REST_TOLERANCE_OF_SKIN).then_some((point, normal))
 }
 
 #[cfg(test)]
