@@ -116,6 +116,8 @@ fn json_has_a_record_per_mesh_query_and_method_with_the_documented_fields() {
             assert!(build["bytes"].as_u64() > Some(0), "{build}");
         }
         assert!(find(mesh, "decode", "haphe").is_some(), "{mesh} decode");
+        let zones = find(mesh, "zones", "haphe").unwrap_or_else(|| panic!("{mesh} zones"));
+        assert!(zones["p50_ns"].as_f64() > Some(0.0), "{zones}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -140,7 +142,7 @@ fn plot_writes_one_png_per_query_kind() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    for query in TIMED.iter().chain(&["build", "decode"]) {
+    for query in TIMED.iter().chain(&["build", "decode", "zones"]) {
         let png = plots.join(format!("{query}.png"));
         let bytes = std::fs::read(&png).unwrap_or_else(|e| panic!("{}: {e}", png.display()));
         assert!(

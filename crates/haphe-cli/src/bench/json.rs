@@ -17,16 +17,18 @@ JSON output (--json OUT): an array with one record per (mesh, query, method):
   family               shape name (blob, thin-plate, ...) or the file name
   triangles            triangle count of the mesh
   query                free_space | segment | segment_random | inside | inside_random |
-                       walk | floor | build | decode
+                       walk | floor | contact | build | decode | zones
   method               haphe | parry | brute_force
-  samples              queries timed (builds or decodes for build and decode)
+  samples              queries timed (builds, decodes or zone runs for build, decode,
+                       zones)
   p50_ns, p99_ns, p999_ns, max_ns
                        per-query percentiles in nanoseconds, the clock overhead's median
-                       subtracted (build, decode: per build or decode, nothing subtracted)
+                       subtracted (build, decode, zones: per run, nothing subtracted)
   trimmed_mean_ns      mean of the fastest 99 % of the queries, the same mean of the
                        clock overhead subtracted: resolves costs below the clock's step
   clock_overhead_ns    median cost of reading the clock around an empty query, the
-                       amount subtracted from the percentiles (null for build, decode)
+                       amount subtracted from the percentiles (null for build, decode,
+                       zones)
   vs_haphe_p50, vs_haphe_p99
                        this method's time divided by haphe's on the same mesh and query
                        (null on haphe's own records)
@@ -145,6 +147,14 @@ pub fn records(results: &[MeshResult]) -> Vec<Record> {
         );
         decode.bytes = Some(cost.file_bytes);
         all.push(decode);
+        if !cost.zones.is_empty() {
+            all.push(Record::new(
+                mesh,
+                Query::Zones,
+                Method::Haphe,
+                &Summary::of_durations(&cost.zones),
+            ));
+        }
         add_ratios(&mut all[first..]);
     }
     all

@@ -55,11 +55,13 @@ pub enum Query {
     Build,
     /// Loading a saved surface and map (checks included).
     Decode,
+    /// Computing every triangle's clear zone (before the contact ticks are timed).
+    Zones,
 }
 
 impl Query {
     /// Every kind, in the order of the report.
-    pub const ALL: [Query; 10] = [
+    pub const ALL: [Query; 11] = [
         Query::FreeSpace,
         Query::Segment,
         Query::SegmentRandom,
@@ -70,6 +72,7 @@ impl Query {
         Query::Contact,
         Query::Build,
         Query::Decode,
+        Query::Zones,
     ];
 
     /// The kinds timed one query at a time.
@@ -97,6 +100,7 @@ impl Query {
             Query::Contact => "contact",
             Query::Build => "build",
             Query::Decode => "decode",
+            Query::Zones => "zones",
         }
     }
 
@@ -145,6 +149,11 @@ impl Query {
             }
             Query::Decode => {
                 "decode a saved surface and map (haphe `map::decode`, checks included)"
+            }
+            Query::Zones => {
+                "clear zones of every triangle (haphe `Shape::prepare_clear_zones`, on the \
+                 threads the process may use), computed once before the contact ticks so \
+                 that no timed tick computes one"
             }
         }
     }
@@ -282,7 +291,7 @@ fn chunk_lengths(query: Query, streams: &Streams) -> Vec<usize> {
         }
         Query::InsideRandom => lengths(&streams.random_points),
         Query::Contact => lengths(&streams.contact),
-        Query::Build | Query::Decode => Vec::new(),
+        Query::Build | Query::Decode | Query::Zones => Vec::new(),
     }
 }
 
@@ -492,7 +501,7 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
                 );
             }
         }
-        Query::Build | Query::Decode => {}
+        Query::Build | Query::Decode | Query::Zones => {}
     }
     runners
 }

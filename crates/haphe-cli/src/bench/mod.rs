@@ -231,11 +231,15 @@ fn measure_mesh(
     if let Err(e) = &built.parry {
         eprintln!("haphe bench: {name}: parry refuses the mesh ({e}); no parry figures");
     }
-    let (shape, parry, cost) = (
+    let (shape, parry, mut cost) = (
         Arc::new(haphe::scene::Shape::new(built.surface, built.map)),
         built.parry,
         built.cost,
     );
+    // As a servo application does when it loads a shape: no timed tick computes a zone.
+    let start = Instant::now();
+    shape.prepare_clear_zones();
+    cost.zones.push(start.elapsed());
     let (surface, map) = (shape.surface(), shape.map());
     let mut scene = Scene::local(1);
     scene

@@ -107,7 +107,7 @@ fn draw(path: &Path, query: Query, rows: &[&Record]) -> Result<(), Box<dyn Error
         .configure_mesh()
         .x_desc("triangles")
         .y_desc(match query {
-            Query::Build | Query::Decode => "ns (solid: median, dashed: slowest)",
+            Query::Build | Query::Decode | Query::Zones => "ns (solid: median, dashed: slowest)",
             _ => "ns per query (solid: p50, dashed: p99)",
         })
         .x_label_formatter(&|x| format!("{x:.0}"))

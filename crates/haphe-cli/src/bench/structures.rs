@@ -39,6 +39,9 @@ pub struct BuildCost {
     pub parry_bytes: Option<usize>,
     /// Size of the saved surface and map, bytes.
     pub file_bytes: usize,
+    /// haphe: `Shape::prepare_clear_zones` on the shape the queries use (filled in when
+    /// the shape is made).
+    pub zones: Vec<Duration>,
 }
 
 /// The structures of one mesh, with what they cost.
@@ -123,6 +126,7 @@ pub fn build(mesh: Mesh) -> anyhow::Result<Built> {
         haphe_heap_bytes: surface.heap_bytes() + map.heap_bytes(),
         parry_bytes: parry.is_ok().then_some(parry_bytes),
         file_bytes: bytes.len(),
+        zones: Vec::new(),
     };
     Ok(Built {
         surface,

@@ -106,17 +106,18 @@ fn build_table(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
         out,
         "## build and memory\n\n{}; {}. Median of the builds; bytes are heap bytes per \
          triangle held by the built structures, counted by a counting allocator (haphe's own \
-         `heap_bytes` beside it), and of the saved map file.\n",
+         `heap_bytes` beside it), and of the saved map file; {}.\n",
         Query::Build.description(),
-        Query::Decode.description()
+        Query::Decode.description(),
+        Query::Zones.description()
     )?;
     writeln!(
         out,
-        "| mesh | triangles | haphe build | parry build | parry ÷ haphe | haphe decode | haphe B/triangle | haphe heap_bytes/triangle | parry B/triangle | file B/triangle |"
+        "| mesh | triangles | haphe build | parry build | parry ÷ haphe | haphe decode | haphe zones | haphe B/triangle | haphe heap_bytes/triangle | parry B/triangle | file B/triangle |"
     )?;
     writeln!(
         out,
-        "|------|----------:|------------:|------------:|--------------:|-------------:|-----------------:|--------------------------:|-----------------:|----------------:|"
+        "|------|----------:|------------:|------------:|--------------:|-------------:|------------:|-----------------:|--------------------------:|-----------------:|----------------:|"
     )?;
     for haphe in records
         .iter()
@@ -129,18 +130,20 @@ fn build_table(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
         };
         let parry = find(Query::Build, Method::Parry);
         let decode = find(Query::Decode, Method::Haphe);
+        let zones = find(Query::Zones, Method::Haphe);
         let per_triangle = |bytes: Option<usize>| {
             bytes.map(|b| format!("{:.0}", b as f64 / haphe.triangles as f64))
         };
         writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             haphe.mesh,
             haphe.triangles,
             ns(haphe.p50_ns),
             parry.map_or("-".to_owned(), |p| ns(p.p50_ns)),
             times(parry.and_then(|p| p.vs_haphe_p50)),
             decode.map_or("-".to_owned(), |d| ns(d.p50_ns)),
+            zones.map_or("-".to_owned(), |z| ns(z.p50_ns)),
             per_triangle(haphe.bytes).unwrap_or_else(|| "-".to_owned()),
             per_triangle(haphe.heap_bytes).unwrap_or_else(|| "-".to_owned()),
             per_triangle(parry.and_then(|p| p.bytes)).unwrap_or_else(|| "-".to_owned()),
