@@ -317,7 +317,7 @@ impl Session {
         writeln!(out, "{}", self.title)?;
         writeln!(
             out,
-            "scene: {} object(s), {triangles} triangles, surfaces and maps built in {:.2} s",
+            "scene: {} object(s), {triangles} triangles, surfaces, maps and clear zones built in {:.2} s",
             names.len(),
             self.build_seconds
         )?;

@@ -257,13 +257,21 @@ fn build_shape(spec: &ObjectSpec, base: &Path, map: &MapOptions) -> anyhow::Resu
     mesh_shape(&base.join(mesh), units, map)
 }
 
-/// A built-in procedural shape with about `triangles` triangles, with its map.
+/// A built-in procedural shape with about `triangles` triangles, with its map and its
+/// clear zones (see [`ready`]).
 pub fn shape_of(which: Catalog, triangles: usize, map: &MapOptions) -> anyhow::Result<Shape> {
     let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
-    Ok(Shape::build(surface, map)?)
+    Ok(ready(Shape::build(surface, map)?))
 }
 
-/// A shape from a mesh file.
+/// `shape` with every triangle's clear zone computed, here rather than on the servo
+/// thread at the first contact with each triangle.
+fn ready(shape: Shape) -> Shape {
+    shape.prepare_clear_zones();
+    shape
+}
+
+/// A shape from a mesh file, with its map and clear zones.
 pub fn mesh_shape(path: &Path, units: Units, map: &MapOptions) -> anyhow::Result<Shape> {
     let read = ReadOptions {
         units,
@@ -272,5 +280,6 @@ pub fn mesh_shape(path: &Path, units: Units, map: &MapOptions) -> anyhow::Result
     let loaded = load(path, &read).map_err(|e| anyhow!("{e}"))?;
     let surface = Surface::new(loaded.mesh, &SurfaceOptions::default())
         .with_context(|| path.display().to_string())?;
-    Shape::build(surface, map).with_context(|| path.display().to_string())
+    let shape = Shape::build(surface, map).with_context(|| path.display().to_string())?;
+    Ok(ready(shape))
 }

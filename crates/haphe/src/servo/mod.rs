@@ -33,7 +33,10 @@
 //!
 //! A tick allocates nothing, takes no lock, does no I/O and never panics; the test
 //! `tests/servo_alloc.rs` runs the loop with the simulated hand, a moving object and the
-//! statistics under a counting allocator.
+//! statistics under a counting allocator. A shape computes each triangle's clear zone on
+//! its first contact (a few microseconds, once); call
+//! [`Shape::prepare_clear_zones`](crate::scene::Shape::prepare_clear_zones) when a shape
+//! is loaded to keep that work off the servo thread.
 //!
 //! # Examples
 //!
