@@ -145,6 +145,11 @@ impl Constraints {
         if feasible(goal) {
             return Some(goal);
         }
+        // One plane: its projection is the only candidate (the common sliding case).
+        if let [plane] = planes {
+            let x = project_on_plane(goal, plane);
+            return (x.is_finite() && plane.height(x) >= -tolerance).then_some(x);
+        }
         let mut best: Option<(DVec3, f64)> = None;
         let mut offer = |x: Option<DVec3>| {
             if let Some(x) = x
