@@ -263,3 +263,98 @@ fn slivers_down_to_a_relative_height_of_2e_8_agree_with_brute_force() {
         assert_eq!((c.mismatches, c.leaks), (0, 0), "{kind:?}: {c:?}");
     }
 }
+
+/// Long segments across free space, which [`first_crossing`](haphe::query::first_crossing)
+/// crosses by skipping the cubes of cells its clearances vouch for: the same triangle and
+/// the same parameter, bit for bit, as the brute force. On meshes whose grids hold large
+/// clearances (inside and around a sphere and blobs): random segments across the grown
+/// bounding box and far beyond it, segments between points deep in free space (inside or
+/// outside, several cells from any surface cell), segments grazing the surface (in a
+/// triangle's plane through a point of it, and a hair above and below that plane), and,
+/// for entering crossings only, the same segments again.
+#[test]
+fn long_segments_across_free_space_agree_with_brute_force() {
+    use haphe::map::MAX_CLEARANCE;
+    use haphe::query::{
+        first_crossing, first_crossing_brute_force, first_crossing_brute_force_where,
+        first_crossing_where,
+    };
+    use haphe::rng::SplitMix64;
+    use haphe::verify::{bounds, segments};
+    use rayon::prelude::*;
+
+    for (name, mesh, n) in [
+        ("sphere-20k", Shape::Sphere.with_triangles(20_000), 1_500),
+        ("blob-50k", Shape::Blob.with_triangles(50_000), 1_500),
+        ("blob-200k", Shape::Blob.with_triangles(200_000), 600),
+    ] {
+        let (surface, map) = object(mesh);
+        let grid = map.grid();
+        let (lo, hi, size) = bounds(&surface);
+        let mut random = SplitMix64::new(0xDDA);
+        // Points deep in free space: their cell is at least 6 cells from any surface cell.
+        let mut free = Vec::new();
+        while free.len() < 2 * n {
+            let p = random.point_in(lo - 0.2 * size, hi + 0.2 * size);
+            if grid.cell_of(p).is_some_and(|c| map.clearance(c) >= 6) {
+                free.push(p);
+            }
+        }
+        let mut cases: Vec<(DVec3, DVec3)> = free.chunks(2).map(|p| (p[0], p[1])).collect();
+        cases.extend(segments(&surface, SegmentKind::Random, n, 3));
+        cases.extend(segments(&surface, SegmentKind::Long, n / 4, 5));
+        for _ in 0..n {
+            let t = TriId(random.index(surface.triangle_count()) as u32);
+            let [a, b, c] = surface.corners(t);
+            let frame = surface.frame(t);
+            let q = (a + b + c) / 3.0;
+            let along = frame.normal.cross(random.unit_vector()).normalize_or(b - a);
+            let lift = [0.0, 1e-9, -1e-9][random.index(3)] * size;
+            let p = q + lift * frame.normal;
+            cases.push((p - size * along, p + size * along));
+        }
+        // Most segments cross cells from which the walk skips several cells at once, and
+        // the grid has some from which it skips the most.
+        let vouched = cases
+            .iter()
+            .filter(|&&(p0, p1)| grid.walk(p0, p1).any(|s| map.clearance(s.cell) >= 4))
+            .count();
+        assert!(
+            vouched * 2 > cases.len(),
+            "{name}: {vouched} of {}",
+            cases.len()
+        );
+        assert!(
+            free.iter().any(|&p| grid
+                .cell_of(p)
+                .is_some_and(|c| map.clearance(c) == MAX_CLEARANCE)),
+            "{name}"
+        );
+        let bad: Vec<String> = cases
+            .par_iter()
+            .filter_map(|&(p0, p1)| {
+                let fast = first_crossing(&surface, &map, p0, p1);
+                let brute = first_crossing_brute_force(&surface, p0, p1);
+                let entering = |hit: &haphe::query::SegmentHit| hit.entering;
+                let fast_in = first_crossing_where(&surface, &map, p0, p1, entering);
+                let brute_in = first_crossing_brute_force_where(&surface, p0, p1, entering);
+                let same = |a: Option<haphe::query::Crossing>,
+                            b: Option<haphe::query::Crossing>| {
+                    a.map(|c| (c.triangle, c.t.to_bits())) == b.map(|c| (c.triangle, c.t.to_bits()))
+                };
+                (!same(fast, brute) || !same(fast_in, brute_in)).then(|| {
+                    format!(
+                        "{p0} → {p1}: {fast:?} / {brute:?}; entering {fast_in:?} / {brute_in:?}"
+                    )
+                })
+            })
+            .collect();
+        assert!(
+            bad.is_empty(),
+            "{name}: {} of {} differ: {:?}",
+            bad.len(),
+            cases.len(),
+            &bad[..bad.len().min(3)]
+        );
+    }
+}

@@ -297,6 +297,17 @@ impl VoxelMap {
         }
     }
 
+    /// Cell `c`'s triangles and clearance: the triangles of a surface cell with clearance
+    /// 0, or no triangle with the clearance of any other cell (as
+    /// [`triangles_in`](Self::triangles_in) and [`clearance`](Self::clearance) give them).
+    #[inline]
+    pub(crate) fn triangles_or_clearance(&self, c: [u32; 3]) -> (&[u32], u8) {
+        match self.triangles_in(c) {
+            [] => (&[], self.clearance(c)),
+            triangles => (triangles, 0),
+        }
+    }
+
     /// Number of triangles of the surface the map was built for.
     #[inline]
     pub fn triangle_count(&self) -> usize {

@@ -373,7 +373,9 @@ pub fn decode(bytes: &[u8]) -> Result<(Surface, VoxelMap), MapFileError> {
 /// [`VoxelMap`] (indices out of range, offsets not increasing, dimensions inconsistent,
 /// non-finite coordinates, a map built for another surface). The barycentric frames, the
 /// shading normals and the clearances are checked for range, not recomputed: a crafted
-/// file with a valid checksum can make them wrong, never unsafe to use.
+/// file with a valid checksum can make them wrong (and with them the answers of the
+/// queries that trust them: [`first_crossing`](crate::query::first_crossing) skips free
+/// space by the clearances), never unsafe to use.
 ///
 /// # Performance
 /// A checksum at memory speed (its chunks in parallel) and linear checks, nothing copied

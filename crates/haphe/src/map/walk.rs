@@ -27,10 +27,21 @@ pub struct CellStep {
 /// lists triangles with [`OVERLAP_TOLERANCE_REL`](super::OVERLAP_TOLERANCE_REL) to spare,
 /// so a triangle that the segment meets is listed in a cell the walk visits.
 ///
+/// A walk can also skip a block of cells known to list no triangle
+/// ([`CellWalk::skip_cube`]), the way [`first_crossing`](crate::query::first_crossing)
+/// crosses free space by the map's [`clearance`](super::VoxelMap::clearance).
+///
 /// # Real-time
-/// No allocation, no panic; at most `dims[0] + dims[1] + dims[2]` steps.
+/// No allocation, no panic; at most `dims[0] + dims[1] + dims[2]` steps, with or without
+/// skips.
 #[derive(Debug, Clone)]
 pub struct CellWalk {
+    /// `p0` in cell units.
+    a: DVec3,
+    /// `p1 − p0` in cell units.
+    d: DVec3,
+    /// The cell returned last (the walk's first cell before any).
+    last: [i64; 3],
     cell: [i64; 3],
     step: [i64; 3],
     t_max: [f64; 3],
@@ -39,6 +50,17 @@ pub struct CellWalk {
     t_end: f64,
     dims: [i64; 3],
     remaining: u32,
+}
+
+/// The most steps a walk of a grid of `dims` cells takes: `dims[0] + dims[1] + dims[2] + 1`.
+///
+/// Never reached by a walk, with or without [skips](CellWalk::skip_cube): each step but
+/// the last moves the walk one cell along one axis, a skip moves it at least one cell
+/// along one axis, and neither ever moves it back, so a walk takes at most
+/// `dims[0] + dims[1] + dims[2] − 2` steps. The cap bounds the cost of a walk whatever
+/// rounding does.
+fn step_cap(dims: [u32; 3]) -> u32 {
+    dims.iter().sum::<u32>() + 1
 }
 
 impl Grid {
@@ -60,6 +82,9 @@ impl Grid {
     pub fn walk(&self, p0: DVec3, p1: DVec3) -> CellWalk {
         let dims = self.dims().map(i64::from);
         let empty = CellWalk {
+            a: DVec3::ZERO,
+            d: DVec3::ZERO,
+            last: [0; 3],
             cell: [0; 3],
             step: [0; 3],
             t_max: [f64::INFINITY; 3],
@@ -76,14 +101,17 @@ impl Grid {
         let d = b - a;
         let start = a + t0 * d;
         let mut walk = CellWalk {
+            a,
+            d,
             t: t0,
             t_end: t1,
-            remaining: self.dims().iter().sum::<u32>() + 1,
+            remaining: step_cap(self.dims()),
             ..empty
         };
         for axis in 0..3 {
             let cell = floor_to_int(start[axis]).clamp(0, dims[axis] - 1);
             walk.cell[axis] = cell;
+            walk.last[axis] = cell;
             if d[axis] > 0.0 {
                 walk.step[axis] = 1;
                 walk.t_max[axis] = (cell as f64 + 1.0 - a[axis]) / d[axis];
@@ -115,6 +143,7 @@ impl Iterator for CellWalk {
             2
         };
         let cell = self.cell.map(|c| c as u32);
+        self.last = self.cell;
         let t_enter = self.t;
         let t_exit = self.t_max[axis].min(self.t_end).max(t_enter);
         // Step to the next cell, or finish when the segment ends first or leaves the grid.
@@ -131,6 +160,110 @@ impl Iterator for CellWalk {
             t_enter,
             t_exit,
         })
+    }
+}
+
+/// How far, in cells, [`CellWalk::skip_cube`] stops short of the cube's far face, plus
+/// [`SKIP_MARGIN_REL`] of the coordinates in cell units: far above the rounding of the
+/// parameter where the segment reaches the face (a few `1e-16` of those coordinates), so
+/// that rounding can only shorten a skip, never carry it past a cell of the cube.
+const SKIP_MARGIN: f64 = 1e-6;
+
+/// See [`SKIP_MARGIN`]: about 4 500 times the unit roundoff.
+const SKIP_MARGIN_REL: f64 = 1e-12;
+
+impl CellWalk {
+    /// Skips the cells within Chebyshev distance `radius` (in cells) of the cell the walk
+    /// returned last, which the caller knows list no triangle (for instance because that
+    /// cell's [`clearance`](super::VoxelMap::clearance) is `radius + 1`): the walk goes on
+    /// from where the segment leaves that cube of `2·radius + 1` cells a side, re-seeded
+    /// there as [`Grid::walk`] seeds a walk, and its next step is the first cell it
+    /// reaches beyond the cube (that step's `t_enter` is a hair, about a millionth of a
+    /// cell, before the cube's face). A segment that ends in the cube or leaves the grid
+    /// from it ends the walk.
+    ///
+    /// Every cell beyond the cube in which the walk would have spent a non-empty interval
+    /// it still visits, in order, for the same interval (up to the rounding of its ends).
+    /// Where the segment passes exactly through a cell edge or corner (the cube's own
+    /// included), the cell the walk visits there with an empty interval may be another of
+    /// the cells around it than without the skip: all of them touch the segment.
+    ///
+    /// The parameter where the segment leaves the cube is computed for a face pulled a
+    /// millionth of a cell (plus `1e-12` of the coordinates in cell units) into the cube,
+    /// so that rounding can only make the skip shorter. Does nothing when `radius` is 0,
+    /// when the walk is over, or when rounding leaves no progress to make.
+    ///
+    /// # Real-time
+    /// Constant time, no allocation, no panic. A skip advances the walk by at least one
+    /// cell along one axis and never moves it back along any, so the walk still ends
+    /// within `dims[0] + dims[1] + dims[2]` steps.
+    pub fn skip_cube(&mut self, radius: u32) {
+        if self.remaining == 0 || radius == 0 {
+            return;
+        }
+        let r = i64::from(radius);
+        let last = DVec3::from_array(self.last.map(|c| c as f64));
+        let step = DVec3::from_array(self.step.map(|s| s as f64));
+        // The cube's far faces (lower faces where the walk goes down an axis), pulled into
+        // the cube by the margin, and where the segment reaches them.
+        let face = last + 0.5 + step * (f64::from(radius) + 0.5);
+        let margin = SKIP_MARGIN + SKIP_MARGIN_REL * (self.a.abs() + face.abs());
+        let reach = (face - step * margin - self.a) / self.d;
+        let reach = DVec3::from_array(std::array::from_fn(|k| {
+            if self.step[k] == 0 {
+                f64::INFINITY
+            } else {
+                reach[k]
+            }
+        }));
+        let leave_axis = if reach.x <= reach.y && reach.x <= reach.z {
+            0
+        } else if reach.y <= reach.z {
+            1
+        } else {
+            2
+        };
+        let t_leave = reach[leave_axis];
+        if t_leave.is_nan() || t_leave <= self.t {
+            return;
+        }
+        let beyond = self.last[leave_axis] + self.step[leave_axis] * (r + 1);
+        if t_leave >= self.t_end || !(0..self.dims[leave_axis]).contains(&beyond) {
+            self.remaining = 0;
+            return;
+        }
+        let at = self.a + t_leave * self.d;
+        for axis in 0..3 {
+            let s = self.step[axis];
+            // The cell of the point at `t_leave`, never behind the walk nor beyond the cube
+            // or the grid (where rounding could put it); beyond the cube along the axis
+            // the segment leaves it by.
+            let cell = if axis == leave_axis {
+                beyond
+            } else if s > 0 {
+                floor_to_int(at[axis])
+                    .max(self.cell[axis])
+                    .min(self.last[axis] + r)
+                    .min(self.dims[axis] - 1)
+            } else if s < 0 {
+                floor_to_int(at[axis])
+                    .min(self.cell[axis])
+                    .max(self.last[axis] - r)
+                    .max(0)
+            } else {
+                self.cell[axis]
+            };
+            self.cell[axis] = cell;
+        }
+        // As `Grid::walk` seeds them (infinite along an axis the segment does not move on).
+        let cell = DVec3::from_array(self.cell.map(|c| c as f64));
+        let exits = (cell + 0.5 + 0.5 * step - self.a) / self.d;
+        for axis in 0..3 {
+            if self.step[axis] != 0 {
+                self.t_max[axis] = exits[axis];
+            }
+        }
+        self.t = t_leave;
     }
 }
 
@@ -198,6 +331,174 @@ mod tests {
         assert_eq!(g.walk(DVec3::ZERO, DVec3::INFINITY).count(), 0);
         // A point segment inside the grid visits its cell.
         assert_eq!(g.walk(DVec3::ZERO, DVec3::ZERO).count(), 1);
+    }
+
+    /// The walk of `p0 → p1` skipping, at its `at`-th cell, the cube of `radius` around it:
+    /// the cells visited before and after the skip.
+    fn skipping_walk(g: &Grid, p0: DVec3, p1: DVec3, at: usize, radius: u32) -> Vec<CellStep> {
+        let mut walk = g.walk(p0, p1);
+        let mut steps = Vec::new();
+        while let Some(step) = walk.next() {
+            steps.push(step);
+            if steps.len() == at + 1 {
+                walk.skip_cube(radius);
+            }
+        }
+        steps
+    }
+
+    /// What a skip may leave out: the plain walk's cells after the `at`-th within Chebyshev
+    /// distance `radius` of it, up to the first beyond.
+    fn expected_after_skip(plain: &[CellStep], at: usize, radius: u32) -> Vec<CellStep> {
+        let centre = plain[at].cell;
+        let beyond = plain[at + 1..]
+            .iter()
+            .position(|s| (0..3).any(|k| s.cell[k].abs_diff(centre[k]) > radius))
+            .map_or(plain.len(), |i| at + 1 + i);
+        plain[..=at]
+            .iter()
+            .chain(&plain[beyond..])
+            .copied()
+            .collect()
+    }
+
+    fn assert_same_cells(skipping: &[CellStep], expected: &[CellStep], what: &str) {
+        let cells = |s: &[CellStep]| s.iter().map(|s| s.cell).collect::<Vec<_>>();
+        assert_eq!(cells(skipping), cells(expected), "{what}");
+        for (s, e) in skipping.iter().zip(expected) {
+            // The step after a skip starts a hair early; every other boundary is the same
+            // up to the rounding of its parameter.
+            assert!(s.t_enter <= e.t_enter + 1e-12, "{what}: {s:?} / {e:?}");
+            assert!(s.t_enter >= e.t_enter - 1e-5, "{what}: {s:?} / {e:?}");
+            assert!(
+                (s.t_exit - e.t_exit).abs() <= 1e-12,
+                "{what}: {s:?} / {e:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_skip_leaves_out_exactly_the_cells_of_the_cube() {
+        let g = Grid::new(DVec3::new(-1.0, -2.0, 0.5), 0.25, [24, 20, 22]).expect("valid");
+        let (lo, hi) = (g.origin(), g.max_corner());
+        let mut random = crate::rng::SplitMix64::new(5);
+        let mut skipped = 0;
+        for _ in 0..2_000 {
+            // Random segments, some reaching beyond the grid, some ending inside it.
+            let margin = DVec3::splat(0.5);
+            let p0 = random.point_in(lo - margin, hi + margin);
+            let p1 = random.point_in(lo - margin, hi + margin);
+            let plain: Vec<CellStep> = g.walk(p0, p1).collect();
+            if plain.len() < 2 {
+                continue;
+            }
+            let at = random.index(plain.len() - 1);
+            let radius = 1 + random.index(6) as u32;
+            let skipping = skipping_walk(&g, p0, p1, at, radius);
+            let expected = expected_after_skip(&plain, at, radius);
+            skipped += plain.len() - expected.len();
+            assert_same_cells(
+                &skipping,
+                &expected,
+                &format!("{p0} → {p1}, {at}, {radius}"),
+            );
+        }
+        assert!(skipped > 10_000, "{skipped}");
+    }
+
+    #[test]
+    fn a_skip_through_cube_edges_and_corners_still_covers_the_segment() {
+        // Segments along cell faces and edges and through cell corners, where the cube's
+        // faces and the cell boundaries beyond it are crossed at the same parameter. There
+        // the walk visits one of the cells around an edge or corner with an empty interval,
+        // and which one depends on the rounding of equal parameters, so a skip may change
+        // it: every cell the plain walk spends a non-empty interval in beyond the cube is
+        // still visited, for the same interval, and every cell visited touches the segment.
+        let g = Grid::new(DVec3::ZERO, 1.0, [16, 16, 16]).expect("valid");
+        let cases = [
+            (DVec3::new(0.5, 0.5, 0.5), DVec3::new(15.5, 15.5, 15.5)),
+            (DVec3::new(0.0, 0.0, 0.0), DVec3::new(16.0, 16.0, 16.0)),
+            (DVec3::new(16.0, 16.0, 16.0), DVec3::ZERO),
+            (DVec3::new(0.0, 3.0, 4.0), DVec3::new(16.0, 3.0, 4.0)),
+            (DVec3::new(15.0, 3.0, 4.5), DVec3::new(0.0, 3.0, 4.5)),
+            (DVec3::new(0.5, 1.0, 2.0), DVec3::new(14.5, 8.0, 9.0)),
+            (DVec3::new(3.0, 0.0, 5.0), DVec3::new(3.0, 15.0, 10.0)),
+        ];
+        for (p0, p1) in cases {
+            let plain: Vec<CellStep> = g.walk(p0, p1).collect();
+            for at in 0..plain.len() - 1 {
+                for radius in 1..=4 {
+                    let what = format!("{p0} → {p1}, {at}, {radius}");
+                    let skipping = skipping_walk(&g, p0, p1, at, radius);
+                    let expected = expected_after_skip(&plain, at, radius);
+                    assert_eq!(skipping[..=at], plain[..=at], "{what}");
+                    let rest = &skipping[at + 1..];
+                    let last = |s: &[CellStep]| s.last().map(|s| s.cell);
+                    assert_eq!(last(rest), last(&expected[at + 1..]), "{what}");
+                    let centre = plain[at].cell;
+                    for s in rest {
+                        assert!(
+                            (0..3).any(|k| s.cell[k].abs_diff(centre[k]) > radius),
+                            "{what}"
+                        );
+                        // (The step after the skip starts a hair before the cube's face.)
+                        let p = p0.lerp(p1, s.t_exit);
+                        let (lo, hi) = g.cell_bounds(s.cell);
+                        let gap = (lo - p).max(p - hi).max_element();
+                        assert!(gap <= 1e-9, "{what}: {s:?} is {gap} from the segment");
+                    }
+                    for w in rest.windows(2) {
+                        let moved: u32 = (0..3).map(|k| w[0].cell[k].abs_diff(w[1].cell[k])).sum();
+                        assert_eq!(moved, 1, "{what}: {w:?}");
+                        assert_eq!(w[0].t_exit, w[1].t_enter, "{what}: {w:?}");
+                    }
+                    for e in expected[at + 1..]
+                        .iter()
+                        .filter(|e| e.t_exit > e.t_enter + 1e-9)
+                    {
+                        let s = rest.iter().find(|s| s.cell == e.cell);
+                        assert!(
+                            s.is_some_and(|s| (s.t_exit - e.t_exit).abs() <= 1e-12
+                                && s.t_enter <= e.t_enter + 1e-12
+                                && s.t_enter >= e.t_enter - 1e-5),
+                            "{what}: {e:?} / {s:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_skip_past_the_end_of_the_segment_or_the_grid_ends_the_walk() {
+        let g = grid();
+        // Ends inside the cube around its first cell.
+        let mut walk = g.walk(DVec3::new(-0.9, -0.9, -0.9), DVec3::new(-0.1, -0.3, -0.6));
+        assert_eq!(walk.next().map(|s| s.cell), Some([0, 0, 0]));
+        walk.skip_cube(2);
+        assert_eq!(walk.next(), None);
+        // Leaves the grid from the cube.
+        let mut walk = g.walk(DVec3::new(0.1, 0.1, 0.1), DVec3::new(3.0, 0.2, 0.3));
+        assert_eq!(walk.next().map(|s| s.cell), Some([2, 2, 2]));
+        walk.skip_cube(1);
+        assert_eq!(walk.next(), None);
+        // A radius of 0, a second skip and a skip after the end change nothing.
+        let (p0, p1) = (DVec3::new(-0.9, -0.8, -0.7), DVec3::new(0.9, 0.7, 0.8));
+        let plain: Vec<CellStep> = g.walk(p0, p1).collect();
+        let mut walk = g.walk(p0, p1);
+        let mut steps = vec![walk.next().expect("a cell")];
+        walk.skip_cube(0);
+        steps.extend(walk.by_ref());
+        walk.skip_cube(3);
+        assert_eq!(walk.next(), None);
+        assert_eq!(steps, plain);
+        let mut walk = g.walk(p0, p1);
+        let first = walk.next().expect("a cell");
+        walk.skip_cube(1);
+        let once: Vec<CellStep> = walk.clone().collect();
+        walk.skip_cube(1);
+        assert_eq!(walk.collect::<Vec<_>>(), once);
+        assert_eq!(once.first().map(|s| s.cell), Some([1, 1, 2]), "{first:?}");
     }
 
     #[test]

@@ -23,6 +23,16 @@ pub struct Crossing {
     pub entering: bool,
 }
 
+/// The smallest [`clearance`](VoxelMap::clearance) of a cell from which [`first_crossing`]
+/// skips the free cells around it ([`CellWalk::skip_cube`](crate::map::CellWalk::skip_cube))
+/// rather than stepping through them one at a time.
+const SKIP_MIN_CLEARANCE: u8 = 2;
+
+/// The shortest segment, in cells, for which [`first_crossing`] looks up clearances to
+/// skip free space: a shorter one crosses too few cells for a skip to save their look-ups
+/// (the short moves of a haptic tick walk as before).
+const SKIP_MIN_LENGTH: f64 = 4.0;
+
 /// Triangles remembered in a plain list before the table of [`TESTED_SLOTS`] is used: most
 /// queries meet fewer, and a list needs no clearing.
 const TESTED_LIST: usize = 32;
@@ -113,6 +123,9 @@ impl Tested {
 /// Among hits at the same `t`, the lowest triangle index wins, as in
 /// [`first_crossing_brute_force`], which this always equals.
 ///
+/// Free space costs little: from a cell of [`clearance`](VoxelMap::clearance) `k ≥ 2`,
+/// the walk skips the cube of cells within `k − 1` of it, none of which lists a triangle.
+///
 /// # Real-time
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
 /// the stack), no lock, no panic; visits at most
@@ -173,11 +186,25 @@ pub fn first_crossing_where(
     // exit, with a margin for the rounding of the cell boundaries' parameters.
     let margin = crossing_margin(map, p0, p1);
     let plane_margin = plane_margin(map);
-    for visit in map.grid().walk(p0, p1) {
+    let h = map.grid().cell_size();
+    let skips = p0.distance_squared(p1) >= (SKIP_MIN_LENGTH * h) * (SKIP_MIN_LENGTH * h);
+    let mut walk = map.grid().walk(p0, p1);
+    while let Some(visit) = walk.next() {
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
         }
-        for &t in map.triangles_in(visit.cell) {
+        let (triangles, clearance) = if skips {
+            map.triangles_or_clearance(visit.cell)
+        } else {
+            (map.triangles_in(visit.cell), 0)
+        };
+        // Free space: every cell within `clearance − 1` of this one lists no triangle, so
+        // the walk skips them all.
+        if clearance >= SKIP_MIN_CLEARANCE {
+            walk.skip_cube(u32::from(clearance) - 1);
+            continue;
+        }
+        for &t in triangles {
             if !tested.insert(t) || cannot_cross(surface, t, p0, p1, plane_margin) {
                 continue;
             }
