@@ -278,4 +278,9 @@ fn realtime_at_normal_priority_spins_the_whole_period() {
     assert!(text.contains("servo thread      normal priority"), "{text}");
     assert!(!text.contains("FIFO"), "{text}");
     assert!(figure(&text, "ticks") > 0.0);
+    if cfg!(target_os = "linux") {
+        // Spinning the whole period, the thread never sleeps; what else ran is reported.
+        assert!(text.contains("  interference      "), "{text}");
+        assert!(text.contains("slept 0 time(s)"), "{text}");
+    }
 }

@@ -399,7 +399,7 @@ fn realtime_smoke() {
         .expect("no panic");
     let stats = run.servo.stats();
     println!(
-        "{} ticks, {:.0} Hz, lateness p50 {} ns p99 {} ns max {} ns, compute p50 {} ns, overruns {}, skipped {}, setup {:?}",
+        "{} ticks, {:.0} Hz, lateness p50 {} ns p99 {} ns max {} ns, compute p50 {} ns, overruns {}, skipped {}, setup {:?}, {:?}",
         stats.ticks,
         stats.achieved_rate(),
         stats.lateness.quantile(0.5),
@@ -408,9 +408,28 @@ fn realtime_smoke() {
         stats.compute.quantile(0.5),
         stats.overruns,
         stats.skipped,
-        run.setup
+        run.setup,
+        run.interference
     );
     assert_eq!(run.stop, StopReason::Finished);
+    if cfg!(target_os = "linux") {
+        // The thread's own counters are always there on Linux; the core's steal when it
+        // was pinned. Sleeping before deadlines shows as voluntary switches.
+        let i = run.interference;
+        assert!(
+            i.preemptions.is_some() && i.sleeps.is_some_and(|s| s > 0),
+            "{i:?}"
+        );
+        assert_eq!(
+            i.steal_seconds.is_some(),
+            run.setup.pinned_core.is_some(),
+            "{i:?}"
+        );
+        assert!(
+            i.steal_seconds.is_none_or(|s| (0.0..1.0).contains(&s)),
+            "{i:?}"
+        );
+    }
     assert!(stats.ticks > 0 && stats.ticks <= 600);
     assert_eq!(n + run.dropped_records, stats.ticks);
     assert_eq!(last_tick, Some(stats.ticks - 1));

@@ -336,7 +336,7 @@ impl Session {
                 t.add(r);
             }
         };
-        let (stats, stop, setup, dropped) = if self.realtime {
+        let (stats, stop, setup, interference, dropped) = if self.realtime {
             let realtime = RealtimeOptions {
                 spin_seconds: self.spin_seconds,
                 realtime_priority: self.fifo,
@@ -345,11 +345,17 @@ impl Session {
             let running = ServoLoop::spawn(servo, Some(seconds), realtime)?;
             let run = running.wait(&mut on_tick)?;
             let stats = run.servo.stats().clone();
-            (stats, run.stop, Some(run.setup), run.dropped_records)
+            (
+                stats,
+                run.stop,
+                Some(run.setup),
+                Some(run.interference),
+                run.dropped_records,
+            )
         } else {
             let stop = servo.run_simulated(ticks, &mut on_tick);
             servo.close();
-            (servo.stats().clone(), stop, None, 0)
+            (servo.stats().clone(), stop, None, None, 0)
         };
         writeln!(out, "\nrun:")?;
         summary::print(
@@ -362,6 +368,7 @@ impl Session {
                 max_force,
                 stop,
                 setup: setup.as_ref(),
+                interference,
                 dropped_records: dropped,
             },
         )?;

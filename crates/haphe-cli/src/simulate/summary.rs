@@ -4,7 +4,7 @@
 use std::io::Write;
 
 use haphe::DVec3;
-use haphe::servo::{Phase, RealtimeSetup, StopReason, TickRecord, TickStats};
+use haphe::servo::{Interference, Phase, RealtimeSetup, StopReason, TickRecord, TickStats};
 
 /// Most samples kept for the plot; longer runs are decimated evenly.
 pub const PLOT_SAMPLES: usize = 20_000;
@@ -104,7 +104,34 @@ pub struct RunInfo<'a> {
     pub max_force: f64,
     pub stop: StopReason,
     pub setup: Option<&'a RealtimeSetup>,
+    pub interference: Option<Interference>,
     pub dropped_records: u64,
+}
+
+/// What else ran on the servo's CPU, when the system says: the host's steal time of the
+/// pinned core (a virtual machine's CPU taken away) and the thread's preemptions.
+fn print_interference(
+    out: &mut impl Write,
+    i: &Interference,
+    core: Option<usize>,
+) -> std::io::Result<()> {
+    let mut parts = Vec::new();
+    if let (Some(steal), Some(core)) = (i.steal_seconds, core) {
+        parts.push(format!(
+            "host steal {:.2} s on core {core} (the virtual CPU taken away)",
+            steal
+        ));
+    }
+    if let Some(n) = i.preemptions {
+        parts.push(format!("thread preempted {n} time(s)"));
+    }
+    if let Some(n) = i.sleeps {
+        parts.push(format!("slept {n} time(s)"));
+    }
+    if !parts.is_empty() {
+        writeln!(out, "  interference      {}", parts.join(", "))?;
+    }
+    Ok(())
 }
 
 /// Prints the summary.
@@ -234,6 +261,9 @@ pub fn print(
             }
             how.extend(setup.notes.iter().cloned());
             writeln!(out, "  servo thread      {}", how.join("; "))?;
+            if let Some(i) = info.interference {
+                print_interference(out, &i, setup.pinned_core)?;
+            }
         }
         if info.dropped_records > 0 {
             writeln!(

@@ -18,7 +18,8 @@
 //!   [`Servo::run_simulated`], which runs it on a virtual clock as fast as possible.
 //! - [`ServoLoop`] — the same tick on a dedicated thread on the wall clock: absolute
 //!   deadlines (sleep, then spin), FIFO priority and core pinning where permitted, records
-//!   handed out through a wait-free ring.
+//!   handed out through a wait-free ring, and the [`Interference`] the system reports
+//!   (steal time of the servo's core, preemptions of its thread).
 //! - [`TickStats`] — compute time and lateness histograms ([`Histogram`], preallocated)
 //!   and counters; [`TickRecord`] — one tick, written as CSV by
 //!   [`TickRecord::write_csv`] under [`CSV_HEADER`].
@@ -64,6 +65,7 @@
 
 mod device;
 mod hand;
+mod interference;
 mod motion;
 mod path;
 mod realtime;
@@ -77,6 +79,7 @@ pub use device::{
     Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
 };
 pub use hand::{HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HandOptions, SimulatedHand};
+pub use interference::Interference;
 pub use motion::{Motion, ObjectMotion};
 pub use path::{Path, PathError};
 pub use realtime::{

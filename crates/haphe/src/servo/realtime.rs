@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 use rtrb::{Consumer, RingBuffer};
 
 use super::device::Device;
+use super::interference::{Counters, Interference};
 use super::tick::{Servo, ServoError, StopReason};
 use super::trace::TickRecord;
 
@@ -81,6 +82,9 @@ pub struct RealtimeRun<D: Device> {
     pub stop: StopReason,
     /// Records dropped because the reading thread fell behind.
     pub dropped_records: u64,
+    /// What ran instead of the servo thread during the run (steal time of its core,
+    /// preemptions): what to look at when there were overruns.
+    pub interference: Interference,
 }
 
 /// A [`Servo`] running on its own thread at its rate on the wall clock.
@@ -270,6 +274,7 @@ fn run_thread<D: Device>(
         .map(|s| (s * rate).round() as u64);
     let mut dropped = 0u64;
     let mut stop = StopReason::Finished;
+    let counters = Counters::read(setup.pinned_core);
 
     // Everything above may allocate; nothing below does.
     let start = Instant::now();
@@ -315,10 +320,12 @@ fn run_thread<D: Device>(
     }
     servo.zero_force();
     servo.stats_mut().wall_seconds += start.elapsed().as_secs_f64();
+    let interference = counters.since(Counters::read(setup.pinned_core));
     RealtimeRun {
         servo,
         setup,
         stop,
         dropped_records: dropped,
+        interference,
     }
 }
