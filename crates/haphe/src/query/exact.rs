@@ -38,19 +38,24 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 
 /// The sign (`−1`, `0` or `1`) of the exact sum of `terms`, by Shewchuk's grow-expansion:
 /// the running expansion stays non-overlapping, so its largest non-zero component has the
-/// sign of the sum. NaN terms give `0`.
+/// sign of the sum. Zero terms are left out (on meshes with round coordinates most of the
+/// rounding terms are zero). NaN terms give `0`.
 fn sign_of_sum<const N: usize>(terms: [f64; N]) -> i8 {
     let mut expansion = [0.0f64; N];
-    for (len, &b) in terms.iter().enumerate() {
+    let mut len = 0;
+    for &b in terms.iter().filter(|&&b| b != 0.0) {
         let mut q = b;
         for e in expansion.iter_mut().take(len) {
             let (s, err) = two_sum(q, *e);
             *e = err;
             q = s;
         }
-        expansion[len] = q;
+        if let Some(slot) = expansion.get_mut(len) {
+            *slot = q;
+            len += 1;
+        }
     }
-    match expansion.iter().rev().find(|&&x| x != 0.0) {
+    match expansion.iter().take(len).rev().find(|&&x| x != 0.0) {
         Some(&x) if x > 0.0 => 1,
         Some(&x) if x < 0.0 => -1,
         _ => 0,
@@ -59,7 +64,31 @@ fn sign_of_sum<const N: usize>(terms: [f64; N]) -> i8 {
 
 /// The exact sign of `(q_i − p_i)(s_j − r_j) − (q_j − p_j)(s_i − r_i)`: the orientation of
 /// the vectors `q − p` and `s − r` projected on the axes `i, j`.
-pub(crate) fn cross_of_differences_sign([q, p, s, r]: [DVec3; 4], i: usize, j: usize) -> i8 {
+///
+/// Filtered: the `f64` value decides when it exceeds Shewchuk's bound on its rounding
+/// error (`ccwerrboundA` of his `orient2d`, which rounds the same differences and
+/// products: `(3 + 16ε)ε` times the sum of the two products' magnitudes); otherwise the
+/// sign comes from the exact expansion of the sixteen rounding terms.
+#[inline]
+pub(crate) fn cross_of_differences_sign(points: [DVec3; 4], i: usize, j: usize) -> i8 {
+    let [q, p, s, r] = points;
+    let left = (q[i] - p[i]) * (s[j] - r[j]);
+    let right = (q[j] - p[j]) * (s[i] - r[i]);
+    let value = left - right;
+    const BOUND: f64 = (3.0 + 16.0 * ROUNDOFF) * ROUNDOFF;
+    let bound = BOUND * (left.abs() + right.abs());
+    if value > bound {
+        1
+    } else if value < -bound {
+        -1
+    } else {
+        cross_of_differences_sign_exact(points, i, j)
+    }
+}
+
+/// [`cross_of_differences_sign`] without the filter: the sign of the exact sum of the
+/// products of the differences' two-term expansions.
+fn cross_of_differences_sign_exact([q, p, s, r]: [DVec3; 4], i: usize, j: usize) -> i8 {
     let a = two_diff(q[i], p[i]);
     let b = two_diff(s[j], r[j]);
     let c = two_diff(q[j], p[j]);
@@ -209,6 +238,39 @@ mod tests {
         let s = DVec3::new(3.0, 2.0 + 2f64.powi(-51), 0.0);
         assert_eq!(cross_of_differences_sign([q, p, s, r], 0, 1), 1);
         assert_eq!(cross_of_differences_sign([q, p, s, r], 1, 0), -1);
+    }
+
+    #[test]
+    fn the_filter_never_changes_the_exact_sign() {
+        // Random points, points on one line through big offsets (the products cancel to
+        // within rounding), and exact zeros: the filtered sign equals the expansion's.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut decided_by_the_filter = 0;
+        for k in 0..20_000 {
+            let offset = [0.0, 1.0, 1e3, 2f64.powi(40)][k % 4];
+            let p = DVec3::new(unit(), unit(), unit()) + offset;
+            let q = p + DVec3::new(unit(), unit(), unit());
+            let r = DVec3::new(unit(), unit(), unit()) - offset;
+            let direction = q - p;
+            let s = match k % 3 {
+                0 => r + DVec3::new(unit(), unit(), unit()),
+                1 => r + direction * unit() * 3.0,
+                _ => r + direction * 2.0 + DVec3::splat(unit() * 1e-15),
+            };
+            for (i, j) in [(0, 1), (1, 2), (2, 0), (1, 0)] {
+                let exact = cross_of_differences_sign_exact([q, p, s, r], i, j);
+                let filtered = cross_of_differences_sign([q, p, s, r], i, j);
+                assert_eq!(filtered, exact, "{k} {i} {j}: {q} {p} {s} {r}");
+                decided_by_the_filter += usize::from(exact != 0);
+            }
+        }
+        assert!(decided_by_the_filter > 40_000, "{decided_by_the_filter}");
     }
 
     #[test]

@@ -222,7 +222,16 @@ impl Segment {
     /// `sign(d[kz])`, for `k = ky` and `kx`. Every sign is computed exactly.
     #[cold]
     fn exact_edge_sign(&self, p: DVec3, q: DVec3) -> i8 {
-        let orientation = -super::exact::orient3d_sign(p, q, self.p1, self.p0);
+        // Four points with one coordinate in common lie in that axis' plane: the
+        // orientation is zero without the adaptive predicate's full expansion (the common
+        // case of a motion in the plane of a wall on a part with round coordinates).
+        let in_an_axis_plane =
+            (0..3).any(|k| p[k] == q[k] && q[k] == self.p0[k] && self.p0[k] == self.p1[k]);
+        let orientation = if in_an_axis_plane {
+            0
+        } else {
+            -super::exact::orient3d_sign(p, q, self.p1, self.p0)
+        };
         if orientation != 0 {
             return orientation;
         }
