@@ -78,11 +78,11 @@ impl ClearZone {
         let corners = surface.corners(t);
         let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
         let scale = 1.0 + 3.0 * ZONE_SPREAD;
+        let spread = corners.map(|v| centroid + scale * (v - centroid));
         let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        for v in corners {
-            let spread = centroid + scale * (v - centroid);
+        for v in spread {
             for lift in [-height, height] {
-                let x = spread + lift * frame.normal;
+                let x = v + lift * frame.normal;
                 (lo, hi) = (lo.min(x), hi.max(x));
             }
         }
@@ -113,7 +113,6 @@ impl ClearZone {
         }
         // Only the cells that meet the grown zone matter: it lies within `2·height` of the
         // plane and within `height` of the spread triangle's edges (in its plane).
-        let spread = corners.map(|v| centroid + scale * (v - centroid));
         let mut sides = [(DVec3::ZERO, 0.0); 4];
         sides[0] = (frame.normal, 0.0);
         for i in 0..3 {
