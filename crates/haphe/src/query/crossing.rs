@@ -153,9 +153,10 @@ pub fn first_crossing_where(
     let mut segment = || *prepared.get_or_insert_with(|| Segment::new(p0, p1));
     if let Some(cell) = map.grid().cell_of(p0) {
         let mut best: Option<(SegmentHit, u32)> = None;
+        let mut until = p1;
         let margin = plane_margin(map);
         for &t in map.triangles_in(cell) {
-            if cannot_cross(surface, t, p0, p1, margin) {
+            if cannot_cross(surface, t, p0, until, margin) {
                 continue;
             }
             if let Some(hit) = intersect_segment_triangle(&segment(), surface.corners(TriId(t)))
@@ -163,6 +164,7 @@ pub fn first_crossing_where(
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
+                until = filter_end(p0, p1, hit.t);
             }
         }
         // The common haptic cases. Cells are convex and list every triangle that overlaps
@@ -189,6 +191,7 @@ pub fn first_crossing_where(
     let h = map.grid().cell_size();
     let skips = p0.distance_squared(p1) >= (SKIP_MIN_LENGTH * h) * (SKIP_MIN_LENGTH * h);
     let mut walk = map.grid().walk(p0, p1);
+    let mut until = p1;
     while let Some(visit) = walk.next() {
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
@@ -205,7 +208,9 @@ pub fn first_crossing_where(
             continue;
         }
         for &t in triangles {
-            if !tested.insert(t) || cannot_cross(surface, t, p0, p1, plane_margin) {
+            // A triangle the filter skips now cannot be crossed before `until`, so it
+            // could never improve on a later best either: tested for good.
+            if !tested.insert(t) || cannot_cross(surface, t, p0, until, plane_margin) {
                 continue;
             }
             if let Some(hit) = intersect_segment_triangle(&segment(), surface.corners(TriId(t)))
@@ -213,10 +218,26 @@ pub fn first_crossing_where(
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
+                until = filter_end(p0, p1, hit.t);
             }
         }
     }
     best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
+}
+
+/// How far past the best crossing so far (in units of `t`) the cheap filter keeps looking:
+/// far above the rounding of a crossing's parameter (a relative `2⁻⁴⁰`), so that a
+/// triangle crossed at the same parameter or before is never skipped.
+const FILTER_PAST_BEST: f64 = 1e-6;
+
+/// The end of the part of `p0 → p1` where a crossing can still improve on one at
+/// parameter `t` (ties included): what [`cannot_cross`] is given once a crossing is known.
+/// A triangle crossed at `t` or before has its crossing on that part, and the filter's
+/// margins cover the rounding of the point computed here.
+#[inline]
+fn filter_end(p0: DVec3, p1: DVec3, t: f64) -> DVec3 {
+    let s = t + FILTER_PAST_BEST;
+    if s < 1.0 { p0 + s * (p1 - p0) } else { p1 }
 }
 
 /// The parameter `t` at which the segment `p0 + t (p1 − p0)`, starting in `cell`, leaves
