@@ -162,7 +162,16 @@ impl Proxy {
         let mut p = carry(scene, self.position, &self.options);
         let held = p;
         let placed = std::mem::take(&mut self.placed);
-        let sweep = constrain(scene, p, hip, placed, self.rest, &self.options, &mut status);
+        let under = self.last.map(|l| (l.object, l.triangle));
+        let sweep = constrain(
+            scene,
+            p,
+            hip,
+            placed,
+            (self.rest, under),
+            &self.options,
+            &mut status,
+        );
         p = sweep.position;
         self.rest = sweep.last_hit.map(|(hit, _)| Rest {
             object: hit.object,
@@ -334,13 +343,14 @@ struct Sweep {
 
 /// The god-object's constraint steps: aim at the point closest to `hip` on the free side
 /// of the active planes, move toward it, and on a crossing stop at the touched triangle's
-/// plane (moved out by `skin`) and add it.
+/// plane (moved out by `skin`) and add it. `rest` is the surface the proxy rested on,
+/// `under` the contact triangle of the last tick, under the proxy (object, triangle).
 fn constrain(
     scene: &Scene,
     mut p: DVec3,
     hip: DVec3,
     placed: bool,
-    rest: Option<Rest>,
+    (rest, under): (Option<Rest>, Option<(usize, TriId)>),
     options: &ProxyOptions,
     status: &mut TickStatus,
 ) -> Sweep {
@@ -389,29 +399,39 @@ fn constrain(
             finished = true;
             break;
         }
-        let (hit, plane) =
-            match resting.or_else(|| first_hit_all(scene, p, target, options.probe_reach())) {
+        // A first leg into the surface under the proxy, where its neighbourhood is convex,
+        // meets that triangle first: shown without the search (the same hit).
+        let shown = || match under {
+            Some((object, triangle)) if planes.is_empty() => {
+                scene.first_hit_shown(object, triangle, p, target, options.probe_reach())
+            }
+            _ => None,
+        };
+        let (hit, plane) = match resting
+            .or_else(shown)
+            .or_else(|| first_hit_all(scene, p, target, options.probe_reach()))
+        {
+            Some(hit) => {
+                let plane = hit_plane(&hit, p, target, options);
+                p = advance_to_plane(p, target, &plane);
+                (hit, plane)
+            }
+            None => match touching_any(scene, target, options.probe_reach()) {
+                // A free move that ends on a surface (or within a probe's reach of it,
+                // moving along it) touches it: its plane becomes a constraint, so that the
+                // proxy never rests where the next probe could start on the surface.
                 Some(hit) => {
                     let plane = hit_plane(&hit, p, target, options);
-                    p = advance_to_plane(p, target, &plane);
+                    p = target;
                     (hit, plane)
                 }
-                None => match touching_any(scene, target, options.probe_reach()) {
-                    // A free move that ends on a surface (or within a probe's reach of it,
-                    // moving along it) touches it: its plane becomes a constraint, so that the
-                    // proxy never rests where the next probe could start on the surface.
-                    Some(hit) => {
-                        let plane = hit_plane(&hit, p, target, options);
-                        p = target;
-                        (hit, plane)
-                    }
-                    None => {
-                        p = target;
-                        finished = true;
-                        break;
-                    }
-                },
-            };
+                None => {
+                    p = target;
+                    finished = true;
+                    break;
+                }
+            },
+        };
         if last_hit.is_none() {
             touch_down = p;
         }

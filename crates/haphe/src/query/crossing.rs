@@ -293,7 +293,7 @@ pub(crate) fn cannot_cross(surface: &Surface, t: u32, p0: DVec3, p1: DVec3, marg
 /// not degenerate ([`DEGENERATE_MAX_RELATIVE_HEIGHT`](crate::mesh::DEGENERATE_MAX_RELATIVE_HEIGHT));
 /// fifty times that, so that [`cannot_cross`] never skips a triangle the watertight test
 /// would hit.
-const FRAME_DIRECTION_ERROR: f64 = 1e-5;
+pub(crate) const FRAME_DIRECTION_ERROR: f64 = 1e-5;
 
 /// The distance from a triangle's plane (metres) beyond which [`cannot_cross`] trusts the
 /// sign of a height of a point at its first corner: a billionth of a cell, some five

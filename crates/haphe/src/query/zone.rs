@@ -11,6 +11,7 @@
 
 use glam::DVec3;
 
+use super::crossing::FRAME_DIRECTION_ERROR;
 use crate::map::{VoxelMap, floor_to_int};
 use crate::mesh::{Surface, TriFrame, TriId};
 
@@ -40,6 +41,12 @@ const ZONE_ROUNDING: f64 = 1e-9;
 /// `±height`. So a point of the zone at height `h > front` is at least
 /// `min(h − front, height)` from every triangle, `T` included (behind the plane, likewise
 /// with `back`).
+///
+/// When `below` holds, more is known: every other triangle of the zone lies behind `T`'s
+/// plane but for the corners it shares with `T` (each of its other corners is lower than
+/// the rounding of its height can explain), so it meets the plane only on `T`'s edges. A
+/// segment through the zone from in front of the plane then crosses nothing before it
+/// crosses the plane, and where it crosses strictly inside `T`, `T` is its first crossing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClearZone {
     /// Highest rise of a nearby triangle over `T`'s plane, metres (rounded up; ≥ 0).
@@ -49,6 +56,9 @@ pub struct ClearZone {
     /// Height (and depth) of the zone, and the distance every other triangle keeps from
     /// it, metres (rounded down).
     pub height: f32,
+    /// Every other triangle of the zone lies behind `T`'s plane, meeting it only at the
+    /// corners it shares with `T` (a convex neighbourhood; see above).
+    pub below: bool,
 }
 
 impl ClearZone {
@@ -57,6 +67,7 @@ impl ClearZone {
         front: f32::INFINITY,
         back: f32::INFINITY,
         height: 0.0,
+        below: false,
     };
 
     /// The zone of triangle `t` of `surface`, from the triangles that `map` lists in the
@@ -103,6 +114,7 @@ impl ClearZone {
                     front: 0.0,
                     back: 0.0,
                     height: round_down(height),
+                    below: true,
                 };
             }
             range[axis] = [a as u32, b as u32];
@@ -131,6 +143,8 @@ impl ClearZone {
                     .all(|&(m, at)| m.dot(centre) - at - half * m.abs().element_sum() <= grow)
         };
         let (mut front, mut back) = (0.0f64, 0.0f64);
+        let mut below = true;
+        let own = surface.triangle(t);
         let (triangles, vertices) = (surface.triangles(), surface.vertices());
         // Triangles already measured (a triangle is listed in every cell it overlaps):
         // a small open-addressed set on the stack; when it is full, measuring again is
@@ -146,14 +160,22 @@ impl ClearZone {
                         if u == t.0 || !first_sight(&mut seen, u) {
                             continue;
                         }
+                        // A copy of `T` (its three corners) lies on the plane all over.
+                        below &= !triangles[u as usize].iter().all(|v| own.contains(v));
                         for v in triangles[u as usize] {
-                            let h = frame.height(vertices[v as usize]);
+                            let x = vertices[v as usize];
+                            let h = frame.height(x);
                             if h > front {
                                 front = h;
                             }
                             if -h > back {
                                 back = -h;
                             }
+                            // Lower than the rounding of its height (the frame's normal
+                            // errs by at most `FRAME_DIRECTION_ERROR` of the distance).
+                            below &= own.contains(&v)
+                                || h < -FRAME_DIRECTION_ERROR
+                                    * (x - frame.origin).abs().element_sum();
                         }
                     }
                 }
@@ -165,6 +187,7 @@ impl ClearZone {
             front: round_up(front + slack),
             back: round_up(back + slack),
             height: round_down(height),
+            below,
         }
     }
 
@@ -205,7 +228,10 @@ impl ClearZone {
     /// The zone packed into 64 bits (never 0, which [`ClearZone::from_bits`] never sees).
     pub(crate) fn to_bits(self) -> u64 {
         // `height` is not stored: it is the same for every triangle of a map.
-        u64::from(self.front.to_bits()) | (u64::from(self.back.to_bits()) << 32) | ZONE_SET
+        u64::from(self.front.to_bits())
+            | (u64::from(self.back.to_bits()) << 32)
+            | ZONE_SET
+            | if self.below { ZONE_BELOW } else { 0 }
     }
 }
 
@@ -232,12 +258,17 @@ fn first_sight(seen: &mut [u32; SEEN_SLOTS], u: u32) -> bool {
 /// Marks a stored zone (a rise is never negative, so its sign bit is free).
 const ZONE_SET: u64 = 1 << 31;
 
+/// The bit of a packed zone that holds `below` (the sign bit of `back`, never set: `back`
+/// is at least 0).
+const ZONE_BELOW: u64 = 1 << 63;
+
 /// A zone unpacked from [`ClearZone::to_bits`], with the map's zone height.
 pub(crate) fn zone_from_bits(bits: u64, height: f32) -> ClearZone {
     ClearZone {
         front: f32::from_bits((bits as u32) & !(ZONE_SET as u32)),
-        back: f32::from_bits((bits >> 32) as u32),
+        back: f32::from_bits(((bits & !ZONE_BELOW) >> 32) as u32),
         height,
+        below: bits & ZONE_BELOW != 0,
     }
 }
 

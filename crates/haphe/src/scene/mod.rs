@@ -11,6 +11,7 @@
 //! proxy tests its path in the object's frame between the two poses and a moving object
 //! pushes the proxy instead of jumping over it.
 
+mod clear;
 mod handoff;
 mod material;
 mod pose;
@@ -28,7 +29,7 @@ use glam::DVec3;
 use crate::mesh::TriId;
 use crate::proxy::Probe;
 use crate::query::{
-    SurfacePoint, WalkStatus, first_crossing_where, nearest_within, walk_to_nearest,
+    Crossing, SurfacePoint, WalkStatus, first_crossing_where, nearest_within, walk_to_nearest,
 };
 
 /// A stable name for an object of a scene, chosen by the caller.
@@ -109,6 +110,21 @@ pub struct Hit {
     pub normal: DVec3,
     /// Only the front of the surface is touched (its normal's side is the free side).
     pub one_sided: bool,
+}
+
+impl Hit {
+    /// The hit of object `i` at `pose` for `crossing`, found by the probe `probe` (object
+    /// frame crossing, world frame hit).
+    fn of_crossing(i: usize, pose: &Pose, probe: &Probe, crossing: &Crossing) -> Hit {
+        Hit {
+            t: probe.move_t(crossing.t),
+            object: i,
+            triangle: crossing.triangle,
+            point: pose.to_world(crossing.point),
+            normal: pose.vector_to_world(crossing.face_normal),
+            one_sided: probe.entering_only,
+        }
+    }
 }
 
 /// The objects the proxy renders, owned by the servo thread.
@@ -239,14 +255,7 @@ impl Scene {
         first_crossing_where(shape.surface(), shape.map(), a, b, |h| {
             h.entering || !probe.entering_only
         })
-        .map(|c| Hit {
-            t: probe.move_t(c.t),
-            object: i,
-            triangle: c.triangle,
-            point: o.pose.to_world(c.point),
-            normal: o.pose.vector_to_world(c.face_normal),
-            one_sided,
-        })
+        .map(|c| Hit::of_crossing(i, &o.pose, &probe, &c))
     }
 
     /// Triangle `triangle` of object `i` as the surface the proxy at `from` still rests on
@@ -278,53 +287,6 @@ impl Scene {
             point,
             normal,
             one_sided,
-        })
-    }
-
-    /// Whether the proxy move `from → to` (world frame) provably meets no surface of any
-    /// object, with every probe of it reaching `reach` metres: both ends lie in the
-    /// [`ClearZone`](crate::query::ClearZone) of `triangle` of object `i` (the surface the
-    /// proxy slides on), and every other object's bounding sphere is farther than `reach`
-    /// from the move. Then [`Scene::first_hit`] finds nothing for any object and
-    /// [`Scene::touching`] finds nothing at `to`, so a tick may skip both searches.
-    /// `false` whenever that is not shown (including `i` or `triangle` out of range).
-    ///
-    /// # Real-time
-    /// One zone (computed on the triangle's first use, see [`Shape::clear_zone`]), two
-    /// frame changes, one sphere test per other object; no allocation, no panic.
-    pub fn clear_move(
-        &self,
-        i: usize,
-        triangle: TriId,
-        from: DVec3,
-        to: DVec3,
-        reach: f64,
-    ) -> bool {
-        let Some(o) = self.objects.get(i) else {
-            return false;
-        };
-        let surface = o.shape.surface();
-        if triangle.index() >= surface.triangle_count() {
-            return false;
-        }
-        let zone = o.shape.clear_zone(triangle);
-        if !zone.clears(
-            surface.frame(triangle),
-            o.pose.to_object(from),
-            o.pose.to_object(to),
-            reach,
-        ) {
-            return false;
-        }
-        self.objects.iter().enumerate().all(|(j, other)| {
-            j == i || {
-                let shape = &*other.shape;
-                let centre = other.pose.to_world(shape.bound_centre());
-                // Twice the reach, and the rounding of coordinates far from the origin.
-                let slack = 2.0 * reach + 1e-12 * centre.abs().max_element().max(1.0);
-                segment_point_distance(from, to, centre)
-                    > shape.bound_radius() * BOUND_SLACK + slack
-            }
         })
     }
 
