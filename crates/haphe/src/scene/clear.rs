@@ -24,7 +24,7 @@ impl Scene {
     /// `false` whenever that is not shown (including `i` or `triangle` out of range).
     ///
     /// # Real-time
-    /// One zone (computed on the triangle's first use, see [`Shape::clear_zone`]), two
+    /// One zone (computed on the triangle's first use, see [`Shape::clear_zone`](super::Shape::clear_zone)), two
     /// frame changes, one sphere test per other object; no allocation, no panic.
     pub fn clear_move(
         &self,
@@ -138,16 +138,20 @@ mod tests {
             .expect("a usable surface");
         let shape = Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"));
         let mut scene = Scene::local(2);
+        add(&mut scene, 0, shape, pose);
+        scene
+    }
+
+    fn add(scene: &mut Scene, id: u32, shape: Arc<Shape>, pose: Pose) {
         scene
             .insert(SceneObject::new(
-                ObjectId(0),
+                ObjectId(id),
                 shape,
                 pose,
                 Material::default(),
             ))
             .map_err(|(e, _)| e)
             .expect("room");
-        scene
     }
 
     /// Legs as a proxy's first leg of a tick: from about a skin over a triangle (over its
@@ -227,16 +231,12 @@ mod tests {
         assert!(scene.first_hit_shown(3, t, from, to, 2.5e-7).is_none());
         assert!(scene.first_hit_shown(0, t, to, from, 2.5e-7).is_none());
         let shape = Arc::clone(&scene.objects()[0].shape);
-        let beside = Pose::from_translation(on + normal * 0.05);
-        scene
-            .insert(SceneObject::new(
-                ObjectId(1),
-                shape,
-                beside,
-                Material::default(),
-            ))
-            .map_err(|(e, _)| e)
-            .expect("room");
+        add(
+            &mut scene,
+            1,
+            shape,
+            Pose::from_translation(on + normal * 0.05),
+        );
         assert!(scene.first_hit_shown(0, t, from, to, 2.5e-7).is_none());
     }
 }
