@@ -139,7 +139,9 @@ impl Proxy {
     /// object, one resting test (one triangle), [`MAX_PROXY_STEPS`] crossing queries and as
     /// many touching searches (plus one on the first tick after [`Proxy::new`] or
     /// [`Proxy::reset`]), one friction query and one walk; before each crossing query one
-    /// clear-zone test, whose zone is computed on the triangle's first contact unless
+    /// clear-zone test (and before the first, one triangle test under the proxy that can
+    /// stand for the query where the zone shows the surface convex), whose zone is
+    /// computed on the triangle's first contact unless
     /// [`Shape::prepare_clear_zones`](crate::scene::Shape::prepare_clear_zones) ran.
     /// A non-finite input leaves the proxy where it was and gives zero force.
     pub fn tick(&mut self, scene: &Scene, hip: DVec3, velocity: DVec3) -> TickOutput {
