@@ -7,6 +7,7 @@ use glam::DVec3;
 
 use crate::mesh::Surface;
 
+mod behind;
 mod closest;
 mod crossing;
 pub(crate) use crossing::crossing_from_hit;

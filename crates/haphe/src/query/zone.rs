@@ -11,7 +11,7 @@
 
 use glam::DVec3;
 
-use super::crossing::FRAME_DIRECTION_ERROR;
+use super::behind::{AxisPlane, lies_behind};
 use crate::map::{VoxelMap, floor_to_int};
 use crate::mesh::{Surface, TriFrame, TriId};
 
@@ -42,11 +42,12 @@ const ZONE_ROUNDING: f64 = 1e-9;
 /// `min(h − front, height)` from every triangle, `T` included (behind the plane, likewise
 /// with `back`).
 ///
-/// When `below` holds, more is known: every other triangle of the zone lies behind `T`'s
-/// plane but for the corners it shares with `T` (each of its other corners is lower than
-/// the rounding of its height can explain), so it meets the plane only on `T`'s edges. A
-/// segment through the zone from in front of the plane then crosses nothing before it
-/// crosses the plane, and where it crosses strictly inside `T`, `T` is its first crossing.
+/// When `below` holds, more is known: every other triangle of the zone lies on or behind
+/// `T`'s plane and meets it only outside `T`'s interior (shown exactly; see
+/// `query/behind.rs`: in an axis plane by exact signs, in a tilted one only for corners
+/// shared with `T`). A segment through the zone from in front of the plane then crosses
+/// nothing before it crosses the plane, and where it crosses strictly inside `T`, `T` is
+/// its first crossing.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClearZone {
     /// Highest rise of a nearby triangle over `T`'s plane, metres (rounded up; ≥ 0).
@@ -56,8 +57,8 @@ pub struct ClearZone {
     /// Height (and depth) of the zone, and the distance every other triangle keeps from
     /// it, metres (rounded down).
     pub height: f32,
-    /// Every other triangle of the zone lies behind `T`'s plane, meeting it only at the
-    /// corners it shares with `T` (a convex neighbourhood; see above).
+    /// Every other triangle of the zone lies on or behind `T`'s plane, meeting it only
+    /// outside `T`'s interior (a convex or flat neighbourhood; see above).
     pub below: bool,
 }
 
@@ -145,6 +146,7 @@ impl ClearZone {
         let (mut front, mut back) = (0.0f64, 0.0f64);
         let mut below = true;
         let own = surface.triangle(t);
+        let axis_plane = AxisPlane::of(corners, frame.normal);
         let (triangles, vertices) = (surface.triangles(), surface.vertices());
         // Triangles already measured (a triangle is listed in every cell it overlaps):
         // a small open-addressed set on the stack; when it is full, measuring again is
@@ -160,22 +162,23 @@ impl ClearZone {
                         if u == t.0 || !first_sight(&mut seen, u) {
                             continue;
                         }
-                        // A copy of `T` (its three corners) lies on the plane all over.
-                        below &= !triangles[u as usize].iter().all(|v| own.contains(v));
-                        for v in triangles[u as usize] {
-                            let x = vertices[v as usize];
-                            let h = frame.height(x);
+                        let ids = triangles[u as usize];
+                        below = below
+                            && lies_behind(
+                                frame,
+                                own,
+                                axis_plane.as_ref(),
+                                ids,
+                                ids.map(|v| vertices[v as usize]),
+                            );
+                        for v in ids {
+                            let h = frame.height(vertices[v as usize]);
                             if h > front {
                                 front = h;
                             }
                             if -h > back {
                                 back = -h;
                             }
-                            // Lower than the rounding of its height (the frame's normal
-                            // errs by at most `FRAME_DIRECTION_ERROR` of the distance).
-                            below &= own.contains(&v)
-                                || h < -FRAME_DIRECTION_ERROR
-                                    * (x - frame.origin).abs().element_sum();
                         }
                     }
                 }

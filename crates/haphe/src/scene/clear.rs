@@ -157,8 +157,9 @@ mod tests {
     /// Legs as a proxy's first leg of a tick: from about a skin over a triangle (over its
     /// neighbourhood, some of them) into the surface, millimetres deep and askew. Wherever
     /// the shortcut answers, its hit is the search's, bit for bit. It answers on most legs
-    /// over the sphere and the blob; on the torus, the plate and the concave corner never
-    /// (their quads are planar, so a neighbour lies in the plane, not behind it).
+    /// over the sphere, the blob, the plate and the flat parts of the concave corner (axis
+    /// planes: a neighbour in the plane is shown beside the face exactly), never on the
+    /// torus (its planar quads are tilted: a neighbour in the plane is within rounding).
     #[test]
     fn a_shown_hit_is_the_searched_hit() {
         let mut rng = SplitMix64::new(11);
@@ -167,8 +168,8 @@ mod tests {
             (Catalog::Sphere, 0.5),
             (Catalog::Blob, 0.5),
             (Catalog::Torus, 0.0),
-            (Catalog::ConcaveCorner, 0.0),
-            (Catalog::ThinPlate, 0.0),
+            (Catalog::ConcaveCorner, 0.4),
+            (Catalog::ThinPlate, 0.5),
         ] {
             let scene = scene_of(which, 3000, pose);
             let surface = scene.objects()[0].shape.surface();
@@ -204,8 +205,8 @@ mod tests {
             let share = f64::from(shown) / f64::from(legs);
             println!("{which:?}: {shown} of {legs} legs shown");
             assert!(share >= least_share, "{which:?}: {share}");
-            if which == Catalog::ThinPlate {
-                // Flat faces: the neighbours lie on the plane, not behind it.
+            if which == Catalog::Torus {
+                // Tilted planar quads: a neighbour lies in the plane, within rounding.
                 assert_eq!(shown, 0);
             }
         }
