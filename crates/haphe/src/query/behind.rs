@@ -110,7 +110,8 @@ pub(crate) fn lies_behind(
             let mut n = 0;
             for p in corners {
                 let side = plane.side(p);
-                if !(side <= 0.0) {
+                // In front of the plane, or NaN: not behind.
+                if side > 0.0 || side.is_nan() {
                     return false;
                 }
                 if side == 0.0 {
