@@ -27,6 +27,9 @@ pub(crate) struct AxisPlane {
     corners: [Coord<f64>; 3],
     /// The sign of their orientation (never 0).
     turn: f64,
+    /// Their bounding box in those coordinates, low and high corners.
+    low: Coord<f64>,
+    high: Coord<f64>,
 }
 
 impl AxisPlane {
@@ -43,12 +46,21 @@ impl AxisPlane {
         };
         let flat = corners.map(|p| project(p, axis));
         let turn = orient2d(flat[0], flat[1], flat[2]);
+        let (xs, ys) = (flat.map(|c| c.x), flat.map(|c| c.y));
         (turn != 0.0).then_some(AxisPlane {
             axis,
             at: corners[0][axis],
             up,
             corners: flat,
             turn: turn.signum(),
+            low: Coord {
+                x: xs[0].min(xs[1]).min(xs[2]),
+                y: ys[0].min(ys[1]).min(ys[2]),
+            },
+            high: Coord {
+                x: xs[0].max(xs[1]).max(xs[2]),
+                y: ys[0].max(ys[1]).max(ys[2]),
+            },
         })
     }
 
@@ -61,6 +73,16 @@ impl AxisPlane {
     /// triangle's interior: a line through an edge of either separates them (closed on
     /// the side of the points).
     fn misses_interior(&self, points: &[Coord<f64>]) -> bool {
+        // Beside the triangle's bounding box (closed): its interior lies strictly inside
+        // the box, so comparisons decide most neighbours without an orientation.
+        let all = |f: &dyn Fn(&Coord<f64>) -> bool| points.iter().all(f);
+        if all(&|p| p.x <= self.low.x)
+            || all(&|p| p.x >= self.high.x)
+            || all(&|p| p.y <= self.low.y)
+            || all(&|p| p.y >= self.high.y)
+        {
+            return true;
+        }
         let t = &self.corners;
         let by_an_edge_of_t = (0..3).any(|i| {
             let (a, b) = (t[i], t[(i + 1) % 3]);
