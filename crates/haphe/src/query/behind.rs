@@ -116,15 +116,17 @@ fn project(p: DVec3, axis: usize) -> Coord<f64> {
     }
 }
 
-/// Whether the triangle with vertex indices `ids` and `corners` lies on or behind the
-/// plane of triangle `T` (its `frame`, vertex indices `own`, and its axis `plane` when it
-/// has one) and meets that plane only outside `T`'s interior. A copy of `T` does not.
+/// Whether the triangle with vertex indices `ids`, `corners` and their `heights` over
+/// `T`'s plane (as `frame.height` gives them) lies on or behind the plane of triangle `T`
+/// (its `frame`, vertex indices `own`, and its axis `plane` when it has one) and meets that
+/// plane only outside `T`'s interior. A copy of `T` does not.
 pub(crate) fn lies_behind(
     frame: &TriFrame,
     own: [u32; 3],
     plane: Option<&AxisPlane>,
     ids: [u32; 3],
     corners: [DVec3; 3],
+    heights: [f64; 3],
 ) -> bool {
     match plane {
         Some(plane) => {
@@ -146,10 +148,11 @@ pub(crate) fn lies_behind(
         None => {
             let shared = ids.iter().filter(|v| own.contains(v)).count();
             shared < 3
-                && ids.iter().zip(corners).all(|(v, p)| {
-                    own.contains(v)
-                        || frame.height(p)
-                            < -FRAME_DIRECTION_ERROR * (p - frame.origin).abs().element_sum()
+                && (0..3).all(|k| {
+                    own.contains(&ids[k])
+                        || heights[k]
+                            < -FRAME_DIRECTION_ERROR
+                                * (corners[k] - frame.origin).abs().element_sum()
                 })
         }
     }
@@ -174,7 +177,16 @@ mod tests {
         let frame = frame_of(t);
         let plane = AxisPlane::of(t, frame.normal).expect("an axis plane");
         let own = [0, 1, 2];
-        let behind = |ids: [u32; 3], c: [DVec3; 3]| lies_behind(&frame, own, Some(&plane), ids, c);
+        let behind = |ids: [u32; 3], c: [DVec3; 3]| {
+            lies_behind(
+                &frame,
+                own,
+                Some(&plane),
+                ids,
+                c,
+                c.map(|p| frame.height(p)),
+            )
+        };
         let at = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
         // Coplanar across the hypotenuse, sharing it: beside.
         assert!(behind([1, 2, 3], [t[1], t[2], at(1.0, 1.0, 0.5)]));
@@ -225,7 +237,9 @@ mod tests {
         let frame = frame_of(t);
         assert!(AxisPlane::of(t, frame.normal).is_none());
         let own = [0, 1, 2];
-        let behind = |ids: [u32; 3], c: [DVec3; 3]| lies_behind(&frame, own, None, ids, c);
+        let behind = |ids: [u32; 3], c: [DVec3; 3]| {
+            lies_behind(&frame, own, None, ids, c, c.map(|p| frame.height(p)))
+        };
         let below = t[1] + t[2] - t[0] - 0.05 * frame.normal;
         let on = t[1] + t[2] - t[0];
         assert!(behind([1, 2, 3], [t[1], t[2], below]));

@@ -163,16 +163,11 @@ impl ClearZone {
                             continue;
                         }
                         let ids = triangles[u as usize];
+                        let corners = ids.map(|v| vertices[v as usize]);
+                        let heights = corners.map(|p| frame.height(p));
                         below = below
-                            && lies_behind(
-                                frame,
-                                own,
-                                axis_plane.as_ref(),
-                                ids,
-                                ids.map(|v| vertices[v as usize]),
-                            );
-                        for v in ids {
-                            let h = frame.height(vertices[v as usize]);
+                            && lies_behind(frame, own, axis_plane.as_ref(), ids, corners, heights);
+                        for h in heights {
                             if h > front {
                                 front = h;
                             }
@@ -213,19 +208,30 @@ impl ClearZone {
             return false;
         };
         let height = f64::from(self.height);
-        // The rounding of the heights just computed, and of the frame change before them.
-        let slack = ZONE_ROUNDING * height
-            + 1e-15
-                * (from - frame.origin)
-                    .abs()
-                    .max_element()
-                    .max((to - frame.origin).abs().max_element());
-        let inside = |w: [f64; 3]| w.iter().all(|&w| w >= -ZONE_SPREAD);
+        let slack = self.slack(offset(frame, from).max(offset(frame, to)));
         far <= height - slack
             && near - rise > reach + slack
             && height > reach + slack
-            && inside(frame.barycentric(from))
-            && inside(frame.barycentric(to))
+            && in_footprint(frame.barycentric(from))
+            && in_footprint(frame.barycentric(to))
+    }
+
+    /// Whether `p` (object frame) lies in the zone of `frame`'s triangle in front of its
+    /// plane: over the footprint, higher than the rounding of its height and lower than the
+    /// zone's top by as much.
+    #[inline]
+    pub(crate) fn holds_in_front(&self, frame: &TriFrame, p: DVec3) -> bool {
+        let h = frame.height(p);
+        let slack = self.slack(offset(frame, p));
+        h > slack && h < f64::from(self.height) - slack && in_footprint(frame.barycentric(p))
+    }
+
+    /// The rounding allowed in a test against the zone of points at most `offset` metres
+    /// (in any coordinate) from the frame's origin: of their heights, and of the frame
+    /// change before them.
+    #[inline]
+    fn slack(&self, offset: f64) -> f64 {
+        ZONE_ROUNDING * f64::from(self.height) + 1e-15 * offset
     }
 
     /// The zone packed into 64 bits (never 0, which [`ClearZone::from_bits`] never sees).
@@ -236,6 +242,18 @@ impl ClearZone {
             | ZONE_SET
             | if self.below { ZONE_BELOW } else { 0 }
     }
+}
+
+/// Whether barycentric weights `w` lie in a zone's footprint.
+#[inline]
+fn in_footprint(w: [f64; 3]) -> bool {
+    w.iter().all(|&w| w >= -ZONE_SPREAD)
+}
+
+/// The largest coordinate distance of `p` from the origin of `frame`, metres.
+#[inline]
+fn offset(frame: &TriFrame, p: DVec3) -> f64 {
+    (p - frame.origin).abs().max_element()
 }
 
 /// Slots of the set of triangles already measured while building a zone.

@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::{BOUND_SLACK, Hit, Scene, Sides, segment_point_distance};
 use crate::mesh::TriId;
 use crate::proxy::Probe;
-use crate::query::{Segment, ZONE_SPREAD, crossing_from_hit, intersect_segment_triangle};
+use crate::query::{Segment, crossing_from_hit, intersect_segment_triangle};
 
 /// Smallest barycentric weight of a crossing that [`Scene::first_hit_shown`] takes as
 /// strictly inside its triangle: far above the rounding of the weights, so that no
@@ -56,8 +56,8 @@ impl Scene {
     /// [`first_hit`](Scene::first_hit) over every object, when it can be shown without a
     /// search to be a crossing of triangle `triangle` of object `i` (the triangle under
     /// the proxy at `from`): the move's probe starts in front of that triangle, in its
-    /// [`ClearZone`](crate::query::ClearZone), whose neighbourhood lies behind its plane
-    /// (`below`), and crosses it strictly inside; every other object's bounding sphere is
+    /// [`ClearZone`](crate::query::ClearZone), whose neighbourhood lies on or behind its
+    /// plane and outside the triangle (`below`), and enters it strictly inside; every other object's bounding sphere is
     /// farther from the move than the reach. Then nothing else is crossed before, and the
     /// hit is the one the search would return, bit for bit. `None` when that is not shown.
     ///
@@ -85,14 +85,8 @@ impl Scene {
         let probe = Probe::new(from, to, reach, one_sided);
         let (a, b) = (o.pose.to_object(probe.p0), o.pose.to_object(probe.p1));
         // The probe from its start to the crossing lies in the zone: its start is in the
-        // footprint, in front of the plane and lower than the zone's top, and the
-        // crossing inside the triangle.
-        let frame = surface.frame(triangle);
-        let h = frame.height(a);
-        let slack = 1e-9 * f64::from(zone.height) + 1e-15 * (a - frame.origin).abs().max_element();
-        if !(h > slack && h < f64::from(zone.height) - slack)
-            || frame.barycentric(a).iter().any(|&w| w < -ZONE_SPREAD)
-        {
+        // zone in front of the plane, and the crossing inside the triangle.
+        if !zone.holds_in_front(surface.frame(triangle), a) {
             return None;
         }
         let hit = intersect_segment_triangle(&Segment::new(a, b), surface.corners(triangle))?;
