@@ -6,7 +6,9 @@
 //! cargo run --release --example 06_contact_ticks -- 1000 blob 20000
 //! ```
 //!
-//! Arguments: triangles (default 1000), shape (default `blob`), ticks (default 20000). For
+//! Arguments: triangles (default 1000), shape (default `blob`), ticks (default 20000), and
+//! `loaded` to tick on the shape saved to map bytes and loaded in place
+//! ([`haphe::map::decode_in_place`], as an application that loads a built map does). For
 //! an instruction count that does not depend on the machine's load, run it under
 //! callgrind, counting inside the tick only:
 //!
@@ -19,7 +21,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use haphe::DVec3;
-use haphe::map::MapOptions;
+use haphe::map::{MapBytes, MapOptions, decode_in_place, encode};
 use haphe::mesh::shapes::Shape as Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
@@ -31,9 +33,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let triangles: usize = args.next().map_or(Ok(1000), |a| a.parse())?;
     let which: Catalog = args.next().map_or(Ok(Catalog::Blob), |a| a.parse())?;
     let ticks: usize = args.next().map_or(Ok(20_000), |a| a.parse())?;
+    let loaded = args.next().is_some_and(|a| a == "loaded");
 
     let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
-    let shape = Arc::new(Shape::build(surface, &MapOptions::default())?);
+    let mut shape = Shape::build(surface, &MapOptions::default())?;
+    if loaded {
+        let bytes = MapBytes::copy_from_slice(&encode(shape.surface(), shape.map()));
+        let (surface, map) = decode_in_place(&bytes)?;
+        shape = Shape::new(surface, map);
+    }
+    let shape = Arc::new(shape);
     // Every triangle's clear zone now, as a servo loop does before it starts: no tick
     // below computes one.
     shape.prepare_clear_zones();

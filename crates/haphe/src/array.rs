@@ -11,6 +11,7 @@ use std::ops::{Deref, DerefMut, Range};
 use std::sync::Arc;
 
 use bytemuck::Pod;
+use yoke::Yoke;
 
 /// The bytes of a saved map, held so that a loaded surface and map can use their arrays in
 /// place: an 8-byte-aligned heap buffer, or a memory-mapped file.
@@ -25,6 +26,18 @@ enum Backing {
     Heap { words: Vec<u64>, len: usize },
     /// A file mapped into memory by the caller.
     Mapped(memmap2::Mmap),
+}
+
+impl Backing {
+    fn bytes(&self) -> &[u8] {
+        match self {
+            Backing::Heap { words, len } => {
+                let bytes: &[u8] = bytemuck::cast_slice(words);
+                bytes.get(..*len).unwrap_or(&[])
+            }
+            Backing::Mapped(map) => map,
+        }
+    }
 }
 
 impl MapBytes {
@@ -77,13 +90,7 @@ impl MapBytes {
     /// The bytes.
     #[inline]
     pub fn as_slice(&self) -> &[u8] {
-        match &*self.0 {
-            Backing::Heap { words, len } => {
-                let bytes: &[u8] = bytemuck::cast_slice(words);
-                bytes.get(..*len).unwrap_or(&[])
-            }
-            Backing::Mapped(map) => map,
-        }
+        self.0.bytes()
     }
 
     /// Number of bytes.
@@ -107,44 +114,52 @@ impl fmt::Debug for MapBytes {
     }
 }
 
-/// A typed view of a byte range of a [`MapBytes`].
-#[derive(Clone)]
-struct View {
-    bytes: MapBytes,
-    /// First byte.
-    start: usize,
+/// A typed view of a byte range of a [`MapBytes`]: the slice, found once when the view is
+/// made, held together with the buffer it borrows from (a [`Yoke`]), so that reading it
+/// costs what reading a [`Vec`] does.
+struct View<T: 'static> {
+    slice: Yoke<&'static [T], Arc<Backing>>,
     /// Length in bytes.
     len: usize,
+}
+
+impl<T: 'static> Clone for View<T> {
+    fn clone(&self) -> Self {
+        View {
+            slice: self.slice.clone(),
+            len: self.len,
+        }
+    }
 }
 
 /// An array of `T`: owned, or a view of a loaded buffer. Reads as a slice; writing to a
 /// view first copies it (only map building writes, never to a loaded array).
 #[derive(Clone)]
-pub(crate) struct Array<T> {
+pub(crate) struct Array<T: 'static> {
     owned: Vec<T>,
-    view: Option<View>,
+    view: Option<View<T>>,
 }
 
 impl<T: Pod> Array<T> {
     /// A view of `range` of `bytes` when it is aligned for `T` and a whole number of
     /// elements, else `None`.
     pub(crate) fn view(bytes: &MapBytes, range: Range<usize>) -> Option<Array<T>> {
-        let slice = bytes.as_slice().get(range.clone())?;
-        bytemuck::try_cast_slice::<u8, T>(slice).ok()?;
+        let len = range.len();
+        let slice = Yoke::try_attach_to_cart(Arc::clone(&bytes.0), |backing: &Backing| {
+            let part = backing.bytes().get(range).ok_or(())?;
+            bytemuck::try_cast_slice::<u8, T>(part).map_err(|_| ())
+        })
+        .ok()?;
         Some(Array {
             owned: Vec::new(),
-            view: Some(View {
-                bytes: bytes.clone(),
-                start: range.start,
-                len: range.len(),
-            }),
+            view: Some(View { slice, len }),
         })
     }
 
     /// The owned vector, copying a view first.
     pub(crate) fn to_mut(&mut self) -> &mut Vec<T> {
         if let Some(view) = self.view.take() {
-            self.owned = view_slice::<T>(&view).to_vec();
+            self.owned = view.slice.get().to_vec();
         }
         &mut self.owned
     }
@@ -164,16 +179,7 @@ impl<T: Pod> Array<T> {
     }
 }
 
-#[inline]
-fn view_slice<T: Pod>(view: &View) -> &[T] {
-    view.bytes
-        .as_slice()
-        .get(view.start..view.start + view.len)
-        .and_then(|b| bytemuck::try_cast_slice(b).ok())
-        .unwrap_or(&[])
-}
-
-impl<T> Default for Array<T> {
+impl<T: 'static> Default for Array<T> {
     fn default() -> Self {
         Array {
             owned: Vec::new(),
@@ -182,7 +188,7 @@ impl<T> Default for Array<T> {
     }
 }
 
-impl<T> From<Vec<T>> for Array<T> {
+impl<T: 'static> From<Vec<T>> for Array<T> {
     fn from(owned: Vec<T>) -> Self {
         Array { owned, view: None }
     }
@@ -194,7 +200,7 @@ impl<T: Pod> Deref for Array<T> {
     fn deref(&self) -> &[T] {
         match &self.view {
             None => &self.owned,
-            Some(view) => view_slice(view),
+            Some(view) => view.slice.get(),
         }
     }
 }
