@@ -48,8 +48,9 @@ impl VoxelMap {
 
     /// Builds the voxel map of `surface` (object frame), reporting progress.
     ///
-    /// `progress` is called on the calling thread with the fraction done, from 0 to 1,
-    /// non-decreasing, about 25 times — except that in the rare case where the finished
+    /// `progress` is called with the fraction done, from 0 to 1, one call at a time (on
+    /// the thread that runs the build: a thread of rayon's pool, or the calling thread
+    /// when that is one), non-decreasing, about 25 times — except that in the rare case where the finished
     /// map turns out larger than the budget and an automatic cell size must grow, the
     /// fraction starts again from 0 for the next attempt.
     ///
@@ -80,35 +81,43 @@ impl VoxelMap {
                 value: options.triangles_per_cell,
             });
         }
-        let model = SizeModel::of(surface);
-        let budget = options.memory_budget_bytes;
-        let (mut grid, mut rule) = match options.cell_size_m {
-            Some(h) => (model.given_grid(h, budget)?, CellSizeRule::Given),
-            None => model.automatic_grid(options.triangles_per_cell, 0, budget)?,
-        };
-        loop {
-            progress(0.0);
-            let map = build_on_grid(surface, grid, rule, progress)?;
-            let bytes = map.heap_bytes();
-            if bytes <= budget {
-                progress(1.0);
-                return Ok(map);
+        // On a thread of rayon's pool, so that the parallel steps do not each wait for the
+        // pool to pick them up (what dominates for small meshes).
+        rayon::scope(|_| build_on_pool(surface, options, progress))
+    }
+}
+
+/// [`VoxelMap::build_with_progress`] once the options are checked.
+fn build_on_pool(
+    surface: &Surface,
+    options: &MapOptions,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<VoxelMap, MapError> {
+    let model = SizeModel::of(surface);
+    let budget = options.memory_budget_bytes;
+    let (mut grid, mut rule) = match options.cell_size_m {
+        Some(h) => (model.given_grid(h, budget)?, CellSizeRule::Given),
+        None => model.automatic_grid(options.triangles_per_cell, 0, budget)?,
+    };
+    loop {
+        progress(0.0);
+        let map = build_on_grid(surface, grid, rule, progress)?;
+        let bytes = map.heap_bytes();
+        if bytes <= budget {
+            progress(1.0);
+            return Ok(map);
+        }
+        match rule {
+            CellSizeRule::Given => {
+                return Err(MapError::OverBudget {
+                    cell_size_m: grid.cell_size(),
+                    needed_bytes: bytes as u64,
+                    budget_bytes: budget,
+                });
             }
-            match rule {
-                CellSizeRule::Given => {
-                    return Err(MapError::OverBudget {
-                        cell_size_m: grid.cell_size(),
-                        needed_bytes: bytes as u64,
-                        budget_bytes: budget,
-                    });
-                }
-                CellSizeRule::Automatic { enlargements, .. } => {
-                    (grid, rule) = model.automatic_grid(
-                        options.triangles_per_cell,
-                        enlargements + 1,
-                        budget,
-                    )?;
-                }
+            CellSizeRule::Automatic { enlargements, .. } => {
+                (grid, rule) =
+                    model.automatic_grid(options.triangles_per_cell, enlargements + 1, budget)?;
             }
         }
     }
