@@ -27,7 +27,8 @@ pub(crate) fn corner_normals<'a>(
     fan: impl Fn(u32) -> &'a [u32] + Sync,
     crease_angle_rad: f64,
 ) -> Vec<CornerNormals> {
-    let cos_crease = crease_angle_rad.clamp(0.0, std::f64::consts::PI).cos();
+    let crease = crease_angle_rad.clamp(0.0, std::f64::consts::PI);
+    let cos_crease = crease.cos();
     // Face normals and corner angles once, compactly: the loop below visits each triangle
     // once per corner of each of its neighbours around a vertex.
     let normal: Vec<DVec3> = frames.par_iter().map(|f| f.normal).collect();
@@ -36,6 +37,33 @@ pub(crate) fn corner_normals<'a>(
         .map(|tri| {
             let p = tri.map(|v| vertices[v as usize]);
             [0, 1, 2].map(|i| (p[(i + 1) % 3] - p[i]).angle_between(p[(i + 2) % 3] - p[i]))
+        })
+        .collect();
+    // A vertex whose faces all lie within half the crease angle of one direction has no
+    // crease: every pair of its faces passes the test below, so every corner there gets
+    // the same sum, added in the same order, and it is computed once. The margin keeps
+    // the rounding of the dot products from deciding; so does the lower bound on the
+    // crease angle (below it, every vertex takes the test below).
+    let cos_half = if crease >= SMOOTH_MIN_CREASE_RAD {
+        (0.5 * crease - SMOOTH_MARGIN_RAD).cos()
+    } else {
+        f64::INFINITY
+    };
+    let corner_of = |s: usize, v: u32| triangles[s].iter().position(|&w| w == v).unwrap_or(0);
+    let smooth: Vec<Option<DVec3>> = (0..vertices.len() as u32)
+        .into_par_iter()
+        .map(|v| {
+            let around = fan(v);
+            let sum: DVec3 = around
+                .iter()
+                .map(|&s| s as usize)
+                .map(|s| angle[s][corner_of(s, v)] * normal[s])
+                .sum();
+            let axis = sum.try_normalize()?;
+            around
+                .iter()
+                .all(|&s| normal[s as usize].dot(axis) >= cos_half)
+                .then_some(sum)
         })
         .collect();
     triangles
@@ -47,17 +75,94 @@ pub(crate) fn corner_normals<'a>(
                 return [[0.0; 3]; 3];
             }
             tri.map(|v| {
-                let sum: DVec3 = fan(v)
-                    .iter()
-                    .map(|&s| s as usize)
-                    .filter(|&s| s == t || normal[s].dot(n_t) >= cos_crease)
-                    .map(|s| {
-                        let i = triangles[s].iter().position(|&w| w == v).unwrap_or(0);
-                        angle[s][i] * normal[s]
-                    })
-                    .sum();
+                let sum = smooth[v as usize].unwrap_or_else(|| {
+                    fan(v)
+                        .iter()
+                        .map(|&s| s as usize)
+                        .filter(|&s| s == t || normal[s].dot(n_t) >= cos_crease)
+                        .map(|s| angle[s][corner_of(s, v)] * normal[s])
+                        .sum()
+                });
                 sum.try_normalize().unwrap_or(n_t).as_vec3().to_array()
             })
         })
         .collect()
+}
+
+/// How far inside half the crease angle (radians) every face around a vertex must lie for
+/// [`corner_normals`] to take the vertex as smooth: far above the rounding of a unit
+/// normal's dot product (about `1e-15`), far below any crease angle a user sets.
+const SMOOTH_MARGIN_RAD: f64 = 1e-6;
+
+/// The smallest crease angle (radians) for which [`corner_normals`] looks for smooth
+/// vertices: there two faces `SMOOTH_MARGIN_RAD` inside it pass the crease test by a
+/// margin (about `1e-9` in the cosine) far above rounding.
+const SMOOTH_MIN_CREASE_RAD: f64 = 1e-3;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes::Shape as Catalog;
+    use crate::mesh::{Surface, SurfaceOptions};
+
+    /// The rule as documented, corner by corner, with no shortcut.
+    fn plain(surface: &Surface, crease_angle_rad: f64) -> Vec<CornerNormals> {
+        let cos_crease = crease_angle_rad.clamp(0.0, std::f64::consts::PI).cos();
+        let (vertices, triangles) = (surface.vertices(), surface.triangles());
+        let normal = |s: usize| surface.frame(crate::mesh::TriId(s as u32)).normal;
+        let angle = |s: usize, v: u32| {
+            let p = triangles[s].map(|w| vertices[w as usize]);
+            let i = triangles[s].iter().position(|&w| w == v).unwrap_or(0);
+            (p[(i + 1) % 3] - p[i]).angle_between(p[(i + 2) % 3] - p[i])
+        };
+        (0..triangles.len())
+            .map(|t| {
+                let n_t = normal(t);
+                if n_t == DVec3::ZERO {
+                    return [[0.0; 3]; 3];
+                }
+                triangles[t].map(|v| {
+                    let sum: DVec3 = surface
+                        .fan(crate::mesh::VertId(v))
+                        .iter()
+                        .map(|&s| s as usize)
+                        .filter(|&s| s == t || normal(s).dot(n_t) >= cos_crease)
+                        .map(|s| angle(s, v) * normal(s))
+                        .sum();
+                    sum.try_normalize().unwrap_or(n_t).as_vec3().to_array()
+                })
+            })
+            .collect()
+    }
+
+    #[test]
+    fn smooth_vertices_get_what_the_rule_gives_bit_for_bit() {
+        let shapes = [
+            Catalog::Blob,
+            Catalog::Sphere,
+            Catalog::Box,
+            Catalog::Torus,
+            Catalog::ThinPlate,
+            Catalog::ConcaveCorner,
+        ];
+        for shape in shapes {
+            for crease_deg in [0.0, 1e-5, 5.0, 30.0, 60.0, 89.0, 120.0, 180.0] {
+                let crease = f64::to_radians(crease_deg);
+                let options = SurfaceOptions {
+                    crease_angle_rad: crease,
+                    ..SurfaceOptions::default()
+                };
+                let surface = Surface::new(shape.with_triangles(3000), &options).expect("valid");
+                let expected = plain(&surface, crease);
+                let got: Vec<CornerNormals> = (0..surface.triangle_count())
+                    .map(|t| {
+                        surface
+                            .corner_normals(crate::mesh::TriId(t as u32))
+                            .map(|n| n.as_vec3().to_array())
+                    })
+                    .collect();
+                assert_eq!(got, expected, "{shape} at a crease of {crease_deg}°");
+            }
+        }
+    }
 }
