@@ -7,7 +7,9 @@
 //! spell of the machine (another process, a busy core) thus falls on every method alike,
 //! and each method meets the caches as the previous one left them, as a servo tick
 //! meets them after the rest of an application has run. Methods that keep state from one
-//! query to the next (the surface walk) keep it within a chunk, which is one trajectory.
+//! query to the next keep it within a chunk where a chunk is one trajectory (the surface
+//! walk), and across chunks where the stream is one path cut into chunks (the proxy in
+//! contact).
 //!
 //! Brute force runs only on small meshes, and on every `k`-th chunk so that its
 //! samples still spread over the whole run.
@@ -138,8 +140,8 @@ impl Query {
                 "floor: one `closest_point_triangle` on the triangle the walk stands on"
             }
             Query::Contact => {
-                "contact tick along a path in steady contact (0.5–3 mm deep, 0.05–0.5 m/s at \
-                 1 kHz, scaled to the object): haphe `Proxy::tick` (god-object: crossings, \
+                "contact tick along one path in steady contact (touching once, then 0.5–3 mm \
+                 deep, 0.05–0.5 m/s at 1 kHz, scaled to the object): haphe `Proxy::tick` (god-object: crossings, \
                  constraint planes, surface walk, force); parry: the nearest-point proxy, \
                  `project_local_point(hip, true)`, its point when inside, and the spring force"
             }
@@ -460,17 +462,20 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
             1,
         ),
         Query::Contact => {
+            // One proxy along the whole path, chunk after chunk (they come in order).
+            let mut state: Option<(Proxy, haphe::DVec3)> = None;
             add(
                 Method::Haphe,
                 Box::new(move |c, out| {
                     let path = &streams.contact[c];
-                    let mut proxy = Proxy::new(path[0], ProxyOptions::default());
-                    let mut previous = path[0];
+                    let (proxy, previous) = state.get_or_insert_with(|| {
+                        (Proxy::new(path[0], ProxyOptions::default()), path[0])
+                    });
                     time_each(
                         path.iter().copied(),
                         |hip| {
-                            let velocity = (hip - previous) * TICK_RATE_HZ;
-                            previous = hip;
+                            let velocity = (hip - *previous) * TICK_RATE_HZ;
+                            *previous = hip;
                             proxy.tick(scene, hip, velocity)
                         },
                         out,

@@ -64,7 +64,7 @@ pub struct Streams {
     pub random_points: Vec<Vec<DVec3>>,
     /// Random segments in the grown bounding box.
     pub random_segments: Vec<Vec<(DVec3, DVec3)>>,
-    /// Device paths in steady contact, one per chunk (filled by [`Streams::add_contact`]).
+    /// One device path in steady contact, in chunks (filled by [`Streams::add_contact`]).
     pub contact: Vec<Vec<DVec3>>,
 }
 
@@ -143,29 +143,26 @@ impl Streams {
         }
     }
 
-    /// Adds the contact paths over the one object of `scene`: as many chunks as the other
-    /// streams, each a path of [`STEPS`] ticks at 1 kHz that starts just outside and then
-    /// slides 0.5–3 mm deep at 0.05–0.5 m/s (both scaled to the object's size, as a 0.2 m
-    /// object).
+    /// Adds the contact path over the one object of `scene`, cut into as many chunks of
+    /// [`STEPS`] ticks as the other streams have: one path at 1 kHz that starts just
+    /// outside and then slides 0.5–3 mm deep at 0.05–0.5 m/s (both scaled to the object's
+    /// size, as a 0.2 m object), so that the proxy touches once and then stays in steady
+    /// contact from chunk to chunk.
     pub fn add_contact(&mut self, scene: &Scene, seed: u64) {
         let Some(object) = scene.objects().first() else {
             return;
         };
         let (_, _, size) = bounds(object.shape.surface());
         let scale = size / (0.2 * 3f64.sqrt());
-        let mut seeds = SplitMix64::new(seed ^ 0xC0_47AC7);
-        self.contact = (0..self.near.len())
-            .map(|_| {
-                haptic_path_in_contact(
-                    scene,
-                    STEPS,
-                    (0.05 * scale, 0.5 * scale),
-                    (0.5e-3 * scale, 3e-3 * scale),
-                    super::methods::TICK_RATE_HZ,
-                    seeds.next_u64(),
-                )
-            })
-            .collect();
+        let seed = SplitMix64::new(seed ^ 0xC0_47AC7).next_u64();
+        self.contact = chunked(haptic_path_in_contact(
+            scene,
+            self.near.len() * STEPS,
+            (0.05 * scale, 0.5 * scale),
+            (0.5e-3 * scale, 3e-3 * scale),
+            super::methods::TICK_RATE_HZ,
+            seed,
+        ));
     }
 }
 
