@@ -191,7 +191,7 @@ pub fn first_crossing_where(
     let h = map.grid().cell_size();
     let skips = p0.distance_squared(p1) >= (SKIP_MIN_LENGTH * h) * (SKIP_MIN_LENGTH * h);
     let mut walk = map.grid().walk(p0, p1);
-    let mut until = p1;
+    let mut until = 1.0;
     while let Some(visit) = walk.next() {
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
@@ -207,10 +207,22 @@ pub fn first_crossing_where(
             walk.skip_cube(u32::from(clearance) - 1);
             continue;
         }
+        if triangles.is_empty() {
+            continue;
+        }
+        // The part of the segment in this cell (with the margin of its boundaries'
+        // rounding), up to where a crossing can still improve on the best. A triangle
+        // crossed at a point in this cell is crossed on that part, so the filter never
+        // skips it here; one it skips may be crossed in a later cell, which lists it too,
+        // so it is not yet tested. Long segments that graze a surface (along a thin
+        // plate, say) thus test exactly only the triangles near where they pass.
+        let (from, to) = (
+            (visit.t_enter - margin).max(0.0),
+            (visit.t_exit + margin).min(until),
+        );
+        let (q0, q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
         for &t in triangles {
-            // A triangle the filter skips now cannot be crossed before `until`, so it
-            // could never improve on a later best either: tested for good.
-            if !tested.insert(t) || cannot_cross(surface, t, p0, until, plane_margin) {
+            if cannot_cross(surface, t, q0, q1, plane_margin) || !tested.insert(t) {
                 continue;
             }
             if let Some(hit) = intersect_segment_triangle(&segment(), surface.corners(TriId(t)))
@@ -218,7 +230,7 @@ pub fn first_crossing_where(
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
-                until = filter_end(p0, p1, hit.t);
+                until = (hit.t + FILTER_PAST_BEST).min(1.0);
             }
         }
     }
@@ -236,8 +248,13 @@ const FILTER_PAST_BEST: f64 = 1e-6;
 /// margins cover the rounding of the point computed here.
 #[inline]
 fn filter_end(p0: DVec3, p1: DVec3, t: f64) -> DVec3 {
-    let s = t + FILTER_PAST_BEST;
-    if s < 1.0 { p0 + s * (p1 - p0) } else { p1 }
+    point_at(p0, p1, t + FILTER_PAST_BEST)
+}
+
+/// The point at parameter `t` of the segment `p0 → p1` (`p1` itself at 1).
+#[inline]
+fn point_at(p0: DVec3, p1: DVec3, t: f64) -> DVec3 {
+    if t >= 1.0 { p1 } else { p0 + t * (p1 - p0) }
 }
 
 /// The parameter `t` at which the segment `p0 + t (p1 − p0)`, starting in `cell`, leaves
