@@ -141,9 +141,10 @@ impl Query {
             }
             Query::Contact => {
                 "contact tick along one path in steady contact (touching once, then 0.5–3 mm \
-                 deep, 0.05–0.5 m/s at 1 kHz, scaled to the object): haphe `Proxy::tick` (god-object: crossings, \
-                 constraint planes, surface walk, force); parry: the nearest-point proxy, \
-                 `project_local_point(hip, true)`, its point when inside, and the spring force"
+                 deep, 0.05–0.5 m/s at 1 kHz, scaled to the object): haphe `Proxy::tick` \
+                 (god-object: crossings, constraint planes, surface walk, force); parry: the \
+                 nearest-point proxy, `project_local_point(hip, true)`, its point when inside, \
+                 and the spring force"
             }
             Query::Build => {
                 "build from the welded mesh (haphe `Surface::new` + `VoxelMap::build`; parry \

@@ -50,9 +50,9 @@ impl VoxelMap {
     ///
     /// `progress` is called with the fraction done, from 0 to 1, one call at a time (on
     /// the thread that runs the build: a thread of rayon's pool, or the calling thread
-    /// when that is one), non-decreasing, about 25 times — except that in the rare case where the finished
-    /// map turns out larger than the budget and an automatic cell size must grow, the
-    /// fraction starts again from 0 for the next attempt.
+    /// when that is one), non-decreasing, about 25 times — except that in the rare case
+    /// where the finished map turns out larger than the budget and an automatic cell size
+    /// must grow, the fraction starts again from 0 for the next attempt.
     ///
     /// The result depends only on the surface and the options, never on the number of
     /// threads: the same inputs give the same map, byte for byte.
