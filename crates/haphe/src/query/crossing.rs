@@ -164,7 +164,7 @@ pub fn first_crossing_where(
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
-                until = filter_end(p0, p1, hit.t);
+                until = point_at(p0, p1, filter_end(hit.t));
             }
         }
         // The common haptic cases. Cells are convex and list every triangle that overlaps
@@ -230,7 +230,7 @@ pub fn first_crossing_where(
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
-                until = (hit.t + FILTER_PAST_BEST).min(1.0);
+                until = filter_end(hit.t);
             }
         }
     }
@@ -242,13 +242,13 @@ pub fn first_crossing_where(
 /// triangle crossed at the same parameter or before is never skipped.
 const FILTER_PAST_BEST: f64 = 1e-6;
 
-/// The end of the part of `p0 → p1` where a crossing can still improve on one at
-/// parameter `t` (ties included): what [`cannot_cross`] is given once a crossing is known.
-/// A triangle crossed at `t` or before has its crossing on that part, and the filter's
-/// margins cover the rounding of the point computed here.
+/// The parameter where the part of the segment on which a crossing can still improve on
+/// one at parameter `t` (ties included) ends: what [`cannot_cross`] is given once a
+/// crossing is known. A triangle crossed at `t` or before has its crossing on that part,
+/// and the filter's margins cover the rounding of the point computed from it.
 #[inline]
-fn filter_end(p0: DVec3, p1: DVec3, t: f64) -> DVec3 {
-    point_at(p0, p1, t + FILTER_PAST_BEST)
+fn filter_end(t: f64) -> f64 {
+    (t + FILTER_PAST_BEST).min(1.0)
 }
 
 /// The point at parameter `t` of the segment `p0 → p1` (`p1` itself at 1).

@@ -4,10 +4,10 @@
 
 use glam::DVec3;
 
-use super::{BOUND_SLACK, Hit, Scene, Sides, segment_point_distance};
+use super::{BOUND_SLACK, Hit, Scene, SceneObject, Sides, segment_point_distance};
 use crate::mesh::TriId;
 use crate::proxy::Probe;
-use crate::query::{Segment, crossing_from_hit, intersect_segment_triangle};
+use crate::query::{ClearZone, Segment, crossing_from_hit, intersect_segment_triangle};
 
 /// Smallest barycentric weight of a crossing that [`Scene::first_hit_shown`] takes as
 /// strictly inside its triangle: far above the rounding of the weights, so that no
@@ -34,16 +34,11 @@ impl Scene {
         to: DVec3,
         reach: f64,
     ) -> bool {
-        let Some(o) = self.objects.get(i) else {
+        let Some((o, zone)) = self.zone_of(i, triangle) else {
             return false;
         };
-        let surface = o.shape.surface();
-        if triangle.index() >= surface.triangle_count() {
-            return false;
-        }
-        let zone = o.shape.clear_zone(triangle);
         if !zone.clears(
-            surface.frame(triangle),
+            o.shape.surface().frame(triangle),
             o.pose.to_object(from),
             o.pose.to_object(to),
             reach,
@@ -71,13 +66,8 @@ impl Scene {
         to: DVec3,
         reach: f64,
     ) -> Option<Hit> {
-        let o = self.objects.get(i)?;
-        let shape = &*o.shape;
-        let surface = shape.surface();
-        if triangle.index() >= surface.triangle_count() {
-            return None;
-        }
-        let zone = shape.clear_zone(triangle);
+        let (o, zone) = self.zone_of(i, triangle)?;
+        let surface = o.shape.surface();
         if !zone.below || !self.others_beyond(i, from, to, reach) {
             return None;
         }
@@ -98,6 +88,15 @@ impl Scene {
         }
         let c = crossing_from_hit(surface, hit, triangle.0);
         Some(Hit::of_crossing(i, &o.pose, &probe, &c))
+    }
+
+    /// Object `i` and the clear zone of its triangle `triangle`; `None` when either is
+    /// out of range.
+    #[inline]
+    fn zone_of(&self, i: usize, triangle: TriId) -> Option<(&SceneObject, ClearZone)> {
+        let o = self.objects.get(i)?;
+        (triangle.index() < o.shape.surface().triangle_count())
+            .then(|| (o, o.shape.clear_zone(triangle)))
     }
 
     /// Whether every object but `i` keeps its bounding sphere farther than `reach` (and
