@@ -163,6 +163,19 @@ fn assert_matches_dense(name: &str, surface: &Surface, map: &VoxelMap) {
             _ => brick_min[&brick(c)],
         };
         assert_eq!(map.clearance(c), expected, "{name}: clearance of {c:?}");
+        // The reach: the clearance below the cap; beyond it never more than the exact
+        // distance, and short of it by less than two bricks.
+        let (reach, distance) = (map.reach(c), dense.distance[i]);
+        if expected < MAX_CLEARANCE {
+            assert_eq!(reach, u32::from(expected), "{name}: reach of {c:?}");
+        } else {
+            assert!(
+                reach >= u32::from(MAX_CLEARANCE)
+                    && reach <= distance
+                    && reach + 14 >= distance.min(1 << 20),
+                "{name}: reach {reach} of {c:?} at distance {distance}"
+            );
+        }
     }
     let [dx, dy, dz] = dense.dims;
     for c in [
@@ -178,6 +191,7 @@ fn assert_matches_dense(name: &str, surface: &Surface, map: &VoxelMap) {
             "{name}: {c:?} outside the grid"
         );
         assert_eq!(map.clearance(c), 0);
+        assert_eq!(map.reach(c), 0);
         assert!(map.triangles_in(c).is_empty());
     }
     let stats = map.stats();
@@ -213,6 +227,31 @@ fn sparse_map_equals_the_dense_reference() {
             assert_eq!(map.cell_size_rule(), CellSizeRule::Given);
             assert_matches_dense(&format!("{name} ×{factor}"), surface, &map);
         }
+    }
+}
+
+/// On grids much finer than the automatic one, much of the inside of a round solid lies
+/// several bricks from the surface: there the reach exceeds the clearance cap, and still never the distance
+/// to the nearest surface cell (checked against the dense reference for every cell).
+#[test]
+fn reach_grows_with_the_distance_in_bricks() {
+    let round = solids()
+        .into_iter()
+        .filter(|(name, _)| ["sphere", "blob"].contains(name));
+    for (name, surface) in round {
+        let h = build(&surface, &MapOptions::default()).grid().cell_size();
+        let options = MapOptions {
+            cell_size_m: Some(h * 0.16),
+            ..MapOptions::default()
+        };
+        let map = build(&surface, &options);
+        assert_matches_dense(&format!("{name} ×0.16"), &surface, &map);
+        let [dx, dy, dz] = map.grid().dims();
+        let far = (0..dz)
+            .flat_map(|z| (0..dy).flat_map(move |y| (0..dx).map(move |x| [x, y, z])))
+            .filter(|&c| map.reach(c) > u32::from(MAX_CLEARANCE))
+            .count();
+        assert!(far > 10_000, "{name}: {far} cells reach beyond the cap");
     }
 }
 

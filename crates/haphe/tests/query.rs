@@ -283,6 +283,7 @@ fn long_segments_across_free_space_agree_with_brute_force() {
     use haphe::verify::{bounds, segments};
     use rayon::prelude::*;
 
+    let mut far_segments = 0;
     for (name, mesh, n) in [
         ("sphere-20k", Shape::Sphere.with_triangles(20_000), 1_500),
         ("blob-50k", Shape::Blob.with_triangles(50_000), 1_500),
@@ -330,6 +331,14 @@ fn long_segments_across_free_space_agree_with_brute_force() {
                 .is_some_and(|c| map.clearance(c) == MAX_CLEARANCE)),
             "{name}"
         );
+        // Bricks whose reach exceeds the clearance cap (skipped whole), counted over all.
+        far_segments += cases
+            .iter()
+            .filter(|&&(p0, p1)| {
+                grid.walk(p0, p1)
+                    .any(|s| map.reach(s.cell) > u32::from(MAX_CLEARANCE))
+            })
+            .count();
         let bad: Vec<String> = cases
             .par_iter()
             .filter_map(|&(p0, p1)| {
@@ -357,4 +366,8 @@ fn long_segments_across_free_space_agree_with_brute_force() {
             &bad[..bad.len().min(3)]
         );
     }
+    assert!(
+        far_segments > 1_000,
+        "{far_segments} segments skip whole bricks"
+    );
 }

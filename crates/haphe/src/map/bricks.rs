@@ -25,8 +25,11 @@ pub(crate) const UNIFORM: u32 = 1 << 31;
 pub(crate) const GRADED: u32 = 1 << 30;
 /// Where a uniform entry keeps its state (two bits).
 pub(crate) const UNIFORM_STATE_SHIFT: u32 = 24;
-/// The low bits of a uniform entry: a clearance or a clearance-brick index.
+/// The low bits of a uniform entry: a reach or a clearance-brick index.
 pub(crate) const UNIFORM_PAYLOAD: u32 = (1 << UNIFORM_STATE_SHIFT) - 1;
+/// The largest reach a uniform entry stores, in cells: the [`VoxelMap::reach`] of all its
+/// cells.
+pub(crate) const MAX_REACH: u32 = UNIFORM_PAYLOAD;
 /// Bytes of per-cell clearances of one brick: a nibble per cell.
 pub(crate) const NIBBLE_BYTES: usize = BRICK_CELLS / 2;
 /// Words of a brick's bit mask.
@@ -42,10 +45,10 @@ pub(crate) fn has(bits: &BrickBits, local: usize) -> bool {
     bits[local >> 6] >> (local & 63) & 1 != 0
 }
 
-/// A uniform top-level entry with one clearance for all cells.
+/// A uniform top-level entry with one reach for all cells (see [`MAX_REACH`]).
 #[inline]
-pub(crate) fn uniform_entry(state: CellState, clearance: u8) -> u32 {
-    UNIFORM | ((state as u32) << UNIFORM_STATE_SHIFT) | u32::from(clearance)
+pub(crate) fn uniform_entry(state: CellState, reach: u32) -> u32 {
+    UNIFORM | ((state as u32) << UNIFORM_STATE_SHIFT) | reach.min(MAX_REACH)
 }
 
 /// A uniform top-level entry whose per-cell clearances are clearance brick `index`.
@@ -150,7 +153,7 @@ pub(crate) fn cell_in_brick(bc: [u32; 3], local: usize) -> [u32; 3] {
 ///   triangle indices (4 bytes each);
 /// - a **graded** brick (uniform, touching a detailed brick) stores a clearance nibble per
 ///   cell: 256 bytes;
-/// - any other brick is **uniform**: state and clearance live in the entry itself.
+/// - any other brick is **uniform**: state and reach live in the entry itself.
 ///
 /// Space far from the surface costs half a byte per thousand cells.
 #[derive(Debug, Clone, PartialEq)]
@@ -251,13 +254,34 @@ impl VoxelMap {
     /// Constant time (two array reads), no allocation, never panics.
     #[inline]
     pub fn clearance(&self, c: [u32; 3]) -> u8 {
+        self.reach(c).min(u32::from(super::MAX_CLEARANCE)) as u8
+    }
+
+    /// How far free space reaches around cell `c`, in cells: 0 for a surface cell and for
+    /// any index outside the grid; otherwise `k ≥ 1` such that every cell within Chebyshev
+    /// distance `k − 1` of `c` is a non-surface cell, as for [`clearance`](Self::clearance),
+    /// but without its cap. Where the clearance is below
+    /// [`MAX_CLEARANCE`](super::MAX_CLEARANCE) the two are equal; farther from the surface,
+    /// in bricks at least three bricks from any brick holding a surface cell, the reach is
+    /// `8 (D − 1) + 1` for a brick `D` bricks from the nearest such brick (Chebyshev
+    /// distance), so a segment crossing empty space skips it in a few strides however
+    /// fine the grid.
+    ///
+    /// # Real-time
+    /// Constant time (two array reads), no allocation, never panics.
+    #[inline]
+    pub fn reach(&self, c: [u32; 3]) -> u32 {
         match self.slot(c) {
             None => 0,
-            Some(Slot::Uniform { entry, local }) if entry & GRADED != 0 => {
-                nibble(&self.clearances, (entry & UNIFORM_PAYLOAD) as usize, local)
+            Some(Slot::Uniform { entry, local }) if entry & GRADED != 0 => u32::from(nibble(
+                &self.clearances,
+                (entry & UNIFORM_PAYLOAD) as usize,
+                local,
+            )),
+            Some(Slot::Uniform { entry, .. }) => entry & UNIFORM_PAYLOAD,
+            Some(Slot::Detailed { brick, local }) => {
+                u32::from(nibble(&self.clearances, brick, local))
             }
-            Some(Slot::Uniform { entry, .. }) => (entry & 0xff) as u8,
-            Some(Slot::Detailed { brick, local }) => nibble(&self.clearances, brick, local),
         }
     }
 
@@ -297,13 +321,12 @@ impl VoxelMap {
         }
     }
 
-    /// Cell `c`'s triangles and clearance: the triangles of a surface cell with clearance
-    /// 0, or no triangle with the clearance of any other cell (as
-    /// [`triangles_in`](Self::triangles_in) and [`clearance`](Self::clearance) give them).
+    /// Cell `c`'s triangles and reach: the triangles of a surface cell with reach 0, or no
+    /// triangle with the [`reach`](Self::reach) of any other cell.
     #[inline]
-    pub(crate) fn triangles_or_clearance(&self, c: [u32; 3]) -> (&[u32], u8) {
+    pub(crate) fn triangles_or_reach(&self, c: [u32; 3]) -> (&[u32], u32) {
         match self.triangles_in(c) {
-            [] => (&[], self.clearance(c)),
+            [] => (&[], self.reach(c)),
             triangles => (triangles, 0),
         }
     }

@@ -1,6 +1,7 @@
 //! The clearance of every non-surface cell: its Chebyshev distance in cells to the nearest
 //! surface cell, capped at [`MAX_CLEARANCE`], computed only in bricks near the surface by
-//! dilating bit masks of the surface cells one cell at a time.
+//! dilating bit masks of the surface cells one cell at a time; and the reach of bricks
+//! farther away, from their distance in bricks to the nearest brick with a surface cell.
 
 use rayon::prelude::*;
 
@@ -33,9 +34,10 @@ enum Target {
 /// Starting from the surface cells, the set of cells within Chebyshev distance `k` is the
 /// previous one dilated by one cell along x, then y, then z (separable); a cell first
 /// reached at step `k` has clearance `k`. Cells not reached after `MAX_CLEARANCE − 1`
-/// steps get `MAX_CLEARANCE`, as do bricks outside the work set (farther than
-/// `MAX_CLEARANCE` cells from any surface cell). Detailed and graded bricks keep every
-/// cell's clearance; other uniform bricks the smallest of their cells'.
+/// steps get `MAX_CLEARANCE`. Detailed and graded bricks keep every cell's clearance;
+/// other uniform bricks of the work set the smallest of their cells' as their reach.
+/// Bricks outside it, `D ≥ 3` bricks from the nearest detailed brick, get the reach
+/// `8 (D − 1) + 1` (see [`VoxelMap::reach`]).
 ///
 /// Deterministic; parallel over bricks within each step.
 pub(crate) fn compute_clearance(map: &mut VoxelMap) {
@@ -163,18 +165,70 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
             counter.write_nibbles(bytes);
         }
     }
+    let distances = brick_distances(&map.bricks, bdims);
     for (b, entry) in map.bricks.iter_mut().enumerate() {
         if *entry & UNIFORM == 0 {
             continue;
         }
         let state = entry_state(*entry);
         let slot = slot_of[b] as usize;
+        // Cells of bricks `D` bricks apart are at least `8 (D − 1) + 1` cells apart.
+        let far = (u32::from(distances[b]).saturating_sub(1) << BRICK_BITS) + 1;
         *entry = match (targets.get(slot), empty_steps.get(slot)) {
             (Some(Target::Graded(g)), _) => graded_entry(state, (detailed_count + g) as u32),
-            (Some(_), Some(&steps)) => uniform_entry(state, steps.min(MAX_CLEARANCE)),
-            _ => uniform_entry(state, MAX_CLEARANCE),
+            (Some(_), Some(&steps)) => uniform_entry(state, u32::from(steps.min(MAX_CLEARANCE))),
+            _ => uniform_entry(state, far.max(u32::from(MAX_CLEARANCE))),
         };
     }
+}
+
+/// The Chebyshev distance, in bricks, from every brick to the nearest detailed one (0 for
+/// a detailed brick; `u16::MAX` when there is none), by the two raster passes of the
+/// chamfer transform with unit weights over the 26 neighbours, which is exact for this
+/// distance. Runs over a copy padded by one brick, so the passes need no bounds checks.
+fn brick_distances(bricks: &[u32], bdims: [u32; 3]) -> Vec<u16> {
+    let [bx, by, bz] = bdims.map(|d| d as usize);
+    let (px, py, pz) = (bx + 2, by + 2, bz + 2);
+    let padded = |x: usize, y: usize, z: usize| (z * py + y) * px + x;
+    let mut d = vec![u16::MAX; px * py * pz];
+    for z in 0..bz {
+        for y in 0..by {
+            for x in 0..bx {
+                if bricks[(z * by + y) * bx + x] & UNIFORM == 0 {
+                    d[padded(x + 1, y + 1, z + 1)] = 0;
+                }
+            }
+        }
+    }
+    // The 13 neighbours before a brick in raster order; the other 13 are after it.
+    let before: Vec<usize> = (-1isize..=1)
+        .flat_map(|dz| (-1isize..=1).flat_map(move |dy| (-1isize..=1).map(move |dx| (dx, dy, dz))))
+        .filter(|&(dx, dy, dz)| (dz, dy, dx) < (0, 0, 0))
+        .map(|(dx, dy, dz)| ((-dz * py as isize - dy) * px as isize - dx) as usize)
+        .collect();
+    for z in 1..=bz {
+        for y in 1..=by {
+            for x in 1..=bx {
+                let i = padded(x, y, z);
+                d[i] = (before.iter()).fold(d[i], |m, &o| m.min(d[i - o].saturating_add(1)));
+            }
+        }
+    }
+    for z in (1..=bz).rev() {
+        for y in (1..=by).rev() {
+            for x in (1..=bx).rev() {
+                let i = padded(x, y, z);
+                d[i] = (before.iter()).fold(d[i], |m, &o| m.min(d[i + o].saturating_add(1)));
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(bricks.len());
+    for z in 1..=bz {
+        for y in 1..=by {
+            out.extend_from_slice(&d[padded(1, y, z)..padded(bx + 1, y, z)]);
+        }
+    }
+    out
 }
 
 /// A 4-bit counter per cell of a brick, bit-sliced: bit `p` of every cell's count lives
@@ -347,4 +401,45 @@ fn dilate(input: &Layer, output: &mut Layer, neighbours: &[[u32; 6]], axis: usiz
             }
             *out_occupancy = Occupancy::of(out);
         });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    /// The chamfer passes give the Chebyshev distance to the nearest detailed brick, as a
+    /// brute-force search over all pairs does, on random grids of bricks, with few,
+    /// many or no detailed bricks.
+    #[test]
+    fn brick_distances_equal_brute_force() {
+        let mut random = SplitMix64::new(7);
+        for case in 0..60 {
+            let bdims = [1, 1, 1].map(|m: u32| m + random.index(9) as u32);
+            let count = bdims.iter().map(|&d| d as usize).product();
+            let density = [0.0, 0.01, 0.1, 0.5][case % 4];
+            let bricks: Vec<u32> = (0..count)
+                .map(|_| {
+                    if random.next_unit() < density {
+                        0
+                    } else {
+                        UNIFORM
+                    }
+                })
+                .collect();
+            let fast = brick_distances(&bricks, bdims);
+            for (b, &d) in fast.iter().enumerate() {
+                let bc = brick_coords(b, bdims).map(i64::from);
+                let brute = (0..count)
+                    .filter(|&o| bricks[o] & UNIFORM == 0)
+                    .map(|o| {
+                        let oc = brick_coords(o, bdims).map(i64::from);
+                        (0..3).map(|a| (bc[a] - oc[a]).abs()).max().unwrap_or(0) as u16
+                    })
+                    .min()
+                    .unwrap_or(u16::MAX);
+                assert_eq!(d, brute, "brick {bc:?} of {bdims:?}");
+            }
+        }
+    }
 }

@@ -45,7 +45,7 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;

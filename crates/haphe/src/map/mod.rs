@@ -18,7 +18,9 @@
 //!   any other surface they are all outside (free space);
 //! - each non-surface cell also stores its **clearance**: how many cells away the nearest
 //!   surface cell is (Chebyshev distance, capped at [`MAX_CLEARANCE`]), so a device point
-//!   that stays in free space needs no triangle test at all for several ticks.
+//!   that stays in free space needs no triangle test at all for several ticks; bricks
+//!   farther away also bound that distance by whole bricks ([`VoxelMap::reach`]), so a long
+//!   segment crosses empty space in a few strides.
 //!
 //! A query finds the cells a segment passes with [`Grid::walk`] (a 3D-DDA) and the
 //! candidate triangles of each with [`VoxelMap::triangles_in`], in constant time per cell.

@@ -4,9 +4,9 @@
 use glam::DVec3;
 
 use super::bricks::{
-    BRICK_CELLS, BRICK_SIDE, BrickBits, GRADED, MASK_WORDS, MAX_BRICKS, NIBBLE_BYTES, UNIFORM,
-    UNIFORM_PAYLOAD, UNIFORM_STATE_SHIFT, VoxelMap, brick_coords, brick_dims, cell_in_brick,
-    in_grid_bits,
+    BRICK_CELLS, BRICK_SIDE, BrickBits, GRADED, MASK_WORDS, MAX_BRICKS, MAX_REACH, NIBBLE_BYTES,
+    UNIFORM, UNIFORM_PAYLOAD, UNIFORM_STATE_SHIFT, VoxelMap, brick_coords, brick_dims,
+    cell_in_brick, in_grid_bits,
 };
 use super::file::{invalid, u64_at};
 use super::grid::Grid;
@@ -288,7 +288,7 @@ pub(crate) fn check_map(map: &VoxelMap, surface: &Surface) -> Result<(), MapFile
     check_triangle_lists(map, t)
 }
 
-/// Brick entries: uniform ones with a valid state and clearance (inside only for a solid,
+/// Brick entries: uniform ones with a valid state and reach (inside only for a solid,
 /// never at the border), graded and detailed ones numbered consecutively in brick order.
 fn check_bricks(map: &VoxelMap) -> Result<(), MapFileError> {
     let bdims = map.brick_dims;
@@ -322,13 +322,13 @@ fn check_bricks(map: &VoxelMap) -> Result<(), MapFileError> {
             next_graded += 1;
             payload == next_graded - 1
         } else {
-            (1..=u32::from(MAX_CLEARANCE)).contains(&payload)
+            (1..=MAX_REACH).contains(&payload)
         };
         if !state_ok || !payload_ok {
             return Err(invalid(
                 "bricks",
                 format!(
-                    "uniform brick {b} has entry {entry:#010x}: bad state, clearance or \
+                    "uniform brick {b} has entry {entry:#010x}: bad state, reach or \
                      graded index"
                 ),
             ));

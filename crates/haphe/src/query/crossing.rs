@@ -23,10 +23,11 @@ pub struct Crossing {
     pub entering: bool,
 }
 
-/// The smallest [`clearance`](VoxelMap::clearance) of a cell from which [`first_crossing`]
-/// skips the free cells around it ([`CellWalk::skip_cube`](crate::map::CellWalk::skip_cube))
+/// The smallest reach (the [`clearance`](VoxelMap::clearance) of a cell, or farther from
+/// the surface its brick's bound) from which [`first_crossing`] skips the free cells
+/// around it ([`CellWalk::skip_cube`](crate::map::CellWalk::skip_cube))
 /// rather than stepping through them one at a time.
-const SKIP_MIN_CLEARANCE: u8 = 2;
+const SKIP_MIN_REACH: u32 = 2;
 
 /// The shortest segment, in cells, for which [`first_crossing`] looks up clearances to
 /// skip free space: a shorter one crosses too few cells for a skip to save their look-ups
@@ -124,7 +125,9 @@ impl Tested {
 /// [`first_crossing_brute_force`], which this always equals.
 ///
 /// Free space costs little: from a cell of [`clearance`](VoxelMap::clearance) `k ≥ 2`,
-/// the walk skips the cube of cells within `k − 1` of it, none of which lists a triangle.
+/// the walk skips the cube of cells within `k − 1` of it, none of which lists a triangle;
+/// far from the surface, where the map bounds the distance by whole bricks, `k` grows with
+/// that distance, so crossing empty space takes a few strides however fine the grid.
 ///
 /// # Real-time
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
@@ -196,15 +199,15 @@ pub fn first_crossing_where(
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
         }
-        let (triangles, clearance) = if skips {
-            map.triangles_or_clearance(visit.cell)
+        let (triangles, reach) = if skips {
+            map.triangles_or_reach(visit.cell)
         } else {
             (map.triangles_in(visit.cell), 0)
         };
-        // Free space: every cell within `clearance − 1` of this one lists no triangle, so
-        // the walk skips them all.
-        if clearance >= SKIP_MIN_CLEARANCE {
-            walk.skip_cube(u32::from(clearance) - 1);
+        // Free space: every cell within `reach − 1` of this one lists no triangle, so the
+        // walk skips them all (far from the surface, whole bricks at a time).
+        if reach >= SKIP_MIN_REACH {
+            walk.skip_cube(reach - 1);
             continue;
         }
         if triangles.is_empty() {

@@ -16,6 +16,9 @@ pub struct Dense {
     /// Exact Chebyshev distance to the nearest surface cell, capped at `MAX_CLEARANCE`
     /// (0 for surface cells).
     pub clearance: Vec<u8>,
+    /// Exact Chebyshev distance to the nearest surface cell, uncapped (`u32::MAX` when
+    /// there is none).
+    pub distance: Vec<u32>,
     pub triangles: Vec<Vec<u32>>,
 }
 
@@ -46,6 +49,7 @@ pub fn dense_reference(surface: &Surface, grid: &Grid, solid: bool) -> Dense {
         dims,
         states: vec![CellState::Inside; count],
         clearance: vec![0; count],
+        distance: Vec::new(),
         triangles: vec![Vec::new(); count],
     };
     for t in 0..surface.triangle_count() {
@@ -125,6 +129,7 @@ pub fn dense_reference(surface: &Surface, grid: &Grid, solid: bool) -> Dense {
     for (i, &d) in distance.iter().enumerate() {
         dense.clearance[i] = d.min(u32::from(MAX_CLEARANCE)) as u8;
     }
+    dense.distance = distance;
     dense
 }
 
