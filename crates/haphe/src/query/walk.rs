@@ -29,6 +29,12 @@ pub const MAX_FAN_SCAN: usize = 512;
 /// weights, so the kernel would find the same face.
 const FACE_WEIGHT_MARGIN: f64 = 1e-9;
 
+/// Relative rounding allowance of a triangle's plane distance (of the distance from its
+/// frame's origin) before the walk takes it as a bound on the triangle's nearest point:
+/// far above the rounding of the frame and of the dot product, so a triangle is skipped
+/// only when its nearest point is certainly farther than the best so far.
+const PLANE_SLACK: f64 = 1e-12;
+
 /// A point on the surface with what a haptic renderer needs there (object frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
@@ -112,10 +118,33 @@ pub fn walk_to_nearest(
         let tri = surface.triangle(t);
         let mut best: Option<(TriId, ClosestPoint, f64)> = None;
         let mut consider = |s: u32| {
-            if s == NONE || s == t.0 || surface.frame(TriId(s)).is_degenerate() {
+            if s == NONE || s == t.0 {
                 return;
             }
-            let c = closest_point_triangle(target, surface.corners(TriId(s)));
+            let frame = surface.frame(TriId(s));
+            if frame.is_degenerate() {
+                return;
+            }
+            // No point of `s` is nearer than its plane: one whose plane is farther than
+            // the best point so far cannot win, and one under which the target lies,
+            // well inside its edges, has its nearest point there (as at the start).
+            let offset = target - frame.origin;
+            let h = frame.normal.dot(offset);
+            let bound = best.map_or(d2, |(_, _, b2)| b2);
+            let slack = PLANE_SLACK * offset.abs().max_element();
+            if h.abs() > slack && (h.abs() - slack) * (h.abs() - slack) > bound {
+                return;
+            }
+            let weights = frame.barycentric(target);
+            let c = if weights.iter().all(|&w| w > FACE_WEIGHT_MARGIN) {
+                ClosestPoint {
+                    point: target - h * frame.normal,
+                    weights,
+                    feature: Feature::Face,
+                }
+            } else {
+                closest_point_triangle(target, surface.corners(TriId(s)))
+            };
             let e2 = c.point.distance_squared(target);
             let better = match best {
                 None => e2 < d2,
