@@ -37,13 +37,13 @@ const RATE_HZ: f64 = 1000.0;
 fn scene_of(surface: Surface) -> Scene {
     let shape = Shape::build(surface, &MapOptions::default()).expect("the map builds");
     shape.prepare_clear_zones();
+    scene_with(Arc::new(shape))
+}
+
+/// A scene of the shared `shape` at the origin.
+fn scene_with(shape: Arc<Shape>) -> Scene {
     let mut scene = Scene::local(4);
-    let object = SceneObject::new(
-        ObjectId(0),
-        Arc::new(shape),
-        Pose::IDENTITY,
-        Material::default(),
-    );
+    let object = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, Material::default());
     scene
         .insert(object)
         .map_err(|(e, _)| e)
@@ -128,17 +128,7 @@ fn servo_stage(c: &mut Criterion) {
     let seconds = TICKS as f64 / RATE_HZ;
     let path = scripted_path(PathKind::Explore, &blob, seconds, 3).expect("a path");
     let fresh = || {
-        let mut scene = Scene::local(4);
-        let object = SceneObject::new(
-            ObjectId(0),
-            Arc::clone(&shape),
-            Pose::IDENTITY,
-            Material::default(),
-        );
-        scene
-            .insert(object)
-            .map_err(|(e, _)| e)
-            .expect("room for it");
+        let scene = scene_with(Arc::clone(&shape));
         let hand = SimulatedHand::new(path.clone(), HandOptions::default());
         let options = ServoOptions {
             rate_hz: RATE_HZ,
