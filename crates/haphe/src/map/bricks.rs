@@ -273,15 +273,27 @@ impl VoxelMap {
     pub fn reach(&self, c: [u32; 3]) -> u32 {
         match self.slot(c) {
             None => 0,
-            Some(Slot::Uniform { entry, local }) if entry & GRADED != 0 => u32::from(nibble(
-                &self.clearances,
-                (entry & UNIFORM_PAYLOAD) as usize,
-                local,
-            )),
-            Some(Slot::Uniform { entry, .. }) => entry & UNIFORM_PAYLOAD,
+            Some(Slot::Uniform { entry, local }) => {
+                Self::uniform_reach(&self.clearances, entry, local)
+            }
             Some(Slot::Detailed { brick, local }) => {
                 u32::from(nibble(&self.clearances, brick, local))
             }
+        }
+    }
+
+    /// The reach of cell `local` of a uniform brick with top-level `entry`: its graded
+    /// clearance nibble, or the entry's own reach.
+    #[inline]
+    fn uniform_reach(clearances: &[u8], entry: u32, local: usize) -> u32 {
+        if entry & GRADED != 0 {
+            u32::from(nibble(
+                clearances,
+                (entry & UNIFORM_PAYLOAD) as usize,
+                local,
+            ))
+        } else {
+            entry & UNIFORM_PAYLOAD
         }
     }
 
@@ -294,40 +306,50 @@ impl VoxelMap {
     /// panics.
     #[inline]
     pub fn triangles_in(&self, c: [u32; 3]) -> &[u32] {
-        let Some(Slot::Detailed { brick, local }) = self.slot(c) else {
-            return &[];
-        };
-        let (word, bit) = (local >> 6, local & 63);
-        let Some(mask) = self.surface_bits.get(brick).map(|b| b[word]) else {
-            return &[];
-        };
-        if mask >> bit & 1 == 0 {
-            return &[];
-        }
-        let (Some(&first), Some(before)) = (
-            self.surface_first.get(brick),
-            self.surface_before.get(brick),
-        ) else {
-            return &[];
-        };
-        let rank = usize::from(before[word]) + (mask & ((1u64 << bit) - 1)).count_ones() as usize;
-        let s = first as usize + rank;
-        match (self.triangle_start.get(s), self.triangle_start.get(s + 1)) {
-            (Some(&a), Some(&b)) => self
-                .triangle_refs
-                .get(a as usize..b as usize)
-                .unwrap_or(&[]),
+        match self.slot(c) {
+            Some(Slot::Detailed { brick, local }) => self.listed(brick, local).unwrap_or(&[]),
             _ => &[],
         }
     }
 
+    /// The triangles of cell `local` of detailed brick `brick`: `None` when it is not a
+    /// surface cell (or the brick is out of range).
+    #[inline]
+    fn listed(&self, brick: usize, local: usize) -> Option<&[u32]> {
+        let (word, bit) = (local >> 6, local & 63);
+        let mask = self.surface_bits.get(brick)?[word];
+        if mask >> bit & 1 == 0 {
+            return None;
+        }
+        let first = *self.surface_first.get(brick)?;
+        let before = self.surface_before.get(brick)?[word];
+        let rank = usize::from(before) + (mask & ((1u64 << bit) - 1)).count_ones() as usize;
+        let s = first as usize + rank;
+        let (a, b) = (
+            *self.triangle_start.get(s)?,
+            *self.triangle_start.get(s + 1)?,
+        );
+        Some(
+            self.triangle_refs
+                .get(a as usize..b as usize)
+                .unwrap_or(&[]),
+        )
+    }
+
     /// Cell `c`'s triangles and reach: the triangles of a surface cell with reach 0, or no
-    /// triangle with the [`reach`](Self::reach) of any other cell.
+    /// triangle with the [`reach`](Self::reach) of any other cell; one look-up of the
+    /// cell's brick for both.
     #[inline]
     pub(crate) fn triangles_or_reach(&self, c: [u32; 3]) -> (&[u32], u32) {
-        match self.triangles_in(c) {
-            [] => (&[], self.reach(c)),
-            triangles => (triangles, 0),
+        match self.slot(c) {
+            None => (&[], 0),
+            Some(Slot::Uniform { entry, local }) => {
+                (&[], Self::uniform_reach(&self.clearances, entry, local))
+            }
+            Some(Slot::Detailed { brick, local }) => match self.listed(brick, local) {
+                Some(triangles) => (triangles, 0),
+                None => (&[], u32::from(nibble(&self.clearances, brick, local))),
+            },
         }
     }
 
