@@ -11,6 +11,7 @@
 
 use glam::DVec3;
 
+use super::crossing::FRAME_DIRECTION_ERROR;
 use super::{ClosestPoint, Feature, closest_point_triangle};
 use crate::mesh::{NONE, Surface, TriId, VertId};
 
@@ -28,12 +29,6 @@ pub const MAX_FAN_SCAN: usize = 512;
 /// as the nearest point without the closest-point kernel: far above the rounding of the
 /// weights, so the kernel would find the same face.
 const FACE_WEIGHT_MARGIN: f64 = 1e-9;
-
-/// Relative rounding allowance of a triangle's plane distance (of the distance from its
-/// frame's origin) before the walk takes it as a bound on the triangle's nearest point:
-/// far above the rounding of the frame and of the dot product, so a triangle is skipped
-/// only when its nearest point is certainly farther than the best so far.
-const PLANE_SLACK: f64 = 1e-12;
 
 /// A point on the surface with what a haptic renderer needs there (object frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -127,11 +122,13 @@ pub fn walk_to_nearest(
             }
             // No point of `s` is nearer than its plane: one whose plane is farther than
             // the best point so far cannot win, and one under which the target lies,
-            // well inside its edges, has its nearest point there (as at the start).
+            // well inside its edges, has its nearest point there (as at the start). The
+            // slack covers the error of the frame's normal (large on slivers), so a
+            // triangle is skipped only when its nearest point is certainly farther.
             let offset = target - frame.origin;
             let h = frame.normal.dot(offset);
             let bound = best.map_or(d2, |(_, _, b2)| b2);
-            let slack = PLANE_SLACK * offset.abs().max_element();
+            let slack = FRAME_DIRECTION_ERROR * offset.abs().max_element();
             if h.abs() > slack && (h.abs() - slack) * (h.abs() - slack) > bound {
                 return;
             }
