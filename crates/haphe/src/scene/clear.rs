@@ -18,8 +18,9 @@ impl Scene {
     /// Whether the proxy move `from → to` (world frame) provably meets no surface of any
     /// object, with every probe of it reaching `reach` metres: both ends lie in the
     /// [`ClearZone`] of `triangle` of object `i` (the surface the proxy slides on), and
-    /// every other object's bounding sphere is farther than `reach` from the move. Then [`Scene::first_hit`] finds nothing for any object and
-    /// [`Scene::touching`] finds nothing at `to`, so a tick may skip both searches.
+    /// every other object's bounding sphere is farther than `reach` from the move. Then
+    /// [`Scene::first_hit`] finds nothing for any object and [`Scene::touching`] finds
+    /// nothing at `to`, so a tick may skip both searches.
     /// `false` whenever that is not shown (including `i` or `triangle` out of range).
     ///
     /// # Real-time
@@ -52,8 +53,9 @@ impl Scene {
     /// the proxy at `from`): the move's probe starts in front of that triangle, in its
     /// [`ClearZone`], whose neighbourhood lies on or behind its plane and outside the
     /// triangle (`below`), and enters it strictly inside; every other object's bounding
-    /// sphere is farther from the move than the reach. Then nothing else is crossed before, and the
-    /// hit is the one the search would return, bit for bit. `None` when that is not shown.
+    /// sphere is farther from the move than the reach. Then nothing else is crossed
+    /// before, and the hit is the one the search would return, bit for bit. `None` when
+    /// that is not shown.
     ///
     /// # Real-time
     /// One zone, one triangle test, a bounding-sphere test per other object.
