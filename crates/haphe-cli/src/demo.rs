@@ -105,6 +105,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         realtime: args.realtime,
         spin_seconds: None,
         fifo: true,
+        standby_core: None,
         seed: 3,
         max_force: 3.3,
         out: args.out.clone(),

@@ -435,3 +435,55 @@ fn realtime_smoke() {
     assert_eq!(last_tick, Some(stats.ticks - 1));
     assert_eq!(stats.lateness.count(), stats.ticks);
 }
+
+/// With a standby thread on another core: every tick runs once, in order, whichever
+/// thread runs it; the standby reports what it did (how many ticks it took over depends on
+/// the machine, so it is printed, not asserted).
+#[test]
+fn realtime_with_a_standby_thread_ticks_each_deadline_once() {
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    let scene = scene_of(shape(Catalog::Blob, 2_000), Material::default());
+    let path = scripted_path(PathKind::Explore, &scene, 1.0, 0).expect("a path");
+    let servo = Servo::new(
+        SimulatedHand::new(path, HandOptions::default()),
+        scene,
+        options(2e3),
+    )
+    .expect("servo");
+    let running = ServoLoop::spawn(
+        servo,
+        Some(0.3),
+        RealtimeOptions {
+            realtime_priority: false,
+            core: Some(cores - 1),
+            spin_seconds: Some(500e-6),
+            standby_core: Some(0),
+            ..RealtimeOptions::default()
+        },
+    )
+    .expect("a thread");
+    let mut ticks = Vec::new();
+    let run = running
+        .wait(|r| ticks.push((r.tick, r.t)))
+        .expect("no panic");
+    let stats = run.servo.stats();
+    let standby = run.standby.expect("a standby report");
+    println!(
+        "{} ticks, {} by the standby ({:?}), overruns {}, skipped {}",
+        stats.ticks, standby.ticks, standby.pinned_core, stats.overruns, stats.skipped
+    );
+    assert_eq!(run.stop, StopReason::Finished);
+    assert_eq!(ticks.len() as u64, stats.ticks);
+    assert!(stats.ticks > 0 && standby.ticks <= stats.ticks);
+    // Each tick once, in order, at increasing deadlines.
+    assert!(
+        ticks
+            .iter()
+            .enumerate()
+            .all(|(i, &(tick, _))| tick == i as u64)
+    );
+    assert!(ticks.windows(2).all(|w| w[1].1 > w[0].1));
+    if cfg!(target_os = "linux") {
+        assert_eq!(standby.pinned_core, Some(0), "core 0 exists everywhere");
+    }
+}

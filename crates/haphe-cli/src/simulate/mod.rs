@@ -82,6 +82,11 @@ pub struct Args {
     /// (`--spin-us` equal to it) on its own core.
     #[arg(long)]
     normal_priority: bool,
+    /// With --realtime: a standby thread pinned to this core ticks in place of the servo
+    /// thread when that one is 20 µs late (its core taken away by the host or another
+    /// thread). It spins the whole period at normal priority: it costs a second core.
+    #[arg(long, value_name = "CORE")]
+    standby_core: Option<usize>,
     /// Write every tick to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     out: Option<PathBuf>,
@@ -172,6 +177,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         realtime: args.realtime,
         spin_seconds: args.spin_us.map(|us| us * 1e-6),
         fifo: !args.normal_priority,
+        standby_core: args.standby_core,
         seed: args.seed,
         max_force: args.max_force,
         out: args.out.clone(),
@@ -213,6 +219,9 @@ pub struct Session {
     pub spin_seconds: Option<f64>,
     /// Ask for FIFO real-time priority (with `realtime`).
     pub fifo: bool,
+    /// Core of a standby servo thread (with `realtime`; see
+    /// [`RealtimeOptions::standby_core`]).
+    pub standby_core: Option<usize>,
     pub seed: u64,
     pub max_force: f64,
     pub out: Option<PathBuf>,
@@ -336,10 +345,11 @@ impl Session {
                 t.add(r);
             }
         };
-        let (stats, stop, setup, interference, dropped) = if self.realtime {
+        let (stats, stop, setup, interference, standby, dropped) = if self.realtime {
             let realtime = RealtimeOptions {
                 spin_seconds: self.spin_seconds,
                 realtime_priority: self.fifo,
+                standby_core: self.standby_core,
                 ..RealtimeOptions::default()
             };
             let running = ServoLoop::spawn(servo, Some(seconds), realtime)?;
@@ -350,12 +360,13 @@ impl Session {
                 run.stop,
                 Some(run.setup),
                 Some(run.interference),
+                run.standby,
                 run.dropped_records,
             )
         } else {
             let stop = servo.run_simulated(ticks, &mut on_tick);
             servo.close();
-            (servo.stats().clone(), stop, None, None, 0)
+            (servo.stats().clone(), stop, None, None, None, 0)
         };
         writeln!(out, "\nrun:")?;
         summary::print(
@@ -369,6 +380,7 @@ impl Session {
                 stop,
                 setup: setup.as_ref(),
                 interference,
+                standby,
                 dropped_records: dropped,
             },
         )?;

@@ -4,7 +4,9 @@
 use std::io::Write;
 
 use haphe::DVec3;
-use haphe::servo::{Interference, Phase, RealtimeSetup, StopReason, TickRecord, TickStats};
+use haphe::servo::{
+    Interference, Phase, RealtimeSetup, StandbyReport, StopReason, TickRecord, TickStats,
+};
 
 /// Most samples kept for the plot; longer runs are decimated evenly.
 pub const PLOT_SAMPLES: usize = 20_000;
@@ -105,6 +107,8 @@ pub struct RunInfo<'a> {
     pub stop: StopReason,
     pub setup: Option<&'a RealtimeSetup>,
     pub interference: Option<Interference>,
+    /// What the standby thread did, when there was one.
+    pub standby: Option<StandbyReport>,
     pub dropped_records: u64,
 }
 
@@ -264,6 +268,18 @@ pub fn print(
             if let Some(i) = info.interference {
                 print_interference(out, &i, setup.pinned_core)?;
             }
+        }
+        if let Some(standby) = &info.standby {
+            let core = standby
+                .pinned_core
+                .map_or("not pinned".to_string(), |c| format!("pinned to core {c}"));
+            writeln!(
+                out,
+                "  standby thread    {core}; ran {} tick(s) ({:.4} % of ticks) when the servo thread was late",
+                standby.ticks,
+                100.0 * standby.ticks as f64 / stats.ticks.max(1) as f64
+            )?;
+            print_interference(out, &standby.interference, standby.pinned_core)?;
         }
         if info.dropped_records > 0 {
             writeln!(

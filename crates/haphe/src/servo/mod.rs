@@ -19,7 +19,9 @@
 //! - [`ServoLoop`] — the same tick on a dedicated thread on the wall clock: absolute
 //!   deadlines (sleep, then spin), FIFO priority and core pinning where permitted, records
 //!   handed out through a wait-free ring, and the [`Interference`] the system reports
-//!   (steal time of the servo's core, preemptions of its thread).
+//!   (steal time of the servo's core, preemptions of its thread); optionally a standby
+//!   thread on a second core that ticks in its place when it is late
+//!   ([`RealtimeOptions::standby_core`], [`StandbyReport`]).
 //! - [`TickStats`] — compute time and lateness histograms ([`Histogram`], preallocated)
 //!   and counters; [`TickRecord`] — one tick, written as CSV by
 //!   [`TickRecord::write_csv`] under [`CSV_HEADER`].
@@ -32,7 +34,9 @@
 //!
 //! # Real-time
 //!
-//! A tick allocates nothing, takes no lock, does no I/O and never panics; the test
+//! A tick allocates nothing, takes no lock, does no I/O and never panics (with a standby
+//! thread, the two threads claim each tick with a non-blocking `try_lock` that neither
+//! ever waits on; the claim allocates nothing, see `servo/standby.rs`); the test
 //! `tests/servo_alloc.rs` runs the loop with the simulated hand, a moving object and the
 //! statistics under a counting allocator. A shape computes each triangle's clear zone on
 //! its first contact (a few microseconds, once); call
@@ -71,6 +75,7 @@ mod path;
 mod realtime;
 mod replay;
 mod scripted;
+mod standby;
 mod stats;
 mod tick;
 mod trace;
@@ -91,6 +96,7 @@ pub use scripted::{
     HOVER_M, PRESS_DEPTH_M, PathKind, SLIDE_SPEED, STRIKE_SPEED, ScriptedDevice, scene_bounds,
     scripted_path, simulated_spec, surface_below,
 };
+pub use standby::{STANDBY_GRACE_S, StandbyReport};
 pub use stats::{Histogram, TickStats};
 pub use tick::{MAX_RATE_HZ, MIN_RATE_HZ, Servo, ServoError, ServoOptions, StopReason};
 pub use trace::{CSV_HEADER, Phase, TickRecord, write_csv_header};

@@ -10,6 +10,7 @@ use rtrb::{Consumer, RingBuffer};
 
 use super::device::Device;
 use super::interference::{Counters, Interference};
+use super::standby::{StandbyReport, with_standby};
 use super::tick::{Servo, ServoError, StopReason};
 use super::trace::TickRecord;
 
@@ -45,17 +46,25 @@ pub struct RealtimeOptions {
     /// Capacity of the record ring to the reading thread, ticks; records that find it
     /// full are dropped and counted.
     pub record_capacity: usize,
+    /// Run a standby thread pinned to this core, which ticks in place of the servo
+    /// thread when that one has not started a tick
+    /// [`STANDBY_GRACE_S`](super::STANDBY_GRACE_S) after its deadline (its core was taken
+    /// away: host steal time on a virtual machine, or a preemption). The standby spins the
+    /// whole period at normal priority, so it costs a second core; `None` (the default):
+    /// no standby.
+    pub standby_core: Option<usize>,
 }
 
 impl Default for RealtimeOptions {
     /// Real-time priority, the last core, the default spin, one second of records at
-    /// 40 kHz.
+    /// 40 kHz, no standby thread.
     fn default() -> RealtimeOptions {
         RealtimeOptions {
             realtime_priority: true,
             core: None,
             spin_seconds: None,
             record_capacity: 40_000,
+            standby_core: None,
         }
     }
 }
@@ -85,6 +94,8 @@ pub struct RealtimeRun<D: Device> {
     /// What ran instead of the servo thread during the run (steal time of its core,
     /// preemptions): what to look at when there were overruns.
     pub interference: Interference,
+    /// What the standby thread did, when there was one.
+    pub standby: Option<StandbyReport>,
 }
 
 /// A [`Servo`] running on its own thread at its rate on the wall clock.
@@ -233,7 +244,7 @@ fn fifo_priority() -> Result<(), String> {
 
 /// Sleeps until `spin` before `deadline`, then spins to it.
 #[inline]
-fn wait_until(deadline: Instant, spin: Duration) {
+pub(super) fn wait_until(deadline: Instant, spin: Duration) {
     loop {
         let now = Instant::now();
         if now >= deadline {
@@ -252,18 +263,91 @@ fn nanos(d: Duration) -> u64 {
     u64::try_from(d.as_nanos()).unwrap_or(u64::MAX)
 }
 
+/// What the thread that ticks holds: the servo and the loop's own counters.
+pub(super) struct Run<D: Device> {
+    pub(super) servo: Servo<D>,
+    pub(super) producer: rtrb::Producer<TickRecord>,
+    /// The next tick to run; its deadline is `start + k · period`.
+    pub(super) k: u64,
+    pub(super) dropped: u64,
+    /// Why the run ended, once it has.
+    pub(super) stop: Option<StopReason>,
+}
+
+/// The deadlines of a run.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Schedule {
+    pub(super) start: Instant,
+    pub(super) period_ns: u64,
+    pub(super) max_ticks: Option<u64>,
+}
+
+impl Schedule {
+    /// The deadline of tick `k`, and its time since the start.
+    pub(super) fn deadline(&self, k: u64) -> (Instant, Duration) {
+        let offset = Duration::from_nanos(k.saturating_mul(self.period_ns));
+        (self.start + offset, offset)
+    }
+}
+
+impl<D: Device> Run<D> {
+    /// Whether the run has ended; decides it (the time is up, or a stop was asked) when
+    /// it has not yet.
+    pub(super) fn ended(&mut self, schedule: &Schedule, stop_flag: &AtomicBool) -> bool {
+        if self.stop.is_none() {
+            if schedule.max_ticks.is_some_and(|m| self.k >= m) {
+                self.stop = Some(StopReason::Finished);
+            } else if stop_flag.load(Ordering::Relaxed) {
+                self.stop = Some(StopReason::Requested);
+            }
+        }
+        self.stop.is_some()
+    }
+
+    /// Runs tick `k` (its deadline has come), records its lateness and compute time,
+    /// hands its record on, and moves on to the next deadline not yet past.
+    pub(super) fn tick(&mut self, schedule: &Schedule) {
+        let (deadline, offset) = schedule.deadline(self.k);
+        let began = Instant::now();
+        let record = self.servo.tick_at(offset.as_secs_f64());
+        let done = Instant::now();
+        let stats = self.servo.stats_mut();
+        stats
+            .lateness
+            .record(nanos(began.saturating_duration_since(deadline)));
+        stats
+            .compute
+            .record(nanos(done.saturating_duration_since(began)));
+        if done > deadline + Duration::from_nanos(schedule.period_ns) {
+            stats.overruns += 1;
+        }
+        self.k += 1;
+        // More than a period behind: skip the deadlines already past.
+        let behind = nanos(done.saturating_duration_since(schedule.start)) / schedule.period_ns;
+        if behind > self.k {
+            stats.skipped += behind + 1 - self.k;
+            self.k = behind + 1;
+        }
+        if self.producer.push(record).is_err() {
+            self.dropped += 1;
+        }
+        if let Some(f) = record.fault {
+            self.stop = Some(StopReason::Fault(f));
+        }
+    }
+}
+
 /// The servo thread.
 fn run_thread<D: Device>(
-    mut servo: Servo<D>,
+    servo: Servo<D>,
     seconds: Option<f64>,
     options: RealtimeOptions,
     stop_flag: &AtomicBool,
-    mut producer: rtrb::Producer<TickRecord>,
+    producer: rtrb::Producer<TickRecord>,
 ) -> RealtimeRun<D> {
     let setup = set_up_thread(&options);
     let rate = servo.options().rate_hz;
     let period_ns = ((1e9 / rate).round() as u64).max(1);
-    let period = Duration::from_nanos(period_ns);
     let spin_s = options
         .spin_seconds
         .filter(|s| s.is_finite() && *s >= 0.0)
@@ -272,60 +356,39 @@ fn run_thread<D: Device>(
     let max_ticks = seconds
         .filter(|s| s.is_finite() && *s >= 0.0)
         .map(|s| (s * rate).round() as u64);
-    let mut dropped = 0u64;
-    let mut stop = StopReason::Finished;
+    let mut run = Run {
+        servo,
+        producer,
+        k: 0,
+        dropped: 0,
+        stop: None,
+    };
     let counters = Counters::read(setup.pinned_core);
-
-    // Everything above may allocate; nothing below does.
-    let start = Instant::now();
-    let mut k: u64 = 0;
-    loop {
-        if max_ticks.is_some_and(|m| k >= m) {
-            break;
+    let (mut run, standby) = match options.standby_core {
+        None => {
+            // Everything above may allocate; nothing below does.
+            let schedule = Schedule {
+                start: Instant::now(),
+                period_ns,
+                max_ticks,
+            };
+            while !run.ended(&schedule, stop_flag) {
+                wait_until(schedule.deadline(run.k).0, spin);
+                run.tick(&schedule);
+            }
+            run.servo.stats_mut().wall_seconds += schedule.start.elapsed().as_secs_f64();
+            (run, None)
         }
-        if stop_flag.load(Ordering::Relaxed) {
-            stop = StopReason::Requested;
-            break;
-        }
-        let offset = Duration::from_nanos(k.saturating_mul(period_ns));
-        let deadline = start + offset;
-        wait_until(deadline, spin);
-        let began = Instant::now();
-        let record = servo.tick_at(offset.as_secs_f64());
-        let done = Instant::now();
-        let stats = servo.stats_mut();
-        stats
-            .lateness
-            .record(nanos(began.saturating_duration_since(deadline)));
-        stats
-            .compute
-            .record(nanos(done.saturating_duration_since(began)));
-        if done > deadline + period {
-            stats.overruns += 1;
-        }
-        if producer.push(record).is_err() {
-            dropped += 1;
-        }
-        if let Some(f) = record.fault {
-            stop = StopReason::Fault(f);
-            break;
-        }
-        k += 1;
-        // More than a period behind: skip the deadlines already past.
-        let behind = nanos(done.saturating_duration_since(start)) / period_ns;
-        if behind > k {
-            stats.skipped += behind + 1 - k;
-            k = behind + 1;
-        }
-    }
-    servo.zero_force();
-    servo.stats_mut().wall_seconds += start.elapsed().as_secs_f64();
+        Some(core) => with_standby(run, core, (period_ns, max_ticks), spin, stop_flag),
+    };
+    run.servo.zero_force();
     let interference = counters.since(Counters::read(setup.pinned_core));
     RealtimeRun {
-        servo,
+        servo: run.servo,
         setup,
-        stop,
-        dropped_records: dropped,
+        stop: run.stop.unwrap_or(StopReason::Finished),
+        dropped_records: run.dropped,
         interference,
+        standby,
     }
 }
