@@ -368,20 +368,24 @@ fn a_fault_stops_with_zero_force() {
     assert_eq!(servo.phase(), Phase::Faulted);
 }
 
-/// The loop on its own thread on the wall clock, briefly: it runs, delivers every record
-/// and reports its timing (no timing assertion: the machine is shared).
-#[test]
-fn realtime_smoke() {
+/// The simulated hand on `path` over a 2k-triangle blob, at 2 kHz.
+fn hand_on_a_blob(path: PathKind) -> Servo<SimulatedHand> {
     let scene = scene_of(shape(Catalog::Blob, 2_000), Material::default());
-    let path = scripted_path(PathKind::Press, &scene, 1.0, 0).expect("a path");
-    let servo = Servo::new(
+    let path = scripted_path(path, &scene, 1.0, 0).expect("a path");
+    Servo::new(
         SimulatedHand::new(path, HandOptions::default()),
         scene,
         options(2e3),
     )
-    .expect("servo");
+    .expect("servo")
+}
+
+/// The loop on its own thread on the wall clock, briefly: it runs, delivers every record
+/// and reports its timing (no timing assertion: the machine is shared).
+#[test]
+fn realtime_smoke() {
     let running = ServoLoop::spawn(
-        servo,
+        hand_on_a_blob(PathKind::Press),
         Some(0.3),
         RealtimeOptions {
             realtime_priority: false,
@@ -442,16 +446,8 @@ fn realtime_smoke() {
 #[test]
 fn realtime_with_a_standby_thread_ticks_each_deadline_once() {
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
-    let scene = scene_of(shape(Catalog::Blob, 2_000), Material::default());
-    let path = scripted_path(PathKind::Explore, &scene, 1.0, 0).expect("a path");
-    let servo = Servo::new(
-        SimulatedHand::new(path, HandOptions::default()),
-        scene,
-        options(2e3),
-    )
-    .expect("servo");
     let running = ServoLoop::spawn(
-        servo,
+        hand_on_a_blob(PathKind::Explore),
         Some(0.3),
         RealtimeOptions {
             realtime_priority: false,
