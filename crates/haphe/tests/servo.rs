@@ -446,6 +446,10 @@ fn realtime_smoke() {
 #[test]
 fn realtime_with_a_standby_thread_ticks_each_deadline_once() {
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    if cores < 2 {
+        println!("one core: a standby needs a second one; not run here");
+        return;
+    }
     let running = ServoLoop::spawn(
         hand_on_a_blob(PathKind::Explore),
         Some(0.3),
@@ -481,5 +485,33 @@ fn realtime_with_a_standby_thread_ticks_each_deadline_once() {
     assert!(ticks.windows(2).all(|w| w[1].1 > w[0].1));
     if cfg!(target_os = "linux") {
         assert_eq!(standby.pinned_core, Some(0), "core 0 exists everywhere");
+    }
+}
+
+/// A standby asked for on the servo thread's own core is not started, and the setup says
+/// why: two threads on one core could only take turns.
+#[test]
+fn no_standby_on_the_servo_threads_own_core() {
+    let running = ServoLoop::spawn(
+        hand_on_a_blob(PathKind::Press),
+        Some(0.05),
+        RealtimeOptions {
+            realtime_priority: false,
+            core: Some(0),
+            standby_core: Some(0),
+            ..RealtimeOptions::default()
+        },
+    )
+    .expect("a thread");
+    let run = running.wait(|_| {}).expect("no panic");
+    assert_eq!(run.stop, StopReason::Finished);
+    assert!(run.servo.stats().ticks > 0);
+    if run.setup.pinned_core == Some(0) {
+        assert!(run.standby.is_none(), "{:?}", run.standby);
+        assert!(
+            run.setup.notes.iter().any(|n| n.contains("no standby")),
+            "{:?}",
+            run.setup.notes
+        );
     }
 }

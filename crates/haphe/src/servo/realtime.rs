@@ -51,7 +51,8 @@ pub struct RealtimeOptions {
     /// [`STANDBY_GRACE_S`](super::STANDBY_GRACE_S) after its deadline (its core was taken
     /// away: host steal time on a virtual machine, or a preemption). The standby spins the
     /// whole period at normal priority, so it costs a second core; `None` (the default):
-    /// no standby.
+    /// no standby. A core the servo thread is pinned to gets no standby (said in
+    /// [`RealtimeSetup::notes`]).
     pub standby_core: Option<usize>,
 }
 
@@ -345,7 +346,17 @@ fn run_thread<D: Device>(
     stop_flag: &AtomicBool,
     producer: rtrb::Producer<TickRecord>,
 ) -> RealtimeRun<D> {
-    let setup = set_up_thread(&options);
+    let mut setup = set_up_thread(&options);
+    // A standby on the servo thread's own core could only take turns with it.
+    let standby_core = options.standby_core.filter(|&c| {
+        let apart = setup.pinned_core != Some(c);
+        if !apart {
+            setup
+                .notes
+                .push(format!("no standby: core {c} is the servo thread's own"));
+        }
+        apart
+    });
     let rate = servo.options().rate_hz;
     let period_ns = ((1e9 / rate).round() as u64).max(1);
     let spin_s = options
@@ -364,7 +375,7 @@ fn run_thread<D: Device>(
         stop: None,
     };
     let counters = Counters::read(setup.pinned_core);
-    let (mut run, standby) = match options.standby_core {
+    let (mut run, standby) = match standby_core {
         None => {
             // Everything above may allocate; nothing below does.
             let schedule = Schedule {
