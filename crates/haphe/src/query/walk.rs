@@ -13,7 +13,7 @@ use glam::DVec3;
 
 use super::crossing::FRAME_DIRECTION_ERROR;
 use super::{ClosestPoint, Feature, closest_point_triangle};
-use crate::mesh::{NONE, Surface, TriId, VertId};
+use crate::mesh::{NONE, Surface, TriFrame, TriId, VertId};
 
 /// Most steps a walk takes before it returns its best point with [`WalkStatus::BoundHit`].
 /// A coherent haptic tick needs zero or one; a walk across a whole object needs about the
@@ -29,6 +29,23 @@ pub const MAX_FAN_SCAN: usize = 512;
 /// as the nearest point without the closest-point kernel: far above the rounding of the
 /// weights, so the kernel would find the same face.
 const FACE_WEIGHT_MARGIN: f64 = 1e-9;
+
+/// The projection of `target` (at height `h` over the plane of `frame`) when it falls
+/// well inside the triangle, every weight above [`FACE_WEIGHT_MARGIN`]: then it is the
+/// triangle's nearest point to `target`, on the face, found without the closest-point
+/// kernel.
+#[inline]
+fn projection_inside(frame: &TriFrame, target: DVec3, h: f64) -> Option<ClosestPoint> {
+    let weights = frame.barycentric(target);
+    weights
+        .iter()
+        .all(|&w| w > FACE_WEIGHT_MARGIN)
+        .then(|| ClosestPoint {
+            point: target - h * frame.normal,
+            weights,
+            feature: Feature::Face,
+        })
+}
 
 /// A point on the surface with what a haptic renderer needs there (object frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,14 +101,9 @@ pub fn walk_to_nearest(
     // so its projection on the plane is the nearest point of the triangle, on the face,
     // and a local minimum (no neighbour can be closer than the face under the target).
     let frame = surface.frame(start);
-    let weights = frame.barycentric(target);
-    if target.is_finite() && weights.iter().all(|&w| w > FACE_WEIGHT_MARGIN) {
-        let point = target - frame.height(target) * frame.normal;
-        let closest = ClosestPoint {
-            point,
-            weights,
-            feature: Feature::Face,
-        };
+    if target.is_finite()
+        && let Some(closest) = projection_inside(frame, target, frame.height(target))
+    {
         return (
             surface_point(surface, (start, closest), target),
             WalkStatus::Converged,
@@ -132,16 +144,8 @@ pub fn walk_to_nearest(
             if h.abs() > slack && (h.abs() - slack) * (h.abs() - slack) > bound {
                 return;
             }
-            let weights = frame.barycentric(target);
-            let c = if weights.iter().all(|&w| w > FACE_WEIGHT_MARGIN) {
-                ClosestPoint {
-                    point: target - h * frame.normal,
-                    weights,
-                    feature: Feature::Face,
-                }
-            } else {
-                closest_point_triangle(target, surface.corners(TriId(s)))
-            };
+            let c = projection_inside(frame, target, h)
+                .unwrap_or_else(|| closest_point_triangle(target, surface.corners(TriId(s))));
             let e2 = c.point.distance_squared(target);
             let better = match best {
                 None => e2 < d2,
