@@ -348,15 +348,15 @@ fn run_thread<D: Device>(
 ) -> RealtimeRun<D> {
     let mut setup = set_up_thread(&options);
     // A standby on the servo thread's own core could only take turns with it.
-    let standby_core = options.standby_core.filter(|&c| {
-        let apart = setup.pinned_core != Some(c);
-        if !apart {
+    let standby_core = match options.standby_core {
+        Some(c) if setup.pinned_core == Some(c) => {
             setup
                 .notes
                 .push(format!("no standby: core {c} is the servo thread's own"));
+            None
         }
-        apart
-    });
+        other => other,
+    };
     let rate = servo.options().rate_hz;
     let period_ns = ((1e9 / rate).round() as u64).max(1);
     let spin_s = options

@@ -48,20 +48,21 @@ struct Shared<D: Device> {
 
 impl<D: Device> Shared<D> {
     /// Claims the run for tick `k` without waiting (one compare-and-swap of the mutex's
-    /// state, `try_lock`) and runs the tick when it is still due. `None` once the run has
-    /// ended; `Some(false)` when the other thread holds the run or has run tick `k`.
-    fn serve(&self, k: u64, schedule: &Schedule, stop_flag: &AtomicBool) -> Option<bool> {
+    /// state, `try_lock`) and runs the tick when it is still due; whether it ran it. Not
+    /// when the other thread holds the run or has run tick `k`, nor once the run has
+    /// ended ([`Shared::next`] then says [`ENDED`]).
+    fn serve(&self, k: u64, schedule: &Schedule, stop_flag: &AtomicBool) -> bool {
         let mut run = match self.run.try_lock() {
             Ok(run) => run,
-            Err(std::sync::TryLockError::WouldBlock) => return Some(false),
+            Err(std::sync::TryLockError::WouldBlock) => return false,
             // The other thread panicked while ticking: `thread::scope` passes the panic on.
             Err(std::sync::TryLockError::Poisoned(_)) => {
                 self.next.store(ENDED, Ordering::Release);
-                return None;
+                return false;
             }
         };
         if run.k != k {
-            return Some(false);
+            return false;
         }
         let ticked = !run.ended(schedule, stop_flag);
         if ticked {
@@ -73,11 +74,7 @@ impl<D: Device> Shared<D> {
             run.k
         };
         self.next.store(next, Ordering::Release);
-        if next == ENDED && !ticked {
-            None
-        } else {
-            Some(ticked)
-        }
+        ticked
     }
 }
 
@@ -127,10 +124,10 @@ pub(super) fn with_standby<D: Device>(
                     if shared.next.load(Ordering::Acquire) != k {
                         continue;
                     }
-                    match shared.serve(k, &schedule, stop_flag) {
-                        None => break,
-                        Some(true) => ticks += 1,
-                        Some(false) => std::hint::spin_loop(),
+                    if shared.serve(k, &schedule, stop_flag) {
+                        ticks += 1;
+                    } else {
+                        std::hint::spin_loop();
                     }
                 }
                 StandbyReport {
@@ -146,10 +143,8 @@ pub(super) fn with_standby<D: Device>(
                 break;
             }
             wait_until(schedule.deadline(k).0, spin);
-            match shared.serve(k, &schedule, stop_flag) {
-                None => break,
-                Some(true) => {}
-                Some(false) => std::hint::spin_loop(),
+            if !shared.serve(k, &schedule, stop_flag) {
+                std::hint::spin_loop();
             }
         }
         shared.next.store(ENDED, Ordering::Release);
@@ -219,29 +214,19 @@ mod tests {
                 } else {
                     ("servo", "standby")
                 };
-                assert_eq!(
-                    shared.serve(k, &schedule, &stop),
-                    Some(true),
-                    "{first}, tick {k}"
-                );
-                if k + 1 < 300 {
-                    assert_eq!(
-                        shared.serve(k, &schedule, &stop),
-                        Some(false),
-                        "{second}, tick {k}"
-                    );
-                }
+                assert!(shared.serve(k, &schedule, &stop), "{first}, tick {k}");
+                assert!(!shared.serve(k, &schedule, &stop), "{second}, tick {k}");
             }
         });
         assert_eq!(allocations.count_total, 0);
         assert_eq!(shared.next.load(Ordering::Acquire), ENDED);
-        assert_eq!(shared.serve(300, &schedule, &stop), None);
+        assert!(!shared.serve(300, &schedule, &stop));
         // While one thread holds the run, the other's claim returns at once.
         let (busy, schedule, _) = new_run(10);
         let held = busy.run.lock().expect("not poisoned");
-        assert_eq!(busy.serve(0, &schedule, &stop), Some(false));
+        assert!(!busy.serve(0, &schedule, &stop));
         drop(held);
-        assert_eq!(busy.serve(0, &schedule, &stop), Some(true));
+        assert!(busy.serve(0, &schedule, &stop));
         // Every record once, in order of deadline.
         let mut t = Vec::new();
         while let Ok(r) = records.pop() {
@@ -260,9 +245,9 @@ mod tests {
     fn a_stop_ends_the_run_at_the_next_claim() {
         let (shared, schedule, _) = new_run(100);
         let stop = AtomicBool::new(false);
-        assert_eq!(shared.serve(0, &schedule, &stop), Some(true));
+        assert!(shared.serve(0, &schedule, &stop));
         stop.store(true, Ordering::Relaxed);
-        assert_eq!(shared.serve(1, &schedule, &stop), None);
+        assert!(!shared.serve(1, &schedule, &stop));
         assert_eq!(shared.next.load(Ordering::Acquire), ENDED);
         let run = shared.run.into_inner().expect("not poisoned");
         assert_eq!((run.k, run.stop), (1, Some(StopReason::Requested)));
