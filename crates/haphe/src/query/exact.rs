@@ -28,12 +28,32 @@ fn two_diff(a: f64, b: f64) -> (f64, f64) {
     two_sum(a, -b)
 }
 
-/// `a · b = p + e` exactly (fused multiply–add; `f64::mul_add` is correctly rounded on
-/// every target, in software where the hardware lacks it).
+/// `a · b = p + e` exactly: with a fused multiply–add where the target has one, else by
+/// Dekker's splitting (a handful of products, where `f64::mul_add` would be a call to a
+/// software routine), which is exact while `a` and `b` stay below [`SPLIT_MAX`]; beyond
+/// it, the correctly rounded `f64::mul_add` of every target.
 #[inline]
 fn two_product(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    (p, a.mul_add(b, -p))
+    if cfg!(target_feature = "fma") || !(a.abs() < SPLIT_MAX && b.abs() < SPLIT_MAX) {
+        return (p, a.mul_add(b, -p));
+    }
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+}
+
+/// Largest magnitude [`split`] takes: far below where `(2²⁷ + 1)·a` overflows.
+const SPLIT_MAX: f64 = 1e290;
+
+/// `a = hi + lo` exactly, each half with at most 26 significant bits (Veltkamp's split), so
+/// that the product of two halves is exact.
+#[inline(always)]
+fn split(a: f64) -> (f64, f64) {
+    const SPLITTER: f64 = 134_217_729.0; // 2²⁷ + 1
+    let c = SPLITTER * a;
+    let hi = c - (c - a);
+    (hi, a - hi)
 }
 
 /// The sign (`−1`, `0` or `1`) of the exact sum of `terms`, by Shewchuk's grow-expansion:
@@ -140,9 +160,15 @@ pub(crate) fn orient3d_sign(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> i8 {
 /// `det[a − p, b − p, c − p]` in `f64` with Shewchuk's bound on its error (his
 /// `o3derrboundA` times the permanent): the sign of the value is exact when its magnitude
 /// exceeds the bound.
+///
+/// It is computed as `det[a − p, b − a, c − a]`, the same determinant (rows two and three
+/// less row one): still three differences of input coordinates, each rounded once, so the
+/// same bound holds, with a permanent that grows with the triangle's edges instead of the
+/// distance of `p` cubed. For a point far from a small triangle (a long segment over a
+/// fine mesh) the value is then decided, and accurate to far better than `2⁻⁴⁰`, in `f64`.
 #[inline]
 pub(crate) fn orient3d_with_bound(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> (f64, f64) {
-    let (ad, bd, cd) = (a - p, b - p, c - p);
+    let (ad, bd, cd) = (a - p, b - a, c - a);
     let bxcy = bd.x * cd.y;
     let cxby = cd.x * bd.y;
     let cxay = cd.x * ad.y;
@@ -192,17 +218,18 @@ impl DoubleDouble {
     }
 }
 
-/// `det[a − p, b − p, c − p]` in double-double arithmetic: the differences are exact, and
-/// the result is within a few `2⁻¹⁰⁶` times the permanent of the exact value.
+/// `det[a − p, b − p, c − p]` in double-double arithmetic, as `det[a − p, b − a, c − a]`
+/// (see [`orient3d_with_bound`]): the differences are exact, and the result is within a
+/// few `2⁻¹⁰⁶` times the permanent of the exact value.
 pub(crate) fn orient3d_double_double(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> f64 {
-    let d = |x: DVec3| {
+    let d = |x: DVec3, from: DVec3| {
         [
-            DoubleDouble::difference(x.x, p.x),
-            DoubleDouble::difference(x.y, p.y),
-            DoubleDouble::difference(x.z, p.z),
+            DoubleDouble::difference(x.x, from.x),
+            DoubleDouble::difference(x.y, from.y),
+            DoubleDouble::difference(x.z, from.z),
         ]
     };
-    let (ad, bd, cd) = (d(a), d(b), d(c));
+    let (ad, bd, cd) = (d(a, p), d(b, a), d(c, a));
     let minor =
         |u: [DoubleDouble; 3], v: [DoubleDouble; 3]| u[0].mul(v[1]).add(u[1].mul(v[0]).neg());
     let det = ad[2]
@@ -244,13 +271,7 @@ mod tests {
     fn the_filter_never_changes_the_exact_sign() {
         // Random points, points on one line through big offsets (the products cancel to
         // within rounding), and exact zeros: the filtered sign equals the expansion's.
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut unit = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut unit = unit_stream(0x2545_f491_4f6c_dd1d);
         let mut decided_by_the_filter = 0;
         for k in 0..20_000 {
             let offset = [0.0, 1.0, 1e3, 2f64.powi(40)][k % 4];
@@ -271,6 +292,75 @@ mod tests {
             }
         }
         assert!(decided_by_the_filter > 40_000, "{decided_by_the_filter}");
+    }
+
+    /// A xorshift stream of `f64` in `[-0.5, 0.5)`.
+    fn unit_stream(mut state: u64) -> impl FnMut() -> f64 {
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        }
+    }
+
+    #[test]
+    fn two_product_is_exact_with_or_without_splitting() {
+        let mut unit = unit_stream(0x9e37_79b9_7f4a_7c15);
+        for k in 0..20_000 {
+            // Magnitudes from 1e-150 to 1e150, and a few beyond the split's range.
+            let scale = |u: f64| 10f64.powf(300.0 * u);
+            let (a, b) = (unit() * scale(unit()), unit() * scale(unit()));
+            let (a, b) = if k % 1000 == 0 {
+                (a * 1e295, b)
+            } else {
+                (a, b)
+            };
+            let (p, e) = two_product(a, b);
+            assert_eq!(p, a * b);
+            // Exact wherever the error term is a normal number (no underflow).
+            if p.is_finite() && p.abs() > 1e-280 {
+                assert_eq!(e, a.mul_add(b, -p), "{a} × {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn orientation_bound_holds_for_far_points_over_small_triangles() {
+        // Triangles a tenth of a millimetre across, points up to a metre away and points
+        // within rounding of their planes: wherever the filter decides, it decides right,
+        // and for far points its value is accurate to 2⁻⁴⁰ (with `det[a − p, b − p,
+        // c − p]` the bound would be some 10⁸ times larger, and a segment's parameter
+        // would need the double-double path).
+        let mut unit = unit_stream(0x2545_f491_4f6c_dd1d);
+        let mut accurate_far = 0;
+        for k in 0..20_000 {
+            let centre = DVec3::new(unit(), unit(), unit()) * 0.2;
+            let a = centre + DVec3::new(unit(), unit(), unit()) * 1e-4;
+            let b = centre + DVec3::new(unit(), unit(), unit()) * 1e-4;
+            let c = centre + DVec3::new(unit(), unit(), unit()) * 1e-4;
+            let n = (b - a).cross(c - a).normalize_or_zero();
+            let in_plane = a + (b - a) * unit() * 40.0 + (c - a) * unit() * 40.0;
+            let p = match k % 3 {
+                0 => DVec3::new(unit(), unit(), unit()) * 2.0,
+                1 => in_plane + n * unit() * 1e-17,
+                _ => in_plane,
+            };
+            let (det, bound) = orient3d_with_bound(a, b, c, p);
+            let exact = orient3d_sign(a, b, c, p);
+            if det.abs() > bound {
+                assert_eq!(if det > 0.0 { 1 } else { -1 }, exact, "{k}");
+            }
+            if k % 3 == 0 && bound <= det.abs() / (1u64 << 40) as f64 {
+                accurate_far += 1;
+            }
+            let dd = orient3d_double_double(a, b, c, p);
+            assert!(
+                exact == 0 || (dd != 0.0 && (dd > 0.0) == (exact > 0)),
+                "{k}"
+            );
+        }
+        assert!(accurate_far > 6_600, "{accurate_far}");
     }
 
     #[test]
