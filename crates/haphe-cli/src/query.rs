@@ -115,7 +115,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 (Some(c), false) => writeln!(
                     out,
                     "{},{:?},{:?},{:?},{:?},{}",
-                    c.triangle.0, c.t, c.point.x, c.point.y, c.point.z, c.entering
+                    object.surface.source_triangle(c.triangle),
+                    c.t,
+                    c.point.x,
+                    c.point.y,
+                    c.point.z,
+                    c.entering
                 )?,
                 (Some(c), true) => writeln!(
                     out,
@@ -123,7 +128,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                     serde_json::json!({
                         "segment": row,
                         "crossing": {
-                            "triangle": c.triangle.0,
+                            "triangle": object.surface.source_triangle(c.triangle),
                             "t": c.t,
                             "point": c.point.to_array(),
                             "weights": c.weights,

@@ -371,3 +371,54 @@ fn long_segments_across_free_space_agree_with_brute_force() {
         "{far_segments} segments skip whole bricks"
     );
 }
+
+#[test]
+fn the_spatial_order_changes_no_answer() {
+    // A blob with its faces shuffled, as a mesh from a tool that reorders them comes: the
+    // surface in spatial order and the one in the file's order give the same crossings
+    // (the same face of the file, the same parameter and point) and the same sides.
+    let mut mesh = Shape::Blob.with_triangles(5_000);
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    for i in (1..mesh.triangles.len()).rev() {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        mesh.triangles.swap(i, (state % (i as u64 + 1)) as usize);
+    }
+    let (sorted, sorted_map) = object(mesh.clone());
+    let options = SurfaceOptions {
+        spatial_order: false,
+        ..SurfaceOptions::default()
+    };
+    let plain = Surface::new(mesh, &options).expect("valid surface");
+    let plain_map = VoxelMap::build(&plain, &MapOptions::default()).expect("map");
+    assert!(
+        plain
+            .source_triangles()
+            .iter()
+            .enumerate()
+            .all(|(t, &s)| s == t as u32)
+    );
+    assert_ne!(sorted.triangles(), plain.triangles());
+    let mut hits = 0;
+    for kind in SegmentKind::ALL {
+        for (p0, p1) in haphe::verify::segments(&plain, kind, 300, 3) {
+            let a = haphe::query::first_crossing(&sorted, &sorted_map, p0, p1);
+            let b = haphe::query::first_crossing(&plain, &plain_map, p0, p1);
+            assert_eq!(a.is_some(), b.is_some(), "{kind:?} {p0} {p1}");
+            if let (Some(a), Some(b)) = (a, b) {
+                assert_eq!(sorted.source_triangle(a.triangle), b.triangle.0);
+                assert_eq!((a.t, a.point, a.entering), (b.t, b.point, b.entering));
+                hits += 1;
+            }
+        }
+    }
+    assert!(hits > 300, "{hits}");
+    for p in points(&plain, 2_000, 5) {
+        assert_eq!(
+            haphe::query::classify_point(&sorted, &sorted_map, p).0,
+            haphe::query::classify_point(&plain, &plain_map, p).0,
+            "{p}"
+        );
+    }
+}

@@ -70,11 +70,16 @@ fn interpenetrating_boxes_cross_and_match_all_pairs() {
     let (surface, found) = find(append(&a, &b));
     assert!(found.crossing > 0, "{found:?}");
     assert_eq!(found.count, all_pairs(&surface));
+    // The pairs name the mesh's own triangles: found again through the surface's order.
+    let mut surface_index = vec![0u32; surface.triangle_count()];
+    for (t, &s) in surface.source_triangles().iter().enumerate() {
+        surface_index[s as usize] = t as u32;
+    }
     for [x, y] in &found.pairs {
         assert!(x < y);
         assert!(intersect_triangle_triangle(
-            surface.corners(TriId(*x)),
-            surface.corners(TriId(*y))
+            surface.corners(TriId(surface_index[*x as usize])),
+            surface.corners(TriId(surface_index[*y as usize]))
         ));
     }
 }

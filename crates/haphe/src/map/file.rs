@@ -1,6 +1,6 @@
 //! Saving and loading a surface with its voxel map: one checked, sectioned file.
 //!
-//! # Layout (format version 2, all numbers little-endian)
+//! # Layout (format version 5, all numbers little-endian)
 //!
 //! | bytes | content |
 //! |---|---|
@@ -15,7 +15,8 @@
 //!
 //! The sections, in this order: the mesh report (JSON), vertices (`3 × f64` each),
 //! triangles (`3 × u32`), neighbours (`3 × u32`), barycentric frames (`12 × f64`), corner
-//! normals (`9 × f32`), fan starts and fan triangles (`u32`), the map parameters
+//! normals (`9 × f32`), fan starts and fan triangles (`u32`), each triangle's index in the
+//! mesh the surface was built from (`u32`, [`Surface::source_triangle`]), the map parameters
 //! (grid, counts, how the cell size was chosen), the brick entries (`u32`), the surface and
 //! inside masks of the detailed bricks (`8 × u64` each), their surface counts per mask
 //! word (`8 × u16`) and first surface cells (`u32`), the clearance nibbles of detailed then
@@ -45,7 +46,7 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;
@@ -127,7 +128,7 @@ pub(crate) fn invalid(section: &'static str, reason: impl Into<String>) -> MapFi
 }
 
 /// The sections in file order: name and element size in bytes.
-const SECTIONS: [(&str, usize); 17] = [
+const SECTIONS: [(&str, usize); 18] = [
     ("report", 1),
     ("vertices", 24),
     ("triangles", 12),
@@ -136,6 +137,7 @@ const SECTIONS: [(&str, usize); 17] = [
     ("corner normals", 36),
     ("fan starts", 4),
     ("fan triangles", 4),
+    ("source triangles", 4),
     ("map parameters", 1),
     ("bricks", 4),
     ("surface masks", 64),
@@ -237,6 +239,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
         parts.corner_normals.len() * 36,
         parts.fan_start.len() * 4,
         parts.fan_triangles.len() * 4,
+        parts.source.len() * 4,
         params.len(),
         map.bricks.len() * 4,
         map.surface_bits.len() * 64,
@@ -294,6 +297,8 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     put::<u32, u32>(&mut out, parts.fan_start);
     start(&mut out);
     put::<u32, u32>(&mut out, parts.fan_triangles);
+    start(&mut out);
+    put::<u32, u32>(&mut out, parts.source);
     start(&mut out);
     out.extend_from_slice(&params);
     start(&mut out);
@@ -435,6 +440,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         corner_normals,
         fan_start,
         fan_triangles,
+        source,
         params,
         bricks,
         surface_bits,
@@ -456,6 +462,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         corner_normals: array::<[[f32; 3]; 3], u32>(file, corner_normals),
         fan_start: array::<u32, u32>(file, fan_start),
         fan_triangles: array::<u32, u32>(file, fan_triangles),
+        source: array::<u32, u32>(file, source),
         report,
     };
     check_surface(&parts)?;

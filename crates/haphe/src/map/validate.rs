@@ -255,6 +255,25 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             }
         }
     }
+    let source: &[u32] = &p.source;
+    if source.len() != t {
+        return Err(invalid(
+            "source triangles",
+            format!("{} entries for {t} triangles", source.len()),
+        ));
+    }
+    let mut named = vec![false; t];
+    for (i, &s) in source.iter().enumerate() {
+        match named.get_mut(s as usize) {
+            Some(seen) if !*seen => *seen = true,
+            _ => {
+                return Err(invalid(
+                    "source triangles",
+                    format!("triangle {i} names source triangle {s}, out of range or named twice"),
+                ));
+            }
+        }
+    }
     let r = &p.report;
     if r.triangles != t || r.vertices != v || r.usable_as == Usability::Unusable {
         return Err(invalid(

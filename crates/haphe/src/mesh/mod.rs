@@ -17,6 +17,7 @@ mod error;
 mod frame;
 mod ids;
 mod normals;
+mod order;
 pub mod read;
 mod report;
 pub mod shapes;

@@ -150,6 +150,7 @@ mod tests {
                 let crease = f64::to_radians(crease_deg);
                 let options = SurfaceOptions {
                     crease_angle_rad: crease,
+                    ..SurfaceOptions::default()
                 };
                 let surface = Surface::new(shape.with_triangles(3000), &options).expect("valid");
                 let expected = plain(&surface, crease);

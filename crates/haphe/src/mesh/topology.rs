@@ -15,12 +15,20 @@ use super::{Mesh, MeshReport, Usability};
 pub struct SurfaceOptions {
     /// Faces meeting at a sharper angle than this (radians) keep separate shading normals.
     pub crease_angle_rad: f64,
+    /// Store the triangles in spatial order (along a Morton curve of their centroids) and
+    /// the vertices in order of first use, so that neighbours on the surface are
+    /// neighbours in memory whatever order the mesh came in: on large meshes every query
+    /// then meets fewer cold cache lines (see [`Surface::source_triangle`] for the index
+    /// a triangle had in the mesh). `false` keeps the mesh's own order.
+    pub spatial_order: bool,
 }
 
 impl Default for SurfaceOptions {
+    /// The default crease angle, spatial order.
     fn default() -> Self {
         SurfaceOptions {
             crease_angle_rad: DEFAULT_CREASE_ANGLE_RAD,
+            spatial_order: true,
         }
     }
 }
@@ -50,7 +58,15 @@ pub enum SurfaceError {
 ///   vertex is manifold;
 /// - `frame(t)` gives barycentric coordinates in two dot products ([`TriFrame`]);
 ///   degenerate triangles have a zero frame and are never a contact;
-/// - `corner_normals(t)` are unit shading normals respecting the crease angle.
+/// - `corner_normals(t)` are unit shading normals respecting the crease angle;
+/// - `source_triangle(t)` is a permutation of the triangle indices: the index in the mesh
+///   given to [`Surface::new`] of each triangle (the identity without
+///   [`SurfaceOptions::spatial_order`]).
+///
+/// Triangle and vertex indices ([`TriId`], [`VertId`]) are the surface's own: with the
+/// default spatial order they differ from the mesh's (the corners of triangle `t` are those
+/// of the mesh's triangle `source_triangle(t)`, in the same order). The
+/// [`report`](Surface::report) speaks of the mesh as given, in its indices.
 #[derive(Debug, Clone)]
 pub struct Surface {
     vertices: Array<DVec3>,
@@ -60,6 +76,7 @@ pub struct Surface {
     corner_normals: Array<CornerNormals>,
     fan_start: Array<u32>,
     fan_triangles: Array<u32>,
+    source: Array<u32>,
     report: MeshReport,
 }
 
@@ -96,6 +113,17 @@ impl Surface {
                 triangles: mesh.triangles.len(),
             });
         }
+        // The report keeps the mesh's own indices; everything from here on uses the
+        // spatial order, with an edge table of its own.
+        let (mesh, source, edges) = if options.spatial_order {
+            drop(edges);
+            let (mesh, source) = super::order::spatial_order(mesh);
+            let edges = EdgeTable::build(&mesh.triangles);
+            (mesh, source, edges)
+        } else {
+            let source = (0..mesh.triangles.len() as u32).collect();
+            (mesh, source, edges)
+        };
         let Mesh {
             vertices,
             triangles,
@@ -131,6 +159,7 @@ impl Surface {
             corner_normals: corner_normals.into(),
             fan_start: fan_start.into(),
             fan_triangles: fan_triangles.into(),
+            source: source.into(),
             report,
         })
     }
@@ -237,9 +266,25 @@ impl Surface {
         )
     }
 
-    /// The validation report of the mesh this surface was built from.
+    /// The validation report of the mesh this surface was built from, in that mesh's
+    /// triangle and vertex indices (see [`Surface::source_triangle`]).
     pub fn report(&self) -> &MeshReport {
         &self.report
+    }
+
+    /// The index that triangle `t` had in the mesh given to [`Surface::new`] (its face
+    /// index in the file, for a mesh from [`read_mesh`](super::read_mesh)): what to show a
+    /// user, or to look up data of their own per face. `t` itself when out of range.
+    #[inline]
+    pub fn source_triangle(&self, t: TriId) -> u32 {
+        self.source.get(t.index()).copied().unwrap_or(t.0)
+    }
+
+    /// [`Surface::source_triangle`] of every triangle, in the surface's order: a
+    /// permutation of `0..triangle_count()`.
+    #[inline]
+    pub fn source_triangles(&self) -> &[u32] {
+        &self.source
     }
 
     /// Bytes of memory the surface holds (without the report).
@@ -251,6 +296,7 @@ impl Surface {
             + self.corner_normals.heap_bytes()
             + self.fan_start.heap_bytes()
             + self.fan_triangles.heap_bytes()
+            + self.source.heap_bytes()
     }
 }
 
@@ -261,8 +307,9 @@ impl Surface {
 /// `vertices` and `triangles` (or are [`NONE`] for a missing neighbour), and neighbours are
 /// symmetric; `frames` and `corner_normals` have one entry per triangle, all finite;
 /// `fan_start` has `vertices.len() + 1` non-decreasing entries from 0 to
-/// `fan_triangles.len()`, and every triangle in the fan of `v` has a corner at `v`; the
-/// report describes this mesh.
+/// `fan_triangles.len()`, and every triangle in the fan of `v` has a corner at `v`;
+/// `source` is a permutation of the triangle indices; the report describes the mesh the
+/// surface was built from.
 pub(crate) struct SurfaceParts<V, T, F, N, U> {
     pub(crate) vertices: V,
     pub(crate) triangles: T,
@@ -271,6 +318,7 @@ pub(crate) struct SurfaceParts<V, T, F, N, U> {
     pub(crate) corner_normals: N,
     pub(crate) fan_start: U,
     pub(crate) fan_triangles: U,
+    pub(crate) source: U,
     pub(crate) report: MeshReport,
 }
 
@@ -294,6 +342,7 @@ impl Surface {
             corner_normals,
             fan_start,
             fan_triangles,
+            source,
             report,
         } = parts;
         Surface {
@@ -304,6 +353,7 @@ impl Surface {
             corner_normals,
             fan_start,
             fan_triangles,
+            source,
             report,
         }
     }
@@ -318,6 +368,7 @@ impl Surface {
             corner_normals: &self.corner_normals,
             fan_start: &self.fan_start,
             fan_triangles: &self.fan_triangles,
+            source: &self.source,
             report: self.report.clone(),
         }
     }

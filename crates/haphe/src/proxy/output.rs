@@ -12,7 +12,9 @@ pub struct Contact {
     pub object: usize,
     /// The object's name.
     pub id: ObjectId,
-    /// The triangle under the proxy (found by walking from the last one touched).
+    /// The triangle under the proxy (found by walking from the last one touched), in the
+    /// object's surface ([`Surface::source_triangle`](crate::mesh::Surface::source_triangle)
+    /// gives its index in the mesh as loaded).
     pub triangle: TriId,
     /// Barycentric weights of `point` in that triangle.
     pub weights: [f64; 3],

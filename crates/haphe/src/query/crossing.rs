@@ -11,7 +11,8 @@ use crate::mesh::{Surface, TriId};
 pub struct Crossing {
     /// Parameter along the segment, `p0 + t (p1 − p0)`, in `[0, 1]`.
     pub t: f64,
-    /// The triangle crossed.
+    /// The triangle crossed (the surface's index; see
+    /// [`Surface::source_triangle`](crate::mesh::Surface::source_triangle)).
     pub triangle: TriId,
     /// Barycentric weights of the crossing point for the triangle's corners.
     pub weights: [f64; 3],

@@ -25,7 +25,8 @@ pub struct SelfIntersections {
     /// a T-junction of a CAD mesh), with no crossing.
     pub touching: usize,
     /// The first pairs `[a, b]` (`a < b`, in increasing order), at most
-    /// [`LISTED_SELF_INTERSECTIONS`].
+    /// [`LISTED_SELF_INTERSECTIONS`], as triangle indices of the mesh the surface was
+    /// built from ([`Surface::source_triangle`]), like its report.
     pub pairs: Vec<[u32; 2]>,
     /// How many candidate pairs (sharing a cell) were tested exactly.
     pub candidates: usize,
@@ -55,17 +56,19 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
         .collect();
     candidates.par_sort_unstable();
     candidates.dedup();
-    let found: Vec<([u32; 2], bool)> = candidates
+    let mut found: Vec<([u32; 2], bool)> = candidates
         .par_iter()
         .filter_map(|&key| {
-            let (a, b) = ((key >> 32) as u32, key as u32);
-            let (ta, tb) = (surface.corners(TriId(a)), surface.corners(TriId(b)));
+            let (a, b) = (TriId((key >> 32) as u32), TriId(key as u32));
+            let (ta, tb) = (surface.corners(a), surface.corners(b));
             if clearly_apart(ta, tb) {
                 return None;
             }
-            intersect_triangle_triangle(ta, tb).then(|| ([a, b], crosses(ta, tb)))
+            let (a, b) = (surface.source_triangle(a), surface.source_triangle(b));
+            intersect_triangle_triangle(ta, tb).then(|| ([a.min(b), a.max(b)], crosses(ta, tb)))
         })
         .collect();
+    found.par_sort_unstable();
     let crossing = found.iter().filter(|(_, c)| *c).count();
     SelfIntersections {
         count: found.len(),

@@ -293,7 +293,14 @@ impl<D: Device> Servo<D> {
             record.status = out.status;
             if let Some(c) = out.contact {
                 record.object = Some(c.id);
-                record.triangle = Some(c.triangle);
+                record.triangle = Some(
+                    self.scene
+                        .objects()
+                        .get(c.object)
+                        .map_or(c.triangle.0, |o| {
+                            o.shape.surface().source_triangle(c.triangle)
+                        }),
+                );
                 record.penetration = c.penetration;
                 self.stats.contact_ticks += 1;
             }

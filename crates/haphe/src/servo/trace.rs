@@ -5,7 +5,6 @@ use std::io::{self, Write};
 use glam::DVec3;
 
 use super::device::DeviceFault;
-use crate::mesh::TriId;
 use crate::proxy::TickStatus;
 use crate::scene::ObjectId;
 
@@ -53,8 +52,9 @@ pub struct TickRecord {
     pub force: DVec3,
     /// The object touched (its name), when in contact.
     pub object: Option<ObjectId>,
-    /// The triangle under the proxy, when in contact.
-    pub triangle: Option<TriId>,
+    /// The triangle under the proxy, when in contact: its index in the object's mesh as
+    /// given, the face index of its file ([`Surface::source_triangle`](crate::mesh::Surface::source_triangle)).
+    pub triangle: Option<u32>,
     /// Depth of the HIP behind the proxy along the contact normal, metres (0 when free).
     pub penetration: f64,
     /// What the proxy tick reported (all false while holding).
@@ -120,7 +120,7 @@ impl TickRecord {
         }
         w.write_all(b",")?;
         if let Some(t) = self.triangle {
-            write!(w, "{}", t.0)?;
+            write!(w, "{t}")?;
         }
         writeln!(
             w,

@@ -89,6 +89,11 @@ fn encode_then_decode_gives_the_same_surface_and_map() {
         assert_eq!(loaded_map, map, "{name}");
         assert_eq!(loaded_surface.vertices(), surface.vertices(), "{name}");
         assert_eq!(loaded_surface.triangles(), surface.triangles(), "{name}");
+        assert_eq!(
+            loaded_surface.source_triangles(),
+            surface.source_triangles(),
+            "{name}"
+        );
         assert_eq!(loaded_surface.report(), surface.report(), "{name}");
         assert_eq!(loaded_surface.is_solid(), surface.is_solid(), "{name}");
         for t in 0..surface.triangle_count() {
@@ -198,6 +203,19 @@ fn crafted_files_with_a_valid_checksum_are_checked() {
             ..
         })
     ));
+    // A source triangle named twice (not a permutation).
+    let mut crafted = bytes.clone();
+    let at = find_section_start(&crafted, 8);
+    let second = crafted[at + 4..at + 8].to_vec();
+    crafted[at..at + 4].copy_from_slice(&second);
+    reseal(&mut crafted);
+    assert!(matches!(
+        decode(&crafted),
+        Err(MapFileError::Invalid {
+            section: "source triangles",
+            ..
+        })
+    ));
     // A non-finite vertex.
     let mut crafted = bytes.clone();
     let at = find_section_start(&crafted, 1);
@@ -261,7 +279,7 @@ proptest! {
         let mut crafted = bytes.clone();
         // Half the cases aim at the map's sections (after the map parameters), which are
         // small next to the surface's.
-        let start = if in_map { find_section_start(bytes, 8) } else { 0 };
+        let start = if in_map { find_section_start(bytes, 9) } else { 0 };
         for (at, value) in changes {
             let i = start + at.index(bytes.len() - start);
             crafted[i] = value;
