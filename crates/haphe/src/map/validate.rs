@@ -262,10 +262,13 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             format!("{} entries for {t} triangles", source.len()),
         ));
     }
-    let mut named = vec![false; t];
+    // One bit per triangle: small enough to stay in the cache while the permutation
+    // jumps around it.
+    let mut named = vec![0u64; t.div_ceil(64)];
     for (i, &s) in source.iter().enumerate() {
-        match named.get_mut(s as usize) {
-            Some(seen) if !*seen => *seen = true,
+        let (word, bit) = (s as usize / 64, 1u64 << (s % 64));
+        match named.get_mut(word) {
+            Some(w) if (s as usize) < t && *w & bit == 0 => *w |= bit,
             _ => {
                 return Err(invalid(
                     "source triangles",
