@@ -377,7 +377,8 @@ pub fn decode(bytes: &[u8]) -> Result<(Surface, VoxelMap), MapFileError> {
 /// the section and the index where the content breaks an invariant of [`Surface`] or
 /// [`VoxelMap`] (indices out of range, offsets not increasing, dimensions inconsistent,
 /// non-finite coordinates, a map built for another surface). The barycentric frames, the
-/// shading normals and the clearances are checked for range, not recomputed: a crafted
+/// shading normals, the clearances and the source indices of the triangles are checked
+/// for range, not recomputed: a crafted
 /// file with a valid checksum can make them wrong (and with them the answers of the
 /// queries that trust them: [`first_crossing`](crate::query::first_crossing) skips free
 /// space by the clearances), never unsafe to use.

@@ -255,6 +255,8 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             }
         }
     }
+    // Only for what the surface reports (a face's index in the file), never to index an
+    // array: range-checked, as the frames are, not proven a permutation.
     let source: &[u32] = &p.source;
     if source.len() != t {
         return Err(invalid(
@@ -262,20 +264,11 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             format!("{} entries for {t} triangles", source.len()),
         ));
     }
-    // One bit per triangle: small enough to stay in the cache while the permutation
-    // jumps around it.
-    let mut named = vec![0u64; t.div_ceil(64)];
-    for (i, &s) in source.iter().enumerate() {
-        let (word, bit) = (s as usize / 64, 1u64 << (s % 64));
-        match named.get_mut(word) {
-            Some(w) if (s as usize) < t && *w & bit == 0 => *w |= bit,
-            _ => {
-                return Err(invalid(
-                    "source triangles",
-                    format!("triangle {i} names source triangle {s}, out of range or named twice"),
-                ));
-            }
-        }
+    if let Some(i) = source.iter().position(|&s| s as usize >= t) {
+        return Err(invalid(
+            "source triangles",
+            format!("triangle {i} names source triangle {}, of {t}", source[i]),
+        ));
     }
     let r = &p.report;
     if r.triangles != t || r.vertices != v || r.usable_as == Usability::Unusable {

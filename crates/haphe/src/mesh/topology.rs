@@ -61,7 +61,8 @@ pub enum SurfaceError {
 /// - `corner_normals(t)` are unit shading normals respecting the crease angle;
 /// - `source_triangle(t)` is a permutation of the triangle indices: the index in the mesh
 ///   given to [`Surface::new`] of each triangle (the identity without
-///   [`SurfaceOptions::spatial_order`]).
+///   [`SurfaceOptions::spatial_order`]; for a loaded map file, only checked to be in
+///   range, since nothing is indexed with it).
 ///
 /// Triangle and vertex indices ([`TriId`], [`VertId`]) are the surface's own: with the
 /// default spatial order they differ from the mesh's (the corners of triangle `t` are those
@@ -281,7 +282,7 @@ impl Surface {
     }
 
     /// [`Surface::source_triangle`] of every triangle, in the surface's order: a
-    /// permutation of `0..triangle_count()`.
+    /// permutation of `0..triangle_count()` (see the invariants above).
     #[inline]
     pub fn source_triangles(&self) -> &[u32] {
         &self.source
@@ -308,8 +309,8 @@ impl Surface {
 /// symmetric; `frames` and `corner_normals` have one entry per triangle, all finite;
 /// `fan_start` has `vertices.len() + 1` non-decreasing entries from 0 to
 /// `fan_triangles.len()`, and every triangle in the fan of `v` has a corner at `v`;
-/// `source` is a permutation of the triangle indices; the report describes the mesh the
-/// surface was built from.
+/// `source` holds one index below the triangle count per triangle (a permutation when
+/// built by [`Surface::new`]); the report describes the mesh the surface was built from.
 pub(crate) struct SurfaceParts<V, T, F, N, U> {
     pub(crate) vertices: V,
     pub(crate) triangles: T,

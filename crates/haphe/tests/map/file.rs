@@ -203,11 +203,10 @@ fn crafted_files_with_a_valid_checksum_are_checked() {
             ..
         })
     ));
-    // A source triangle named twice (not a permutation).
+    // A source triangle out of range.
     let mut crafted = bytes.clone();
     let at = find_section_start(&crafted, 8);
-    let second = crafted[at + 4..at + 8].to_vec();
-    crafted[at..at + 4].copy_from_slice(&second);
+    crafted[at..at + 4].copy_from_slice(&(surface.triangle_count() as u32).to_le_bytes());
     reseal(&mut crafted);
     assert!(matches!(
         decode(&crafted),
