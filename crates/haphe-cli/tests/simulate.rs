@@ -248,7 +248,7 @@ fn realtime_smoke_run_reports_lateness() {
     ]);
     println!("{text}");
     assert!(
-        text.contains("lateness") && text.contains("overruns"),
+        text.contains("lateness") && text.contains("overruns") && text.contains("missed deadlines"),
         "{text}"
     );
     assert!(figure(&text, "ticks") > 0.0);

@@ -250,6 +250,13 @@ pub fn print(
         )?;
         writeln!(
             out,
+            "  missed deadlines  {} ({:.4} % of {} deadlines: overruns and skipped together)",
+            stats.overruns + stats.skipped,
+            100.0 * stats.missed_fraction(),
+            stats.ticks + stats.skipped
+        )?;
+        writeln!(
+            out,
             "  achieved rate     {:.1} Hz (asked {} Hz)",
             stats.achieved_rate(),
             info.rate_hz

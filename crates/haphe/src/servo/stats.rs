@@ -186,6 +186,18 @@ impl TickStats {
             self.overruns as f64 / self.ticks as f64
         }
     }
+
+    /// Deadlines whose force came late or never: the ticks that overran plus the
+    /// deadlines skipped, over every deadline of the run (ticks run and skipped). What a
+    /// user of the device feels as missed updates; 0 for a run on a virtual clock.
+    pub fn missed_fraction(&self) -> f64 {
+        let deadlines = self.ticks + self.skipped;
+        if deadlines == 0 {
+            0.0
+        } else {
+            (self.overruns + self.skipped) as f64 / deadlines as f64
+        }
+    }
 }
 
 #[cfg(test)]
@@ -205,6 +217,19 @@ mod tests {
                 "{v} -> {mid}"
             );
         }
+    }
+
+    #[test]
+    fn missed_deadlines_count_overruns_and_skipped_deadlines() {
+        let stats = TickStats {
+            ticks: 9_990,
+            overruns: 5,
+            skipped: 10,
+            ..TickStats::default()
+        };
+        assert!((stats.overrun_fraction() - 5.0 / 9_990.0).abs() < 1e-15);
+        assert!((stats.missed_fraction() - 15.0 / 10_000.0).abs() < 1e-15);
+        assert_eq!(TickStats::default().missed_fraction(), 0.0);
     }
 
     #[test]
