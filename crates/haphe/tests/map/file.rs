@@ -178,55 +178,35 @@ fn a_map_paired_with_another_surface_is_refused() {
 #[test]
 fn crafted_files_with_a_valid_checksum_are_checked() {
     let (surface, _, bytes) = sample();
-    // A triangle reference out of range, in the last section.
-    let mut crafted = bytes.clone();
+    // `value` written at byte `at` of a copy of the file, the checksum recomputed: the
+    // section named in the error.
+    let refused_in = |at: usize, value: &[u8]| {
+        let mut crafted = bytes.clone();
+        crafted[at..at + value.len()].copy_from_slice(value);
+        reseal(&mut crafted);
+        match decode(&crafted) {
+            Err(MapFileError::Invalid { section, .. }) => section,
+            other => panic!("expected an invalid file, got {other:?}"),
+        }
+    };
     let sections = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
-    let last_ref = find_section_end(&crafted, sections - 1) - 4;
-    crafted[last_ref..last_ref + 4].copy_from_slice(&u32::MAX.to_le_bytes());
-    reseal(&mut crafted);
-    assert!(matches!(
-        decode(&crafted),
-        Err(MapFileError::Invalid {
-            section: "triangle references",
-            ..
-        })
-    ));
+    // A triangle reference out of range, in the last section.
+    let last_ref = find_section_end(bytes, sections - 1) - 4;
+    assert_eq!(
+        refused_in(last_ref, &u32::MAX.to_le_bytes()),
+        "triangle references"
+    );
     // A vertex index out of range.
-    let mut crafted = bytes.clone();
-    let at = find_section_start(&crafted, 2);
-    crafted[at..at + 4].copy_from_slice(&(surface.vertex_count() as u32).to_le_bytes());
-    reseal(&mut crafted);
-    assert!(matches!(
-        decode(&crafted),
-        Err(MapFileError::Invalid {
-            section: "triangles",
-            ..
-        })
-    ));
+    let vertices = surface.vertex_count() as u32;
+    let at = find_section_start(bytes, 2);
+    assert_eq!(refused_in(at, &vertices.to_le_bytes()), "triangles");
     // A source triangle out of range.
-    let mut crafted = bytes.clone();
-    let at = find_section_start(&crafted, 8);
-    crafted[at..at + 4].copy_from_slice(&(surface.triangle_count() as u32).to_le_bytes());
-    reseal(&mut crafted);
-    assert!(matches!(
-        decode(&crafted),
-        Err(MapFileError::Invalid {
-            section: "source triangles",
-            ..
-        })
-    ));
+    let triangles = surface.triangle_count() as u32;
+    let at = find_section_start(bytes, 8);
+    assert_eq!(refused_in(at, &triangles.to_le_bytes()), "source triangles");
     // A non-finite vertex.
-    let mut crafted = bytes.clone();
-    let at = find_section_start(&crafted, 1);
-    crafted[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes());
-    reseal(&mut crafted);
-    assert!(matches!(
-        decode(&crafted),
-        Err(MapFileError::Invalid {
-            section: "vertices",
-            ..
-        })
-    ));
+    let at = find_section_start(bytes, 1);
+    assert_eq!(refused_in(at, &f64::NAN.to_le_bytes()), "vertices");
 }
 
 /// Where section `k` starts, from the table (entry `k` at byte `64 + 32·k`).
