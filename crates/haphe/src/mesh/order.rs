@@ -17,9 +17,10 @@ use rayon::prelude::*;
 
 use super::Mesh;
 
-/// Bits of each coordinate in a Morton key: a curve through 1024³ boxes, far finer than any
-/// mesh's triangles are spread, and a key of 30 bits that fits beside a triangle's index
-/// in one `u64` (a sort of plain words).
+/// Bits of each coordinate in a Morton key: a curve through 1024³ boxes, of which a surface
+/// of a few million triangles meets a few million, so a box holds a handful of triangles
+/// at most (ties keep the mesh's order); and a key of 30 bits that fits beside a
+/// triangle's index in one `u64` (a sort of plain words).
 const KEY_BITS: u32 = 10;
 
 /// `x`'s low [`KEY_BITS`] bits spread to every third bit.
