@@ -20,13 +20,20 @@ pub struct Args {
     /// Output file (binary STL, metres).
     #[arg(short, long)]
     output: PathBuf,
+    /// Write the faces in a random order fixed by this seed, as a file from a tool that
+    /// scattered them (the same triangles; for measuring what face order costs).
+    #[arg(long, value_name = "SEED")]
+    shuffle_faces: Option<u64>,
 }
 
 /// Runs the command.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
     let start = Instant::now();
-    let mesh = args.shape.with_triangles(args.triangles);
+    let mut mesh = args.shape.with_triangles(args.triangles);
+    if let Some(seed) = args.shuffle_faces {
+        haphe::mesh::shapes::shuffle_faces(&mut mesh, seed);
+    }
     let generated = start.elapsed();
     let triangles = mesh.triangles.iter().map(|t| {
         let [a, b, c] = t.map(|v| mesh.vertices[v as usize]);
@@ -43,9 +50,14 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .with_context(|| format!("cannot write {}", args.output.display()))?;
     writeln!(
         out,
-        "{}: {} ({} triangles, {} vertices), generated in {:.1} ms",
+        "{}: {}{} ({} triangles, {} vertices), generated in {:.1} ms",
         args.output.display(),
         args.shape,
+        if args.shuffle_faces.is_some() {
+            ", faces shuffled"
+        } else {
+            ""
+        },
         mesh.triangles.len(),
         mesh.vertices.len(),
         generated.as_secs_f64() * 1e3

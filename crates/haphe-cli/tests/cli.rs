@@ -135,6 +135,42 @@ fn generated_meshes_validate_as_solids() {
 }
 
 #[test]
+fn shuffled_faces_are_the_same_solid_in_another_order() {
+    let dir = scratch("shuffle");
+    let (plain, shuffled) = (dir.join("plain.stl"), dir.join("shuffled.stl"));
+    for (path, extra) in [(&plain, None), (&shuffled, Some("3"))] {
+        let path = path.display().to_string();
+        let mut args = vec!["generate", "blob", "--triangles", "2000", "-o", &path];
+        args.extend(
+            extra
+                .map(|seed| ["--shuffle-faces", seed])
+                .into_iter()
+                .flatten(),
+        );
+        assert!(haphe(&args).status.success());
+    }
+    let (a, b) = (
+        std::fs::read(&plain).expect("read"),
+        std::fs::read(&shuffled).expect("read"),
+    );
+    // Binary STL: an 84-byte header, then 50 bytes per face.
+    assert_eq!(a.len(), b.len());
+    let faces = |bytes: &[u8]| {
+        bytes[84..]
+            .chunks(50)
+            .map(<[u8]>::to_vec)
+            .collect::<Vec<_>>()
+    };
+    let (mut fa, mut fb) = (faces(&a), faces(&b));
+    assert_ne!(fa, fb, "the order changed");
+    fa.sort();
+    fb.sort();
+    assert_eq!(fa, fb, "the same faces");
+    let out = haphe(&["validate", "--json", &shuffled.display().to_string()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stdout(&out));
+}
+
+#[test]
 fn every_odd_file_gets_a_verdict_not_a_crash() {
     let dir = PathBuf::from(concat!(
         env!("CARGO_MANIFEST_DIR"),

@@ -378,13 +378,7 @@ fn the_spatial_order_changes_no_answer() {
     // surface in spatial order and the one in the file's order give the same crossings
     // (the same face of the file, the same parameter and point) and the same sides.
     let mut mesh = Shape::Blob.with_triangles(5_000);
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    for i in (1..mesh.triangles.len()).rev() {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        mesh.triangles.swap(i, (state % (i as u64 + 1)) as usize);
-    }
+    shapes::shuffle_faces(&mut mesh, 3);
     let (sorted, sorted_map) = object(mesh.clone());
     let options = SurfaceOptions {
         spatial_order: false,

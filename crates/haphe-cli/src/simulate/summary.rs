@@ -251,9 +251,9 @@ pub fn print(
         writeln!(
             out,
             "  missed deadlines  {} ({:.4} % of {} deadlines: overruns and skipped together)",
-            stats.overruns + stats.skipped,
+            stats.missed(),
             100.0 * stats.missed_fraction(),
-            stats.ticks + stats.skipped
+            stats.deadlines()
         )?;
         writeln!(
             out,

@@ -161,13 +161,7 @@ mod tests {
         // a third of the mesh to a small fraction of it.
         let mut mesh = shapes::sphere(0.1, 5);
         let n = mesh.triangles.len();
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        for i in (1..n).rev() {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            mesh.triangles.swap(i, (state % (i as u64 + 1)) as usize);
-        }
+        shapes::shuffle_faces(&mut mesh, 7);
         let spread_of = |m: &Mesh| {
             let table = crate::mesh::edges::EdgeTable::build(&m.triangles);
             let (sum, count) = table

@@ -191,12 +191,22 @@ impl TickStats {
     /// deadlines skipped, over every deadline of the run (ticks run and skipped). What a
     /// user of the device feels as missed updates; 0 for a run on a virtual clock.
     pub fn missed_fraction(&self) -> f64 {
-        let deadlines = self.ticks + self.skipped;
+        let deadlines = self.deadlines();
         if deadlines == 0 {
             0.0
         } else {
-            (self.overruns + self.skipped) as f64 / deadlines as f64
+            self.missed() as f64 / deadlines as f64
         }
+    }
+
+    /// Deadlines of the run: ticks run and deadlines skipped.
+    pub fn deadlines(&self) -> u64 {
+        self.ticks + self.skipped
+    }
+
+    /// Deadlines whose force came late or never: overruns and skipped deadlines.
+    pub fn missed(&self) -> u64 {
+        self.overruns + self.skipped
     }
 }
 

@@ -56,6 +56,16 @@ pub use catalog::{ParseShapeError, Shape};
 pub use sphere::{MAX_SPHERE_FREQUENCY, MAX_SPHERE_SUBDIVISIONS, geodesic_sphere, sphere};
 pub use torus::{MAX_TORUS_SEGMENTS, MIN_TORUS_SEGMENTS, torus};
 
+/// Puts the faces of `mesh` in a random order fixed by `seed` (a Fisher–Yates shuffle; the
+/// vertices and each face's corners stay as they are): the same triangles as a file from
+/// a tool that scattered them, for testing and measuring what face order costs.
+pub fn shuffle_faces(mesh: &mut Mesh, seed: u64) {
+    let mut rng = crate::rng::SplitMix64::new(seed);
+    for i in (1..mesh.triangles.len()).rev() {
+        mesh.triangles.swap(i, rng.index(i + 1));
+    }
+}
+
 use super::Mesh;
 
 /// True for a length a generator accepts: finite and strictly positive.

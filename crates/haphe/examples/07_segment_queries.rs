@@ -1,0 +1,67 @@
+//! Segment crossings on random segments across a procedural shape, for measuring what a
+//! query costs: the segments `haphe bench` uses for its `segment_random` rows (random end
+//! points in the grown bounding box), each answered by [`first_crossing`], with the query
+//! times.
+//!
+//! ```sh
+//! cargo run --release --example 07_segment_queries -- 1000000 blob 50000
+//! ```
+//!
+//! Arguments: triangles (default 1000), shape (default `blob`), segments (default 50000).
+//! For an instruction count that does not depend on the machine's load, run it under
+//! callgrind, counting inside the query only:
+//!
+//! ```sh
+//! valgrind --tool=callgrind --toggle-collect='*segment_once*' \
+//!     target/release/examples/07_segment_queries 1000000 blob 50000
+//! ```
+
+use std::time::Instant;
+
+use haphe::DVec3;
+use haphe::map::{MapOptions, VoxelMap};
+use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::{Surface, SurfaceOptions};
+use haphe::query::{Crossing, first_crossing};
+use haphe::verify::{SegmentKind, segments};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut args = std::env::args().skip(1);
+    let triangles: usize = args.next().map_or(Ok(1000), |a| a.parse())?;
+    let which: Catalog = args.next().map_or(Ok(Catalog::Blob), |a| a.parse())?;
+    let count: usize = args.next().map_or(Ok(50_000), |a| a.parse())?;
+
+    let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
+    let map = VoxelMap::build(&surface, &MapOptions::default())?;
+    let queries = segments(&surface, SegmentKind::Random, count, 1);
+    let mut ns = Vec::with_capacity(queries.len());
+    let mut hits = 0;
+    for &(p0, p1) in &queries {
+        let started = Instant::now();
+        let crossing = segment_once(&surface, &map, p0, p1);
+        ns.push(started.elapsed().as_nanos() as u64);
+        hits += usize::from(crossing.is_some());
+    }
+    ns.sort_unstable();
+    let Some(&max) = ns.last() else {
+        println!("no segment");
+        return Ok(());
+    };
+    let at = |q: f64| ns[((ns.len() - 1) as f64 * q) as usize];
+    println!(
+        "{which} ({} triangles): {} random segments, {hits} crossing; query time p50 {} ns, p99 {} ns, p99.9 {} ns, max {max} ns (clock included)",
+        surface.triangle_count(),
+        ns.len(),
+        at(0.5),
+        at(0.99),
+        at(0.999),
+    );
+    Ok(())
+}
+
+/// One query, never inlined, so that callgrind can count inside it whatever the compiler
+/// inlined into it.
+#[inline(never)]
+fn segment_once(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -> Option<Crossing> {
+    first_crossing(surface, map, p0, p1)
+}
