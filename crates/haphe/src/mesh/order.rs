@@ -52,8 +52,8 @@ fn morton_key(p: DVec3, lo: DVec3, extent: f64) -> u64 {
 /// the same order.
 ///
 /// # Performance
-/// One key per triangle and a parallel sort of words: about 60 ms on one core for a
-/// million triangles, some 15 % of [`Surface::new`](super::Surface::new).
+/// One key per triangle, a parallel sort of one word per triangle and one pass to
+/// renumber: linear but for the sort (`haphe bench` times it within the build).
 pub(crate) fn spatial_order(mesh: Mesh) -> (Mesh, Vec<u32>) {
     let (lo, extent) = match mesh.bounds() {
         Some((lo, hi)) => (lo, (hi - lo).max_element()),
