@@ -187,6 +187,20 @@ pub struct VoxelMap {
     pub(crate) cell_size_rule: CellSizeRule,
 }
 
+/// What [`VoxelMap::look`] tells of a cell.
+pub(crate) enum Look<'a> {
+    /// A surface cell and its triangles.
+    Triangles(&'a [u32]),
+    /// A cell of a brick without surface cells, every cell within `reach − 1` of which is
+    /// free too (`reach ≥ 1`).
+    NoSurface {
+        /// See [`VoxelMap::reach`]; 1 where only the brick itself is known to be free.
+        reach: u32,
+    },
+    /// A free cell of a detailed brick (or a cell outside the grid).
+    Free,
+}
+
 /// A cell's brick, looked up once.
 enum Slot {
     Uniform { entry: u32, local: usize },
@@ -336,19 +350,26 @@ impl VoxelMap {
         )
     }
 
-    /// Cell `c`'s triangles and reach: the triangles of a surface cell with reach 0, or no
-    /// triangle with the [`reach`](Self::reach) of any other cell; one look-up of the
-    /// cell's brick for both.
+    /// What a long segment's walk needs of cell `c`, reading as little as it can: the
+    /// top-level entry, and for a cell of a detailed brick one word of its surface mask
+    /// (and the cell's triangle list when it is a surface cell). The clearances of graded
+    /// and detailed bricks are not read: a walk crosses a brick without surface cells
+    /// whole, and the free cells of a detailed brick one by one, which costs less than
+    /// a look-up in memory that is cold.
     #[inline]
-    pub(crate) fn triangles_or_reach(&self, c: [u32; 3]) -> (&[u32], u32) {
+    pub(crate) fn look(&self, c: [u32; 3]) -> Look<'_> {
         match self.slot(c) {
-            None => (&[], 0),
-            Some(Slot::Uniform { entry, local }) => {
-                (&[], Self::uniform_reach(&self.clearances, entry, local))
-            }
+            None => Look::Free,
+            Some(Slot::Uniform { entry, .. }) => Look::NoSurface {
+                reach: if entry & GRADED != 0 {
+                    1
+                } else {
+                    entry & UNIFORM_PAYLOAD
+                },
+            },
             Some(Slot::Detailed { brick, local }) => match self.listed(brick, local) {
-                Some(triangles) => (triangles, 0),
-                None => (&[], u32::from(nibble(&self.clearances, brick, local))),
+                Some(triangles) => Look::Triangles(triangles),
+                None => Look::Free,
             },
         }
     }

@@ -52,6 +52,7 @@ mod validate;
 mod walk;
 
 pub use crate::array::MapBytes;
+pub(crate) use bricks::{BRICK_SIDE, Look};
 pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
 pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode};
 pub(crate) use grid::floor_to_int;

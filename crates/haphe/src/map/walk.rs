@@ -202,11 +202,33 @@ impl CellWalk {
             return;
         }
         let r = i64::from(radius);
+        self.skip_box(self.last.map(|c| c - r), self.last.map(|c| c + r));
+    }
+
+    /// Skips the box of cells from `lo` to `hi` (inclusive, cell indices, `lo ≤ hi` along
+    /// every axis), which holds the cell the walk returned last and which the caller knows
+    /// lists no triangle (a brick of the map without surface cells, say): as
+    /// [`skip_cube`](Self::skip_cube) does for a cube around that cell, the walk goes on
+    /// from where the segment leaves the box, and its next step is the first cell beyond.
+    /// Does nothing when the box does not hold the last cell, when the walk is over, or
+    /// when rounding leaves no progress to make.
+    ///
+    /// # Real-time
+    /// Constant time, no allocation, no panic; the walk still ends within
+    /// `dims[0] + dims[1] + dims[2]` steps.
+    pub fn skip_box(&mut self, lo: [i64; 3], hi: [i64; 3]) {
+        if self.remaining == 0 || (0..3).any(|k| !(lo[k]..=hi[k]).contains(&self.last[k])) {
+            return;
+        }
         let last = DVec3::from_array(self.last.map(|c| c as f64));
         let step = DVec3::from_array(self.step.map(|s| s as f64));
-        // The cube's far faces (lower faces where the walk goes down an axis), pulled into
-        // the cube by the margin, and where the segment reaches them.
-        let face = last + 0.5 + step * (f64::from(radius) + 0.5);
+        // The box's far faces (lower faces where the walk goes down an axis), pulled into
+        // the box by the margin, and where the segment reaches them.
+        let face = DVec3::from_array(std::array::from_fn(|k| match self.step[k] {
+            1 => (hi[k] + 1) as f64,
+            -1 => lo[k] as f64,
+            _ => last[k] + 0.5,
+        }));
         let margin = SKIP_MARGIN + SKIP_MARGIN_REL * (self.a.abs() + face.abs());
         let reach = (face - step * margin - self.a) / self.d;
         let reach = DVec3::from_array(std::array::from_fn(|k| {
@@ -227,7 +249,11 @@ impl CellWalk {
         if t_leave.is_nan() || t_leave <= self.t {
             return;
         }
-        let beyond = self.last[leave_axis] + self.step[leave_axis] * (r + 1);
+        let beyond = if self.step[leave_axis] > 0 {
+            hi[leave_axis] + 1
+        } else {
+            lo[leave_axis] - 1
+        };
         if t_leave >= self.t_end || !(0..self.dims[leave_axis]).contains(&beyond) {
             self.remaining = 0;
             return;
@@ -235,20 +261,20 @@ impl CellWalk {
         let at = self.a + t_leave * self.d;
         for axis in 0..3 {
             let s = self.step[axis];
-            // The cell of the point at `t_leave`, never behind the walk nor beyond the cube
-            // or the grid (where rounding could put it); beyond the cube along the axis
+            // The cell of the point at `t_leave`, never behind the walk nor beyond the box
+            // or the grid (where rounding could put it); beyond the box along the axis
             // the segment leaves it by.
             let cell = if axis == leave_axis {
                 beyond
             } else if s > 0 {
                 floor_to_int(at[axis])
                     .max(self.cell[axis])
-                    .min(self.last[axis] + r)
+                    .min(hi[axis])
                     .min(self.dims[axis] - 1)
             } else if s < 0 {
                 floor_to_int(at[axis])
                     .min(self.cell[axis])
-                    .max(self.last[axis] - r)
+                    .max(lo[axis])
                     .max(0)
             } else {
                 self.cell[axis]
@@ -363,13 +389,24 @@ mod tests {
     }
 
     fn assert_same_cells(skipping: &[CellStep], expected: &[CellStep], what: &str) {
+        assert_same_cells_within(skipping, expected, 1e-5, what);
+    }
+
+    /// As [`assert_same_cells`], the step after a skip starting up to `early` (in units of
+    /// the segment's parameter) before the plain walk's.
+    fn assert_same_cells_within(
+        skipping: &[CellStep],
+        expected: &[CellStep],
+        early: f64,
+        what: &str,
+    ) {
         let cells = |s: &[CellStep]| s.iter().map(|s| s.cell).collect::<Vec<_>>();
         assert_eq!(cells(skipping), cells(expected), "{what}");
         for (s, e) in skipping.iter().zip(expected) {
             // The step after a skip starts a hair early; every other boundary is the same
             // up to the rounding of its parameter.
             assert!(s.t_enter <= e.t_enter + 1e-12, "{what}: {s:?} / {e:?}");
-            assert!(s.t_enter >= e.t_enter - 1e-5, "{what}: {s:?} / {e:?}");
+            assert!(s.t_enter >= e.t_enter - early, "{what}: {s:?} / {e:?}");
             assert!(
                 (s.t_exit - e.t_exit).abs() <= 1e-12,
                 "{what}: {s:?} / {e:?}"
@@ -404,6 +441,91 @@ mod tests {
             );
         }
         assert!(skipped > 10_000, "{skipped}");
+    }
+
+    /// What a skip of the box `lo..=hi` may leave out: the plain walk's cells after the
+    /// `at`-th inside the box, up to the first outside it.
+    fn expected_after_box(
+        plain: &[CellStep],
+        at: usize,
+        lo: [i64; 3],
+        hi: [i64; 3],
+    ) -> Vec<CellStep> {
+        let inside = |c: [u32; 3]| (0..3).all(|k| (lo[k]..=hi[k]).contains(&i64::from(c[k])));
+        let beyond = plain[at + 1..]
+            .iter()
+            .position(|s| !inside(s.cell))
+            .map_or(plain.len(), |i| at + 1 + i);
+        plain[..=at]
+            .iter()
+            .chain(&plain[beyond..])
+            .copied()
+            .collect()
+    }
+
+    #[test]
+    fn a_box_skip_leaves_out_exactly_the_cells_of_the_box() {
+        // Boxes of any shape around the walk's cell, bricks of 8 cells among them, some
+        // reaching past the grid.
+        let g = Grid::new(DVec3::new(-1.0, -2.0, 0.5), 0.25, [24, 20, 22]).expect("valid");
+        let (lo, hi) = (g.origin(), g.max_corner());
+        let mut random = crate::rng::SplitMix64::new(11);
+        let mut skipped = 0;
+        for i in 0..2_000 {
+            let margin = DVec3::splat(0.5);
+            let p0 = random.point_in(lo - margin, hi + margin);
+            let p1 = random.point_in(lo - margin, hi + margin);
+            let plain: Vec<CellStep> = g.walk(p0, p1).collect();
+            if plain.len() < 2 {
+                continue;
+            }
+            let at = random.index(plain.len() - 1);
+            let cell = plain[at].cell.map(i64::from);
+            let (box_lo, box_hi) = if i % 2 == 0 {
+                let brick = cell.map(|c| c / 8 * 8);
+                (brick, brick.map(|c| c + 7))
+            } else {
+                let lo: [i64; 3] = std::array::from_fn(|k| cell[k] - random.index(5) as i64);
+                let hi: [i64; 3] = std::array::from_fn(|k| cell[k] + random.index(5) as i64);
+                (lo, hi)
+            };
+            let mut walk = g.walk(p0, p1);
+            let mut skipping = Vec::new();
+            while let Some(step) = walk.next() {
+                skipping.push(step);
+                if skipping.len() == at + 1 {
+                    walk.skip_box(box_lo, box_hi);
+                }
+            }
+            let expected = expected_after_box(&plain, at, box_lo, box_hi);
+            skipped += plain.len() - expected.len();
+            // The skip stops a millionth of a cell short of the box's face, which is a
+            // larger part of the segment along an axis it hardly moves on.
+            let moves = ((p1 - p0) / g.cell_size()).abs();
+            let slowest = [moves.x, moves.y, moves.z]
+                .into_iter()
+                .filter(|&m| m > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            assert_same_cells_within(
+                &skipping,
+                &expected,
+                1e-5 * (1.0 / slowest).max(1.0),
+                &format!("{p0} → {p1}, {at}, {box_lo:?}..{box_hi:?}"),
+            );
+        }
+        assert!(skipped > 5_000, "{skipped}");
+    }
+
+    #[test]
+    fn a_box_that_does_not_hold_the_walks_cell_is_not_skipped() {
+        let g = grid();
+        let (p0, p1) = (DVec3::new(-0.9, -0.8, -0.7), DVec3::new(0.9, 0.7, 0.8));
+        let plain: Vec<CellStep> = g.walk(p0, p1).collect();
+        let mut walk = g.walk(p0, p1);
+        let mut steps = vec![walk.next().expect("a cell")];
+        walk.skip_box([1, 0, 0], [3, 3, 3]);
+        steps.extend(walk);
+        assert_eq!(steps, plain);
     }
 
     #[test]

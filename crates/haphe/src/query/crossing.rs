@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use super::{Segment, SegmentHit, intersect_segment_triangle};
-use crate::map::VoxelMap;
+use crate::map::{BRICK_SIDE, CellWalk, Look, VoxelMap};
 use crate::mesh::{Surface, TriId};
 
 /// Where a segment first meets the surface.
@@ -24,15 +24,9 @@ pub struct Crossing {
     pub entering: bool,
 }
 
-/// The smallest reach (the [`clearance`](VoxelMap::clearance) of a cell, or farther from
-/// the surface its brick's bound) from which [`first_crossing`] skips the free cells
-/// around it ([`CellWalk::skip_cube`](crate::map::CellWalk::skip_cube))
-/// rather than stepping through them one at a time.
-const SKIP_MIN_REACH: u32 = 2;
-
-/// The shortest segment, in cells, for which [`first_crossing`] looks up clearances to
-/// skip free space: a shorter one crosses too few cells for a skip to save their look-ups
-/// (the short moves of a haptic tick walk as before).
+/// The shortest segment, in cells, for which [`first_crossing`] skips free space by whole
+/// bricks: a shorter one crosses too few cells for a skip to save their look-ups (the
+/// short moves of a haptic tick walk cell by cell).
 const SKIP_MIN_LENGTH: f64 = 4.0;
 
 /// Triangles remembered in a plain list before the table of [`TESTED_SLOTS`] is used: most
@@ -125,10 +119,13 @@ impl Tested {
 /// Among hits at the same `t`, the lowest triangle index wins, as in
 /// [`first_crossing_brute_force`], which this always equals.
 ///
-/// Free space costs little: from a cell of [`clearance`](VoxelMap::clearance) `k ≥ 2`,
-/// the walk skips the cube of cells within `k − 1` of it, none of which lists a triangle;
-/// far from the surface, where the map bounds the distance by whole bricks, `k` grows with
-/// that distance, so crossing empty space takes a few strides however fine the grid.
+/// Free space costs little on a segment longer than a few cells: the walk crosses a
+/// brick of the map that holds no surface cell in one stride, and far from the surface,
+/// where the map bounds the distance by whole bricks ([`VoxelMap::reach`]), the cube of
+/// cells within that distance, so crossing empty space takes a few strides however fine
+/// the grid. In a brick that holds surface cells it steps through the free cells one by
+/// one, reading only the brick's surface mask, which costs less than reading their
+/// clearances from memory that is cold when the segment comes from far away.
 ///
 /// # Real-time
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
@@ -200,17 +197,18 @@ pub fn first_crossing_where(
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
         }
-        let (triangles, reach) = if skips {
-            map.triangles_or_reach(visit.cell)
+        let triangles = if skips {
+            match map.look(visit.cell) {
+                Look::Triangles(triangles) => triangles,
+                Look::Free => continue,
+                Look::NoSurface { reach } => {
+                    skip_free_space(&mut walk, visit.cell, reach);
+                    continue;
+                }
+            }
         } else {
-            (map.triangles_in(visit.cell), 0)
+            map.triangles_in(visit.cell)
         };
-        // Free space: every cell within `reach − 1` of this one lists no triangle, so the
-        // walk skips them all (far from the surface, whole bricks at a time).
-        if reach >= SKIP_MIN_REACH {
-            walk.skip_cube(reach - 1);
-            continue;
-        }
         if triangles.is_empty() {
             continue;
         }
@@ -239,6 +237,21 @@ pub fn first_crossing_where(
         }
     }
     best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
+}
+
+/// Skips the free space around `cell`, a cell of a brick that holds no surface cell and
+/// whose cells are all at least `reach` (in cells, [`VoxelMap::reach`]) from the nearest
+/// surface cell: the cube of cells within `reach − 1` when it reaches beyond the brick
+/// (far from the surface), the brick otherwise.
+#[inline]
+fn skip_free_space(walk: &mut CellWalk, cell: [u32; 3], reach: u32) {
+    if reach > BRICK_SIDE {
+        walk.skip_cube(reach - 1);
+    } else {
+        let side = i64::from(BRICK_SIDE);
+        let lo = cell.map(|c| i64::from(c) / side * side);
+        walk.skip_box(lo, lo.map(|c| c + side - 1));
+    }
 }
 
 /// How far past the best crossing so far (in units of `t`) the cheap filter keeps looking:
