@@ -66,6 +66,23 @@ pub(crate) fn nibble(nibbles: &[u8], brick: usize, local: usize) -> u8 {
         .map_or(0, |&b| (b >> ((local & 1) * 4)) & 0xf)
 }
 
+/// How far around a brick with top-level `entry`, in bricks, no brick holds a surface
+/// cell (0 for a detailed brick): 1 for a graded brick (it touches a detailed one);
+/// otherwise `(r − 1) / 8 + 1` from the entry's reach `r`, capped at 255. That is a bound
+/// the reach guarantees: every cell of a brick `k` bricks away lies within `8k` cells of
+/// a cell of this one, so within its reach when `8k ≤ r − 1`.
+#[inline]
+pub(crate) fn free_bricks_of(entry: u32) -> u8 {
+    if entry & UNIFORM == 0 {
+        0
+    } else if entry & GRADED != 0 {
+        1
+    } else {
+        let reach = (entry & UNIFORM_PAYLOAD).max(1);
+        ((reach - 1) / BRICK_SIDE + 1).min(u32::from(u8::MAX)) as u8
+    }
+}
+
 /// The state of a uniform entry.
 #[inline]
 pub(crate) fn entry_state(entry: u32) -> CellState {
@@ -153,7 +170,10 @@ pub(crate) fn cell_in_brick(bc: [u32; 3], local: usize) -> [u32; 3] {
 ///   triangle indices (4 bytes each);
 /// - a **graded** brick (uniform, touching a detailed brick) stores a clearance nibble per
 ///   cell: 256 bytes;
-/// - any other brick is **uniform**: state and reach live in the entry itself.
+/// - any other brick is **uniform**: state and reach live in the entry itself;
+/// - besides, one byte per brick, derived from the entries when the map is built or
+///   loaded (not saved): how many bricks around it hold no surface cell, which a long
+///   segment's walk reads instead of the entries and clearances to cross free space.
 ///
 /// Space far from the surface costs half a byte per thousand cells.
 #[derive(Debug, Clone, PartialEq)]
@@ -179,6 +199,12 @@ pub struct VoxelMap {
     pub(crate) triangle_start: Array<u32>,
     /// Triangle indices of all surface cells, cell after cell.
     pub(crate) triangle_refs: Array<u32>,
+    /// Per brick: how far around it, in bricks, no brick holds a surface cell — 0 for a
+    /// detailed brick, `d ≥ 1` when no brick within Chebyshev distance `d − 1` of it (itself
+    /// included) holds one (see [`free_bricks_of`]). Derived from `bricks` when a map is
+    /// built or loaded (not saved), a byte per brick, so that a long segment's walk
+    /// crosses free space on an array that stays in the cache.
+    pub(crate) free_bricks: Vec<u8>,
     /// Triangles of the surface the map was built for.
     pub(crate) triangle_count: u32,
     /// Whether inside cells were classified (the surface is a solid).
@@ -191,11 +217,11 @@ pub struct VoxelMap {
 pub(crate) enum Look<'a> {
     /// A surface cell and its triangles.
     Triangles(&'a [u32]),
-    /// A cell of a brick without surface cells, every cell within `reach − 1` of which is
-    /// free too (`reach ≥ 1`).
+    /// A cell of a brick without surface cells: no brick within Chebyshev distance
+    /// `bricks − 1` of it (itself included) holds a surface cell (`bricks ≥ 1`).
     NoSurface {
-        /// See [`VoxelMap::reach`]; 1 where only the brick itself is known to be free.
-        reach: u32,
+        /// See `VoxelMap::free_bricks`.
+        bricks: u8,
     },
     /// A free cell of a detailed brick (or a cell outside the grid).
     Free,
@@ -351,27 +377,32 @@ impl VoxelMap {
     }
 
     /// What a long segment's walk needs of cell `c`, reading as little as it can: the
-    /// top-level entry, and for a cell of a detailed brick one word of its surface mask
-    /// (and the cell's triangle list when it is a surface cell). The clearances of graded
-    /// and detailed bricks are not read: a walk crosses a brick without surface cells
-    /// whole, and the free cells of a detailed brick one by one, which costs less than
-    /// a look-up in memory that is cold.
+    /// brick's byte of free bricks around it, and only in a detailed brick its top-level
+    /// entry and one word of its surface mask (and the cell's triangle list when it is a
+    /// surface cell). Clearances are not read: a walk crosses the free bricks around a
+    /// brick without surface cells in one stride, and the free cells of a detailed brick
+    /// one by one, which costs less than a look-up in memory that is cold.
     #[inline]
     pub(crate) fn look(&self, c: [u32; 3]) -> Look<'_> {
-        match self.slot(c) {
-            None => Look::Free,
-            Some(Slot::Uniform { entry, .. }) => Look::NoSurface {
-                reach: if entry & GRADED != 0 {
-                    1
-                } else {
-                    entry & UNIFORM_PAYLOAD
+        if !self.grid.contains(c) {
+            return Look::Free;
+        }
+        let b = brick_of(c, self.brick_dims);
+        match self.free_bricks.get(b) {
+            Some(&bricks) if bricks > 0 => Look::NoSurface { bricks },
+            _ => match self.slot(c) {
+                Some(Slot::Detailed { brick, local }) => match self.listed(brick, local) {
+                    Some(triangles) => Look::Triangles(triangles),
+                    None => Look::Free,
                 },
-            },
-            Some(Slot::Detailed { brick, local }) => match self.listed(brick, local) {
-                Some(triangles) => Look::Triangles(triangles),
-                None => Look::Free,
+                _ => Look::Free,
             },
         }
+    }
+
+    /// Sets [`free_bricks`](Self::free_bricks) from the top-level entries.
+    pub(crate) fn derive_free_bricks(&mut self) {
+        self.free_bricks = self.bricks.iter().map(|&e| free_bricks_of(e)).collect();
     }
 
     /// Number of triangles of the surface the map was built for.
@@ -396,6 +427,7 @@ impl VoxelMap {
     /// Bytes of heap memory the map holds.
     pub fn heap_bytes(&self) -> usize {
         self.bricks.heap_bytes()
+            + self.free_bricks.capacity()
             + self.surface_bits.heap_bytes()
             + self.inside_bits.heap_bytes()
             + self.surface_before.heap_bytes()

@@ -408,6 +408,46 @@ mod tests {
     use super::*;
     use crate::rng::SplitMix64;
 
+    /// The free bricks around each brick that a long segment's walk skips
+    /// (`VoxelMap::free_bricks`, derived from the entries) are never more than the true
+    /// distance to the nearest detailed brick, 0 exactly on detailed bricks, and equal to it
+    /// from three bricks out, where the entries store it; on maps built and maps loaded.
+    #[test]
+    fn free_bricks_bound_the_distance_to_the_surface() {
+        use crate::map::{MapOptions, decode, encode};
+        use crate::mesh::shapes::Shape;
+        use crate::mesh::{Surface, SurfaceOptions};
+        let mut far = 0;
+        for (shape, triangles, cell) in [
+            (Shape::Blob, 10_000, None),
+            (Shape::Sphere, 2_000, Some(0.002)),
+            (Shape::ThinPlate, 2_000, None),
+        ] {
+            let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
+                .expect("a surface");
+            let options = MapOptions {
+                cell_size_m: cell,
+                ..MapOptions::default()
+            };
+            let built = VoxelMap::build(&surface, &options).expect("a map");
+            let (_, loaded) = decode(&encode(&surface, &built)).expect("loads");
+            let distances = brick_distances(&built.bricks, built.brick_dims);
+            for map in [&built, &loaded] {
+                assert_eq!(map.free_bricks.len(), map.bricks.len());
+                for (b, (&free, &d)) in map.free_bricks.iter().zip(&distances).enumerate() {
+                    let d = d.min(u16::from(u8::MAX)) as u8;
+                    assert_eq!(free == 0, d == 0, "{shape:?}, brick {b}");
+                    assert!(free <= d, "{shape:?}, brick {b}: {free} > {d}");
+                    if d >= 3 {
+                        assert_eq!(free, d, "{shape:?}, brick {b}");
+                        far += 1;
+                    }
+                }
+            }
+        }
+        assert!(far > 20, "{far}");
+    }
+
     /// The chamfer passes give the Chebyshev distance to the nearest detailed brick, as a
     /// brute-force search over all pairs does, on random grids of bricks, with few,
     /// many or no detailed bricks.

@@ -470,10 +470,11 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
     let surface = Surface::from_parts(parts);
 
     let params = parse_map_params(&bytes[params])?;
-    let map = VoxelMap {
+    let mut map = VoxelMap {
         grid: params.grid,
         brick_dims: super::bricks::brick_dims(params.grid.dims()),
         bricks: array::<u32, u32>(file, bricks),
+        free_bricks: Vec::new(),
         surface_bits: array::<BrickBits, u64>(file, surface_bits),
         inside_bits: array::<BrickBits, u64>(file, inside_bits),
         surface_before: array::<[u16; MASK_WORDS], u16>(file, surface_before),
@@ -486,6 +487,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         cell_size_rule: params.cell_size_rule,
     };
     check_map(&map, &surface)?;
+    map.derive_free_bricks();
     Ok((surface, map))
 }
 

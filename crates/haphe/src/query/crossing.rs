@@ -201,8 +201,8 @@ pub fn first_crossing_where(
             match map.look(visit.cell) {
                 Look::Triangles(triangles) => triangles,
                 Look::Free => continue,
-                Look::NoSurface { reach } => {
-                    skip_free_space(&mut walk, visit.cell, reach);
+                Look::NoSurface { bricks } => {
+                    skip_free_space(&mut walk, visit.cell, bricks);
                     continue;
                 }
             }
@@ -239,19 +239,14 @@ pub fn first_crossing_where(
     best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
 }
 
-/// Skips the free space around `cell`, a cell of a brick that holds no surface cell and
-/// whose cells are all at least `reach` (in cells, [`VoxelMap::reach`]) from the nearest
-/// surface cell: the cube of cells within `reach − 1` when it reaches beyond the brick
-/// (far from the surface), the brick otherwise.
+/// Skips the free space around `cell`, a cell of a brick such that no brick within
+/// Chebyshev distance `bricks − 1` of it holds a surface cell: the cube of those bricks.
 #[inline]
-fn skip_free_space(walk: &mut CellWalk, cell: [u32; 3], reach: u32) {
-    if reach > BRICK_SIDE {
-        walk.skip_cube(reach - 1);
-    } else {
-        let side = i64::from(BRICK_SIDE);
-        let lo = cell.map(|c| i64::from(c) / side * side);
-        walk.skip_box(lo, lo.map(|c| c + side - 1));
-    }
+fn skip_free_space(walk: &mut CellWalk, cell: [u32; 3], bricks: u8) {
+    let side = i64::from(BRICK_SIDE);
+    let around = i64::from(bricks.max(1) - 1) * side;
+    let lo = cell.map(|c| i64::from(c) / side * side - around);
+    walk.skip_box(lo, lo.map(|c| c + 2 * around + side - 1));
 }
 
 /// How far past the best crossing so far (in units of `t`) the cheap filter keeps looking:
