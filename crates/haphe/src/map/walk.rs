@@ -296,6 +296,7 @@ impl CellWalk {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::SplitMix64;
 
     fn grid() -> Grid {
         Grid::new(DVec3::new(-1.0, -1.0, -1.0), 0.5, [4, 4, 4]).expect("valid")
@@ -362,24 +363,47 @@ mod tests {
     /// The walk of `p0 → p1` skipping, at its `at`-th cell, the cube of `radius` around it:
     /// the cells visited before and after the skip.
     fn skipping_walk(g: &Grid, p0: DVec3, p1: DVec3, at: usize, radius: u32) -> Vec<CellStep> {
+        walk_skipping_at(g, p0, p1, at, |walk| walk.skip_cube(radius))
+    }
+
+    /// The walk of `p0 → p1` calling `skip` on it after its `at`-th cell.
+    fn walk_skipping_at(
+        g: &Grid,
+        p0: DVec3,
+        p1: DVec3,
+        at: usize,
+        skip: impl Fn(&mut CellWalk),
+    ) -> Vec<CellStep> {
         let mut walk = g.walk(p0, p1);
         let mut steps = Vec::new();
         while let Some(step) = walk.next() {
             steps.push(step);
             if steps.len() == at + 1 {
-                walk.skip_cube(radius);
+                skip(&mut walk);
             }
         }
         steps
     }
 
-    /// What a skip may leave out: the plain walk's cells after the `at`-th within Chebyshev
-    /// distance `radius` of it, up to the first beyond.
-    fn expected_after_skip(plain: &[CellStep], at: usize, radius: u32) -> Vec<CellStep> {
-        let centre = plain[at].cell;
+    /// A box of cells: its lowest and highest cell, inclusive.
+    type CellBox = ([i64; 3], [i64; 3]);
+
+    /// The cube of cells within `radius` of `cell`, as a box.
+    fn cube(cell: [u32; 3], radius: u32) -> CellBox {
+        let r = i64::from(radius);
+        (
+            cell.map(|c| i64::from(c) - r),
+            cell.map(|c| i64::from(c) + r),
+        )
+    }
+
+    /// What a skip of the box `lo..=hi` may leave out: the plain walk's cells after the
+    /// `at`-th inside the box, up to the first outside it.
+    fn expected_after_box(plain: &[CellStep], at: usize, (lo, hi): CellBox) -> Vec<CellStep> {
+        let inside = |c: [u32; 3]| (0..3).all(|k| (lo[k]..=hi[k]).contains(&i64::from(c[k])));
         let beyond = plain[at + 1..]
             .iter()
-            .position(|s| (0..3).any(|k| s.cell[k].abs_diff(centre[k]) > radius))
+            .position(|s| !inside(s.cell))
             .map_or(plain.len(), |i| at + 1 + i);
         plain[..=at]
             .iter()
@@ -388,18 +412,56 @@ mod tests {
             .collect()
     }
 
-    fn assert_same_cells(skipping: &[CellStep], expected: &[CellStep], what: &str) {
-        assert_same_cells_within(skipping, expected, 1e-5, what);
+    /// What a skip of the cube of `radius` may leave out (see [`expected_after_box`]).
+    fn expected_after_skip(plain: &[CellStep], at: usize, radius: u32) -> Vec<CellStep> {
+        expected_after_box(plain, at, cube(plain[at].cell, radius))
     }
 
-    /// As [`assert_same_cells`], the step after a skip starting up to `early` (in units of
-    /// the segment's parameter) before the plain walk's.
-    fn assert_same_cells_within(
-        skipping: &[CellStep],
-        expected: &[CellStep],
-        early: f64,
-        what: &str,
-    ) {
+    /// On random segments over a grid, some reaching beyond it, some ending inside it, a
+    /// skip at a random cell of each walk of the box that `boxes` gives around that cell
+    /// leaves out exactly the box's cells; returns how many cells the skips left out.
+    fn check_random_skips(
+        seed: u64,
+        mut boxes: impl FnMut(&mut SplitMix64, usize, [u32; 3]) -> CellBox,
+    ) -> usize {
+        let g = Grid::new(DVec3::new(-1.0, -2.0, 0.5), 0.25, [24, 20, 22]).expect("valid");
+        let (lo, hi) = (g.origin(), g.max_corner());
+        let mut random = SplitMix64::new(seed);
+        let mut skipped = 0;
+        for i in 0..2_000 {
+            let margin = DVec3::splat(0.5);
+            let p0 = random.point_in(lo - margin, hi + margin);
+            let p1 = random.point_in(lo - margin, hi + margin);
+            let plain: Vec<CellStep> = g.walk(p0, p1).collect();
+            if plain.len() < 2 {
+                continue;
+            }
+            let at = random.index(plain.len() - 1);
+            let (box_lo, box_hi) = boxes(&mut random, i, plain[at].cell);
+            let skipping = walk_skipping_at(&g, p0, p1, at, |w| w.skip_box(box_lo, box_hi));
+            let expected = expected_after_box(&plain, at, (box_lo, box_hi));
+            skipped += plain.len() - expected.len();
+            // The skip stops a millionth of a cell short of the box's face, which is a
+            // larger part of the segment along an axis it hardly moves on.
+            let moves = ((p1 - p0) / g.cell_size()).abs();
+            let slowest = [moves.x, moves.y, moves.z]
+                .into_iter()
+                .filter(|&m| m > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            assert_same_cells(
+                &skipping,
+                &expected,
+                1e-5 * (1.0 / slowest).max(1.0),
+                &format!("{p0} → {p1}, {at}, {box_lo:?}..{box_hi:?}"),
+            );
+        }
+        skipped
+    }
+
+    /// The walks `skipping` and `expected` visit the same cells for the same intervals, the
+    /// step after a skip starting up to `early` (in units of the segment's parameter) before
+    /// the plain walk's.
+    fn assert_same_cells(skipping: &[CellStep], expected: &[CellStep], early: f64, what: &str) {
         let cells = |s: &[CellStep]| s.iter().map(|s| s.cell).collect::<Vec<_>>();
         assert_eq!(cells(skipping), cells(expected), "{what}");
         for (s, e) in skipping.iter().zip(expected) {
@@ -416,104 +478,51 @@ mod tests {
 
     #[test]
     fn a_skip_leaves_out_exactly_the_cells_of_the_cube() {
-        let g = Grid::new(DVec3::new(-1.0, -2.0, 0.5), 0.25, [24, 20, 22]).expect("valid");
-        let (lo, hi) = (g.origin(), g.max_corner());
-        let mut random = crate::rng::SplitMix64::new(5);
-        let mut skipped = 0;
-        for _ in 0..2_000 {
-            // Random segments, some reaching beyond the grid, some ending inside it.
-            let margin = DVec3::splat(0.5);
-            let p0 = random.point_in(lo - margin, hi + margin);
-            let p1 = random.point_in(lo - margin, hi + margin);
-            let plain: Vec<CellStep> = g.walk(p0, p1).collect();
-            if plain.len() < 2 {
-                continue;
-            }
-            let at = random.index(plain.len() - 1);
-            let radius = 1 + random.index(6) as u32;
-            let skipping = skipping_walk(&g, p0, p1, at, radius);
-            let expected = expected_after_skip(&plain, at, radius);
-            skipped += plain.len() - expected.len();
-            assert_same_cells(
-                &skipping,
-                &expected,
-                &format!("{p0} → {p1}, {at}, {radius}"),
-            );
-        }
+        let skipped =
+            check_random_skips(5, |random, _, cell| cube(cell, 1 + random.index(6) as u32));
         assert!(skipped > 10_000, "{skipped}");
-    }
-
-    /// What a skip of the box `lo..=hi` may leave out: the plain walk's cells after the
-    /// `at`-th inside the box, up to the first outside it.
-    fn expected_after_box(
-        plain: &[CellStep],
-        at: usize,
-        lo: [i64; 3],
-        hi: [i64; 3],
-    ) -> Vec<CellStep> {
-        let inside = |c: [u32; 3]| (0..3).all(|k| (lo[k]..=hi[k]).contains(&i64::from(c[k])));
-        let beyond = plain[at + 1..]
-            .iter()
-            .position(|s| !inside(s.cell))
-            .map_or(plain.len(), |i| at + 1 + i);
-        plain[..=at]
-            .iter()
-            .chain(&plain[beyond..])
-            .copied()
-            .collect()
     }
 
     #[test]
     fn a_box_skip_leaves_out_exactly_the_cells_of_the_box() {
-        // Boxes of any shape around the walk's cell, bricks of 8 cells among them, some
-        // reaching past the grid.
-        let g = Grid::new(DVec3::new(-1.0, -2.0, 0.5), 0.25, [24, 20, 22]).expect("valid");
-        let (lo, hi) = (g.origin(), g.max_corner());
-        let mut random = crate::rng::SplitMix64::new(11);
-        let mut skipped = 0;
-        for i in 0..2_000 {
-            let margin = DVec3::splat(0.5);
-            let p0 = random.point_in(lo - margin, hi + margin);
-            let p1 = random.point_in(lo - margin, hi + margin);
-            let plain: Vec<CellStep> = g.walk(p0, p1).collect();
-            if plain.len() < 2 {
-                continue;
-            }
-            let at = random.index(plain.len() - 1);
-            let cell = plain[at].cell.map(i64::from);
-            let (box_lo, box_hi) = if i % 2 == 0 {
+        // Bricks of 8 cells and boxes of any shape around the walk's cell, some reaching
+        // past the grid.
+        let skipped = check_random_skips(11, |random, i, cell| {
+            let cell = cell.map(i64::from);
+            if i % 2 == 0 {
                 let brick = cell.map(|c| c / 8 * 8);
                 (brick, brick.map(|c| c + 7))
             } else {
                 let lo: [i64; 3] = std::array::from_fn(|k| cell[k] - random.index(5) as i64);
                 let hi: [i64; 3] = std::array::from_fn(|k| cell[k] + random.index(5) as i64);
                 (lo, hi)
-            };
-            let mut walk = g.walk(p0, p1);
-            let mut skipping = Vec::new();
-            while let Some(step) = walk.next() {
-                skipping.push(step);
-                if skipping.len() == at + 1 {
-                    walk.skip_box(box_lo, box_hi);
-                }
             }
-            let expected = expected_after_box(&plain, at, box_lo, box_hi);
-            skipped += plain.len() - expected.len();
-            // The skip stops a millionth of a cell short of the box's face, which is a
-            // larger part of the segment along an axis it hardly moves on.
-            let moves = ((p1 - p0) / g.cell_size()).abs();
-            let slowest = [moves.x, moves.y, moves.z]
-                .into_iter()
-                .filter(|&m| m > 0.0)
-                .fold(f64::INFINITY, f64::min);
-            assert_same_cells_within(
-                &skipping,
-                &expected,
-                1e-5 * (1.0 / slowest).max(1.0),
-                &format!("{p0} → {p1}, {at}, {box_lo:?}..{box_hi:?}"),
+        });
+        assert!(skipped > 5_000, "{skipped}");
+    }
+
+    #[test]
+    fn a_cube_skip_is_the_skip_of_its_box() {
+        let g = Grid::new(DVec3::ZERO, 1.0, [16, 16, 16]).expect("valid");
+        let mut random = SplitMix64::new(3);
+        for _ in 0..500 {
+            let (p0, p1) = (
+                random.point_in(DVec3::splat(-1.0), DVec3::splat(17.0)),
+                random.point_in(DVec3::splat(-1.0), DVec3::splat(17.0)),
+            );
+            let plain: Vec<CellStep> = g.walk(p0, p1).collect();
+            if plain.len() < 2 {
+                continue;
+            }
+            let at = random.index(plain.len() - 1);
+            let radius = 1 + random.index(4) as u32;
+            let (lo, hi) = cube(plain[at].cell, radius);
+            assert_eq!(
+                skipping_walk(&g, p0, p1, at, radius),
+                walk_skipping_at(&g, p0, p1, at, |w| w.skip_box(lo, hi)),
+                "{p0} → {p1}, {at}, {radius}"
             );
         }
-        assert!(skipped > 5_000, "{skipped}");
     }
 
     #[test]
