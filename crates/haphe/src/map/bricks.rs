@@ -390,11 +390,14 @@ impl VoxelMap {
         let b = brick_of(c, self.brick_dims);
         match self.free_bricks.get(b) {
             Some(&bricks) if bricks > 0 => Look::NoSurface { bricks },
-            _ => match self.slot(c) {
-                Some(Slot::Detailed { brick, local }) => match self.listed(brick, local) {
-                    Some(triangles) => Look::Triangles(triangles),
-                    None => Look::Free,
-                },
+            // A detailed brick: its entry is its index.
+            _ => match self.bricks.get(b) {
+                Some(&entry) if entry & UNIFORM == 0 => {
+                    match self.listed(entry as usize, local_of(c)) {
+                        Some(triangles) => Look::Triangles(triangles),
+                        None => Look::Free,
+                    }
+                }
                 _ => Look::Free,
             },
         }

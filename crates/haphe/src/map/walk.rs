@@ -478,6 +478,8 @@ mod tests {
 
     #[test]
     fn a_skip_leaves_out_exactly_the_cells_of_the_cube() {
+        // Through the box of the cube, which `skip_cube` skips (see the test below that
+        // compares the two).
         let skipped =
             check_random_skips(5, |random, _, cell| cube(cell, 1 + random.index(6) as u32));
         assert!(skipped > 10_000, "{skipped}");
