@@ -1,6 +1,7 @@
 //! Sparse storage of the voxel map: a dense array over bricks of 8×8×8 cells, each brick
 //! either uniform (one state and a clearance bound for all its cells) or detailed.
 
+use super::free_space::FreeRegions;
 use super::grid::Grid;
 use super::{CellSizeRule, CellState};
 use crate::array::Array;
@@ -64,23 +65,6 @@ pub(crate) fn nibble(nibbles: &[u8], brick: usize, local: usize) -> u8 {
     nibbles
         .get(brick * NIBBLE_BYTES + (local >> 1))
         .map_or(0, |&b| (b >> ((local & 1) * 4)) & 0xf)
-}
-
-/// How far around a brick with top-level `entry`, in bricks, no brick holds a surface
-/// cell (0 for a detailed brick): 1 for a graded brick (it touches a detailed one);
-/// otherwise `(r − 1) / 8 + 1` from the entry's reach `r`, capped at 255. That is a bound
-/// the reach guarantees: every cell of a brick `k` bricks away lies within `8k` cells of
-/// a cell of this one, so within its reach when `8k ≤ r − 1`.
-#[inline]
-pub(crate) fn free_bricks_of(entry: u32) -> u8 {
-    if entry & UNIFORM == 0 {
-        0
-    } else if entry & GRADED != 0 {
-        1
-    } else {
-        let reach = (entry & UNIFORM_PAYLOAD).max(1);
-        ((reach - 1) / BRICK_SIDE + 1).min(u32::from(u8::MAX)) as u8
-    }
 }
 
 /// The state of a uniform entry.
@@ -201,30 +185,19 @@ pub struct VoxelMap {
     pub(crate) triangle_refs: Array<u32>,
     /// Per brick: how far around it, in bricks, no brick holds a surface cell — 0 for a
     /// detailed brick, `d ≥ 1` when no brick within Chebyshev distance `d − 1` of it (itself
-    /// included) holds one (see [`free_bricks_of`]). Derived from `bricks` when a map is
+    /// included) holds one (see [`free_bricks_of`](super::free_space::free_bricks_of)). Derived from `bricks` when a map is
     /// built or loaded (not saved), a byte per brick, so that a long segment's walk
     /// crosses free space on an array that stays in the cache.
     pub(crate) free_bricks: Vec<u8>,
+    /// The same bound by regions of 4×4×4 bricks, derived with `free_bricks`: 64 times
+    /// smaller, so that crossing empty space far from the surface reads only the cache.
+    pub(crate) free_regions: FreeRegions,
     /// Triangles of the surface the map was built for.
     pub(crate) triangle_count: u32,
     /// Whether inside cells were classified (the surface is a solid).
     pub(crate) solid: bool,
     /// How the cell size was chosen.
     pub(crate) cell_size_rule: CellSizeRule,
-}
-
-/// What [`VoxelMap::look`] tells of a cell.
-pub(crate) enum Look<'a> {
-    /// A surface cell and its triangles.
-    Triangles(&'a [u32]),
-    /// A cell of a brick without surface cells: no brick within Chebyshev distance
-    /// `bricks − 1` of it (itself included) holds a surface cell (`bricks ≥ 1`).
-    NoSurface {
-        /// See `VoxelMap::free_bricks`.
-        bricks: u8,
-    },
-    /// A free cell of a detailed brick (or a cell outside the grid).
-    Free,
 }
 
 /// A cell's brick, looked up once.
@@ -355,7 +328,7 @@ impl VoxelMap {
     /// The triangles of cell `local` of detailed brick `brick`: `None` when it is not a
     /// surface cell (or the brick is out of range).
     #[inline]
-    fn listed(&self, brick: usize, local: usize) -> Option<&[u32]> {
+    pub(super) fn listed(&self, brick: usize, local: usize) -> Option<&[u32]> {
         let (word, bit) = (local >> 6, local & 63);
         let mask = self.surface_bits.get(brick)?[word];
         if mask >> bit & 1 == 0 {
@@ -374,38 +347,6 @@ impl VoxelMap {
                 .get(a as usize..b as usize)
                 .unwrap_or(&[]),
         )
-    }
-
-    /// What a long segment's walk needs of cell `c`, reading as little as it can: the
-    /// brick's byte of free bricks around it, and only in a detailed brick its top-level
-    /// entry and one word of its surface mask (and the cell's triangle list when it is a
-    /// surface cell). Clearances are not read: a walk crosses the free bricks around a
-    /// brick without surface cells in one stride, and the free cells of a detailed brick
-    /// one by one, which costs less than a look-up in memory that is cold.
-    #[inline]
-    pub(crate) fn look(&self, c: [u32; 3]) -> Look<'_> {
-        if !self.grid.contains(c) {
-            return Look::Free;
-        }
-        let b = brick_of(c, self.brick_dims);
-        match self.free_bricks.get(b) {
-            Some(&bricks) if bricks > 0 => Look::NoSurface { bricks },
-            // A detailed brick: its entry is its index.
-            _ => match self.bricks.get(b) {
-                Some(&entry) if entry & UNIFORM == 0 => {
-                    match self.listed(entry as usize, local_of(c)) {
-                        Some(triangles) => Look::Triangles(triangles),
-                        None => Look::Free,
-                    }
-                }
-                _ => Look::Free,
-            },
-        }
-    }
-
-    /// Sets [`free_bricks`](Self::free_bricks) from the top-level entries.
-    pub(crate) fn derive_free_bricks(&mut self) {
-        self.free_bricks = self.bricks.iter().map(|&e| free_bricks_of(e)).collect();
     }
 
     /// Number of triangles of the surface the map was built for.
@@ -431,6 +372,7 @@ impl VoxelMap {
     pub fn heap_bytes(&self) -> usize {
         self.bricks.heap_bytes()
             + self.free_bricks.capacity()
+            + self.free_regions.heap_bytes()
             + self.surface_bits.heap_bytes()
             + self.inside_bits.heap_bytes()
             + self.surface_before.heap_bytes()

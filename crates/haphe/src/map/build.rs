@@ -162,7 +162,7 @@ pub(super) fn build_on_grid(
     }
     progress(PROGRESS_FILLED);
     compute_clearance(&mut map);
-    map.derive_free_bricks();
+    map.derive_free_space();
     map.bricks.to_mut().shrink_to_fit();
     map.surface_bits.to_mut().shrink_to_fit();
     map.inside_bits.to_mut().shrink_to_fit();
@@ -227,6 +227,7 @@ fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
         brick_dims: bdims,
         bricks: bricks.into(),
         free_bricks: Vec::new(),
+        free_regions: Default::default(),
         inside_bits: vec![[0; MASK_WORDS]; surface_bits.len()].into(),
         surface_bits: surface_bits.into(),
         surface_before: surface_before.into(),

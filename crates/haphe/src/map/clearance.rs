@@ -183,18 +183,25 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
 }
 
 /// The Chebyshev distance, in bricks, from every brick to the nearest detailed one (0 for
-/// a detailed brick; `u16::MAX` when there is none), by the two raster passes of the
-/// chamfer transform with unit weights over the 26 neighbours, which is exact for this
-/// distance. Runs over a copy padded by one brick, so the passes need no bounds checks.
+/// a detailed brick; `u16::MAX` when there is none).
 fn brick_distances(bricks: &[u32], bdims: [u32; 3]) -> Vec<u16> {
-    let [bx, by, bz] = bdims.map(|d| d as usize);
+    chebyshev_distances(bdims, |b| bricks[b] & UNIFORM == 0)
+}
+
+/// The Chebyshev distance, in boxes, from every box of a grid of `dims` boxes (index
+/// `(z · dims[1] + y) · dims[0] + x`) to the nearest box that `marked` names (0 for a
+/// marked box; `u16::MAX` when there is none), by the two raster passes of the chamfer
+/// transform with unit weights over the 26 neighbours, which is exact for this distance.
+/// Runs over a copy padded by one box, so the passes need no bounds checks.
+pub(crate) fn chebyshev_distances(dims: [u32; 3], marked: impl Fn(usize) -> bool) -> Vec<u16> {
+    let [bx, by, bz] = dims.map(|d| d as usize);
     let (px, py, pz) = (bx + 2, by + 2, bz + 2);
     let padded = |x: usize, y: usize, z: usize| (z * py + y) * px + x;
     let mut d = vec![u16::MAX; px * py * pz];
     for z in 0..bz {
         for y in 0..by {
             for x in 0..bx {
-                if bricks[(z * by + y) * bx + x] & UNIFORM == 0 {
+                if marked((z * by + y) * bx + x) {
                     d[padded(x + 1, y + 1, z + 1)] = 0;
                 }
             }
@@ -222,7 +229,7 @@ fn brick_distances(bricks: &[u32], bdims: [u32; 3]) -> Vec<u16> {
             }
         }
     }
-    let mut out = Vec::with_capacity(bricks.len());
+    let mut out = Vec::with_capacity(bx * by * bz);
     for z in 1..=bz {
         for y in 1..=by {
             out.extend_from_slice(&d[padded(1, y, z)..padded(bx + 1, y, z)]);
@@ -407,46 +414,6 @@ fn dilate(input: &Layer, output: &mut Layer, neighbours: &[[u32; 6]], axis: usiz
 mod tests {
     use super::*;
     use crate::rng::SplitMix64;
-
-    /// The free bricks around each brick that a long segment's walk skips
-    /// (`VoxelMap::free_bricks`, derived from the entries) are never more than the true
-    /// distance to the nearest detailed brick, 0 exactly on detailed bricks, and equal to it
-    /// from three bricks out, where the entries store it; on maps built and maps loaded.
-    #[test]
-    fn free_bricks_bound_the_distance_to_the_surface() {
-        use crate::map::{MapOptions, decode, encode};
-        use crate::mesh::shapes::Shape;
-        use crate::mesh::{Surface, SurfaceOptions};
-        let mut far = 0;
-        for (shape, triangles, cell) in [
-            (Shape::Blob, 10_000, None),
-            (Shape::Sphere, 2_000, Some(0.002)),
-            (Shape::ThinPlate, 2_000, None),
-        ] {
-            let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
-                .expect("a surface");
-            let options = MapOptions {
-                cell_size_m: cell,
-                ..MapOptions::default()
-            };
-            let built = VoxelMap::build(&surface, &options).expect("a map");
-            let (_, loaded) = decode(&encode(&surface, &built)).expect("loads");
-            let distances = brick_distances(&built.bricks, built.brick_dims);
-            for map in [&built, &loaded] {
-                assert_eq!(map.free_bricks.len(), map.bricks.len());
-                for (b, (&free, &d)) in map.free_bricks.iter().zip(&distances).enumerate() {
-                    let d = d.min(u16::from(u8::MAX)) as u8;
-                    assert_eq!(free == 0, d == 0, "{shape:?}, brick {b}");
-                    assert!(free <= d, "{shape:?}, brick {b}: {free} > {d}");
-                    if d >= 3 {
-                        assert_eq!(free, d, "{shape:?}, brick {b}");
-                        far += 1;
-                    }
-                }
-            }
-        }
-        assert!(far > 20, "{far}");
-    }
 
     /// The chamfer passes give the Chebyshev distance to the nearest detailed brick, as a
     /// brute-force search over all pairs does, on random grids of bricks, with few,

@@ -475,6 +475,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         brick_dims: super::bricks::brick_dims(params.grid.dims()),
         bricks: array::<u32, u32>(file, bricks),
         free_bricks: Vec::new(),
+        free_regions: Default::default(),
         surface_bits: array::<BrickBits, u64>(file, surface_bits),
         inside_bits: array::<BrickBits, u64>(file, inside_bits),
         surface_before: array::<[u16; MASK_WORDS], u16>(file, surface_before),
@@ -487,7 +488,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         cell_size_rule: params.cell_size_rule,
     };
     check_map(&map, &surface)?;
-    map.derive_free_bricks();
+    map.derive_free_space();
     Ok((surface, map))
 }
 

@@ -40,6 +40,9 @@ pub struct CellWalk {
     a: DVec3,
     /// `p1 − p0` in cell units.
     d: DVec3,
+    /// `1 / d` per axis (infinite along an axis the segment does not move on): walks
+    /// and skips find parameters by multiplying with it.
+    inv_d: DVec3,
     /// The cell returned last (the walk's first cell before any).
     last: [i64; 3],
     cell: [i64; 3],
@@ -84,6 +87,7 @@ impl Grid {
         let empty = CellWalk {
             a: DVec3::ZERO,
             d: DVec3::ZERO,
+            inv_d: DVec3::INFINITY,
             last: [0; 3],
             cell: [0; 3],
             step: [0; 3],
@@ -103,6 +107,7 @@ impl Grid {
         let mut walk = CellWalk {
             a,
             d,
+            inv_d: d.recip(),
             t: t0,
             t_end: t1,
             remaining: step_cap(self.dims()),
@@ -112,14 +117,15 @@ impl Grid {
             let cell = floor_to_int(start[axis]).clamp(0, dims[axis] - 1);
             walk.cell[axis] = cell;
             walk.last[axis] = cell;
+            let inv = walk.inv_d[axis];
             if d[axis] > 0.0 {
                 walk.step[axis] = 1;
-                walk.t_max[axis] = (cell as f64 + 1.0 - a[axis]) / d[axis];
-                walk.t_delta[axis] = 1.0 / d[axis];
+                walk.t_max[axis] = (cell as f64 + 1.0 - a[axis]) * inv;
+                walk.t_delta[axis] = inv;
             } else if d[axis] < 0.0 {
                 walk.step[axis] = -1;
-                walk.t_max[axis] = (cell as f64 - a[axis]) / d[axis];
-                walk.t_delta[axis] = -1.0 / d[axis];
+                walk.t_max[axis] = (cell as f64 - a[axis]) * inv;
+                walk.t_delta[axis] = -inv;
             }
         }
         walk
@@ -230,7 +236,7 @@ impl CellWalk {
             _ => last[k] + 0.5,
         }));
         let margin = SKIP_MARGIN + SKIP_MARGIN_REL * (self.a.abs() + face.abs());
-        let reach = (face - step * margin - self.a) / self.d;
+        let reach = (face - step * margin - self.a) * self.inv_d;
         let reach = DVec3::from_array(std::array::from_fn(|k| {
             if self.step[k] == 0 {
                 f64::INFINITY
@@ -283,7 +289,7 @@ impl CellWalk {
         }
         // As `Grid::walk` seeds them (infinite along an axis the segment does not move on).
         let cell = DVec3::from_array(self.cell.map(|c| c as f64));
-        let exits = (cell + 0.5 + 0.5 * step - self.a) / self.d;
+        let exits = (cell + 0.5 + 0.5 * step - self.a) * self.inv_d;
         for axis in 0..3 {
             if self.step[axis] != 0 {
                 self.t_max[axis] = exits[axis];

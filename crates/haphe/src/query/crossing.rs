@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use super::{Segment, SegmentHit, intersect_segment_triangle};
-use crate::map::{BRICK_SIDE, CellWalk, Look, VoxelMap};
+use crate::map::{CellWalk, Look, VoxelMap};
 use crate::mesh::{Surface, TriId};
 
 /// Where a segment first meets the surface.
@@ -120,12 +120,13 @@ impl Tested {
 /// [`first_crossing_brute_force`], which this always equals.
 ///
 /// Free space costs little on a segment longer than a few cells: the walk crosses a
-/// brick of the map that holds no surface cell in one stride, and far from the surface,
-/// where the map bounds the distance by whole bricks ([`VoxelMap::reach`]), the cube of
-/// cells within that distance, so crossing empty space takes a few strides however fine
-/// the grid. In a brick that holds surface cells it steps through the free cells one by
-/// one, reading only the brick's surface mask, which costs less than reading their
-/// clearances from memory that is cold when the segment comes from far away.
+/// cube of the map known to hold no surface cell in one stride — far from the surface a
+/// cube of regions of 32³ cells, nearer a cube of bricks of 8³ cells (both bounds derived
+/// from the map's distances to the surface, [`VoxelMap::reach`]), and in a brick that
+/// holds surface cells a free block of 4³ cells of its surface mask — so crossing empty
+/// space takes a few strides however fine the grid, reading mostly memory that stays in
+/// the cache. It never reads the clearances of free cells, which are cold when the
+/// segment comes from far away.
 ///
 /// # Real-time
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
@@ -201,8 +202,8 @@ pub fn first_crossing_where(
             match map.look(visit.cell) {
                 Look::Triangles(triangles) => triangles,
                 Look::Free => continue,
-                Look::NoSurface { bricks } => {
-                    skip_free_space(&mut walk, visit.cell, bricks);
+                Look::NoSurface { side, around } => {
+                    skip_free_space(&mut walk, visit.cell, side, around);
                     continue;
                 }
             }
@@ -239,12 +240,13 @@ pub fn first_crossing_where(
     best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
 }
 
-/// Skips the free space around `cell`, a cell of a brick such that no brick within
-/// Chebyshev distance `bricks − 1` of it holds a surface cell: the cube of those bricks.
+/// Skips the free space around `cell`, a cell of a block of `side` cells along each side
+/// (a brick or a region) such that no block within Chebyshev distance `around − 1` of it
+/// holds a surface cell: the cube of those blocks.
 #[inline]
-fn skip_free_space(walk: &mut CellWalk, cell: [u32; 3], bricks: u8) {
-    let side = i64::from(BRICK_SIDE);
-    let around = i64::from(bricks.max(1) - 1) * side;
+fn skip_free_space(walk: &mut CellWalk, cell: [u32; 3], side: u32, around: u8) {
+    let side = i64::from(side);
+    let around = i64::from(around.max(1) - 1) * side;
     let lo = cell.map(|c| i64::from(c) / side * side - around);
     walk.skip_box(lo, lo.map(|c| c + 2 * around + side - 1));
 }
