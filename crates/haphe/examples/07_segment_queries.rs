@@ -1,7 +1,8 @@
 //! Segment crossings on random segments across a procedural shape, for measuring what a
 //! query costs: the segments `haphe bench` uses for its `segment_random` rows (random end
 //! points in the grown bounding box), each answered by [`first_crossing`], with the query
-//! times.
+//! times: of all segments, then of those that cross the surface and of those that do not
+//! (most of which miss the object's box and cost next to nothing).
 //!
 //! ```sh
 //! cargo run --release --example 07_segment_queries -- 1000000 blob 50000
@@ -34,29 +35,50 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
     let map = VoxelMap::build(&surface, &MapOptions::default())?;
     let queries = segments(&surface, SegmentKind::Random, count, 1);
-    let mut ns = Vec::with_capacity(queries.len());
-    let mut hits = 0;
+    // Query times (ns, clock included) of the segments that cross the surface and of
+    // those that do not: two populations, the second mostly cheap (segments that miss
+    // the object's box), so the percentiles of all of them mix the two.
+    let (mut crossing, mut missing) = (Vec::new(), Vec::new());
     for &(p0, p1) in &queries {
         let started = Instant::now();
-        let crossing = segment_once(&surface, &map, p0, p1);
-        ns.push(started.elapsed().as_nanos() as u64);
-        hits += usize::from(crossing.is_some());
+        let found = segment_once(&surface, &map, p0, p1).is_some();
+        let ns = started.elapsed().as_nanos() as u64;
+        if found {
+            crossing.push(ns);
+        } else {
+            missing.push(ns);
+        }
     }
-    ns.sort_unstable();
-    let Some(&max) = ns.last() else {
+    let hits = crossing.len();
+    let mut all = [crossing.as_slice(), missing.as_slice()].concat();
+    let Some(all) = percentiles(&mut all) else {
         println!("no segment");
         return Ok(());
     };
-    let at = |q: f64| ns[((ns.len() - 1) as f64 * q) as usize];
     println!(
-        "{which} ({} triangles): {} random segments, {hits} crossing; query time p50 {} ns, p99 {} ns, p99.9 {} ns, max {max} ns (clock included)",
+        "{which} ({} triangles): {} random segments, {hits} crossing; query time {all} (clock included)",
         surface.triangle_count(),
-        ns.len(),
+        queries.len(),
+    );
+    for (what, times) in [("crossing", &mut crossing), ("not crossing", &mut missing)] {
+        if let Some(line) = percentiles(times) {
+            println!("  {what}: {line}");
+        }
+    }
+    Ok(())
+}
+
+/// `p50, p99, p99.9 and max` of `times` (ns), sorting them; `None` when empty.
+fn percentiles(times: &mut [u64]) -> Option<String> {
+    times.sort_unstable();
+    let &max = times.last()?;
+    let at = |q: f64| times[((times.len() - 1) as f64 * q) as usize];
+    Some(format!(
+        "p50 {} ns, p99 {} ns, p99.9 {} ns, max {max} ns",
         at(0.5),
         at(0.99),
-        at(0.999),
-    );
-    Ok(())
+        at(0.999)
+    ))
 }
 
 /// One query, never inlined, so that callgrind can count inside it whatever the compiler
