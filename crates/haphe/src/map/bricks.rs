@@ -192,6 +192,9 @@ pub struct VoxelMap {
     /// The same bound by regions of 4×4×4 bricks, derived with `free_bricks`: 64 times
     /// smaller, so that crossing empty space far from the surface reads only the cache.
     pub(crate) free_regions: FreeRegions,
+    /// Per surface cell: its slab, the layer of the cell in which its triangles lie
+    /// (see `map/slabs.rs`).
+    pub(crate) slabs: Array<u32>,
     /// Triangles of the surface the map was built for.
     pub(crate) triangle_count: u32,
     /// Whether inside cells were classified (the surface is a solid).
@@ -329,6 +332,12 @@ impl VoxelMap {
     /// surface cell (or the brick is out of range).
     #[inline]
     pub(super) fn listed(&self, brick: usize, local: usize) -> Option<&[u32]> {
+        self.listed_at(brick, local).map(|(t, _)| t)
+    }
+
+    /// [`listed`](Self::listed) with the surface cell's index.
+    #[inline]
+    pub(super) fn listed_at(&self, brick: usize, local: usize) -> Option<(&[u32], usize)> {
         let (word, bit) = (local >> 6, local & 63);
         let mask = self.surface_bits.get(brick)?[word];
         if mask >> bit & 1 == 0 {
@@ -342,11 +351,12 @@ impl VoxelMap {
             *self.triangle_start.get(s)?,
             *self.triangle_start.get(s + 1)?,
         );
-        Some(
+        Some((
             self.triangle_refs
                 .get(a as usize..b as usize)
                 .unwrap_or(&[]),
-        )
+            s,
+        ))
     }
 
     /// Number of triangles of the surface the map was built for.
@@ -380,6 +390,7 @@ impl VoxelMap {
             + self.clearances.heap_bytes()
             + self.triangle_start.heap_bytes()
             + self.triangle_refs.heap_bytes()
+            + self.slabs.heap_bytes()
     }
 
     /// Number of detailed bricks.

@@ -163,6 +163,7 @@ pub(super) fn build_on_grid(
     progress(PROGRESS_FILLED);
     compute_clearance(&mut map);
     map.derive_free_space();
+    map.derive_slabs(surface);
     map.bricks.to_mut().shrink_to_fit();
     map.surface_bits.to_mut().shrink_to_fit();
     map.inside_bits.to_mut().shrink_to_fit();
@@ -170,6 +171,7 @@ pub(super) fn build_on_grid(
     map.surface_first.to_mut().shrink_to_fit();
     map.triangle_start.to_mut().shrink_to_fit();
     map.triangle_refs.to_mut().shrink_to_fit();
+    map.slabs.to_mut().shrink_to_fit();
     map.clearances.to_mut().shrink_to_fit();
     Ok(map)
 }
@@ -228,6 +230,7 @@ fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
         bricks: bricks.into(),
         free_bricks: Vec::new(),
         free_regions: Default::default(),
+        slabs: Default::default(),
         inside_bits: vec![[0; MASK_WORDS]; surface_bits.len()].into(),
         surface_bits: surface_bits.into(),
         surface_before: surface_before.into(),

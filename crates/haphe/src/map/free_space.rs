@@ -117,8 +117,8 @@ impl FreeRegions {
 
 /// What [`VoxelMap::look`] tells of a cell.
 pub(crate) enum Look<'a> {
-    /// A surface cell and its triangles.
-    Triangles(&'a [u32]),
+    /// A surface cell, its triangles and its slab.
+    Triangles(&'a [u32], u32),
     /// A cell in a cube of cells without surface cells: the cell's block (a brick or a
     /// region of bricks, `side` cells along each side, aligned on multiples of `side`)
     /// and every block within Chebyshev distance `around − 1` of it (`around ≥ 1`).
@@ -170,8 +170,8 @@ impl VoxelMap {
                             side => Look::NoSurface { side, around: 1 },
                         };
                     }
-                    match self.listed(brick, local) {
-                        Some(triangles) => Look::Triangles(triangles),
+                    match self.listed_at(brick, local) {
+                        Some((triangles, s)) => Look::Triangles(triangles, self.slab(s)),
                         None => Look::Free,
                     }
                 }

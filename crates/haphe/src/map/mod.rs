@@ -49,6 +49,7 @@ mod fill;
 mod free_space;
 mod grid;
 mod overlap;
+mod slabs;
 mod validate;
 mod walk;
 
@@ -59,6 +60,7 @@ pub(crate) use free_space::Look;
 pub(crate) use grid::floor_to_int;
 pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL, PADDING_SLACK_REL};
 pub use overlap::overlap_triangle_box;
+pub(crate) use slabs::misses as slab_misses;
 pub use walk::{CellStep, CellWalk};
 
 /// Largest clearance a cell stores, in cells. Cells within 15 cells of the surface store

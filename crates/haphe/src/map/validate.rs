@@ -519,6 +519,15 @@ fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
             ),
         ));
     }
+    if map.slabs.len() != surface_cells {
+        return Err(invalid(
+            "slabs",
+            format!(
+                "{} slabs for {surface_cells} surface cells: one per surface cell",
+                map.slabs.len()
+            ),
+        ));
+    }
     // Every list increasing: the descents of the whole array are exactly those at list
     // borders (counted in two linear passes, the first vectorised), and all below `t`.
     let refs = &map.triangle_refs;

@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use super::{Segment, SegmentHit, intersect_segment_triangle};
-use crate::map::{CellWalk, Look, VoxelMap};
+use crate::map::{CellWalk, Look, VoxelMap, slab_misses};
 use crate::mesh::{Surface, TriId};
 
 /// Where a segment first meets the surface.
@@ -198,9 +198,13 @@ pub fn first_crossing_where(
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
         }
+        let mut slab = None;
         let triangles = if skips {
             match map.look(visit.cell) {
-                Look::Triangles(triangles) => triangles,
+                Look::Triangles(triangles, s) => {
+                    slab = Some(s);
+                    triangles
+                }
                 Look::Free => continue,
                 Look::NoSurface { side, around } => {
                     skip_free_space(&mut walk, visit.cell, side, around);
@@ -224,6 +228,14 @@ pub fn first_crossing_where(
             (visit.t_exit + margin).min(until),
         );
         let (q0, q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
+        // The slab of the cell: where in it its triangles lie. A part of the segment
+        // wholly on one side crosses none of them in this cell.
+        if let Some(slab) = slab {
+            let (lo, hi) = map.grid().cell_bounds(visit.cell);
+            if slab_misses(slab, 0.5 * (lo + hi), h, q0, q1) {
+                continue;
+            }
+        }
         for &t in triangles {
             if cannot_cross(surface, t, q0, q1, plane_margin) || !tested.insert(t) {
                 continue;

@@ -1,0 +1,297 @@
+//! Slabs: where in a surface cell its surface lies.
+//!
+//! A surface cell lists every triangle that overlaps it, but the triangles often fill only
+//! a thin layer of the cell: a piece of a smooth surface, or both faces of a thin plate.
+//! A segment that passes the cell above or below that layer crosses none of them there.
+//! Each surface cell keeps its **slab** in four bytes: a direction `n` (two octahedral
+//! bytes) and the range `[lo, hi]` of `n · (x − centre)` over its triangles' corners (one
+//! byte each, in cells, rounded outward), which holds every point of the triangles in the
+//! cell since a triangle is the convex hull of its corners. A segment whose part in the
+//! cell lies wholly on one side of the slab ([`misses`]) skips the cell's triangles — their
+//! list and their frames, the reads that are cold on large meshes.
+//!
+//! The direction is the sum of the triangles' normals (weighted by area), each turned to
+//! the side of the first one's, so that the two faces of a thin plate give the plate's
+//! normal; a cell whose normals (nearly) cancel out gets a slab that rejects nothing.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::VoxelMap;
+use super::bricks::{UNIFORM, brick_coords, cell_in_brick};
+use crate::mesh::{Surface, TriId};
+
+/// Half the range of a slab's bounds, in cells from the cell's centre: a little more
+/// than half a cell, since a direction's L1 norm is 1 and so `|n · (x − centre)|` is at
+/// most half a cell for a point `x` of the cell.
+const RANGE: f64 = 0.51;
+/// Steps of a slab bound: 255 steps of `2·RANGE/255` (0.004 of a cell).
+const LEVELS: f64 = 255.0;
+/// A slab that rejects nothing: both bounds at the ends of the range.
+pub(crate) const FULL_SLAB: u32 = 0xff00_0000;
+
+/// The direction of a slab, decoded from its two octahedral bytes: not unit length, its
+/// L1 norm is 1 (its length is between `1/√3` and 1). Every code decodes to a non-zero
+/// direction.
+#[inline]
+fn direction(slab: u32) -> DVec3 {
+    let u = f64::from(slab & 0xff) / 127.5 - 1.0;
+    let v = f64::from((slab >> 8) & 0xff) / 127.5 - 1.0;
+    let z = 1.0 - u.abs() - v.abs();
+    if z >= 0.0 {
+        DVec3::new(u, v, z)
+    } else {
+        DVec3::new((1.0 - v.abs()).copysign(u), (1.0 - u.abs()).copysign(v), z)
+    }
+}
+
+/// The two octahedral bytes of the non-zero direction `n`.
+fn encode_direction(n: DVec3) -> u32 {
+    let n = n / n.abs().element_sum();
+    let (u, v) = if n.z < 0.0 {
+        (
+            (1.0 - n.y.abs()).copysign(n.x),
+            (1.0 - n.x.abs()).copysign(n.y),
+        )
+    } else {
+        (n.x, n.y)
+    };
+    let byte = |x: f64| ((x + 1.0) * 127.5).round().clamp(0.0, 255.0) as u32;
+    byte(u) | (byte(v) << 8)
+}
+
+/// The bounds `(lo, hi)` of a slab, in cells along its direction from the cell's centre.
+#[inline]
+fn bounds(slab: u32) -> (f64, f64) {
+    let step = 2.0 * RANGE / LEVELS;
+    (
+        f64::from((slab >> 16) & 0xff) * step - RANGE,
+        f64::from(slab >> 24) * step - RANGE,
+    )
+}
+
+/// The slab of a surface cell with centre `centre` (metres) and side `h` listing
+/// `triangles`.
+fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
+    let Some(&first) = triangles.first() else {
+        return FULL_SLAB;
+    };
+    // Area-weighted normals from the corners (the frames would be one more array to
+    // read), each turned to the side of the first.
+    let normal = |t: u32| {
+        let [a, b, c] = surface.corners(TriId(t));
+        (b - a).cross(c - a)
+    };
+    let reference = normal(first);
+    let (mut sum, mut total) = (DVec3::ZERO, 0.0);
+    for &t in triangles {
+        let n = normal(t);
+        sum += if n.dot(reference) < 0.0 { -n } else { n };
+        total += n.length();
+    }
+    if !(sum.is_finite() && total.is_finite()) || sum.length() <= 1e-3 * total {
+        return FULL_SLAB;
+    }
+    let code = encode_direction(sum);
+    let n = direction(code);
+    let (lo, hi) = triangles
+        .iter()
+        .flat_map(|&t| surface.corners(TriId(t)))
+        .map(|corner| n.dot(corner - centre) / h)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+            (lo.min(s), hi.max(s))
+        });
+    if !(lo.is_finite() && hi.is_finite()) {
+        return FULL_SLAB;
+    }
+    // Outward to the step, then one step more: far beyond the rounding of the products.
+    let step = 2.0 * RANGE / LEVELS;
+    let lo = (((lo + RANGE) / step).floor() - 1.0).clamp(0.0, LEVELS) as u32;
+    let hi = (((hi + RANGE) / step).ceil() + 1.0).clamp(0.0, LEVELS) as u32;
+    code | (lo << 16) | (hi << 24)
+}
+
+/// Whether the part `q0 → q1` of a segment (metres) lies wholly on one side of `slab`,
+/// the slab of a cell with centre `centre` and side `h`: then the segment crosses none of
+/// the cell's triangles at a point of the cell. The margin (a hundred-thousandth of a
+/// cell, plus `1e-12` of the coordinates) is far above the rounding of the products.
+#[inline]
+pub(crate) fn misses(slab: u32, centre: DVec3, h: f64, q0: DVec3, q1: DVec3) -> bool {
+    let n = direction(slab);
+    let (lo, hi) = bounds(slab);
+    let margin = 1e-5 * h + 1e-12 * centre.abs().max_element();
+    let (lo, hi) = (lo * h - margin, hi * h + margin);
+    let (a, b) = (n.dot(q0 - centre), n.dot(q1 - centre));
+    (a < lo && b < lo) || (a > hi && b > hi)
+}
+
+impl VoxelMap {
+    /// Sets the slab of every surface cell, in the order of the surface cells (detailed
+    /// bricks in order, cells of a brick in mask order). Parallel over bricks.
+    pub(crate) fn derive_slabs(&mut self, surface: &Surface) {
+        let h = self.grid.cell_size();
+        let per_brick: Vec<Vec<u32>> = (0..self.bricks.len())
+            .into_par_iter()
+            .filter(|&b| self.bricks[b] & UNIFORM == 0)
+            .map(|b| {
+                let brick = self.bricks[b] as usize;
+                let bc = brick_coords(b, self.brick_dims);
+                let mut slabs = Vec::new();
+                let Some(bits) = self.surface_bits.get(brick) else {
+                    return slabs;
+                };
+                for (word, &bits) in bits.iter().enumerate() {
+                    let mut rest = bits;
+                    while rest != 0 {
+                        let local = word * 64 + rest.trailing_zeros() as usize;
+                        rest &= rest - 1;
+                        let (lo, hi) = self.grid.cell_bounds(cell_in_brick(bc, local));
+                        let triangles = self.listed(brick, local).unwrap_or(&[]);
+                        slabs.push(slab_of(surface, 0.5 * (lo + hi), h, triangles));
+                    }
+                }
+                slabs
+            })
+            .collect();
+        self.slabs = per_brick.concat().into();
+    }
+
+    /// The slab of surface cell `s` ([`FULL_SLAB`] when out of range).
+    #[inline]
+    pub(crate) fn slab(&self, s: usize) -> u32 {
+        self.slabs.get(s).copied().unwrap_or(FULL_SLAB)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::MapOptions;
+    use crate::mesh::SurfaceOptions;
+    use crate::mesh::shapes::Shape;
+    use crate::rng::SplitMix64;
+
+    /// Every direction code decodes to a direction of L1 norm 1, and encoding a direction
+    /// gives back one within a step of the octahedral grid.
+    #[test]
+    fn directions_round_trip() {
+        for code in 0..65_536u32 {
+            let n = direction(code);
+            assert!((n.abs().element_sum() - 1.0).abs() < 1e-12, "{code}: {n}");
+        }
+        let mut random = SplitMix64::new(5);
+        for _ in 0..10_000 {
+            let n = random.unit_vector();
+            let back = direction(encode_direction(n));
+            let want = n / n.abs().element_sum();
+            assert!((back - want).abs().max_element() < 0.02, "{n} → {back}");
+        }
+    }
+
+    /// Every point of a surface cell's triangles that lies in the cell lies in its slab
+    /// (random points on every listed triangle of every surface cell, on three shapes);
+    /// and the slabs are thin where the surface is smooth: most are under a third of a
+    /// cell thick on the blob and the plate.
+    #[test]
+    fn slabs_hold_the_triangles_in_their_cells() {
+        let mut random = SplitMix64::new(9);
+        for (shape, triangles) in [
+            (Shape::Blob, 5_000),
+            (Shape::Sphere, 2_000),
+            (Shape::ThinPlate, 2_000),
+        ] {
+            let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
+                .expect("a surface");
+            let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
+            let h = map.grid().cell_size();
+            let dims = map.grid().dims();
+            let (mut cells, mut thin, mut points) = (0, 0, 0);
+            for z in 0..dims[2] {
+                for y in 0..dims[1] {
+                    for x in 0..dims[0] {
+                        let c = [x, y, z];
+                        let listed = map.triangles_in(c);
+                        if listed.is_empty() {
+                            continue;
+                        }
+                        let crate::map::Look::Triangles(_, slab) = map.look(c) else {
+                            panic!("{shape:?} {c:?}: a surface cell");
+                        };
+                        let (lo, hi) = map.grid().cell_bounds(c);
+                        let centre = 0.5 * (lo + hi);
+                        let n = direction(slab);
+                        let (a, b) = bounds(slab);
+                        cells += 1;
+                        thin += usize::from(b - a < 1.0 / 3.0);
+                        for &t in listed {
+                            let [p, q, r] = surface.corners(TriId(t));
+                            for _ in 0..20 {
+                                let (u, v) = (random.next_unit(), random.next_unit());
+                                let (u, v) = if u + v > 1.0 {
+                                    (1.0 - u, 1.0 - v)
+                                } else {
+                                    (u, v)
+                                };
+                                let point = p + u * (q - p) + v * (r - p);
+                                if (point.cmplt(lo) | point.cmpgt(hi)).any() {
+                                    continue;
+                                }
+                                let s = n.dot(point - centre) / h;
+                                assert!(
+                                    a - 1e-9 <= s && s <= b + 1e-9,
+                                    "{shape:?} {c:?}: {s} ∉ [{a}, {b}]"
+                                );
+                                points += 1;
+                            }
+                        }
+                    }
+                }
+            }
+            assert!(points > 1000, "{shape:?}: {points}");
+            if shape != Shape::Sphere {
+                assert!(2 * thin > cells, "{shape:?}: {thin} thin slabs of {cells}");
+            }
+        }
+    }
+
+    /// A map file with a slab too few or too many is refused, naming the slabs.
+    #[test]
+    fn a_file_without_a_slab_per_surface_cell_is_refused() {
+        use crate::map::{MapFileError, decode, encode};
+        let surface = Surface::new(
+            Shape::Blob.with_triangles(1_000),
+            &SurfaceOptions::default(),
+        )
+        .expect("a surface");
+        let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
+        for change in [-1i64, 1] {
+            let mut wrong = map.clone();
+            if change < 0 {
+                wrong.slabs.to_mut().pop();
+            } else {
+                wrong.slabs.to_mut().push(FULL_SLAB);
+            }
+            match decode(&encode(&surface, &wrong)) {
+                Err(MapFileError::Invalid { section, .. }) => assert_eq!(section, "slabs"),
+                other => panic!("expected the slabs refused, got {other:?}"),
+            }
+        }
+    }
+
+    /// A segment part beside a slab misses it, one through it or across it does not.
+    #[test]
+    fn a_part_beside_the_slab_misses_it() {
+        // Direction +z, bounds −0.1 … 0.1 of a cell around the centre, in a cell of 2 mm.
+        let code = encode_direction(DVec3::Z);
+        let step = 2.0 * RANGE / LEVELS;
+        let level = |s: f64| ((s + RANGE) / step).round() as u32;
+        let slab = code | (level(-0.1) << 16) | (level(0.1) << 24);
+        let (centre, h) = (DVec3::new(1.0, 2.0, 3.0), 0.002);
+        let at = |x: f64, z: f64| centre + DVec3::new(x, 0.0, z) * h;
+        assert!(misses(slab, centre, h, at(-0.5, 0.3), at(0.5, 0.4)));
+        assert!(misses(slab, centre, h, at(-0.5, -0.3), at(0.5, -0.2)));
+        assert!(!misses(slab, centre, h, at(-0.5, 0.3), at(0.5, -0.3)));
+        assert!(!misses(slab, centre, h, at(-0.5, 0.05), at(0.5, 0.05)));
+        assert!(!misses(FULL_SLAB, centre, h, at(-0.5, 0.49), at(0.5, 0.49)));
+    }
+}
