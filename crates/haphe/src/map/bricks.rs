@@ -184,10 +184,11 @@ pub struct VoxelMap {
     /// Triangle indices of all surface cells, cell after cell.
     pub(crate) triangle_refs: Array<u32>,
     /// Per brick: how far around it, in bricks, no brick holds a surface cell — 0 for a
-    /// detailed brick, `d ≥ 1` when no brick within Chebyshev distance `d − 1` of it (itself
-    /// included) holds one (see [`free_bricks_of`](super::free_space::free_bricks_of)). Derived from `bricks` when a map is
-    /// built or loaded (not saved), a byte per brick, so that a long segment's walk
-    /// crosses free space on an array that stays in the cache.
+    /// detailed brick, `d ≥ 1` when no brick within Chebyshev distance `d − 1` of it
+    /// (itself included) holds one (see
+    /// [`free_bricks_of`](super::free_space::free_bricks_of)). Derived from `bricks` when
+    /// a map is built or loaded (not saved), a byte per brick, so that a long segment's
+    /// walk crosses free space without reading the entries.
     pub(crate) free_bricks: Vec<u8>,
     /// The same bound by regions of 4×4×4 bricks, derived with `free_bricks`: 64 times
     /// smaller, so that crossing empty space far from the surface reads only the cache.

@@ -121,12 +121,14 @@ impl Tested {
 ///
 /// Free space costs little on a segment longer than a few cells: the walk crosses a
 /// cube of the map known to hold no surface cell in one stride — far from the surface a
-/// cube of regions of 32³ cells, nearer a cube of bricks of 8³ cells (both bounds derived
-/// from the map's distances to the surface, [`VoxelMap::reach`]), and in a brick that
-/// holds surface cells a free block of 4³ cells of its surface mask — so crossing empty
-/// space takes a few strides however fine the grid, reading mostly memory that stays in
-/// the cache. It never reads the clearances of free cells, which are cold when the
-/// segment comes from far away.
+/// cube of regions of 32³ cells, nearer a cube of bricks of 8³ cells (both derived from
+/// where the surface cells are, the bricks' through [`VoxelMap::reach`]), and in a brick
+/// that holds surface cells a free block of 4³ cells of its surface mask — so crossing
+/// empty space takes a few strides however fine the grid, reading mostly memory that
+/// stays in the cache. In a surface cell, a part of the segment that passes beside the
+/// layer the cell's triangles lie in (the cell's slab, four bytes) skips them without
+/// reading their list. It never reads the clearances of free cells, which are cold when
+/// the segment comes from far away.
 ///
 /// # Real-time
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
