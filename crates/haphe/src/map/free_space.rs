@@ -17,7 +17,7 @@
 
 use super::VoxelMap;
 use super::bricks::{
-    BRICK_BITS, BRICK_SIDE, BrickBits, GRADED, UNIFORM, UNIFORM_PAYLOAD, brick_of, local_of,
+    BRICK_BITS, BRICK_SIDE, BrickBits, GRADED, UNIFORM, UNIFORM_PAYLOAD, brick_of, has, local_of,
 };
 use super::clearance::chebyshev_distances;
 
@@ -136,7 +136,8 @@ impl VoxelMap {
     /// What a long segment's walk needs of cell `c`, reading as little as it can: its
     /// region's byte of free regions around it; when the region holds surface cells, its
     /// brick's byte of free bricks around it; and only in a detailed brick its top-level
-    /// entry and surface mask (and the cell's triangle list when it is a surface cell).
+    /// entry and surface mask (and, for a surface cell, where its triangle list lies and
+    /// its slab; not the list itself).
     /// Clearances are not read: they bound the distance cell by cell, in memory that is
     /// cold when a segment comes from far away.
     #[inline]
@@ -164,7 +165,7 @@ impl VoxelMap {
                     let Some(bits) = self.surface_bits.get(brick) else {
                         return Look::Free;
                     };
-                    if bits[local >> 6] >> (local & 63) & 1 == 0 {
+                    if !has(bits, local) {
                         return match free_block(bits, c) {
                             1 => Look::Free,
                             side => Look::NoSurface { side, around: 1 },
@@ -292,7 +293,7 @@ mod tests {
     /// free exactly when no cell of it is a surface cell (brute force over the block).
     #[test]
     fn free_blocks_hold_no_surface_cell() {
-        use crate::map::bricks::{BRICK_CELLS, has};
+        use crate::map::bricks::BRICK_CELLS;
         use crate::rng::SplitMix64;
         let mut random = SplitMix64::new(11);
         let mut free = 0;

@@ -24,9 +24,9 @@ pub struct Crossing {
     pub entering: bool,
 }
 
-/// The shortest segment, in cells, for which [`first_crossing`] skips free space by whole
-/// bricks: a shorter one crosses too few cells for a skip to save their look-ups (the
-/// short moves of a haptic tick walk cell by cell).
+/// The shortest segment, in cells, for which [`first_crossing`] skips free space in
+/// strides and tests surface cells' slabs: a shorter one crosses too few cells for that to
+/// save their look-ups (the short moves of a haptic tick walk cell by cell).
 const SKIP_MIN_LENGTH: f64 = 4.0;
 
 /// Triangles remembered in a plain list before the table of [`TESTED_SLOTS`] is used: most
@@ -127,7 +127,7 @@ impl Tested {
 /// empty space takes a few strides however fine the grid, reading mostly memory that
 /// stays in the cache. In a surface cell, a part of the segment that passes beside the
 /// layer the cell's triangles lie in (the cell's slab, four bytes) skips them without
-/// reading their list. It never reads the clearances of free cells, which are cold when
+/// reading their indices or frames. It never reads the clearances of free cells, which are cold when
 /// the segment comes from far away.
 ///
 /// # Real-time
