@@ -149,8 +149,9 @@ pub(crate) fn cell_in_brick(bc: [u32; 3], local: usize) -> [u32; 3] {
 /// Bricks of 8×8×8 cells, one `u32` entry each in a dense array (x fastest):
 /// - a **detailed** brick (one holding a surface cell) stores a bit mask of its surface
 ///   cells and one of its inside cells (64 bytes each), a clearance nibble per cell (256
-///   bytes) and the number of surface cells before each mask word (16 bytes); its surface
-///   cells, ranked in cell order, index a start offset each (4 bytes) into one array of
+///   bytes), the number of surface cells before each mask word (16 bytes) and its slab
+///   (4 bytes, see `map/slabs.rs`); its surface cells, ranked in cell order, index a start
+///   offset and a slab each (4 bytes each) and the start offsets index one array of
 ///   triangle indices (4 bytes each);
 /// - a **graded** brick (uniform, touching a detailed brick) stores a clearance nibble per
 ///   cell: 256 bytes;
@@ -196,6 +197,9 @@ pub struct VoxelMap {
     /// Per surface cell: its slab, the layer of the cell in which its triangles lie
     /// (see `map/slabs.rs`).
     pub(crate) slabs: Array<u32>,
+    /// Per detailed brick: its slab, the layer of the brick in which the triangles of
+    /// its surface cells lie (see `map/slabs.rs`).
+    pub(crate) brick_slabs: Array<u32>,
     /// Triangles of the surface the map was built for.
     pub(crate) triangle_count: u32,
     /// Whether inside cells were classified (the surface is a solid).
@@ -392,6 +396,7 @@ impl VoxelMap {
             + self.triangle_start.heap_bytes()
             + self.triangle_refs.heap_bytes()
             + self.slabs.heap_bytes()
+            + self.brick_slabs.heap_bytes()
     }
 
     /// Number of detailed bricks.

@@ -10,10 +10,12 @@
 //!   the largest grid), so that far from the surface the walk strides on cached memory;
 //! - **bricks** (8³ cells, `VoxelMap::free_bricks`): a byte per brick, near the surface;
 //! - in a brick that holds surface cells, its free **blocks** of 4³ cells, from the
-//!   brick's surface mask ([`free_block`]); other free cells are stepped one by one.
+//!   brick's surface mask ([`in_free_block`]); other free cells are stepped one by one.
 //!
 //! All three are derived from the bricks' top-level entries when a map is built or
-//! loaded, and are not saved.
+//! loaded, and are not saved. In a brick that holds surface cells, the walk also skips
+//! the cells before and after the brick's slab, the layer in which the brick's triangles
+//! lie (`map/slabs.rs`, saved with the map).
 
 use super::VoxelMap;
 use super::bricks::{
@@ -38,20 +40,20 @@ pub(crate) fn free_bricks_of(entry: u32) -> u8 {
     }
 }
 
-/// 4 when the aligned block of 4×4×4 cells of a brick with surface mask `bits` that
-/// holds cell `c` (of that brick) holds no surface cell, else 1: the side, in cells, of
-/// the free block a walk can cross in one stride. (A stride costs about what stepping
-/// through three cells does, so smaller blocks are not worth it.)
+/// Cells along each side of a free block of a detailed brick ([`in_free_block`]).
+pub(crate) const BLOCK_SIDE: u32 = 4;
+
+/// Whether the aligned block of 4×4×4 cells of a brick with surface mask `bits` that
+/// holds cell `c` (of that brick) holds no surface cell: then a walk can cross it in one
+/// stride. (A stride costs about what stepping through three cells does, so smaller
+/// blocks are not worth it.)
 #[inline]
-pub(crate) fn free_block(bits: &BrickBits, c: [u32; 3]) -> u32 {
+pub(crate) fn in_free_block(bits: &BrickBits, c: [u32; 3]) -> bool {
     let [x, y, z] = c.map(|v| (v & (BRICK_SIDE - 1)) as usize);
     // Rows of 4 cells along x in 4 rows along y, per mask word (z).
     let (x4, y4, z4) = (x & 4, y & 4, z & 4);
     let quarter = 0x0F0F_0F0F_u64 << (BRICK_SIDE as usize * y4 + x4);
-    if (bits[z4] | bits[z4 + 1] | bits[z4 + 2] | bits[z4 + 3]) & quarter == 0 {
-        return 4;
-    }
-    1
+    (bits[z4] | bits[z4 + 1] | bits[z4 + 2] | bits[z4 + 3]) & quarter == 0
 }
 
 /// Bricks along each side of a region: `2^REGION_BITS`.
@@ -117,8 +119,6 @@ impl FreeRegions {
 
 /// What [`VoxelMap::look`] tells of a cell.
 pub(crate) enum Look<'a> {
-    /// A surface cell, its triangles and its slab.
-    Triangles(&'a [u32], u32),
     /// A cell in a cube of cells without surface cells: the cell's block (a brick or a
     /// region of bricks, `side` cells along each side, aligned on multiples of `side`)
     /// and every block within Chebyshev distance `around − 1` of it (`around ≥ 1`).
@@ -128,7 +128,24 @@ pub(crate) enum Look<'a> {
         /// See `VoxelMap::free_bricks` and `VoxelMap::free_regions`.
         around: u8,
     },
-    /// A free cell of a detailed brick (or a cell outside the grid).
+    /// A cell of a detailed brick (one that holds surface cells).
+    Detailed {
+        /// The detailed brick's index (see `VoxelMap::brick_slab`).
+        brick: u32,
+        /// What the cell is.
+        cell: InBrick<'a>,
+    },
+    /// A cell outside the grid (or of a brick whose entry lies out of range).
+    Outside,
+}
+
+/// What a cell of a detailed brick is, as [`VoxelMap::look`] tells it.
+pub(crate) enum InBrick<'a> {
+    /// A surface cell: its triangles and its slab.
+    Triangles(&'a [u32], u32),
+    /// A free cell in a free block of [`BLOCK_SIDE`]³ cells ([`in_free_block`]).
+    FreeBlock,
+    /// Another free cell.
     Free,
 }
 
@@ -143,7 +160,7 @@ impl VoxelMap {
     #[inline]
     pub(crate) fn look(&self, c: [u32; 3]) -> Look<'_> {
         if !self.grid.contains(c) {
-            return Look::Free;
+            return Look::Outside;
         }
         let regions = self.free_regions.around(c);
         if regions > 0 {
@@ -153,32 +170,35 @@ impl VoxelMap {
             };
         }
         let b = brick_of(c, self.brick_dims);
-        match self.free_bricks.get(b) {
-            Some(&bricks) if bricks > 0 => Look::NoSurface {
+        if let Some(&bricks) = self.free_bricks.get(b)
+            && bricks > 0
+        {
+            return Look::NoSurface {
                 side: BRICK_SIDE,
                 around: bricks,
-            },
-            // A detailed brick: its entry is its index.
-            _ => match self.bricks.get(b) {
-                Some(&entry) if entry & UNIFORM == 0 => {
-                    let (brick, local) = (entry as usize, local_of(c));
-                    let Some(bits) = self.surface_bits.get(brick) else {
-                        return Look::Free;
-                    };
-                    if !has(bits, local) {
-                        return match free_block(bits, c) {
-                            1 => Look::Free,
-                            side => Look::NoSurface { side, around: 1 },
-                        };
-                    }
-                    match self.listed_at(brick, local) {
-                        Some((triangles, s)) => Look::Triangles(triangles, self.slab(s)),
-                        None => Look::Free,
-                    }
-                }
-                _ => Look::Free,
-            },
+            };
         }
+        // A detailed brick: its entry is its index.
+        let Some(&brick) = self.bricks.get(b).filter(|&&e| e & UNIFORM == 0) else {
+            return Look::Outside;
+        };
+        let local = local_of(c);
+        let Some(bits) = self.surface_bits.get(brick as usize) else {
+            return Look::Outside;
+        };
+        let cell = if !has(bits, local) {
+            if in_free_block(bits, c) {
+                InBrick::FreeBlock
+            } else {
+                InBrick::Free
+            }
+        } else {
+            match self.listed_at(brick as usize, local) {
+                Some((triangles, s)) => InBrick::Triangles(triangles, self.slab(s)),
+                None => InBrick::Free,
+            }
+        };
+        Look::Detailed { brick, cell }
     }
 
     /// Sets [`free_bricks`](Self::free_bricks) and [`free_regions`](Self::free_regions)
@@ -317,9 +337,11 @@ mod tests {
                     let o = [other & 7, (other >> 3) & 7, other >> 6];
                     (0..3).any(|k| o[k] / 4 != at[k] / 4) || !has(&bits, other)
                 });
-                let side = free_block(&bits, c);
-                assert_eq!(side == 4, block_is_free, "case {case}, cell {at:?}");
-                assert!(side == 4 || side == 1);
+                assert_eq!(
+                    in_free_block(&bits, c),
+                    block_is_free,
+                    "case {case}, cell {at:?}"
+                );
                 free += usize::from(block_is_free);
             }
         }

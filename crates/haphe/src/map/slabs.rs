@@ -13,19 +13,28 @@
 //! The direction is the sum of the triangles' normals (weighted by area), each turned to
 //! the side of the first one's, so that the two faces of a thin plate give the plate's
 //! normal; a cell whose normals (nearly) cancel out gets a slab that rejects nothing.
+//!
+//! Each brick that holds surface cells keeps one too, over the triangles of all its
+//! surface cells, in units of the brick's side (a step is then 0.03 of a cell). A long
+//! segment's walk reads it on entering the brick, with the brick's surface mask, and
+//! skips the cells of the brick before the segment reaches the slab and after it leaves
+//! it ([`interval`]): a segment passing near the surface without touching it crosses the
+//! brick in one stride, and one that crosses it goes straight to the layer it crosses.
+//! On smooth surfaces at the cell sizes a map chooses, a brick's slab is about a cell
+//! thick.
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 use super::VoxelMap;
-use super::bricks::{UNIFORM, brick_coords, cell_in_brick};
+use super::bricks::{BRICK_SIDE, UNIFORM, brick_coords, cell_in_brick};
 use crate::mesh::{Surface, TriId};
 
-/// Half the range of a slab's bounds, in cells from the cell's centre: a little more
-/// than half a cell, since a direction's L1 norm is 1 and so `|n · (x − centre)|` is at
-/// most half a cell for a point `x` of the cell.
+/// Half the range of a slab's bounds, in sides of its block (a cell or a brick) from the
+/// block's centre: a little more than half a side, since a direction's L1 norm is 1 and
+/// so `|n · (x − centre)|` is at most half a side for a point `x` of the block.
 const RANGE: f64 = 0.51;
-/// Steps of a slab bound: 255 steps of `2·RANGE/255` (0.004 of a cell).
+/// Steps of a slab bound: 255 steps of `2·RANGE/255` (0.004 of the block's side).
 const LEVELS: f64 = 255.0;
 /// A slab that rejects nothing: both bounds at the ends of the range.
 pub(crate) const FULL_SLAB: u32 = 0xff00_0000;
@@ -60,7 +69,8 @@ fn encode_direction(n: DVec3) -> u32 {
     byte(u) | (byte(v) << 8)
 }
 
-/// The bounds `(lo, hi)` of a slab, in cells along its direction from the cell's centre.
+/// The bounds `(lo, hi)` of a slab, in sides of its block along its direction from the
+/// block's centre.
 #[inline]
 fn bounds(slab: u32) -> (f64, f64) {
     let step = 2.0 * RANGE / LEVELS;
@@ -70,8 +80,8 @@ fn bounds(slab: u32) -> (f64, f64) {
     )
 }
 
-/// The slab of a surface cell with centre `centre` (metres) and side `h` listing
-/// `triangles`.
+/// The slab of a block (a surface cell or a brick) with centre `centre` (metres) and
+/// side `h` (metres) whose cells list `triangles`.
 fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
     let Some(&first) = triangles.first() else {
         return FULL_SLAB;
@@ -125,20 +135,54 @@ pub(crate) fn misses(slab: u32, centre: DVec3, h: f64, q0: DVec3, q1: DVec3) -> 
     (a < lo && b < lo) || (a > hi && b > hi)
 }
 
+/// The parameters `(from, to)` of the segment `p0 → p1` (metres) between which it lies
+/// in `slab`, the slab of a block with centre `centre` and side `h`: outside them the
+/// segment crosses none of the block's triangles at a point of the block (`from` may be
+/// below 0 and `to` above 1; both infinite for a segment parallel to the slab and in
+/// it). `None` when no point of the segment lies in it. The same margin as [`misses`].
+/// A segment whose coordinates overflow the products gets `(−∞, +∞)`: it rejects nothing.
+#[inline]
+pub(crate) fn interval(
+    slab: u32,
+    centre: DVec3,
+    h: f64,
+    p0: DVec3,
+    p1: DVec3,
+) -> Option<(f64, f64)> {
+    let n = direction(slab);
+    let (lo, hi) = bounds(slab);
+    let margin = 1e-5 * h + 1e-12 * centre.abs().max_element();
+    let (lo, hi) = (lo * h - margin, hi * h + margin);
+    let s0 = n.dot(p0 - centre);
+    let ds = n.dot(p1 - centre) - s0;
+    if !(s0.is_finite() && ds.is_finite()) {
+        return Some((f64::NEG_INFINITY, f64::INFINITY));
+    }
+    if ds == 0.0 {
+        return (lo <= s0 && s0 <= hi).then_some((f64::NEG_INFINITY, f64::INFINITY));
+    }
+    let inv = 1.0 / ds;
+    let (a, b) = ((lo - s0) * inv, (hi - s0) * inv);
+    let (from, to) = if a <= b { (a, b) } else { (b, a) };
+    (from <= 1.0 && to >= 0.0).then_some((from, to))
+}
+
 impl VoxelMap {
     /// Sets the slab of every surface cell, in the order of the surface cells (detailed
-    /// bricks in order, cells of a brick in mask order). Parallel over bricks.
+    /// bricks in order, cells of a brick in mask order), and of every detailed brick.
+    /// Parallel over bricks.
     pub(crate) fn derive_slabs(&mut self, surface: &Surface) {
         let h = self.grid.cell_size();
-        let per_brick: Vec<Vec<u32>> = (0..self.bricks.len())
+        let side = f64::from(BRICK_SIDE) * h;
+        let per_brick: Vec<(Vec<u32>, u32)> = (0..self.bricks.len())
             .into_par_iter()
             .filter(|&b| self.bricks[b] & UNIFORM == 0)
             .map(|b| {
                 let brick = self.bricks[b] as usize;
                 let bc = brick_coords(b, self.brick_dims);
-                let mut slabs = Vec::new();
+                let (mut slabs, mut triangles) = (Vec::new(), Vec::new());
                 let Some(bits) = self.surface_bits.get(brick) else {
-                    return slabs;
+                    return (slabs, FULL_SLAB);
                 };
                 for (word, &bits) in bits.iter().enumerate() {
                     let mut rest = bits;
@@ -146,14 +190,58 @@ impl VoxelMap {
                         let local = word * 64 + rest.trailing_zeros() as usize;
                         rest &= rest - 1;
                         let (lo, hi) = self.grid.cell_bounds(cell_in_brick(bc, local));
-                        let triangles = self.listed(brick, local).unwrap_or(&[]);
-                        slabs.push(slab_of(surface, 0.5 * (lo + hi), h, triangles));
+                        let listed = self.listed(brick, local).unwrap_or(&[]);
+                        slabs.push(slab_of(surface, 0.5 * (lo + hi), h, listed));
+                        triangles.extend_from_slice(listed);
                     }
                 }
-                slabs
+                triangles.sort_unstable();
+                triangles.dedup();
+                let (lo, _) = self.grid.cell_bounds(cell_in_brick(bc, 0));
+                let brick_slab = slab_of(surface, lo + DVec3::splat(0.5 * side), side, &triangles);
+                (slabs, brick_slab)
             })
             .collect();
-        self.slabs = per_brick.concat().into();
+        self.brick_slabs = per_brick.iter().map(|&(_, s)| s).collect::<Vec<_>>().into();
+        self.slabs = per_brick
+            .into_iter()
+            .flat_map(|(slabs, _)| slabs)
+            .collect::<Vec<_>>()
+            .into();
+    }
+
+    /// The slab of detailed brick `brick` ([`FULL_SLAB`] when out of range): where in the
+    /// brick the triangles of its surface cells lie.
+    #[inline]
+    pub(crate) fn brick_slab(&self, brick: u32) -> u32 {
+        self.brick_slabs
+            .get(brick as usize)
+            .copied()
+            .unwrap_or(FULL_SLAB)
+    }
+
+    /// The parameters `(from, to)` between which the segment `p0 → p1` (metres) lies in
+    /// the slab of detailed brick `brick`, the brick of cell `c` (see [`interval`]):
+    /// outside them it crosses no triangle at a point of the brick. `None` when it never
+    /// lies in the slab.
+    #[inline]
+    pub(crate) fn brick_window(
+        &self,
+        brick: u32,
+        c: [u32; 3],
+        p0: DVec3,
+        p1: DVec3,
+    ) -> Option<(f64, f64)> {
+        let corner = c.map(|v| v & !(BRICK_SIDE - 1));
+        let side = f64::from(BRICK_SIDE) * self.grid.cell_size();
+        let (lo, _) = self.grid.cell_bounds(corner);
+        interval(
+            self.brick_slab(brick),
+            lo + DVec3::splat(0.5 * side),
+            side,
+            p0,
+            p1,
+        )
     }
 
     /// The slab of surface cell `s` ([`FULL_SLAB`] when out of range).
@@ -167,6 +255,7 @@ impl VoxelMap {
 mod tests {
     use super::*;
     use crate::map::MapOptions;
+    use crate::map::{InBrick, Look};
     use crate::mesh::SurfaceOptions;
     use crate::mesh::shapes::Shape;
     use crate::rng::SplitMix64;
@@ -203,7 +292,6 @@ mod tests {
             let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
                 .expect("a surface");
             let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
-            let h = map.grid().cell_size();
             let dims = map.grid().dims();
             let (mut cells, mut thin, mut points) = (0, 0, 0);
             for z in 0..dims[2] {
@@ -214,36 +302,16 @@ mod tests {
                         if listed.is_empty() {
                             continue;
                         }
-                        let crate::map::Look::Triangles(_, slab) = map.look(c) else {
+                        let Some(slab) = surface_slab(&map, c) else {
                             panic!("{shape:?} {c:?}: a surface cell");
                         };
-                        let (lo, hi) = map.grid().cell_bounds(c);
-                        let centre = 0.5 * (lo + hi);
-                        let n = direction(slab);
                         let (a, b) = bounds(slab);
                         cells += 1;
                         thin += usize::from(b - a < 1.0 / 3.0);
-                        for &t in listed {
-                            let [p, q, r] = surface.corners(TriId(t));
-                            for _ in 0..20 {
-                                let (u, v) = (random.next_unit(), random.next_unit());
-                                let (u, v) = if u + v > 1.0 {
-                                    (1.0 - u, 1.0 - v)
-                                } else {
-                                    (u, v)
-                                };
-                                let point = p + u * (q - p) + v * (r - p);
-                                if (point.cmplt(lo) | point.cmpgt(hi)).any() {
-                                    continue;
-                                }
-                                let s = n.dot(point - centre) / h;
-                                assert!(
-                                    a - 1e-9 <= s && s <= b + 1e-9,
-                                    "{shape:?} {c:?}: {s} ∉ [{a}, {b}]"
-                                );
-                                points += 1;
-                            }
-                        }
+                        let block = map.grid().cell_bounds(c);
+                        let what = format!("{shape:?} {c:?}");
+                        points +=
+                            check_in_slab(&mut random, &surface, listed, block, slab, 20, &what);
                     }
                 }
             }
@@ -254,7 +322,159 @@ mod tests {
         }
     }
 
-    /// A map file with a slab too few or too many is refused, naming the slabs.
+    /// Checks that `samples` random points of each of `triangles` that lie in the box
+    /// `(lo, hi)` lie in `slab`, the slab of that box (a cube); returns how many did.
+    fn check_in_slab(
+        random: &mut SplitMix64,
+        surface: &Surface,
+        triangles: &[u32],
+        (lo, hi): (DVec3, DVec3),
+        slab: u32,
+        samples: usize,
+        what: &str,
+    ) -> usize {
+        let (centre, side) = (0.5 * (lo + hi), hi.x - lo.x);
+        let (n, (a, b)) = (direction(slab), bounds(slab));
+        let mut points = 0;
+        for &t in triangles {
+            let [p, q, r] = surface.corners(TriId(t));
+            for _ in 0..samples {
+                let (u, v) = (random.next_unit(), random.next_unit());
+                let (u, v) = if u + v > 1.0 {
+                    (1.0 - u, 1.0 - v)
+                } else {
+                    (u, v)
+                };
+                let point = p + u * (q - p) + v * (r - p);
+                if (point.cmplt(lo) | point.cmpgt(hi)).any() {
+                    continue;
+                }
+                let s = n.dot(point - centre) / side;
+                assert!(a - 1e-9 <= s && s <= b + 1e-9, "{what}: {s} ∉ [{a}, {b}]");
+                points += 1;
+            }
+        }
+        points
+    }
+
+    /// The slab of surface cell `c`, as a walk reads it.
+    fn surface_slab(map: &VoxelMap, c: [u32; 3]) -> Option<u32> {
+        match map.look(c) {
+            Look::Detailed {
+                cell: InBrick::Triangles(_, slab),
+                ..
+            } => Some(slab),
+            _ => None,
+        }
+    }
+
+    /// Every point of a brick's triangles that lies in the brick lies in the brick's slab
+    /// (random points on every triangle listed by a surface cell of the brick, on three
+    /// shapes, fine enough for bricks to hold many cells of surface); and a brick's slab
+    /// is thin where the surface is smooth: most are under two cells thick on the blob
+    /// and the sphere.
+    #[test]
+    fn brick_slabs_hold_the_triangles_in_their_bricks() {
+        let mut random = SplitMix64::new(13);
+        for (shape, triangles) in [
+            (Shape::Blob, 40_000),
+            (Shape::Sphere, 20_000),
+            (Shape::ThinPlate, 20_000),
+        ] {
+            let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
+                .expect("a surface");
+            let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
+            let side = f64::from(BRICK_SIDE) * map.grid().cell_size();
+            let dims = map.grid().dims();
+            let mut seen = std::collections::HashSet::new();
+            let (mut bricks, mut thin, mut points) = (0, 0, 0);
+            for z in 0..dims[2] {
+                for y in 0..dims[1] {
+                    for x in 0..dims[0] {
+                        let c = [x, y, z];
+                        let Look::Detailed { brick, .. } = map.look(c) else {
+                            continue;
+                        };
+                        if !seen.insert(brick) {
+                            continue;
+                        }
+                        let corner = c.map(|v| v & !(BRICK_SIDE - 1));
+                        let (lo, _) = map.grid().cell_bounds(corner);
+                        let slab = map.brick_slab(brick);
+                        let (a, b) = bounds(slab);
+                        bricks += 1;
+                        thin += usize::from((b - a) * f64::from(BRICK_SIDE) < 2.0);
+                        let mut all = Vec::new();
+                        for local in 0..crate::map::bricks::BRICK_CELLS {
+                            let cell = cell_in_brick(corner.map(|v| v / BRICK_SIDE), local);
+                            all.extend_from_slice(map.triangles_in(cell));
+                        }
+                        let block = (lo, lo + DVec3::splat(side));
+                        let what = format!("{shape:?} brick {brick}");
+                        points += check_in_slab(&mut random, &surface, &all, block, slab, 4, &what);
+                    }
+                }
+            }
+            assert!(points > 10_000, "{shape:?}: {points}");
+            if shape != Shape::ThinPlate {
+                assert!(
+                    2 * thin > bricks,
+                    "{shape:?}: {thin} thin slabs of {bricks}"
+                );
+            }
+        }
+    }
+
+    /// The window of a segment in a slab holds exactly the parameters at which the
+    /// segment lies in it (up to the margin): sampled along random segments through
+    /// random slabs of a brick.
+    #[test]
+    fn a_window_holds_the_parameters_in_the_slab() {
+        let mut random = SplitMix64::new(21);
+        let (centre, h) = (DVec3::new(0.3, -0.2, 0.1), 0.016);
+        let (mut inside, mut outside) = (0, 0);
+        for _ in 0..2_000 {
+            let code = encode_direction(random.unit_vector());
+            let (x, y) = (random.index(256) as u32, random.index(256) as u32);
+            let slab = code | (x.min(y) << 16) | (x.max(y) << 24);
+            let n = direction(slab);
+            let (a, b) = bounds(slab);
+            let near = DVec3::splat(h);
+            let p0 = random.point_in(centre - near, centre + near);
+            let p1 = random.point_in(centre - near, centre + near);
+            let window = interval(slab, centre, h, p0, p1);
+            for k in 0..=200 {
+                let t = f64::from(k) / 200.0;
+                let s = n.dot(p0 + t * (p1 - p0) - centre) / h;
+                let within = window.is_some_and(|(from, to)| from <= t && t <= to);
+                if s > a + 1e-6 && s < b - 1e-6 {
+                    assert!(within, "{t} at {s} in [{a}, {b}]: {window:?}");
+                    inside += 1;
+                } else if s < a - 1e-3 || s > b + 1e-3 {
+                    assert!(!within, "{t} at {s} beside [{a}, {b}]: {window:?}");
+                    outside += 1;
+                }
+            }
+        }
+        assert!(inside > 10_000 && outside > 10_000, "{inside} {outside}");
+        // Along the slab (its direction is +z up to a step): in it, the whole segment;
+        // beside it, none.
+        let slab = encode_direction(DVec3::Z) | (100 << 16) | (150 << 24);
+        let along = |z: f64| {
+            let (p0, p1) = (DVec3::new(-h, 0.0, z), DVec3::new(h, 0.0, z));
+            interval(slab, centre, h, centre + p0, centre + p1)
+        };
+        assert!(along(0.0).is_some_and(|(from, to)| from < 0.0 && to > 1.0));
+        assert_eq!(along(0.4 * h), None);
+        // Overflowing coordinates reject nothing.
+        assert_eq!(
+            interval(slab, centre, h, DVec3::splat(1e308), DVec3::splat(-1e308)),
+            Some((f64::NEG_INFINITY, f64::INFINITY))
+        );
+    }
+
+    /// A map file with a slab too few or too many, of the cells or of the bricks, is
+    /// refused, naming the section.
     #[test]
     fn a_file_without_a_slab_per_surface_cell_is_refused() {
         use crate::map::{MapFileError, decode, encode};
@@ -264,16 +484,24 @@ mod tests {
         )
         .expect("a surface");
         let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
-        for change in [-1i64, 1] {
-            let mut wrong = map.clone();
-            if change < 0 {
-                wrong.slabs.to_mut().pop();
-            } else {
-                wrong.slabs.to_mut().push(FULL_SLAB);
-            }
-            match decode(&encode(&surface, &wrong)) {
-                Err(MapFileError::Invalid { section, .. }) => assert_eq!(section, "slabs"),
-                other => panic!("expected the slabs refused, got {other:?}"),
+        for bricks in [false, true] {
+            for change in [-1i64, 1] {
+                let mut wrong = map.clone();
+                let slabs = if bricks {
+                    wrong.brick_slabs.to_mut()
+                } else {
+                    wrong.slabs.to_mut()
+                };
+                if change < 0 {
+                    slabs.pop();
+                } else {
+                    slabs.push(FULL_SLAB);
+                }
+                let want = if bricks { "brick slabs" } else { "slabs" };
+                match decode(&encode(&surface, &wrong)) {
+                    Err(MapFileError::Invalid { section, .. }) => assert_eq!(section, want),
+                    other => panic!("expected the {want} refused, got {other:?}"),
+                }
             }
         }
     }

@@ -528,6 +528,16 @@ fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
             ),
         ));
     }
+    if map.brick_slabs.len() != map.surface_bits.len() {
+        return Err(invalid(
+            "brick slabs",
+            format!(
+                "{} brick slabs for {} bricks with surface cells: one per such brick",
+                map.brick_slabs.len(),
+                map.surface_bits.len()
+            ),
+        ));
+    }
     // Every list increasing: the descents of the whole array are exactly those at list
     // borders (counted in two linear passes, the first vectorised), and all below `t`.
     let refs = &map.triangle_refs;

@@ -37,12 +37,15 @@ pub struct CellStep {
 #[derive(Debug, Clone)]
 pub struct CellWalk {
     /// `p0` in cell units.
-    a: DVec3,
+    a: [f64; 3],
     /// `p1 − p0` in cell units.
-    d: DVec3,
+    d: [f64; 3],
     /// `1 / d` per axis (infinite along an axis the segment does not move on): walks
     /// and skips find parameters by multiplying with it.
-    inv_d: DVec3,
+    inv_d: [f64; 3],
+    /// How far a skip pulls a box's far face back into the box, per axis, cells, signed
+    /// as the walk's steps (see [`SKIP_MARGIN`]).
+    pull: [f64; 3],
     /// The cell returned last (the walk's first cell before any).
     last: [i64; 3],
     cell: [i64; 3],
@@ -85,9 +88,10 @@ impl Grid {
     pub fn walk(&self, p0: DVec3, p1: DVec3) -> CellWalk {
         let dims = self.dims().map(i64::from);
         let empty = CellWalk {
-            a: DVec3::ZERO,
-            d: DVec3::ZERO,
-            inv_d: DVec3::INFINITY,
+            a: [0.0; 3],
+            d: [0.0; 3],
+            inv_d: [f64::INFINITY; 3],
+            pull: [0.0; 3],
             last: [0; 3],
             cell: [0; 3],
             step: [0; 3],
@@ -104,10 +108,11 @@ impl Grid {
         let (a, b) = (self.to_grid(p0), self.to_grid(p1));
         let d = b - a;
         let start = a + t0 * d;
+        let margin = SKIP_MARGIN + SKIP_MARGIN_REL * (2.0 * a.abs() + d.abs());
         let mut walk = CellWalk {
-            a,
-            d,
-            inv_d: d.recip(),
+            a: a.to_array(),
+            d: d.to_array(),
+            inv_d: d.recip().to_array(),
             t: t0,
             t_end: t1,
             remaining: step_cap(self.dims()),
@@ -120,10 +125,12 @@ impl Grid {
             let inv = walk.inv_d[axis];
             if d[axis] > 0.0 {
                 walk.step[axis] = 1;
+                walk.pull[axis] = margin[axis];
                 walk.t_max[axis] = (cell as f64 + 1.0 - a[axis]) * inv;
                 walk.t_delta[axis] = inv;
             } else if d[axis] < 0.0 {
                 walk.step[axis] = -1;
+                walk.pull[axis] = -margin[axis];
                 walk.t_max[axis] = (cell as f64 - a[axis]) * inv;
                 walk.t_delta[axis] = -inv;
             }
@@ -172,7 +179,9 @@ impl Iterator for CellWalk {
 /// How far, in cells, [`CellWalk::skip_cube`] stops short of the cube's far face, plus
 /// [`SKIP_MARGIN_REL`] of the coordinates in cell units: far above the rounding of the
 /// parameter where the segment reaches the face (a few `1e-16` of those coordinates), so
-/// that rounding can only shorten a skip, never carry it past a cell of the cube.
+/// that rounding can only shorten a skip, never carry it past a cell of the cube. Set per
+/// axis when a walk starts, from `2 |a| + |d|` (start `a`, extent `d`, cell units), which
+/// bounds `|a| + |face|` for any face the segment reaches before its end.
 const SKIP_MARGIN: f64 = 1e-6;
 
 /// See [`SKIP_MARGIN`]: about 4 500 times the unit roundoff.
@@ -223,36 +232,48 @@ impl CellWalk {
     /// Constant time, no allocation, no panic; the walk still ends within
     /// `dims[0] + dims[1] + dims[2]` steps.
     pub fn skip_box(&mut self, lo: [i64; 3], hi: [i64; 3]) {
-        if self.remaining == 0 || (0..3).any(|k| !(lo[k]..=hi[k]).contains(&self.last[k])) {
+        self.skip_box_until((lo, hi), f64::INFINITY);
+    }
+
+    /// [`skip_box`](Self::skip_box), but stopping at parameter `stop` when the segment is
+    /// still in the box there: the walk then goes on from the cell of the box holding the
+    /// point at `stop`, whose step starts at `stop` (the caller knows the segment crosses
+    /// nothing in the box before `stop`). Does nothing when `stop` is not past the walk's
+    /// current parameter (or is NaN).
+    ///
+    /// # Real-time
+    /// As [`skip_box`](Self::skip_box).
+    pub fn skip_box_until(&mut self, (lo, hi): ([i64; 3], [i64; 3]), stop: f64) {
+        if self.remaining == 0 {
             return;
         }
-        let last = DVec3::from_array(self.last.map(|c| c as f64));
-        let step = DVec3::from_array(self.step.map(|s| s as f64));
-        // The box's far faces (lower faces where the walk goes down an axis), pulled into
-        // the box by the margin, and where the segment reaches them.
-        let face = DVec3::from_array(std::array::from_fn(|k| match self.step[k] {
-            1 => (hi[k] + 1) as f64,
-            -1 => lo[k] as f64,
-            _ => last[k] + 0.5,
-        }));
-        let margin = SKIP_MARGIN + SKIP_MARGIN_REL * (self.a.abs() + face.abs());
-        let reach = (face - step * margin - self.a) * self.inv_d;
-        let reach = DVec3::from_array(std::array::from_fn(|k| {
-            if self.step[k] == 0 {
-                f64::INFINITY
-            } else {
-                reach[k]
+        // Where the segment reaches the box's far faces (lower faces where the walk goes
+        // down an axis), pulled into the box by the margin: it leaves by the first.
+        let (mut t_leave, mut leave_axis) = (f64::INFINITY, 0);
+        for k in 0..3 {
+            if self.last[k] < lo[k] || self.last[k] > hi[k] {
+                return;
             }
-        }));
-        let leave_axis = if reach.x <= reach.y && reach.x <= reach.z {
-            0
-        } else if reach.y <= reach.z {
-            1
-        } else {
-            2
-        };
-        let t_leave = reach[leave_axis];
-        if t_leave.is_nan() || t_leave <= self.t {
+            let face = match self.step[k] {
+                1 => (hi[k] + 1) as f64,
+                -1 => lo[k] as f64,
+                _ => continue,
+            };
+            let reach = (face - self.pull[k] - self.a[k]) * self.inv_d[k];
+            if reach.is_nan() {
+                return;
+            }
+            if reach < t_leave {
+                (t_leave, leave_axis) = (reach, k);
+            }
+        }
+        if stop < t_leave || stop.is_nan() {
+            if stop > self.t {
+                self.reseed(lo, hi, stop, None);
+            }
+            return;
+        }
+        if t_leave <= self.t {
             return;
         }
         let beyond = if self.step[leave_axis] > 0 {
@@ -264,38 +285,38 @@ impl CellWalk {
             self.remaining = 0;
             return;
         }
-        let at = self.a + t_leave * self.d;
-        for axis in 0..3 {
-            let s = self.step[axis];
-            // The cell of the point at `t_leave`, never behind the walk nor beyond the box
-            // or the grid (where rounding could put it); beyond the box along the axis
-            // the segment leaves it by.
-            let cell = if axis == leave_axis {
+        self.reseed(lo, hi, t_leave, Some((leave_axis, beyond)));
+    }
+
+    /// Moves the walk on to parameter `t`, in the cell of the point there (never behind
+    /// the walk nor beyond the box `lo..=hi` or the grid, where rounding could put it);
+    /// with `leave = Some((axis, beyond))`, in cell `beyond` along the axis the segment
+    /// leaves the box by. Seeded as `Grid::walk` seeds a walk (an axis the segment does
+    /// not move on keeps its cell and its infinite exit).
+    #[inline]
+    fn reseed(&mut self, lo: [i64; 3], hi: [i64; 3], t: f64, leave: Option<(usize, i64)>) {
+        for k in 0..3 {
+            let s = self.step[k];
+            let cell = if let Some((_, beyond)) = leave.filter(|&(axis, _)| axis == k) {
                 beyond
             } else if s > 0 {
-                floor_to_int(at[axis])
-                    .max(self.cell[axis])
-                    .min(hi[axis])
-                    .min(self.dims[axis] - 1)
+                floor_to_int(self.a[k] + t * self.d[k])
+                    .max(self.cell[k])
+                    .min(hi[k])
+                    .min(self.dims[k] - 1)
             } else if s < 0 {
-                floor_to_int(at[axis])
-                    .min(self.cell[axis])
-                    .max(lo[axis])
+                floor_to_int(self.a[k] + t * self.d[k])
+                    .min(self.cell[k])
+                    .max(lo[k])
                     .max(0)
             } else {
-                self.cell[axis]
+                continue;
             };
-            self.cell[axis] = cell;
+            self.cell[k] = cell;
+            let exit = if s > 0 { cell + 1 } else { cell };
+            self.t_max[k] = (exit as f64 - self.a[k]) * self.inv_d[k];
         }
-        // As `Grid::walk` seeds them (infinite along an axis the segment does not move on).
-        let cell = DVec3::from_array(self.cell.map(|c| c as f64));
-        let exits = (cell + 0.5 + 0.5 * step - self.a) * self.inv_d;
-        for axis in 0..3 {
-            if self.step[axis] != 0 {
-                self.t_max[axis] = exits[axis];
-            }
-        }
-        self.t = t_leave;
+        self.t = t;
     }
 }
 
@@ -507,6 +528,66 @@ mod tests {
             }
         });
         assert!(skipped > 5_000, "{skipped}");
+    }
+
+    /// A skip of a brick until a parameter where the segment is still in the brick goes
+    /// on from the cell holding the point there, as the plain walk does from that cell;
+    /// until a parameter past the brick, it is the skip of the brick.
+    #[test]
+    fn a_skip_until_a_parameter_goes_on_from_its_cell() {
+        let g = Grid::new(DVec3::new(-1.0, -2.0, 0.5), 0.25, [24, 20, 22]).expect("valid");
+        let (lo, hi) = (g.origin(), g.max_corner());
+        let mut random = SplitMix64::new(17);
+        let (mut stopped, mut left) = (0, 0);
+        for _ in 0..4_000 {
+            let margin = DVec3::splat(0.5);
+            let p0 = random.point_in(lo - margin, hi + margin);
+            let p1 = random.point_in(lo - margin, hi + margin);
+            let plain: Vec<CellStep> = g.walk(p0, p1).collect();
+            if plain.len() < 3 {
+                continue;
+            }
+            let at = random.index(plain.len() - 2);
+            let brick = plain[at].cell.map(|c| i64::from(c) / 8 * 8);
+            let (box_lo, box_hi) = (brick, brick.map(|c| c + 7));
+            let inside =
+                |c: [u32; 3]| (0..3).all(|k| (box_lo[k]..=box_hi[k]).contains(&i64::from(c[k])));
+            let in_box = plain[at + 1..]
+                .iter()
+                .take_while(|s| inside(s.cell))
+                .count();
+            if in_box == 0 {
+                // Until a parameter past the brick: the skip of the brick.
+                let skip = |w: &mut CellWalk| w.skip_box_until((box_lo, box_hi), 2.0);
+                assert_eq!(
+                    walk_skipping_at(&g, p0, p1, at, skip),
+                    walk_skipping_at(&g, p0, p1, at, |w| w.skip_box(box_lo, box_hi)),
+                    "{p0} → {p1}, {at}"
+                );
+                left += 1;
+                continue;
+            }
+            let k = at + 1 + random.index(in_box);
+            if plain[k].t_exit - plain[k].t_enter < 1e-6 {
+                continue;
+            }
+            let stop = 0.5 * (plain[k].t_enter + plain[k].t_exit);
+            let skip = |w: &mut CellWalk| w.skip_box_until((box_lo, box_hi), stop);
+            let skipping = walk_skipping_at(&g, p0, p1, at, skip);
+            let what = format!("{p0} → {p1}, {at}, until {stop} in {:?}", plain[k]);
+            let cells = |s: &[CellStep]| s.iter().map(|s| s.cell).collect::<Vec<_>>();
+            let expected = [&plain[..=at], &plain[k..]].concat();
+            assert_eq!(cells(&skipping), cells(&expected), "{what}");
+            assert_eq!(skipping[at + 1].t_enter, stop, "{what}");
+            for (s, e) in skipping.iter().zip(&expected) {
+                assert!(
+                    (s.t_exit - e.t_exit).abs() <= 1e-12,
+                    "{what}: {s:?} / {e:?}"
+                );
+            }
+            stopped += 1;
+        }
+        assert!(stopped > 1_000 && left > 100, "{stopped} {left}");
     }
 
     #[test]

@@ -3,7 +3,9 @@
 use glam::DVec3;
 
 use super::{Segment, SegmentHit, intersect_segment_triangle};
-use crate::map::{CellWalk, Look, VoxelMap, slab_misses};
+use crate::map::{
+    BLOCK_SIDE, BRICK_SIDE, CellStep, CellWalk, InBrick, Look, VoxelMap, slab_misses,
+};
 use crate::mesh::{Surface, TriId};
 
 /// Where a segment first meets the surface.
@@ -125,8 +127,11 @@ impl Tested {
 /// where the surface cells are, the bricks' through [`VoxelMap::reach`]), and in a brick
 /// that holds surface cells a free block of 4³ cells of its surface mask — so crossing
 /// empty space takes a few strides however fine the grid, reading mostly memory that
-/// stays in the cache. In a surface cell, a part of the segment that passes beside the
-/// layer the cell's triangles lie in (the cell's slab, four bytes) skips them without
+/// stays in the cache. In a brick that holds surface cells, the cells before the segment
+/// reaches the layer in which the brick's triangles lie (the brick's slab, four bytes
+/// read with the brick's surface mask) and after it leaves it are skipped in one stride
+/// each. In a surface cell, a part of the segment that passes beside the
+/// layer the cell's triangles lie in (the cell's slab) skips them without
 /// reading their indices or frames. It never reads the clearances of free cells, which are cold when
 /// the segment comes from far away.
 ///
@@ -196,6 +201,7 @@ pub fn first_crossing_where(
     let skips = p0.distance_squared(p1) >= (SKIP_MIN_LENGTH * h) * (SKIP_MIN_LENGTH * h);
     let mut walk = map.grid().walk(p0, p1);
     let mut until = 1.0;
+    let mut window = BrickWindow::new();
     while let Some(visit) = walk.next() {
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
@@ -203,14 +209,28 @@ pub fn first_crossing_where(
         let mut slab = None;
         let triangles = if skips {
             match map.look(visit.cell) {
-                Look::Triangles(triangles, s) => {
-                    slab = Some(s);
-                    triangles
-                }
-                Look::Free => continue,
+                Look::Outside => continue,
                 Look::NoSurface { side, around } => {
-                    skip_free_space(&mut walk, visit.cell, side, around);
+                    let (lo, hi) = block_box(visit.cell, side, around);
+                    walk.skip_box(lo, hi);
                     continue;
+                }
+                Look::Detailed { brick, cell } => {
+                    if !window.admits(map, &mut walk, &visit, brick, (p0, p1), margin) {
+                        continue;
+                    }
+                    match cell {
+                        InBrick::Triangles(triangles, s) => {
+                            slab = Some(s);
+                            triangles
+                        }
+                        InBrick::FreeBlock => {
+                            let (lo, hi) = block_box(visit.cell, BLOCK_SIDE, 1);
+                            walk.skip_box(lo, hi);
+                            continue;
+                        }
+                        InBrick::Free => continue,
+                    }
                 }
             }
         } else {
@@ -254,15 +274,72 @@ pub fn first_crossing_where(
     best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
 }
 
-/// Skips the free space around `cell`, a cell of a block of `side` cells along each side
-/// (a brick or a region) such that no block within Chebyshev distance `around − 1` of it
-/// holds a surface cell: the cube of those blocks.
+/// The box of cells of the cube of blocks around `cell`, a cell of a block of `side`
+/// cells along each side (a brick, a region of bricks or a free block of a brick,
+/// aligned on multiples of `side`), within Chebyshev distance `around − 1` (in blocks)
+/// of its block: the cube that [`VoxelMap::look`]'s `around` says holds no surface cell.
 #[inline]
-fn skip_free_space(walk: &mut CellWalk, cell: [u32; 3], side: u32, around: u8) {
+fn block_box(cell: [u32; 3], side: u32, around: u8) -> ([i64; 3], [i64; 3]) {
     let side = i64::from(side);
     let around = i64::from(around.max(1) - 1) * side;
     let lo = cell.map(|c| i64::from(c) / side * side - around);
-    walk.skip_box(lo, lo.map(|c| c + 2 * around + side - 1));
+    (lo, lo.map(|c| c + 2 * around + side - 1))
+}
+
+/// The part of a long segment that lies in the slab of the detailed brick its walk is
+/// in (see `map/slabs.rs`): the walk skips the brick's cells before and after it.
+struct BrickWindow {
+    /// The detailed brick of the window (`u32::MAX` before the first).
+    brick: u32,
+    /// The parameter where the segment enters the brick's slab, less the margin of the
+    /// cells' boundaries (`+∞` when it never does).
+    from: f64,
+    /// Where it leaves the slab, plus the margin (`−∞` when it never enters).
+    to: f64,
+}
+
+impl BrickWindow {
+    fn new() -> BrickWindow {
+        BrickWindow {
+            brick: u32::MAX,
+            from: f64::NEG_INFINITY,
+            to: f64::INFINITY,
+        }
+    }
+
+    /// Whether the walk must look at the cell of `visit`, a cell of detailed brick
+    /// `brick`: not when the part of the segment in the cell lies before the brick's slab
+    /// or after it, and then the walk is moved on, to where the segment enters the slab
+    /// or out of the brick. A straight segment never comes back to a brick it left, so
+    /// the window of a brick is found once, on entering it.
+    #[inline]
+    fn admits(
+        &mut self,
+        map: &VoxelMap,
+        walk: &mut CellWalk,
+        visit: &CellStep,
+        brick: u32,
+        (p0, p1): (DVec3, DVec3),
+        margin: f64,
+    ) -> bool {
+        if brick != self.brick {
+            self.brick = brick;
+            (self.from, self.to) = match map.brick_window(brick, visit.cell, p0, p1) {
+                Some((from, to)) => (from - margin, to + margin),
+                None => (f64::INFINITY, f64::NEG_INFINITY),
+            };
+        }
+        if visit.t_enter > self.to {
+            let (lo, hi) = block_box(visit.cell, BRICK_SIDE, 1);
+            walk.skip_box(lo, hi);
+            false
+        } else if visit.t_exit < self.from {
+            walk.skip_box_until(block_box(visit.cell, BRICK_SIDE, 1), self.from);
+            false
+        } else {
+            true
+        }
+    }
 }
 
 /// How far past the best crossing so far (in units of `t`) the cheap filter keeps looking:
