@@ -187,7 +187,13 @@ impl Grid {
     /// `p0 + t·(p1 − p0)` (metres, object frame) lies in the closed grid box, or `None`
     /// when it misses the box or a point is not finite. Where a 3D-DDA starts and stops.
     pub fn clip_segment(&self, p0: DVec3, p1: DVec3) -> Option<(f64, f64)> {
-        let (a, b) = (self.to_grid(p0), self.to_grid(p1));
+        self.clip_in_cells(self.to_grid(p0), self.to_grid(p1))
+    }
+
+    /// [`clip_segment`](Self::clip_segment) of the segment from `a` to `b` given in cell
+    /// units ([`to_grid`](Self::to_grid)).
+    #[inline]
+    pub(crate) fn clip_in_cells(&self, a: DVec3, b: DVec3) -> Option<(f64, f64)> {
         if !(a.is_finite() && b.is_finite()) {
             return None;
         }

@@ -102,10 +102,10 @@ impl Grid {
             dims,
             remaining: 0,
         };
-        let Some((t0, t1)) = self.clip_segment(p0, p1) else {
+        let (a, b) = (self.to_grid(p0), self.to_grid(p1));
+        let Some((t0, t1)) = self.clip_in_cells(a, b) else {
             return empty;
         };
-        let (a, b) = (self.to_grid(p0), self.to_grid(p1));
         let d = b - a;
         let start = a + t0 * d;
         let margin = SKIP_MARGIN + SKIP_MARGIN_REL * (2.0 * a.abs() + d.abs());
