@@ -156,6 +156,7 @@ pub(crate) fn cell_in_brick(bc: [u32; 3], local: usize) -> [u32; 3] {
 /// - a **graded** brick (uniform, touching a detailed brick) stores a clearance nibble per
 ///   cell: 256 bytes;
 /// - any other brick is **uniform**: state and reach live in the entry itself;
+/// - each region of 4×4×4 bricks has a slab (4 bytes);
 /// - besides, one byte per brick, derived from the entries when the map is built or
 ///   loaded (not saved): how many bricks around it hold no surface cell, which a long
 ///   segment's walk reads instead of the entries and clearances to cross free space.
@@ -200,6 +201,10 @@ pub struct VoxelMap {
     /// Per detailed brick: its slab, the layer of the brick in which the triangles of
     /// its surface cells lie (see `map/slabs.rs`).
     pub(crate) brick_slabs: Array<u32>,
+    /// Per region of 4×4×4 bricks (x fastest): its slab, the layer of the region in
+    /// which the triangles of its surface cells lie (see `map/slabs.rs`; a slab that
+    /// rejects nothing for a region without surface cells).
+    pub(crate) region_slabs: Array<u32>,
     /// Triangles of the surface the map was built for.
     pub(crate) triangle_count: u32,
     /// Whether inside cells were classified (the surface is a solid).
@@ -397,6 +402,7 @@ impl VoxelMap {
             + self.triangle_refs.heap_bytes()
             + self.slabs.heap_bytes()
             + self.brick_slabs.heap_bytes()
+            + self.region_slabs.heap_bytes()
     }
 
     /// Number of detailed bricks.

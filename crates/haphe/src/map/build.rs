@@ -232,6 +232,7 @@ fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
         free_regions: Default::default(),
         slabs: Default::default(),
         brick_slabs: Default::default(),
+        region_slabs: Default::default(),
         inside_bits: vec![[0; MASK_WORDS]; surface_bits.len()].into(),
         surface_bits: surface_bits.into(),
         surface_before: surface_before.into(),

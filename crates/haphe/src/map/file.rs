@@ -1,6 +1,6 @@
 //! Saving and loading a surface with its voxel map: one checked, sectioned file.
 //!
-//! # Layout (format version 7, all numbers little-endian)
+//! # Layout (format version 8, all numbers little-endian)
 //!
 //! | bytes | content |
 //! |---|---|
@@ -21,8 +21,8 @@
 //! inside masks of the detailed bricks (`8 × u64` each), their surface counts per mask
 //! word (`8 × u16`) and first surface cells (`u32`), the clearance nibbles of detailed then
 //! graded bricks (256 bytes each), the triangle start of each surface cell (`u32`), the
-//! triangle references (`u32`), the slab of each surface cell (`u32`) and the slab of
-//! each detailed brick (`u32`).
+//! triangle references (`u32`), the slab of each surface cell (`u32`), of each detailed
+//! brick (`u32`) and of each region of 4×4×4 bricks (`u32`).
 //!
 //! Every section starts at a multiple of 64 bytes, so on a little-endian machine a loaded
 //! surface and map use their arrays in place, as views of the one buffer the file was read
@@ -47,7 +47,7 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
-pub const FORMAT_VERSION: u32 = 7;
+pub const FORMAT_VERSION: u32 = 8;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;
@@ -129,7 +129,7 @@ pub(crate) fn invalid(section: &'static str, reason: impl Into<String>) -> MapFi
 }
 
 /// The sections in file order: name and element size in bytes.
-const SECTIONS: [(&str, usize); 20] = [
+const SECTIONS: [(&str, usize); 21] = [
     ("report", 1),
     ("vertices", 24),
     ("triangles", 12),
@@ -150,6 +150,7 @@ const SECTIONS: [(&str, usize); 20] = [
     ("triangle references", 4),
     ("slabs", 4),
     ("brick slabs", 4),
+    ("region slabs", 4),
 ];
 
 /// A little-endian word of an array.
@@ -254,6 +255,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
         map.triangle_refs.len() * 4,
         map.slabs.len() * 4,
         map.brick_slabs.len() * 4,
+        map.region_slabs.len() * 4,
     ];
     let table_end = HEADER_BYTES + SECTIONS.len() * TABLE_ENTRY_BYTES;
     let mut offsets = [0usize; SECTIONS.len()];
@@ -326,6 +328,8 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     put::<u32, u32>(&mut out, &map.slabs);
     start(&mut out);
     put::<u32, u32>(&mut out, &map.brick_slabs);
+    start(&mut out);
+    put::<u32, u32>(&mut out, &map.region_slabs);
     out.resize(total, 0);
     let checksum = checksum(&out);
     out[CHECKSUM_AT..HEADER_BYTES].copy_from_slice(&checksum.to_le_bytes());
@@ -462,6 +466,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         triangle_refs,
         slabs,
         brick_slabs,
+        region_slabs,
     ] = sections;
 
     let report: MeshReport = serde_json::from_slice(&bytes[report])
@@ -496,6 +501,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         triangle_refs: array::<u32, u32>(file, triangle_refs),
         slabs: array::<u32, u32>(file, slabs),
         brick_slabs: array::<u32, u32>(file, brick_slabs),
+        region_slabs: array::<u32, u32>(file, region_slabs),
         triangle_count: params.triangle_count,
         solid: params.solid,
         cell_size_rule: params.cell_size_rule,

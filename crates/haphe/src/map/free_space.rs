@@ -3,7 +3,8 @@
 //! A segment crossing a map visits cells in order ([`CellWalk`](super::CellWalk)); where
 //! the map knows a cube of cells around the current one to hold no surface cell, the walk
 //! skips that cube whole ([`CellWalk::skip_box`](super::CellWalk::skip_box)). Three
-//! levels give the cubes, read in this order by [`VoxelMap::look`]:
+//! levels give the cubes, read in this order by [`VoxelMap::look_region`] and
+//! [`VoxelMap::look`]:
 //!
 //! - **regions** of 4×4×4 bricks (32³ cells, [`FreeRegions`]): a byte per region, 64
 //!   times smaller than the bricks' and small enough to stay in the cache (128 KiB for
@@ -13,9 +14,9 @@
 //!   brick's surface mask ([`in_free_block`]); other free cells are stepped one by one.
 //!
 //! All three are derived from the bricks' top-level entries when a map is built or
-//! loaded, and are not saved. In a brick that holds surface cells, the walk also skips
-//! the cells before and after the brick's slab, the layer in which the brick's triangles
-//! lie (`map/slabs.rs`, saved with the map).
+//! loaded, and are not saved. In a region and in a brick that hold surface cells, the
+//! walk also skips the cells before and after the block's slab, the layer in which its
+//! triangles lie (`map/slabs.rs`, saved with the map).
 
 use super::VoxelMap;
 use super::bricks::{
@@ -61,6 +62,20 @@ const REGION_BITS: u32 = 2;
 /// Cells along each side of a region.
 pub(crate) const REGION_SIDE: u32 = 1 << (BRICK_BITS + REGION_BITS);
 
+/// Regions along each axis of a grid of `brick_dims` bricks.
+pub(crate) fn region_dims(brick_dims: [u32; 3]) -> [u32; 3] {
+    brick_dims.map(|d| d.div_ceil(1 << REGION_BITS))
+}
+
+/// The index (x fastest) of the region of cell `c` among regions `dims`, `None` beyond
+/// them.
+#[inline]
+pub(crate) fn region_index(c: [u32; 3], dims: [u32; 3]) -> Option<usize> {
+    let [x, y, z] = c.map(|v| (v >> (BRICK_BITS + REGION_BITS)) as usize);
+    let [rx, ry, rz] = dims.map(|d| d as usize);
+    (x < rx && y < ry && z < rz).then_some((z * ry + y) * rx + x)
+}
+
 /// For every region of the grid, how far around it, in regions, no region holds a
 /// surface cell. Derived from the bricks' top-level entries (a brick holds a surface
 /// cell exactly when it is detailed), not saved in a map file.
@@ -76,7 +91,7 @@ pub(crate) struct FreeRegions {
 impl FreeRegions {
     /// The free regions of a grid of `brick_dims` bricks with top-level `entries`.
     pub(crate) fn derive(entries: &[u32], brick_dims: [u32; 3]) -> FreeRegions {
-        let dims = brick_dims.map(|d| d.div_ceil(1 << REGION_BITS));
+        let dims = region_dims(brick_dims);
         let [bx, by, bz] = brick_dims.map(|d| d as usize);
         let mut holds_surface = vec![false; dims.iter().map(|&d| d as usize).product()];
         let index = |[x, y, z]: [usize; 3]| (z * dims[1] as usize + y) * dims[0] as usize + x;
@@ -99,16 +114,19 @@ impl FreeRegions {
         FreeRegions { dims, around }
     }
 
+    /// The index of the region of cell `c` (x fastest), `None` beyond the grid's regions.
+    #[inline]
+    pub(crate) fn index(&self, c: [u32; 3]) -> Option<usize> {
+        region_index(c, self.dims)
+    }
+
     /// How far around the region of cell `c` no region holds a surface cell (see
     /// [`FreeRegions`]); 0 for a cell beyond the grid's regions.
-    #[inline]
+    #[cfg(test)]
     pub(crate) fn around(&self, c: [u32; 3]) -> u8 {
-        let [x, y, z] = c.map(|v| (v >> (BRICK_BITS + REGION_BITS)) as usize);
-        let [rx, ry, _] = self.dims.map(|d| d as usize);
-        if x >= rx || y >= ry {
-            return 0;
-        }
-        self.around.get((z * ry + y) * rx + x).copied().unwrap_or(0)
+        self.index(c)
+            .and_then(|r| self.around.get(r).copied())
+            .unwrap_or(0)
     }
 
     /// Bytes of heap memory held.
@@ -117,15 +135,27 @@ impl FreeRegions {
     }
 }
 
-/// What [`VoxelMap::look`] tells of a cell.
+/// What [`VoxelMap::look_region`] tells of a cell's region.
+pub(crate) enum RegionLook {
+    /// A cell in a cube of regions without surface cells: the cell's region and every
+    /// region within Chebyshev distance `around − 1` of it (`around ≥ 1`).
+    Free {
+        /// See `VoxelMap::free_regions`.
+        around: u8,
+    },
+    /// A cell of a region that holds surface cells (its index, see
+    /// `VoxelMap::region_slab`).
+    Surface(u32),
+    /// A cell outside the grid.
+    Outside,
+}
+
+/// What [`VoxelMap::look`] tells of a cell of a region that holds surface cells.
 pub(crate) enum Look<'a> {
-    /// A cell in a cube of cells without surface cells: the cell's block (a brick or a
-    /// region of bricks, `side` cells along each side, aligned on multiples of `side`)
-    /// and every block within Chebyshev distance `around − 1` of it (`around ≥ 1`).
-    NoSurface {
-        /// Cells along each side of a block.
-        side: u32,
-        /// See `VoxelMap::free_bricks` and `VoxelMap::free_regions`.
+    /// A cell in a cube of bricks without surface cells: the cell's brick and every brick
+    /// within Chebyshev distance `around − 1` of it (`around ≥ 1`).
+    FreeBricks {
+        /// See `VoxelMap::free_bricks`.
         around: u8,
     },
     /// A cell of a detailed brick (one that holds surface cells).
@@ -150,33 +180,39 @@ pub(crate) enum InBrick<'a> {
 }
 
 impl VoxelMap {
-    /// What a long segment's walk needs of cell `c`, reading as little as it can: its
-    /// region's byte of free regions around it; when the region holds surface cells, its
-    /// brick's byte of free bricks around it; and only in a detailed brick its top-level
-    /// entry and surface mask (and, for a surface cell, where its triangle list lies and
-    /// its slab; not the list itself).
-    /// Clearances are not read: they bound the distance cell by cell, in memory that is
-    /// cold when a segment comes from far away.
+    /// What a long segment's walk needs first of cell `c`: its region's byte of free
+    /// regions around it, which stays in the cache. Clearances are not read: they bound
+    /// the distance cell by cell, in memory that is cold when a segment comes from far
+    /// away.
+    #[inline]
+    pub(crate) fn look_region(&self, c: [u32; 3]) -> RegionLook {
+        if !self.grid.contains(c) {
+            return RegionLook::Outside;
+        }
+        match self.free_regions.index(c) {
+            Some(r) => match self.free_regions.around.get(r) {
+                Some(&around) if around > 0 => RegionLook::Free { around },
+                _ => RegionLook::Surface(r as u32),
+            },
+            None => RegionLook::Outside,
+        }
+    }
+
+    /// What a long segment's walk needs of cell `c` of a region that holds surface cells
+    /// ([`look_region`](Self::look_region)), reading as little as it can: its brick's
+    /// byte of free bricks around it; and only in a detailed brick its top-level entry
+    /// and surface mask (and, for a surface cell, where its triangle list lies and its
+    /// slab; not the list itself).
     #[inline]
     pub(crate) fn look(&self, c: [u32; 3]) -> Look<'_> {
         if !self.grid.contains(c) {
             return Look::Outside;
         }
-        let regions = self.free_regions.around(c);
-        if regions > 0 {
-            return Look::NoSurface {
-                side: REGION_SIDE,
-                around: regions,
-            };
-        }
         let b = brick_of(c, self.brick_dims);
         if let Some(&bricks) = self.free_bricks.get(b)
             && bricks > 0
         {
-            return Look::NoSurface {
-                side: BRICK_SIDE,
-                around: bricks,
-            };
+            return Look::FreeBricks { around: bricks };
         }
         // A detailed brick: its entry is its index.
         let Some(&brick) = self.bricks.get(b).filter(|&&e| e & UNIFORM == 0) else {

@@ -57,7 +57,7 @@ pub use crate::array::MapBytes;
 pub(crate) use bricks::BRICK_SIDE;
 pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
 pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode};
-pub(crate) use free_space::{BLOCK_SIDE, InBrick, Look};
+pub(crate) use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
 pub(crate) use grid::floor_to_int;
 pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL, PADDING_SLACK_REL};
 pub use overlap::overlap_triangle_box;

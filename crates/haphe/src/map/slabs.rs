@@ -15,19 +15,21 @@
 //! normal; a cell whose normals (nearly) cancel out gets a slab that rejects nothing.
 //!
 //! Each brick that holds surface cells keeps one too, over the triangles of all its
-//! surface cells, in units of the brick's side (a step is then 0.03 of a cell). A long
-//! segment's walk reads it on entering the brick, with the brick's surface mask, and
-//! skips the cells of the brick before the segment reaches the slab and after it leaves
+//! surface cells, in units of the brick's side (a step is then 0.03 of a cell), and so
+//! does each region of 4×4×4 bricks (0.13 of a cell a step). A long segment's walk reads
+//! a region's slab on entering the region, a brick's with the brick's surface mask, and
+//! skips the cells of the block before the segment reaches the slab and after it leaves
 //! it ([`interval`]): a segment passing near the surface without touching it crosses the
-//! brick in one stride, and one that crosses it goes straight to the layer it crosses.
-//! On smooth surfaces at the cell sizes a map chooses, a brick's slab is about a cell
-//! thick.
+//! region or the brick in one stride, and one that crosses it goes straight to the layer
+//! it crosses. On smooth surfaces at the cell sizes a map chooses, a brick's slab is
+//! about a cell thick and a region's a few cells.
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 use super::VoxelMap;
 use super::bricks::{BRICK_SIDE, UNIFORM, brick_coords, cell_in_brick};
+use super::free_space::{REGION_SIDE, region_dims};
 use crate::mesh::{Surface, TriId};
 
 /// Half the range of a slab's bounds, in sides of its block (a cell or a brick) from the
@@ -208,6 +210,55 @@ impl VoxelMap {
             .flat_map(|(slabs, _)| slabs)
             .collect::<Vec<_>>()
             .into();
+        let dims = region_dims(self.brick_dims);
+        let side = f64::from(REGION_SIDE) * h;
+        let [rx, ry, rz] = dims.map(|d| d as usize);
+        self.region_slabs = (0..rx * ry * rz)
+            .into_par_iter()
+            .map(|r| {
+                let region = [r % rx, r / rx % ry, r / (rx * ry)].map(|v| v as u32);
+                let mut triangles = Vec::new();
+                // The bricks of the region, those of the grid.
+                let per_side = REGION_SIDE / BRICK_SIDE;
+                let [bx, by, bz] = self.brick_dims;
+                for z in region[2] * per_side..((region[2] + 1) * per_side).min(bz) {
+                    for y in region[1] * per_side..((region[1] + 1) * per_side).min(by) {
+                        for x in region[0] * per_side..((region[0] + 1) * per_side).min(bx) {
+                            let b = ((z * by + y) * bx + x) as usize;
+                            if let Some(&entry) = self.bricks.get(b)
+                                && entry & UNIFORM == 0
+                            {
+                                self.brick_triangles(entry as usize, &mut triangles);
+                            }
+                        }
+                    }
+                }
+                if triangles.is_empty() {
+                    return FULL_SLAB;
+                }
+                triangles.sort_unstable();
+                triangles.dedup();
+                let (lo, _) = self.grid.cell_bounds(region.map(|v| v * REGION_SIDE));
+                slab_of(surface, lo + DVec3::splat(0.5 * side), side, &triangles)
+            })
+            .collect::<Vec<_>>()
+            .into();
+    }
+
+    /// Appends the triangles listed by the surface cells of detailed brick `brick` to
+    /// `out` (with repeats).
+    fn brick_triangles(&self, brick: usize, out: &mut Vec<u32>) {
+        let Some(bits) = self.surface_bits.get(brick) else {
+            return;
+        };
+        for (word, &bits) in bits.iter().enumerate() {
+            let mut rest = bits;
+            while rest != 0 {
+                let local = word * 64 + rest.trailing_zeros() as usize;
+                rest &= rest - 1;
+                out.extend_from_slice(self.listed(brick, local).unwrap_or(&[]));
+            }
+        }
     }
 
     /// The slab of detailed brick `brick` ([`FULL_SLAB`] when out of range): where in the
@@ -232,16 +283,42 @@ impl VoxelMap {
         p0: DVec3,
         p1: DVec3,
     ) -> Option<(f64, f64)> {
-        let corner = c.map(|v| v & !(BRICK_SIDE - 1));
-        let side = f64::from(BRICK_SIDE) * self.grid.cell_size();
+        self.window(self.brick_slab(brick), BRICK_SIDE, c, p0, p1)
+    }
+
+    /// As [`brick_window`](Self::brick_window) for region `region` (an index of
+    /// [`look_region`](VoxelMap::look_region)), the region of cell `c`.
+    #[inline]
+    pub(crate) fn region_window(
+        &self,
+        region: u32,
+        c: [u32; 3],
+        p0: DVec3,
+        p1: DVec3,
+    ) -> Option<(f64, f64)> {
+        let slab = self
+            .region_slabs
+            .get(region as usize)
+            .copied()
+            .unwrap_or(FULL_SLAB);
+        self.window(slab, REGION_SIDE, c, p0, p1)
+    }
+
+    /// The window of the segment in `slab`, the slab of the block of `side` cells (a
+    /// power of two) that holds cell `c`.
+    #[inline]
+    fn window(
+        &self,
+        slab: u32,
+        side: u32,
+        c: [u32; 3],
+        p0: DVec3,
+        p1: DVec3,
+    ) -> Option<(f64, f64)> {
+        let corner = c.map(|v| v & !(side - 1));
+        let side = f64::from(side) * self.grid.cell_size();
         let (lo, _) = self.grid.cell_bounds(corner);
-        interval(
-            self.brick_slab(brick),
-            lo + DVec3::splat(0.5 * side),
-            side,
-            p0,
-            p1,
-        )
+        interval(slab, lo + DVec3::splat(0.5 * side), side, p0, p1)
     }
 
     /// The slab of surface cell `s` ([`FULL_SLAB`] when out of range).
@@ -255,7 +332,7 @@ impl VoxelMap {
 mod tests {
     use super::*;
     use crate::map::MapOptions;
-    use crate::map::{InBrick, Look};
+    use crate::map::{InBrick, Look, RegionLook};
     use crate::mesh::SurfaceOptions;
     use crate::mesh::shapes::Shape;
     use crate::rng::SplitMix64;
@@ -368,13 +445,14 @@ mod tests {
         }
     }
 
-    /// Every point of a brick's triangles that lies in the brick lies in the brick's slab
-    /// (random points on every triangle listed by a surface cell of the brick, on three
-    /// shapes, fine enough for bricks to hold many cells of surface); and a brick's slab
-    /// is thin where the surface is smooth: most are under two cells thick on the blob
-    /// and the sphere.
+    /// Every point of a block's triangles that lies in the block lies in the block's slab,
+    /// for the bricks and the regions of bricks that hold surface cells (random points on
+    /// every triangle listed by a cell of the block, on three shapes fine enough for
+    /// blocks to hold many cells of surface); and the slabs are thin where the surface is
+    /// smooth: on the blob and the sphere, most bricks' are under two cells thick and
+    /// most regions' under a quarter of a region.
     #[test]
-    fn brick_slabs_hold_the_triangles_in_their_bricks() {
+    fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
         let mut random = SplitMix64::new(13);
         for (shape, triangles) in [
             (Shape::Blob, 40_000),
@@ -384,43 +462,58 @@ mod tests {
             let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
                 .expect("a surface");
             let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
-            let side = f64::from(BRICK_SIDE) * map.grid().cell_size();
             let dims = map.grid().dims();
-            let mut seen = std::collections::HashSet::new();
-            let (mut bricks, mut thin, mut points) = (0, 0, 0);
-            for z in 0..dims[2] {
-                for y in 0..dims[1] {
-                    for x in 0..dims[0] {
-                        let c = [x, y, z];
-                        let Look::Detailed { brick, .. } = map.look(c) else {
-                            continue;
-                        };
-                        if !seen.insert(brick) {
-                            continue;
+            for side in [BRICK_SIDE, REGION_SIDE] {
+                let length = f64::from(side) * map.grid().cell_size();
+                let mut seen = std::collections::HashSet::new();
+                let (mut blocks, mut thin, mut points) = (0, 0, 0);
+                for z in 0..dims[2] {
+                    for y in 0..dims[1] {
+                        for x in 0..dims[0] {
+                            let c = [x, y, z];
+                            let (block, slab) = match (map.look_region(c), map.look(c)) {
+                                (RegionLook::Surface(r), _) if side == REGION_SIDE => {
+                                    (r, map.region_slabs[r as usize])
+                                }
+                                (_, Look::Detailed { brick, .. }) if side == BRICK_SIDE => {
+                                    (brick, map.brick_slab(brick))
+                                }
+                                _ => continue,
+                            };
+                            if !seen.insert(block) {
+                                continue;
+                            }
+                            let corner = c.map(|v| v & !(side - 1));
+                            let (a, b) = bounds(slab);
+                            blocks += 1;
+                            // Under two cells for a brick, eight (a quarter) for a region.
+                            let cells = (b - a) * f64::from(side);
+                            thin += usize::from(cells < 2.0 * f64::from(side / BRICK_SIDE));
+                            let mut all = Vec::new();
+                            for z in corner[2]..(corner[2] + side).min(dims[2]) {
+                                for y in corner[1]..(corner[1] + side).min(dims[1]) {
+                                    for x in corner[0]..(corner[0] + side).min(dims[0]) {
+                                        all.extend_from_slice(map.triangles_in([x, y, z]));
+                                    }
+                                }
+                            }
+                            all.sort_unstable();
+                            all.dedup();
+                            let (lo, _) = map.grid().cell_bounds(corner);
+                            let box_ = (lo, lo + DVec3::splat(length));
+                            let what = format!("{shape:?} block {block} of {side}");
+                            points +=
+                                check_in_slab(&mut random, &surface, &all, box_, slab, 4, &what);
                         }
-                        let corner = c.map(|v| v & !(BRICK_SIDE - 1));
-                        let (lo, _) = map.grid().cell_bounds(corner);
-                        let slab = map.brick_slab(brick);
-                        let (a, b) = bounds(slab);
-                        bricks += 1;
-                        thin += usize::from((b - a) * f64::from(BRICK_SIDE) < 2.0);
-                        let mut all = Vec::new();
-                        for local in 0..crate::map::bricks::BRICK_CELLS {
-                            let cell = cell_in_brick(corner.map(|v| v / BRICK_SIDE), local);
-                            all.extend_from_slice(map.triangles_in(cell));
-                        }
-                        let block = (lo, lo + DVec3::splat(side));
-                        let what = format!("{shape:?} brick {brick}");
-                        points += check_in_slab(&mut random, &surface, &all, block, slab, 4, &what);
                     }
                 }
-            }
-            assert!(points > 10_000, "{shape:?}: {points}");
-            if shape != Shape::ThinPlate {
-                assert!(
-                    2 * thin > bricks,
-                    "{shape:?}: {thin} thin slabs of {bricks}"
-                );
+                assert!(points > 10_000, "{shape:?} {side}: {points}");
+                if shape != Shape::ThinPlate {
+                    assert!(
+                        2 * thin > blocks,
+                        "{shape:?} {side}: {thin} thin of {blocks}"
+                    );
+                }
             }
         }
     }
@@ -473,8 +566,8 @@ mod tests {
         );
     }
 
-    /// A map file with a slab too few or too many, of the cells or of the bricks, is
-    /// refused, naming the section.
+    /// A map file with a slab too few or too many, of the cells, the bricks or the
+    /// regions, is refused, naming the section.
     #[test]
     fn a_file_without_a_slab_per_surface_cell_is_refused() {
         use crate::map::{MapFileError, decode, encode};
@@ -484,20 +577,19 @@ mod tests {
         )
         .expect("a surface");
         let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
-        for bricks in [false, true] {
+        for want in ["slabs", "brick slabs", "region slabs"] {
             for change in [-1i64, 1] {
                 let mut wrong = map.clone();
-                let slabs = if bricks {
-                    wrong.brick_slabs.to_mut()
-                } else {
-                    wrong.slabs.to_mut()
+                let slabs = match want {
+                    "slabs" => wrong.slabs.to_mut(),
+                    "brick slabs" => wrong.brick_slabs.to_mut(),
+                    _ => wrong.region_slabs.to_mut(),
                 };
                 if change < 0 {
                     slabs.pop();
                 } else {
                     slabs.push(FULL_SLAB);
                 }
-                let want = if bricks { "brick slabs" } else { "slabs" };
                 match decode(&encode(&surface, &wrong)) {
                     Err(MapFileError::Invalid { section, .. }) => assert_eq!(section, want),
                     other => panic!("expected the {want} refused, got {other:?}"),

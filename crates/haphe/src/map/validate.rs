@@ -538,6 +538,19 @@ fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
             ),
         ));
     }
+    let regions: usize = super::free_space::region_dims(map.brick_dims)
+        .iter()
+        .map(|&d| d as usize)
+        .product();
+    if map.region_slabs.len() != regions {
+        return Err(invalid(
+            "region slabs",
+            format!(
+                "{} region slabs for {regions} regions of bricks: one per region",
+                map.region_slabs.len()
+            ),
+        ));
+    }
     // Every list increasing: the descents of the whole array are exactly those at list
     // borders (counted in two linear passes, the first vectorised), and all below `t`.
     let refs = &map.triangle_refs;

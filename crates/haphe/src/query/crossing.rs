@@ -4,7 +4,8 @@ use glam::DVec3;
 
 use super::{Segment, SegmentHit, intersect_segment_triangle};
 use crate::map::{
-    BLOCK_SIDE, BRICK_SIDE, CellStep, CellWalk, InBrick, Look, VoxelMap, slab_misses,
+    BLOCK_SIDE, BRICK_SIDE, CellStep, CellWalk, InBrick, Look, REGION_SIDE, RegionLook, VoxelMap,
+    slab_misses,
 };
 use crate::mesh::{Surface, TriId};
 
@@ -128,13 +129,14 @@ impl Tested {
 /// where the surface cells are, the bricks' through [`VoxelMap::reach`]), and in a brick
 /// that holds surface cells a free block of 4³ cells of its surface mask — so crossing
 /// empty space takes a few strides however fine the grid, reading mostly memory that
-/// stays in the cache. In a brick that holds surface cells, the cells before the segment
-/// reaches the layer in which the brick's triangles lie (the brick's slab, four bytes
-/// read with the brick's surface mask) and after it leaves it are skipped in one stride
-/// each. In a surface cell, a part of the segment that passes beside the
-/// layer the cell's triangles lie in (the cell's slab) skips them without
-/// reading their indices or frames. It never reads the clearances of free cells, which are cold when
-/// the segment comes from far away.
+/// stays in the cache. In a region and in a brick that hold surface cells, the cells
+/// before the segment reaches the layer in which the block's triangles lie (its slab,
+/// four bytes) and after it leaves it are skipped in one stride each. In a surface cell,
+/// a part of the segment that passes beside the layer the cell's triangles lie in (the
+/// cell's slab) skips them without reading their indices or frames. The frames and
+/// corners of a cell's triangles are fetched together before they are tested. It never
+/// reads the clearances of free cells, which are cold when the segment comes from far
+/// away.
 ///
 /// # Real-time
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
@@ -204,22 +206,38 @@ pub fn first_crossing_where(
     let plane_margin = plane_margin(map);
     let mut walk = map.grid().walk(p0, p1);
     let mut until = 1.0;
-    let mut window = BrickWindow::new();
+    // The parts of the segment in the slabs of the region and of the brick it is in.
+    let (mut regions, mut bricks) = (Window::new(), Window::new());
     while let Some(visit) = walk.next() {
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
         }
         let mut slab = None;
         let triangles = if skips {
+            match map.look_region(visit.cell) {
+                RegionLook::Outside => continue,
+                RegionLook::Free { around } => {
+                    let (lo, hi) = block_box(visit.cell, REGION_SIDE, around);
+                    walk.skip_box(lo, hi);
+                    continue;
+                }
+                RegionLook::Surface(region) => {
+                    let window = || map.region_window(region, visit.cell, p0, p1);
+                    if !regions.admits(&mut walk, &visit, region, REGION_SIDE, margin, window) {
+                        continue;
+                    }
+                }
+            }
             match map.look(visit.cell) {
                 Look::Outside => continue,
-                Look::NoSurface { side, around } => {
-                    let (lo, hi) = block_box(visit.cell, side, around);
+                Look::FreeBricks { around } => {
+                    let (lo, hi) = block_box(visit.cell, BRICK_SIDE, around);
                     walk.skip_box(lo, hi);
                     continue;
                 }
                 Look::Detailed { brick, cell } => {
-                    if !window.admits(map, &mut walk, &visit, brick, (p0, p1), margin) {
+                    let window = || map.brick_window(brick, visit.cell, p0, p1);
+                    if !bricks.admits(&mut walk, &visit, brick, BRICK_SIDE, margin, window) {
                         continue;
                     }
                     match cell {
@@ -290,55 +308,57 @@ fn block_box(cell: [u32; 3], side: u32, around: u8) -> ([i64; 3], [i64; 3]) {
     (lo, lo.map(|c| c + 2 * around + side - 1))
 }
 
-/// The part of a long segment that lies in the slab of the detailed brick its walk is
-/// in (see `map/slabs.rs`): the walk skips the brick's cells before and after it.
-struct BrickWindow {
-    /// The detailed brick of the window (`u32::MAX` before the first).
-    brick: u32,
-    /// The parameter where the segment enters the brick's slab, less the margin of the
+/// The part of a long segment that lies in the slab of the block its walk is in (a
+/// region of bricks or a detailed brick, see `map/slabs.rs`): the walk skips the block's
+/// cells before and after it.
+struct Window {
+    /// The block of the window (its index; `u32::MAX` before the first).
+    block: u32,
+    /// The parameter where the segment enters the block's slab, less the margin of the
     /// cells' boundaries (`+∞` when it never does).
     from: f64,
     /// Where it leaves the slab, plus the margin (`−∞` when it never enters).
     to: f64,
 }
 
-impl BrickWindow {
-    fn new() -> BrickWindow {
-        BrickWindow {
-            brick: u32::MAX,
+impl Window {
+    fn new() -> Window {
+        Window {
+            block: u32::MAX,
             from: f64::NEG_INFINITY,
             to: f64::INFINITY,
         }
     }
 
-    /// Whether the walk must look at the cell of `visit`, a cell of detailed brick
-    /// `brick`: not when the part of the segment in the cell lies before the brick's slab
-    /// or after it, and then the walk is moved on, to where the segment enters the slab
-    /// or out of the brick. A straight segment never comes back to a brick it left, so
-    /// the window of a brick is found once, on entering it.
+    /// Whether the walk must look further at the cell of `visit`, a cell of block `block`
+    /// of `side` cells whose slab `window` gives the parameters of: not when the part of
+    /// the segment in the cell lies before the slab or after it, and then the walk is
+    /// moved on, to where the segment enters the slab or out of the block. A straight
+    /// segment never comes back to a block it left, so the window of a block is found
+    /// once, on entering it.
     #[inline]
     fn admits(
         &mut self,
-        map: &VoxelMap,
         walk: &mut CellWalk,
         visit: &CellStep,
-        brick: u32,
-        (p0, p1): (DVec3, DVec3),
+        block: u32,
+        side: u32,
         margin: f64,
+        window: impl FnOnce() -> Option<(f64, f64)>,
     ) -> bool {
-        if brick != self.brick {
-            self.brick = brick;
-            (self.from, self.to) = match map.brick_window(brick, visit.cell, p0, p1) {
+        if block != self.block {
+            self.block = block;
+            (self.from, self.to) = match window() {
                 Some((from, to)) => (from - margin, to + margin),
                 None => (f64::INFINITY, f64::NEG_INFINITY),
             };
         }
         if visit.t_enter > self.to {
-            let (lo, hi) = block_box(visit.cell, BRICK_SIDE, 1);
+            let (lo, hi) = block_box(visit.cell, side, 1);
             walk.skip_box(lo, hi);
             false
         } else if visit.t_exit < self.from {
-            walk.skip_box_until(block_box(visit.cell, BRICK_SIDE, 1), self.from);
+            walk.skip_box_until(block_box(visit.cell, side, 1), self.from);
             false
         } else {
             true

@@ -190,9 +190,9 @@ fn crafted_files_with_a_valid_checksum_are_checked() {
         }
     };
     let sections = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
-    // A triangle reference out of range, in the section before the slabs of the cells
-    // and of the bricks (the last two).
-    let last_ref = find_section_end(bytes, sections - 3) - 4;
+    // A triangle reference out of range, in the section before the slabs of the cells,
+    // the bricks and the regions (the last three).
+    let last_ref = find_section_end(bytes, sections - 4) - 4;
     assert_eq!(
         refused_in(last_ref, &u32::MAX.to_le_bytes()),
         "triangle references"
