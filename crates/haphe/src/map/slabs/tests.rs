@@ -1,0 +1,285 @@
+//! Slabs: encoding, the triangles of cells, bricks and regions held in their slabs,
+//! windows and misses of segments, and the file's count of slabs checked.
+
+use super::*;
+use crate::map::MapOptions;
+use crate::map::{InBrick, Look, RegionLook};
+use crate::mesh::SurfaceOptions;
+use crate::mesh::shapes::Shape;
+use crate::rng::SplitMix64;
+
+/// Every direction code decodes to a direction of L1 norm 1, and encoding a direction
+/// gives back one within a step of the octahedral grid.
+#[test]
+fn directions_round_trip() {
+    for code in 0..65_536u32 {
+        let n = direction(code);
+        assert!((n.abs().element_sum() - 1.0).abs() < 1e-12, "{code}: {n}");
+    }
+    let mut random = SplitMix64::new(5);
+    for _ in 0..10_000 {
+        let n = random.unit_vector();
+        let back = direction(encode_direction(n));
+        let want = n / n.abs().element_sum();
+        assert!((back - want).abs().max_element() < 0.02, "{n} → {back}");
+    }
+}
+
+/// Every point of a surface cell's triangles that lies in the cell lies in its slab
+/// (random points on every listed triangle of every surface cell, on three shapes);
+/// and the slabs are thin where the surface is smooth: most are under a third of a
+/// cell thick on the blob and the plate.
+#[test]
+fn slabs_hold_the_triangles_in_their_cells() {
+    let mut random = SplitMix64::new(9);
+    for (shape, triangles) in [
+        (Shape::Blob, 5_000),
+        (Shape::Sphere, 2_000),
+        (Shape::ThinPlate, 2_000),
+    ] {
+        let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
+            .expect("a surface");
+        let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
+        let dims = map.grid().dims();
+        let (mut cells, mut thin, mut points) = (0, 0, 0);
+        for z in 0..dims[2] {
+            for y in 0..dims[1] {
+                for x in 0..dims[0] {
+                    let c = [x, y, z];
+                    let listed = map.triangles_in(c);
+                    if listed.is_empty() {
+                        continue;
+                    }
+                    let Some(slab) = surface_slab(&map, c) else {
+                        panic!("{shape:?} {c:?}: a surface cell");
+                    };
+                    let (a, b) = bounds(slab);
+                    cells += 1;
+                    thin += usize::from(b - a < 1.0 / 3.0);
+                    let block = map.grid().cell_bounds(c);
+                    let what = format!("{shape:?} {c:?}");
+                    points += check_in_slab(&mut random, &surface, listed, block, slab, 20, &what);
+                }
+            }
+        }
+        assert!(points > 1000, "{shape:?}: {points}");
+        if shape != Shape::Sphere {
+            assert!(2 * thin > cells, "{shape:?}: {thin} thin slabs of {cells}");
+        }
+    }
+}
+
+/// Checks that `samples` random points of each of `triangles` that lie in the box
+/// `(lo, hi)` lie in `slab`, the slab of that box (a cube); returns how many did.
+fn check_in_slab(
+    random: &mut SplitMix64,
+    surface: &Surface,
+    triangles: &[u32],
+    (lo, hi): (DVec3, DVec3),
+    slab: u32,
+    samples: usize,
+    what: &str,
+) -> usize {
+    let (centre, side) = (0.5 * (lo + hi), hi.x - lo.x);
+    let (n, (a, b)) = (direction(slab), bounds(slab));
+    let mut points = 0;
+    for &t in triangles {
+        let [p, q, r] = surface.corners(TriId(t));
+        for _ in 0..samples {
+            let (u, v) = (random.next_unit(), random.next_unit());
+            let (u, v) = if u + v > 1.0 {
+                (1.0 - u, 1.0 - v)
+            } else {
+                (u, v)
+            };
+            let point = p + u * (q - p) + v * (r - p);
+            if (point.cmplt(lo) | point.cmpgt(hi)).any() {
+                continue;
+            }
+            let s = n.dot(point - centre) / side;
+            assert!(a - 1e-9 <= s && s <= b + 1e-9, "{what}: {s} ∉ [{a}, {b}]");
+            points += 1;
+        }
+    }
+    points
+}
+
+/// The slab of surface cell `c`, as a walk reads it.
+fn surface_slab(map: &VoxelMap, c: [u32; 3]) -> Option<u32> {
+    match map.look(c) {
+        Look::Detailed {
+            cell: InBrick::Triangles(_, slab),
+            ..
+        } => Some(slab),
+        _ => None,
+    }
+}
+
+/// Every point of a block's triangles that lies in the block lies in the block's slab,
+/// for the bricks and the regions of bricks that hold surface cells (random points on
+/// every triangle listed by a cell of the block, on three shapes fine enough for
+/// blocks to hold many cells of surface); and the slabs are thin where the surface is
+/// smooth: on the blob and the sphere, most bricks' are under two cells thick and
+/// most regions' under a quarter of a region.
+#[test]
+fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
+    let mut random = SplitMix64::new(13);
+    for (shape, triangles) in [
+        (Shape::Blob, 40_000),
+        (Shape::Sphere, 20_000),
+        (Shape::ThinPlate, 20_000),
+    ] {
+        let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
+            .expect("a surface");
+        let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
+        let dims = map.grid().dims();
+        for side in [BRICK_SIDE, REGION_SIDE] {
+            let length = f64::from(side) * map.grid().cell_size();
+            let mut seen = std::collections::HashSet::new();
+            let (mut blocks, mut thin, mut points) = (0, 0, 0);
+            for z in 0..dims[2] {
+                for y in 0..dims[1] {
+                    for x in 0..dims[0] {
+                        let c = [x, y, z];
+                        let (block, slab) = match (map.look_region(c), map.look(c)) {
+                            (RegionLook::Surface(r), _) if side == REGION_SIDE => {
+                                (r, map.region_slabs[r as usize])
+                            }
+                            (_, Look::Detailed { brick, .. }) if side == BRICK_SIDE => {
+                                (brick, map.brick_slab(brick))
+                            }
+                            _ => continue,
+                        };
+                        if !seen.insert(block) {
+                            continue;
+                        }
+                        let corner = c.map(|v| v & !(side - 1));
+                        let (a, b) = bounds(slab);
+                        blocks += 1;
+                        // Under two cells for a brick, eight (a quarter) for a region.
+                        let cells = (b - a) * f64::from(side);
+                        thin += usize::from(cells < 2.0 * f64::from(side / BRICK_SIDE));
+                        let mut all = Vec::new();
+                        for z in corner[2]..(corner[2] + side).min(dims[2]) {
+                            for y in corner[1]..(corner[1] + side).min(dims[1]) {
+                                for x in corner[0]..(corner[0] + side).min(dims[0]) {
+                                    all.extend_from_slice(map.triangles_in([x, y, z]));
+                                }
+                            }
+                        }
+                        all.sort_unstable();
+                        all.dedup();
+                        let (lo, _) = map.grid().cell_bounds(corner);
+                        let box_ = (lo, lo + DVec3::splat(length));
+                        let what = format!("{shape:?} block {block} of {side}");
+                        points += check_in_slab(&mut random, &surface, &all, box_, slab, 4, &what);
+                    }
+                }
+            }
+            assert!(points > 10_000, "{shape:?} {side}: {points}");
+            if shape != Shape::ThinPlate {
+                assert!(
+                    2 * thin > blocks,
+                    "{shape:?} {side}: {thin} thin of {blocks}"
+                );
+            }
+        }
+    }
+}
+
+/// The window of a segment in a slab holds exactly the parameters at which the
+/// segment lies in it (up to the margin): sampled along random segments through
+/// random slabs of a brick.
+#[test]
+fn a_window_holds_the_parameters_in_the_slab() {
+    let mut random = SplitMix64::new(21);
+    let (centre, h) = (DVec3::new(0.3, -0.2, 0.1), 0.016);
+    let (mut inside, mut outside) = (0, 0);
+    for _ in 0..2_000 {
+        let code = encode_direction(random.unit_vector());
+        let (x, y) = (random.index(256) as u32, random.index(256) as u32);
+        let slab = code | (x.min(y) << 16) | (x.max(y) << 24);
+        let n = direction(slab);
+        let (a, b) = bounds(slab);
+        let near = DVec3::splat(h);
+        let p0 = random.point_in(centre - near, centre + near);
+        let p1 = random.point_in(centre - near, centre + near);
+        let window = interval(slab, centre, h, p0, p1);
+        for k in 0..=200 {
+            let t = f64::from(k) / 200.0;
+            let s = n.dot(p0 + t * (p1 - p0) - centre) / h;
+            let within = window.is_some_and(|(from, to)| from <= t && t <= to);
+            if s > a + 1e-6 && s < b - 1e-6 {
+                assert!(within, "{t} at {s} in [{a}, {b}]: {window:?}");
+                inside += 1;
+            } else if s < a - 1e-3 || s > b + 1e-3 {
+                assert!(!within, "{t} at {s} beside [{a}, {b}]: {window:?}");
+                outside += 1;
+            }
+        }
+    }
+    assert!(inside > 10_000 && outside > 10_000, "{inside} {outside}");
+    // Along the slab (its direction is +z up to a step): in it, the whole segment;
+    // beside it, none.
+    let slab = encode_direction(DVec3::Z) | (100 << 16) | (150 << 24);
+    let along = |z: f64| {
+        let (p0, p1) = (DVec3::new(-h, 0.0, z), DVec3::new(h, 0.0, z));
+        interval(slab, centre, h, centre + p0, centre + p1)
+    };
+    assert!(along(0.0).is_some_and(|(from, to)| from < 0.0 && to > 1.0));
+    assert_eq!(along(0.4 * h), None);
+    // Overflowing coordinates reject nothing.
+    assert_eq!(
+        interval(slab, centre, h, DVec3::splat(1e308), DVec3::splat(-1e308)),
+        Some((f64::NEG_INFINITY, f64::INFINITY))
+    );
+}
+
+/// A map file with a slab too few or too many, of the cells, the bricks or the
+/// regions, is refused, naming the section.
+#[test]
+fn a_file_without_a_slab_per_surface_cell_is_refused() {
+    use crate::map::{MapFileError, decode, encode};
+    let surface = Surface::new(
+        Shape::Blob.with_triangles(1_000),
+        &SurfaceOptions::default(),
+    )
+    .expect("a surface");
+    let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
+    for want in ["slabs", "brick slabs", "region slabs"] {
+        for change in [-1i64, 1] {
+            let mut wrong = map.clone();
+            let slabs = match want {
+                "slabs" => wrong.slabs.to_mut(),
+                "brick slabs" => wrong.brick_slabs.to_mut(),
+                _ => wrong.region_slabs.to_mut(),
+            };
+            if change < 0 {
+                slabs.pop();
+            } else {
+                slabs.push(FULL_SLAB);
+            }
+            match decode(&encode(&surface, &wrong)) {
+                Err(MapFileError::Invalid { section, .. }) => assert_eq!(section, want),
+                other => panic!("expected the {want} refused, got {other:?}"),
+            }
+        }
+    }
+}
+
+/// A segment part beside a slab misses it, one through it or across it does not.
+#[test]
+fn a_part_beside_the_slab_misses_it() {
+    // Direction +z, bounds −0.1 … 0.1 of a cell around the centre, in a cell of 2 mm.
+    let code = encode_direction(DVec3::Z);
+    let step = 2.0 * RANGE / LEVELS;
+    let level = |s: f64| ((s + RANGE) / step).round() as u32;
+    let slab = code | (level(-0.1) << 16) | (level(0.1) << 24);
+    let (centre, h) = (DVec3::new(1.0, 2.0, 3.0), 0.002);
+    let at = |x: f64, z: f64| centre + DVec3::new(x, 0.0, z) * h;
+    assert!(misses(slab, centre, h, at(-0.5, 0.3), at(0.5, 0.4)));
+    assert!(misses(slab, centre, h, at(-0.5, -0.3), at(0.5, -0.2)));
+    assert!(!misses(slab, centre, h, at(-0.5, 0.3), at(0.5, -0.3)));
+    assert!(!misses(slab, centre, h, at(-0.5, 0.05), at(0.5, 0.05)));
+    assert!(!misses(FULL_SLAB, centre, h, at(-0.5, 0.49), at(0.5, 0.49)));
+}
