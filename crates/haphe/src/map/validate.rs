@@ -519,37 +519,32 @@ fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
             ),
         ));
     }
-    if map.slabs.len() != surface_cells {
-        return Err(invalid(
-            "slabs",
-            format!(
-                "{} slabs for {surface_cells} surface cells: one per surface cell",
-                map.slabs.len()
-            ),
-        ));
-    }
-    if map.brick_slabs.len() != map.surface_bits.len() {
-        return Err(invalid(
-            "brick slabs",
-            format!(
-                "{} brick slabs for {} bricks with surface cells: one per such brick",
-                map.brick_slabs.len(),
-                map.surface_bits.len()
-            ),
-        ));
-    }
+    // One slab per surface cell, per detailed brick and per region of bricks.
     let regions: usize = super::free_space::region_dims(map.brick_dims)
         .iter()
         .map(|&d| d as usize)
         .product();
-    if map.region_slabs.len() != regions {
-        return Err(invalid(
+    for (section, count, wanted, per) in [
+        ("slabs", map.slabs.len(), surface_cells, "surface cell"),
+        (
+            "brick slabs",
+            map.brick_slabs.len(),
+            map.surface_bits.len(),
+            "brick with surface cells",
+        ),
+        (
             "region slabs",
-            format!(
-                "{} region slabs for {regions} regions of bricks: one per region",
-                map.region_slabs.len()
-            ),
-        ));
+            map.region_slabs.len(),
+            regions,
+            "region of bricks",
+        ),
+    ] {
+        if count != wanted {
+            return Err(invalid(
+                section,
+                format!("{count} {section} where there are {wanted}: one per {per}"),
+            ));
+        }
     }
     // Every list increasing: the descents of the whole array are exactly those at list
     // borders (counted in two linear passes, the first vectorised), and all below `t`.
