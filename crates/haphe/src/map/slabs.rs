@@ -7,12 +7,16 @@
 //! bytes) and the range `[lo, hi]` of `n · (x − centre)` over its triangles' corners (one
 //! byte each, in cells, rounded outward), which holds every point of the triangles in the
 //! cell since a triangle is the convex hull of its corners. A segment whose part in the
-//! cell lies wholly on one side of the slab ([`misses`]) skips the cell's triangles — their
-//! list and their frames, the reads that are cold on large meshes.
+//! cell lies wholly on one side of the slab ([`clip`]) skips the cell's triangles — their
+//! list and their frames, the reads that are cold on large meshes — and one that passes
+//! through it has only its part in the slab tested against them.
 //!
-//! The direction is the sum of the triangles' normals (weighted by area), each turned to
-//! the side of the first one's, so that the two faces of a thin plate give the plate's
-//! normal; a cell whose normals (nearly) cancel out gets a slab that rejects nothing.
+//! The direction is the thinner of two: the sum of the triangles' normals (weighted by
+//! area), each turned to the side of the first one's, which follows a smooth patch; and
+//! the dominant axis of their second moment, which does not depend on which way each
+//! normal points, so that the two faces of a thin plate give the plate's normal also
+//! where the rim's triangles, at a right angle to them, come first. A block whose
+//! triangles face every way gets a slab as thick as the block: it rejects little.
 //!
 //! Each brick that holds surface cells keeps one too, over the triangles of all its
 //! surface cells, in units of the brick's side (a step is then 0.03 of a cell), and so
@@ -24,7 +28,7 @@
 //! it crosses. On smooth surfaces at the cell sizes a map chooses, a brick's slab is
 //! about a cell thick and a region's a few cells.
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
 use super::VoxelMap;
@@ -82,8 +86,9 @@ fn bounds(slab: u32) -> (f64, f64) {
     )
 }
 
-/// The slab of a block (a surface cell or a brick) with centre `centre` (metres) and
-/// side `h` (metres) whose cells list `triangles`.
+/// The slab of a block (a surface cell, a brick or a region) with centre `centre`
+/// (metres) and side `h` (metres) whose cells list `triangles`: along the sum of their
+/// normals, or along the dominant axis of the normals where that gives a thinner slab.
 fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
     let Some(&first) = triangles.first() else {
         return FULL_SLAB;
@@ -101,10 +106,64 @@ fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
         sum += if n.dot(reference) < 0.0 { -n } else { n };
         total += n.length();
     }
-    if !(sum.is_finite() && total.is_finite()) || sum.length() <= 1e-3 * total {
-        return FULL_SLAB;
+    let along_sum = slab_along(surface, centre, h, triangles, sum);
+    // The sum gives a smooth patch's normal (then it is nearly as long as the normals
+    // together) but cancels out, or turns sideways, where faces meet at an angle (the
+    // rim of a thin plate: its top and bottom faces turned to the side of a rim
+    // triangle's normal cancel out). There the axis of the normals' second moment
+    // `Σ n nᵀ / |n|`, the direction most of the area faces either way, is tried too.
+    if sum.length() >= 0.95 * total && along_sum.is_some() {
+        return along_sum.unwrap_or(FULL_SLAB);
     }
-    let code = encode_direction(sum);
+    let mut moment = DMat3::ZERO;
+    for &t in triangles {
+        let n = normal(t);
+        let length = n.length();
+        if length > 0.0 {
+            moment += DMat3::from_cols(n * n.x, n * n.y, n * n.z) / length;
+        }
+    }
+    let along_moment = slab_along(surface, centre, h, triangles, dominant_axis(moment));
+    [along_sum, along_moment]
+        .into_iter()
+        .flatten()
+        .min_by_key(|&code| (code >> 24) - ((code >> 16) & 0xff))
+        .unwrap_or(FULL_SLAB)
+}
+
+/// The axis of the largest eigenvalue of the symmetric positive semi-definite `moment`,
+/// by power iteration from its largest column (zero when `moment` is).
+fn dominant_axis(moment: DMat3) -> DVec3 {
+    let columns = [moment.x_axis, moment.y_axis, moment.z_axis];
+    let mut axis = columns
+        .into_iter()
+        .max_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))
+        .unwrap_or(DVec3::ZERO);
+    for _ in 0..8 {
+        let next = moment * axis;
+        let length = next.length();
+        if !(length > 0.0 && length.is_finite()) {
+            break;
+        }
+        axis = next / length;
+    }
+    axis
+}
+
+/// The slab of direction `n` (non-zero) of a block with centre `centre` and side `h`
+/// over the corners of `triangles`; `None` when `n` is zero or not finite or a product
+/// overflows.
+fn slab_along(
+    surface: &Surface,
+    centre: DVec3,
+    h: f64,
+    triangles: &[u32],
+    n: DVec3,
+) -> Option<u32> {
+    if !(n.is_finite() && n.length_squared() > 0.0) {
+        return None;
+    }
+    let code = encode_direction(n);
     let n = direction(code);
     let (lo, hi) = triangles
         .iter()
@@ -114,34 +173,60 @@ fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
             (lo.min(s), hi.max(s))
         });
     if !(lo.is_finite() && hi.is_finite()) {
-        return FULL_SLAB;
+        return None;
     }
     // Outward to the step, then one step more: far beyond the rounding of the products.
     let step = 2.0 * RANGE / LEVELS;
     let lo = (((lo + RANGE) / step).floor() - 1.0).clamp(0.0, LEVELS) as u32;
     let hi = (((hi + RANGE) / step).ceil() + 1.0).clamp(0.0, LEVELS) as u32;
-    code | (lo << 16) | (hi << 24)
+    Some(code | (lo << 16) | (hi << 24))
 }
 
-/// Whether the part `q0 → q1` of a segment (metres) lies wholly on one side of `slab`,
-/// the slab of a cell with centre `centre` and side `h`: then the segment crosses none of
-/// the cell's triangles at a point of the cell. The margin (a hundred-thousandth of a
-/// cell, plus `1e-12` of the coordinates) is far above the rounding of the products.
+/// The bounds of `slab`, the slab of a block with centre `centre` and side `h` (metres),
+/// in metres along its direction from the centre, widened by a margin (a
+/// hundred-thousandth of the side, plus `1e-12` of the coordinates) far above the
+/// rounding of the products that are compared with them.
 #[inline]
-pub(crate) fn misses(slab: u32, centre: DVec3, h: f64, q0: DVec3, q1: DVec3) -> bool {
-    let n = direction(slab);
+fn bounds_with_margin(slab: u32, centre: DVec3, h: f64) -> (f64, f64) {
     let (lo, hi) = bounds(slab);
     let margin = 1e-5 * h + 1e-12 * centre.abs().max_element();
-    let (lo, hi) = (lo * h - margin, hi * h + margin);
+    (lo * h - margin, hi * h + margin)
+}
+
+/// The part of `q0 → q1` (metres), a part of a segment in the cell with centre `centre`
+/// and side `h`, that lies in the cell's `slab`, with the margin of
+/// [`bounds_with_margin`]: where the segment can cross the cell's triangles at a point of
+/// the cell. `None` when it misses the slab. The whole part (up to rounding) when it lies
+/// in the slab; a part parallel to the slab or whose products overflow gives the whole
+/// part or non-finite points, which reject nothing. The cut points are within rounding of
+/// the segment and far inside the margin, so a triangle crossed in the cell is crossed on
+/// the part returned. Without branches past the miss (whether a part is cut is as
+/// unpredictable as where).
+#[inline(always)]
+pub(crate) fn clip(
+    slab: u32,
+    centre: DVec3,
+    h: f64,
+    q0: DVec3,
+    q1: DVec3,
+) -> Option<(DVec3, DVec3)> {
+    let (n, (lo, hi)) = (direction(slab), bounds_with_margin(slab, centre, h));
     let (a, b) = (n.dot(q0 - centre), n.dot(q1 - centre));
-    (a < lo && b < lo) || (a > hi && b > hi)
+    if (a < lo && b < lo) || (a > hi && b > hi) {
+        return None;
+    }
+    let inverse = 1.0 / (b - a);
+    let (t_lo, t_hi) = ((lo - a) * inverse, (hi - a) * inverse);
+    let (from, to) = (t_lo.min(t_hi).max(0.0), t_lo.max(t_hi).min(1.0));
+    let d = q1 - q0;
+    Some((q0 + from * d, q0 + to * d))
 }
 
 /// The parameters `(from, to)` of the segment `p0 → p1` (metres) between which it lies
 /// in `slab`, the slab of a block with centre `centre` and side `h`: outside them the
 /// segment crosses none of the block's triangles at a point of the block (`from` may be
 /// below 0 and `to` above 1; both infinite for a segment parallel to the slab and in
-/// it). `None` when no point of the segment lies in it. The same margin as [`misses`].
+/// it). `None` when no point of the segment lies in it. The same margin as [`clip`].
 /// A segment whose coordinates overflow the products gets `(−∞, +∞)`: it rejects nothing.
 #[inline]
 pub(crate) fn interval(
@@ -151,10 +236,7 @@ pub(crate) fn interval(
     p0: DVec3,
     p1: DVec3,
 ) -> Option<(f64, f64)> {
-    let n = direction(slab);
-    let (lo, hi) = bounds(slab);
-    let margin = 1e-5 * h + 1e-12 * centre.abs().max_element();
-    let (lo, hi) = (lo * h - margin, hi * h + margin);
+    let (n, (lo, hi)) = (direction(slab), bounds_with_margin(slab, centre, h));
     let s0 = n.dot(p0 - centre);
     let ds = n.dot(p1 - centre) - s0;
     if !(s0.is_finite() && ds.is_finite()) {

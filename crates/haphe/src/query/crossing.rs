@@ -5,7 +5,7 @@ use glam::DVec3;
 use super::{Segment, SegmentHit, intersect_segment_triangle};
 use crate::map::{
     BLOCK_SIDE, BRICK_SIDE, CellStep, CellWalk, InBrick, Look, REGION_SIDE, RegionLook, VoxelMap,
-    slab_misses,
+    slab_clip,
 };
 use crate::mesh::{Surface, TriId};
 
@@ -270,14 +270,16 @@ pub fn first_crossing_where(
             (visit.t_enter - margin).max(0.0),
             (visit.t_exit + margin).min(until),
         );
-        let (q0, q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
+        let (mut q0, mut q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
         // The slab of the cell: where in it its triangles lie. A part of the segment
-        // wholly on one side crosses none of them in this cell.
+        // wholly on one side crosses none of them in this cell; one that passes through
+        // it can cross them only where it is in the slab: the part the filter tests.
         if let Some(slab) = slab {
             let (lo, hi) = map.grid().cell_bounds(visit.cell);
-            if slab_misses(slab, 0.5 * (lo + hi), h, q0, q1) {
+            let Some(part) = slab_clip(slab, 0.5 * (lo + hi), h, q0, q1) else {
                 continue;
-            }
+            };
+            (q0, q1) = part;
         }
         fetch_ahead(surface, triangles);
         for &t in triangles {

@@ -1,5 +1,5 @@
 //! Slabs: encoding, the triangles of cells, bricks and regions held in their slabs,
-//! windows and misses of segments, and the file's count of slabs checked.
+//! windows and parts of segments in slabs, and the file's count of slabs checked.
 
 use super::*;
 use crate::map::MapOptions;
@@ -28,7 +28,9 @@ fn directions_round_trip() {
 /// Every point of a surface cell's triangles that lies in the cell lies in its slab
 /// (random points on every listed triangle of every surface cell, on three shapes);
 /// and the slabs are thin where the surface is smooth: most are under a third of a
-/// cell thick on the blob and the plate.
+/// cell thick on the blob and the plate, and every one of the plate's under a twentieth,
+/// those of the cells at its rim too (where the side faces meet the faces at a right
+/// angle).
 #[test]
 fn slabs_hold_the_triangles_in_their_cells() {
     let mut random = SplitMix64::new(9);
@@ -56,6 +58,9 @@ fn slabs_hold_the_triangles_in_their_cells() {
                     let (a, b) = bounds(slab);
                     cells += 1;
                     thin += usize::from(b - a < 1.0 / 3.0);
+                    if shape == Shape::ThinPlate {
+                        assert!(b - a < 0.05, "{shape:?} {c:?}: a slab {} thick", b - a);
+                    }
                     let block = map.grid().cell_bounds(c);
                     let what = format!("{shape:?} {c:?}");
                     points += check_in_slab(&mut random, &surface, listed, block, slab, 20, &what);
@@ -120,7 +125,8 @@ fn surface_slab(map: &VoxelMap, c: [u32; 3]) -> Option<u32> {
 /// every triangle listed by a cell of the block, on three shapes fine enough for
 /// blocks to hold many cells of surface); and the slabs are thin where the surface is
 /// smooth: on the blob and the sphere, most bricks' are under two cells thick and
-/// most regions' under a quarter of a region.
+/// most regions' under a quarter of a region; on the plate, every one under a twentieth
+/// of its block, those at the rim too.
 #[test]
 fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
     let mut random = SplitMix64::new(13);
@@ -156,6 +162,9 @@ fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
                         let corner = c.map(|v| v & !(side - 1));
                         let (a, b) = bounds(slab);
                         blocks += 1;
+                        if shape == Shape::ThinPlate {
+                            assert!(b - a < 0.05, "{shape:?} {side} {c:?}: {} thick", b - a);
+                        }
                         // Under two cells for a brick, eight (a quarter) for a region.
                         let cells = (b - a) * f64::from(side);
                         thin += usize::from(cells < 2.0 * f64::from(side / BRICK_SIDE));
@@ -267,19 +276,69 @@ fn a_file_without_a_slab_per_surface_cell_is_refused() {
     }
 }
 
-/// A segment part beside a slab misses it, one through it or across it does not.
+/// A part of a segment beside a slab is dropped; of one through it or across it, the
+/// part returned holds every point of it in the slab and no point far beside it: sampled
+/// along random parts through random slabs of a cell, and in the plain cases.
 #[test]
-fn a_part_beside_the_slab_misses_it() {
-    // Direction +z, bounds −0.1 … 0.1 of a cell around the centre, in a cell of 2 mm.
+fn a_clipped_part_holds_the_points_in_the_slab() {
+    let mut random = SplitMix64::new(23);
+    let (centre, h) = (DVec3::new(1.0, 2.0, 3.0), 0.002);
+    let (mut inside, mut outside) = (0, 0);
+    for _ in 0..2_000 {
+        let code = encode_direction(random.unit_vector());
+        let (x, y) = (random.index(256) as u32, random.index(256) as u32);
+        let slab = code | (x.min(y) << 16) | (x.max(y) << 24);
+        let (n, (a, b)) = (direction(slab), bounds(slab));
+        let half = DVec3::splat(0.5 * h);
+        let q0 = random.point_in(centre - half, centre + half);
+        let q1 = random.point_in(centre - half, centre + half);
+        let part = clip(slab, centre, h, q0, q1);
+        for k in 0..=200 {
+            let point = q0 + f64::from(k) / 200.0 * (q1 - q0);
+            let s = n.dot(point - centre) / h;
+            // Where the point lies on the part returned (its distance to that part).
+            let off = part.map(|(c0, c1)| {
+                let d = c1 - c0;
+                let t = if d == DVec3::ZERO {
+                    0.0
+                } else {
+                    ((point - c0).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+                };
+                point.distance(c0 + t * d)
+            });
+            if s > a + 1e-6 && s < b - 1e-6 {
+                assert!(off.is_some_and(|o| o < 1e-12), "{s} in [{a}, {b}]: {off:?}");
+                inside += 1;
+            } else if s < a - 1e-3 || s > b + 1e-3 {
+                assert!(
+                    off.is_none_or(|o| o > 1e-9 * h),
+                    "{s} beside [{a}, {b}]: {off:?}"
+                );
+                outside += 1;
+            }
+        }
+    }
+    assert!(inside > 10_000 && outside > 10_000, "{inside} {outside}");
+    // Direction +z, bounds −0.1 … 0.1 of a cell around the centre.
     let code = encode_direction(DVec3::Z);
     let step = 2.0 * RANGE / LEVELS;
     let level = |s: f64| ((s + RANGE) / step).round() as u32;
     let slab = code | (level(-0.1) << 16) | (level(0.1) << 24);
-    let (centre, h) = (DVec3::new(1.0, 2.0, 3.0), 0.002);
     let at = |x: f64, z: f64| centre + DVec3::new(x, 0.0, z) * h;
-    assert!(misses(slab, centre, h, at(-0.5, 0.3), at(0.5, 0.4)));
-    assert!(misses(slab, centre, h, at(-0.5, -0.3), at(0.5, -0.2)));
-    assert!(!misses(slab, centre, h, at(-0.5, 0.3), at(0.5, -0.3)));
-    assert!(!misses(slab, centre, h, at(-0.5, 0.05), at(0.5, 0.05)));
-    assert!(!misses(FULL_SLAB, centre, h, at(-0.5, 0.49), at(0.5, 0.49)));
+    assert_eq!(clip(slab, centre, h, at(-0.5, 0.3), at(0.5, 0.4)), None);
+    assert_eq!(clip(slab, centre, h, at(-0.5, -0.3), at(0.5, -0.2)), None);
+    let (c0, c1) = clip(slab, centre, h, at(-0.5, 0.3), at(0.5, -0.3)).expect("across");
+    assert!((c0.x - at(-0.5, 0.3).x).abs() > 0.25 * h && (c1.x - at(0.5, 0.3).x).abs() > 0.25 * h);
+    // A part in the slab, or any part with the slab that rejects nothing, is kept whole
+    // (up to the rounding of `q0 + 1·(q1 − q0)`).
+    let whole = |(q0, q1): (DVec3, DVec3), slab: u32| {
+        clip(slab, centre, h, q0, q1)
+            .is_some_and(|(c0, c1)| c0 == q0 && (c1 - q1).abs().max_element() < 1e-15)
+    };
+    assert!(whole((at(-0.5, 0.05), at(0.5, 0.05)), slab));
+    assert!(whole((at(-0.5, 0.49), at(0.5, -0.49)), FULL_SLAB));
+    // Overflowing coordinates give points that are not finite, which the filter never
+    // rejects a triangle with.
+    let huge = clip(slab, centre, h, DVec3::splat(1e308), DVec3::splat(-1e308));
+    assert!(huge.is_some_and(|(c0, c1)| !(c0.is_finite() && c1.is_finite())));
 }
