@@ -11,12 +11,13 @@
 //! list and their frames, the reads that are cold on large meshes — and one that passes
 //! through it has only its part in the slab tested against them.
 //!
-//! The direction is the thinner of two: the sum of the triangles' normals (weighted by
-//! area), each turned to the side of the first one's, which follows a smooth patch; and
-//! the dominant axis of their second moment, which does not depend on which way each
-//! normal points, so that the two faces of a thin plate give the plate's normal also
-//! where the rim's triangles, at a right angle to them, come first. A block whose
-//! triangles face every way gets a slab as thick as the block: it rejects little.
+//! The direction is the sum of the triangles' normals (weighted by area), each turned to
+//! the side of the first one's, which follows a smooth patch. Where that sum falls short
+//! of the normals' total length (under 0.95 of it), the dominant axis of their second
+//! moment, which does not depend on which way each normal points, is tried too and the
+//! thinner slab kept: so the two faces of a thin plate give the plate's normal also where
+//! a rim triangle, at a right angle to them, comes first. A block whose triangles face
+//! every way gets a slab about as thick as the block: it rejects little.
 //!
 //! Each brick that holds surface cells keeps one too, over the triangles of all its
 //! surface cells, in units of the brick's side (a step is then 0.03 of a cell), and so

@@ -133,7 +133,8 @@ impl Tested {
 /// before the segment reaches the layer in which the block's triangles lie (its slab,
 /// four bytes) and after it leaves it are skipped in one stride each. In a surface cell,
 /// a part of the segment that passes beside the layer the cell's triangles lie in (the
-/// cell's slab) skips them without reading their indices or frames. The frames and
+/// cell's slab) skips them without reading their indices or frames, and one that passes
+/// through it is filtered against them on its part in the layer only. The frames and
 /// corners of a cell's triangles are fetched together before they are tested. It never
 /// reads the clearances of free cells, which are cold when the segment comes from far
 /// away.
