@@ -67,15 +67,6 @@ pub(crate) fn region_dims(brick_dims: [u32; 3]) -> [u32; 3] {
     brick_dims.map(|d| d.div_ceil(1 << REGION_BITS))
 }
 
-/// The index (x fastest) of the region of cell `c` among regions `dims`, `None` beyond
-/// them.
-#[inline]
-pub(crate) fn region_index(c: [u32; 3], dims: [u32; 3]) -> Option<usize> {
-    let [x, y, z] = c.map(|v| (v >> (BRICK_BITS + REGION_BITS)) as usize);
-    let [rx, ry, rz] = dims.map(|d| d as usize);
-    (x < rx && y < ry && z < rz).then_some((z * ry + y) * rx + x)
-}
-
 /// For every region of the grid, how far around it, in regions, no region holds a
 /// surface cell. Derived from the bricks' top-level entries (a brick holds a surface
 /// cell exactly when it is detailed), not saved in a map file.
@@ -117,7 +108,9 @@ impl FreeRegions {
     /// The index of the region of cell `c` (x fastest), `None` beyond the grid's regions.
     #[inline]
     pub(crate) fn index(&self, c: [u32; 3]) -> Option<usize> {
-        region_index(c, self.dims)
+        let [x, y, z] = c.map(|v| (v >> (BRICK_BITS + REGION_BITS)) as usize);
+        let [rx, ry, rz] = self.dims.map(|d| d as usize);
+        (x < rx && y < ry && z < rz).then_some((z * ry + y) * rx + x)
     }
 
     /// How far around the region of cell `c` no region holds a surface cell (see
@@ -144,7 +137,7 @@ pub(crate) enum RegionLook {
         around: u8,
     },
     /// A cell of a region that holds surface cells (its index, see
-    /// `VoxelMap::region_slab`).
+    /// `VoxelMap::region_window`).
     Surface(u32),
     /// A cell outside the grid.
     Outside,

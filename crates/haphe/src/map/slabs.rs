@@ -195,14 +195,12 @@ fn bounds_with_margin(slab: u32, centre: DVec3, h: f64) -> (f64, f64) {
 }
 
 /// The part of `q0 → q1` (metres), a part of a segment in the cell with centre `centre`
-/// and side `h`, that lies in the cell's `slab`, with the margin of
-/// [`bounds_with_margin`]: where the segment can cross the cell's triangles at a point of
-/// the cell. `None` when it misses the slab. The whole part (up to rounding) when it lies
-/// in the slab; a part parallel to the slab or whose products overflow gives the whole
-/// part or non-finite points, which reject nothing. The cut points are within rounding of
-/// the segment and far inside the margin, so a triangle crossed in the cell is crossed on
-/// the part returned. Without branches past the miss (whether a part is cut is as
-/// unpredictable as where).
+/// and side `h`, that lies in the cell's `slab`: [`interval`] clamped to the part, where
+/// the segment can cross the cell's triangles at a point of the cell. `None` when it
+/// misses the slab. The whole part (up to rounding) when it lies in or along the slab;
+/// overflowing products give points that are not finite, which reject nothing. The cut
+/// points are within rounding of the segment and far inside the margin, so a triangle
+/// crossed in the cell is crossed on the part returned.
 #[inline(always)]
 pub(crate) fn clip(
     slab: u32,
@@ -211,23 +209,17 @@ pub(crate) fn clip(
     q0: DVec3,
     q1: DVec3,
 ) -> Option<(DVec3, DVec3)> {
-    let (n, (lo, hi)) = (direction(slab), bounds_with_margin(slab, centre, h));
-    let (a, b) = (n.dot(q0 - centre), n.dot(q1 - centre));
-    if (a < lo && b < lo) || (a > hi && b > hi) {
-        return None;
-    }
-    let inverse = 1.0 / (b - a);
-    let (t_lo, t_hi) = ((lo - a) * inverse, (hi - a) * inverse);
-    let (from, to) = (t_lo.min(t_hi).max(0.0), t_lo.max(t_hi).min(1.0));
+    let (from, to) = interval(slab, centre, h, q0, q1)?;
     let d = q1 - q0;
-    Some((q0 + from * d, q0 + to * d))
+    Some((q0 + from.max(0.0) * d, q0 + to.min(1.0) * d))
 }
 
 /// The parameters `(from, to)` of the segment `p0 → p1` (metres) between which it lies
 /// in `slab`, the slab of a block with centre `centre` and side `h`: outside them the
 /// segment crosses none of the block's triangles at a point of the block (`from` may be
 /// below 0 and `to` above 1; both infinite for a segment parallel to the slab and in
-/// it). `None` when no point of the segment lies in it. The same margin as [`clip`].
+/// it). `None` when no point of the segment lies in it. The bounds have the margin of
+/// [`bounds_with_margin`].
 /// A segment whose coordinates overflow the products gets `(−∞, +∞)`: it rejects nothing.
 #[inline]
 pub(crate) fn interval(
