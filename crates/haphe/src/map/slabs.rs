@@ -195,23 +195,16 @@ fn bounds_with_margin(slab: u32, centre: DVec3, h: f64) -> (f64, f64) {
 }
 
 /// The part of `q0 → q1` (metres), a part of a segment in the cell with centre `centre`
-/// and side `h`, that lies in the cell's `slab`: [`interval`] clamped to the part, where
-/// the segment can cross the cell's triangles at a point of the cell. `None` when it
-/// misses the slab. The whole part (up to rounding) when it lies in or along the slab;
-/// overflowing products give points that are not finite, which reject nothing. The cut
-/// points are within rounding of the segment and far inside the margin, so a triangle
-/// crossed in the cell is crossed on the part returned.
+/// and side `h`, that lies in the cell's `slab`, as parameters `0 ≤ from ≤ to ≤ 1` along
+/// `q0 → q1`: [`interval`] clamped to the part, where the segment can cross the cell's
+/// triangles at a point of the cell. `None` when it misses the slab. The whole part
+/// (`(0, 1)`) when it lies in or along the slab, or when its products overflow. The cut
+/// is far inside the margin, so a triangle crossed in the cell is crossed on the part
+/// returned.
 #[inline(always)]
-pub(crate) fn clip(
-    slab: u32,
-    centre: DVec3,
-    h: f64,
-    q0: DVec3,
-    q1: DVec3,
-) -> Option<(DVec3, DVec3)> {
+pub(crate) fn clip(slab: u32, centre: DVec3, h: f64, q0: DVec3, q1: DVec3) -> Option<(f64, f64)> {
     let (from, to) = interval(slab, centre, h, q0, q1)?;
-    let d = q1 - q0;
-    Some((q0 + from.max(0.0) * d, q0 + to.min(1.0) * d))
+    Some((from.max(0.0), to.min(1.0)))
 }
 
 /// The parameters `(from, to)` of the segment `p0 → p1` (metres) between which it lies

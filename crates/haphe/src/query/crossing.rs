@@ -267,7 +267,7 @@ pub fn first_crossing_where(
         // skips it here; one it skips may be crossed in a later cell, which lists it too,
         // so it is not yet tested. Long segments that graze a surface (along a thin
         // plate, say) thus test exactly only the triangles near where they pass.
-        let (from, to) = (
+        let (mut from, mut to) = (
             (visit.t_enter - margin).max(0.0),
             (visit.t_exit + margin).min(until),
         );
@@ -277,12 +277,15 @@ pub fn first_crossing_where(
         // it can cross them only where it is in the slab: the part the filter tests.
         if let Some(slab) = slab {
             let (lo, hi) = map.grid().cell_bounds(visit.cell);
-            let Some(part) = slab_clip(slab, 0.5 * (lo + hi), h, q0, q1) else {
+            let Some((a, b)) = slab_clip(slab, 0.5 * (lo + hi), h, q0, q1) else {
                 continue;
             };
-            (q0, q1) = part;
+            (from, to) = (from + a * (to - from), from + b * (to - from));
+            (q0, q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
         }
-        fetch_ahead(surface, triangles);
+        if surface.triangle_count() >= FETCH_AHEAD_MIN_TRIANGLES {
+            fetch_ahead(surface, triangles);
+        }
         for &t in triangles {
             if cannot_cross(surface, t, q0, q1, plane_margin) || !tested.insert(t) {
                 continue;
@@ -293,6 +296,11 @@ pub fn first_crossing_where(
             {
                 best = Some((hit, t));
                 until = filter_end(hit.t);
+                // The cell's remaining triangles too are filtered on the part before it
+                // (a thin wall's far face, listed in the same cell as its near one).
+                if until < to {
+                    (to, q1) = (until, point_at(p0, p1, until));
+                }
             }
         }
     }
@@ -368,6 +376,12 @@ impl Window {
         }
     }
 }
+
+/// The fewest triangles for which [`first_crossing`] fetches a cell's frames and corners
+/// ahead ([`fetch_ahead`]): a smaller surface (about 190 bytes a triangle, under 400 KiB)
+/// stays in the core's own cache between queries, where the reads ahead are only work.
+/// Measured on the 1k thin plate: about 3 % off the random segments' p99.
+const FETCH_AHEAD_MIN_TRIANGLES: usize = 2048;
 
 /// Reads, for each of `triangles`, a word of its frame's two cache lines, its corner
 /// indices and a word of each corner, discarding what it read: a prefetch written as

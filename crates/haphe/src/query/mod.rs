@@ -27,10 +27,11 @@ mod zone;
 #[inline]
 pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64) -> bool {
     let (lo, hi) = surface.bounds();
-    (0..3).any(|k| {
-        (p0[k] > hi[k] + margin && p1[k] > hi[k] + margin)
-            || (p0[k] < lo[k] - margin && p1[k] < lo[k] - margin)
-    })
+    let (lo, hi) = (lo - DVec3::splat(margin), hi + DVec3::splat(margin));
+    // Masks, not short-circuits: which side a query falls on is not predictable.
+    let above = p0.cmpgt(hi) & p1.cmpgt(hi);
+    let below = p0.cmplt(lo) & p1.cmplt(lo);
+    (above | below).any()
 }
 
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};

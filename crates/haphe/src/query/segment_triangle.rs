@@ -67,6 +67,13 @@ pub struct Segment {
     shear_x: f64,
     /// `d[ky] / d[kz]`, dimensionless.
     shear_y: f64,
+    /// The first row of the shear: `e[kx] − shear_x e[kz]`, so that a corner's sheared `x`
+    /// is a dot product (no select on the axes, whose branches a per-segment axis makes
+    /// unpredictable across queries). Its zero component adds exact zeros: the same bits
+    /// as `q[kx] − shear_x q[kz]`.
+    row_x: DVec3,
+    /// The second row: `e[ky] − shear_y e[kz]`.
+    row_y: DVec3,
     /// `d[kz] > 0`.
     forward: bool,
     /// False for a zero-length or non-finite segment, which hits nothing.
@@ -121,6 +128,12 @@ impl Segment {
         }
         let shear_x = kx.of(d) / dz;
         let shear_y = ky.of(d) / dz;
+        let row = |k: Axis, shear: f64| {
+            let mut row = DVec3::ZERO;
+            row[k as usize] = 1.0;
+            row[kz as usize] = -shear;
+            row
+        };
         let usable = p0.is_finite()
             && p1.is_finite()
             && dz != 0.0
@@ -135,6 +148,8 @@ impl Segment {
             ky,
             shear_x,
             shear_y,
+            row_x: row(kx, shear_x),
+            row_y: row(ky, shear_y),
             forward: dz > 0.0,
             usable,
         }
@@ -155,10 +170,9 @@ impl Segment {
     #[inline(always)]
     fn shear(&self, p: DVec3) -> (f64, f64, f64) {
         let q = p - self.p0;
-        let z = self.kz.of(q);
         (
-            self.kx.of(q) - self.shear_x * z,
-            self.ky.of(q) - self.shear_y * z,
+            self.row_x.dot(q),
+            self.row_y.dot(q),
             (q.x.abs() + q.y.abs() + q.z.abs()).max(NORM_FLOOR),
         )
     }
