@@ -194,10 +194,18 @@ impl Grid {
     /// units ([`to_grid`](Self::to_grid)).
     #[inline]
     pub(crate) fn clip_in_cells(&self, a: DVec3, b: DVec3) -> Option<(f64, f64)> {
-        if !(a.is_finite() && b.is_finite()) {
+        let d = b - a;
+        self.clip_along(a, d, d.recip())
+    }
+
+    /// [`clip_in_cells`](Self::clip_in_cells) of the segment from `a` along `d` (cell
+    /// units), given `inv = 1 / d` per axis: multiplications, not divisions (the walk
+    /// keeps `inv` for its own steps).
+    #[inline]
+    pub(crate) fn clip_along(&self, a: DVec3, d: DVec3, inv: DVec3) -> Option<(f64, f64)> {
+        if !(a.is_finite() && d.is_finite()) {
             return None;
         }
-        let d = b - a;
         let (mut t0, mut t1) = (0.0f64, 1.0f64);
         for axis in 0..3 {
             let hi = f64::from(self.dims[axis]);
@@ -207,12 +215,9 @@ impl Grid {
                 }
                 continue;
             }
-            let (mut s0, mut s1) = ((0.0 - a[axis]) / d[axis], (hi - a[axis]) / d[axis]);
-            if s0 > s1 {
-                std::mem::swap(&mut s0, &mut s1);
-            }
-            t0 = t0.max(s0);
-            t1 = t1.min(s1);
+            let (s0, s1) = ((0.0 - a[axis]) * inv[axis], (hi - a[axis]) * inv[axis]);
+            t0 = t0.max(s0.min(s1));
+            t1 = t1.min(s0.max(s1));
         }
         (t0 <= t1).then_some((t0, t1))
     }

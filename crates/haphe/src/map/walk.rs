@@ -103,16 +103,17 @@ impl Grid {
             remaining: 0,
         };
         let (a, b) = (self.to_grid(p0), self.to_grid(p1));
-        let Some((t0, t1)) = self.clip_in_cells(a, b) else {
+        let d = b - a;
+        let inv_d = d.recip();
+        let Some((t0, t1)) = self.clip_along(a, d, inv_d) else {
             return empty;
         };
-        let d = b - a;
         let start = a + t0 * d;
         let margin = SKIP_MARGIN + SKIP_MARGIN_REL * (2.0 * a.abs() + d.abs());
         let mut walk = CellWalk {
             a: a.to_array(),
             d: d.to_array(),
-            inv_d: d.recip().to_array(),
+            inv_d: inv_d.to_array(),
             t: t0,
             t_end: t1,
             remaining: step_cap(self.dims()),
