@@ -119,22 +119,21 @@ impl Grid {
             remaining: step_cap(self.dims()),
             ..empty
         };
+        // Selects rather than branches: a segment's directions are not predictable
+        // from one query to the next.
         for axis in 0..3 {
             let cell = floor_to_int(start[axis]).clamp(0, dims[axis] - 1);
             walk.cell[axis] = cell;
             walk.last[axis] = cell;
-            let inv = walk.inv_d[axis];
-            if d[axis] > 0.0 {
-                walk.step[axis] = 1;
-                walk.pull[axis] = margin[axis];
-                walk.t_max[axis] = (cell as f64 + 1.0 - a[axis]) * inv;
-                walk.t_delta[axis] = inv;
-            } else if d[axis] < 0.0 {
-                walk.step[axis] = -1;
-                walk.pull[axis] = -margin[axis];
-                walk.t_max[axis] = (cell as f64 - a[axis]) * inv;
-                walk.t_delta[axis] = -inv;
-            }
+            let (up, down) = (d[axis] > 0.0, d[axis] < 0.0);
+            let step = i64::from(up) - i64::from(down);
+            walk.step[axis] = step;
+            walk.pull[axis] = step as f64 * margin[axis];
+            let exit = (cell + i64::from(up)) as f64;
+            let t_max = (exit - a[axis]) * inv_d[axis];
+            walk.t_max[axis] = if step == 0 { f64::INFINITY } else { t_max };
+            // |1 / d|: infinite along an axis the segment does not move on.
+            walk.t_delta[axis] = inv_d[axis].abs();
         }
         walk
     }
@@ -251,22 +250,25 @@ impl CellWalk {
         // Where the segment reaches the box's far faces (lower faces where the walk goes
         // down an axis), pulled into the box by the margin: it leaves by the first.
         let (mut t_leave, mut leave_axis) = (f64::INFINITY, 0);
+        let mut outside = false;
         for k in 0..3 {
-            if self.last[k] < lo[k] || self.last[k] > hi[k] {
-                return;
-            }
-            let face = match self.step[k] {
-                1 => (hi[k] + 1) as f64,
-                -1 => lo[k] as f64,
-                _ => continue,
-            };
+            outside |= (self.last[k] < lo[k]) | (self.last[k] > hi[k]);
+            let face = if self.step[k] > 0 { hi[k] + 1 } else { lo[k] } as f64;
             let reach = (face - self.pull[k] - self.a[k]) * self.inv_d[k];
-            if reach.is_nan() {
-                return;
-            }
-            if reach < t_leave {
-                (t_leave, leave_axis) = (reach, k);
-            }
+            // An axis the segment does not move on is never left (its `reach` may be
+            // NaN: `inv_d` is infinite there).
+            let reach = if self.step[k] == 0 {
+                f64::INFINITY
+            } else {
+                reach
+            };
+            outside |= reach.is_nan();
+            let nearer = reach < t_leave;
+            t_leave = if nearer { reach } else { t_leave };
+            leave_axis = if nearer { k } else { leave_axis };
+        }
+        if outside {
+            return;
         }
         if stop < t_leave || stop.is_nan() {
             if stop > self.t {
@@ -298,24 +300,25 @@ impl CellWalk {
     fn reseed(&mut self, lo: [i64; 3], hi: [i64; 3], t: f64, leave: Option<(usize, i64)>) {
         for k in 0..3 {
             let s = self.step[k];
-            let cell = if let Some((_, beyond)) = leave.filter(|&(axis, _)| axis == k) {
-                beyond
-            } else if s > 0 {
-                floor_to_int(self.a[k] + t * self.d[k])
-                    .max(self.cell[k])
-                    .min(hi[k])
-                    .min(self.dims[k] - 1)
-            } else if s < 0 {
-                floor_to_int(self.a[k] + t * self.d[k])
-                    .min(self.cell[k])
-                    .max(lo[k])
-                    .max(0)
-            } else {
-                continue;
+            let at = floor_to_int(self.a[k] + t * self.d[k]);
+            // Up: not behind the walk, not past the box or the grid; down: the mirror.
+            let up = at.max(self.cell[k]).min(hi[k]).min(self.dims[k] - 1);
+            let down = at.min(self.cell[k]).max(lo[k]).max(0);
+            let cell = match leave {
+                Some((axis, beyond)) if axis == k => beyond,
+                _ => {
+                    if s > 0 {
+                        up
+                    } else {
+                        down
+                    }
+                }
             };
-            self.cell[k] = cell;
-            let exit = if s > 0 { cell + 1 } else { cell };
-            self.t_max[k] = (exit as f64 - self.a[k]) * self.inv_d[k];
+            // An axis the segment does not move on keeps its cell and its infinite exit.
+            let exit = (cell + i64::from(s > 0)) as f64;
+            let t_max = (exit - self.a[k]) * self.inv_d[k];
+            self.cell[k] = if s == 0 { self.cell[k] } else { cell };
+            self.t_max[k] = if s == 0 { self.t_max[k] } else { t_max };
         }
         self.t = t;
     }
