@@ -63,16 +63,12 @@ pub struct Segment {
     kx: Axis,
     /// The second of the two other axes.
     ky: Axis,
-    /// `d[kx] / d[kz]`, dimensionless.
-    shear_x: f64,
-    /// `d[ky] / d[kz]`, dimensionless.
-    shear_y: f64,
-    /// The first row of the shear: `e[kx] − shear_x e[kz]`, so that a corner's sheared `x`
-    /// is a dot product (no select on the axes, whose branches a per-segment axis makes
-    /// unpredictable across queries). Its zero component adds exact zeros: the same bits
-    /// as `q[kx] − shear_x q[kz]`.
+    /// The first row of the shear, `e[kx] − (d[kx] / d[kz]) e[kz]` (dimensionless), so
+    /// that a corner's sheared `x` is a dot product (no select on the axes, whose branches
+    /// a per-segment axis makes unpredictable across queries). Its zero component adds
+    /// exact zeros: the same value as `q[kx] − (d[kx] / d[kz]) q[kz]`.
     row_x: DVec3,
-    /// The second row: `e[ky] − shear_y e[kz]`.
+    /// The second row, `e[ky] − (d[ky] / d[kz]) e[kz]`.
     row_y: DVec3,
     /// `d[kz] > 0`.
     forward: bool,
@@ -146,8 +142,6 @@ impl Segment {
             kz,
             kx,
             ky,
-            shear_x,
-            shear_y,
             row_x: row(kx, shear_x),
             row_y: row(ky, shear_y),
             forward: dz > 0.0,
