@@ -135,10 +135,10 @@ impl Tested {
 /// a part of the segment that passes beside the layer the cell's triangles lie in (the
 /// cell's slab) skips them without reading their indices or frames, and one that passes
 /// through it is filtered against them on its part in the layer only; once a crossing is
-/// found, the cell's remaining triangles are filtered on the part before it (a thin
-/// wall's far face, in the same cells as its near face, then costs no exact test). On a
-/// surface of 2048 triangles or more, the frames and corners of a cell's
-/// triangles are fetched together before they are tested. It never
+/// found, the cell's remaining triangles are filtered on the part before it (so a thin
+/// wall's far face, listed in the same cells as its near face, costs no exact test when
+/// the near face comes first). On a surface of 2048 triangles or more, the frames and
+/// corners of a cell's triangles are fetched together before they are tested. It never
 /// reads the clearances of free cells, which are cold when the segment comes from far
 /// away.
 ///
