@@ -7,7 +7,7 @@
 //! bytes) and the range `[lo, hi]` of `n · (x − centre)` over its triangles' corners (one
 //! byte each, in cells, rounded outward), which holds every point of the triangles in the
 //! cell since a triangle is the convex hull of its corners. A segment whose part in the
-//! cell lies wholly on one side of the slab ([`clip`]) skips the cell's triangles — their
+//! cell lies wholly on one side of the slab ([`interval`]) skips the cell's triangles — their
 //! list and their frames, the reads that are cold on large meshes — and one that passes
 //! through it has only its part in the slab tested against them.
 //!
@@ -117,8 +117,10 @@ fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
     // rim of a thin plate: its top and bottom faces turned to the side of a rim
     // triangle's normal cancel out). There the axis of the normals' second moment
     // `Σ n nᵀ / |n|`, the direction most of the area faces either way, is tried too.
-    if sum.length() >= 0.95 * total && along_sum.is_some() {
-        return along_sum.unwrap_or(FULL_SLAB);
+    if let Some(code) = along_sum
+        && sum.length() >= 0.95 * total
+    {
+        return code;
     }
     let mut moment = DMat3::ZERO;
     for &t in triangles {
@@ -196,19 +198,6 @@ fn bounds_with_margin(slab: u32, centre: DVec3, h: f64) -> (f64, f64) {
     let (lo, hi) = bounds(slab);
     let margin = 1e-5 * h + 1e-12 * centre.abs().max_element();
     (lo * h - margin, hi * h + margin)
-}
-
-/// The part of `q0 → q1` (metres), a part of a segment in the cell with centre `centre`
-/// and side `h`, that lies in the cell's `slab`, as parameters `0 ≤ from ≤ to ≤ 1` along
-/// `q0 → q1`: [`interval`] clamped to the part, where the segment can cross the cell's
-/// triangles at a point of the cell. `None` when it misses the slab. The whole part
-/// (`(0, 1)`) when it lies in or along the slab, or when its products overflow. The cut
-/// is far inside the margin, so a triangle crossed in the cell is crossed on the part
-/// returned.
-#[inline(always)]
-pub(crate) fn clip(slab: u32, centre: DVec3, h: f64, q0: DVec3, q1: DVec3) -> Option<(f64, f64)> {
-    let (from, to) = interval(slab, centre, h, q0, q1)?;
-    Some((from.max(0.0), to.min(1.0)))
 }
 
 /// The parameters `(from, to)` of the segment `p0 → p1` (metres) between which it lies

@@ -5,7 +5,7 @@ use glam::DVec3;
 use super::{Segment, SegmentHit, intersect_segment_triangle};
 use crate::map::{
     BLOCK_SIDE, BRICK_SIDE, CellStep, CellWalk, InBrick, Look, REGION_SIDE, RegionLook, VoxelMap,
-    slab_clip,
+    slab_interval,
 };
 use crate::mesh::{Surface, TriId};
 
@@ -212,6 +212,7 @@ pub fn first_crossing_where(
     let mut until = 1.0;
     // The parts of the segment in the slabs of the region and of the brick it is in.
     let (mut regions, mut bricks) = (Window::new(), Window::new());
+    let fetch = surface.triangle_count() >= FETCH_AHEAD_MIN_TRIANGLES;
     while let Some(visit) = walk.next() {
         if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
             break;
@@ -274,19 +275,22 @@ pub fn first_crossing_where(
             (visit.t_enter - margin).max(0.0),
             (visit.t_exit + margin).min(until),
         );
-        let (mut q0, mut q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
         // The slab of the cell: where in it its triangles lie. A part of the segment
         // wholly on one side crosses none of them in this cell; one that passes through
-        // it can cross them only where it is in the slab: the part the filter tests.
+        // it can cross them only where it is in the slab: the part the filter tests
+        // (the segment's parameters in the slab, found as for a brick's or a region's).
         if let Some(slab) = slab {
             let (lo, hi) = map.grid().cell_bounds(visit.cell);
-            let Some((a, b)) = slab_clip(slab, 0.5 * (lo + hi), h, q0, q1) else {
+            let Some((a, b)) = slab_interval(slab, 0.5 * (lo + hi), h, p0, p1) else {
                 continue;
             };
-            (from, to) = (from + a * (to - from), from + b * (to - from));
-            (q0, q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
+            (from, to) = (from.max(a), to.min(b));
+            if from > to {
+                continue;
+            }
         }
-        if surface.triangle_count() >= FETCH_AHEAD_MIN_TRIANGLES {
+        let (q0, mut q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
+        if fetch {
             fetch_ahead(surface, triangles);
         }
         for &t in triangles {

@@ -276,11 +276,12 @@ fn a_file_without_a_slab_per_surface_cell_is_refused() {
     }
 }
 
-/// A part of a segment beside a slab is dropped; of one through it or across it, the
-/// part returned holds every point of it in the slab and no point far beside it: sampled
-/// along random parts through random slabs of a cell, and in the plain cases.
+/// A segment beside a slab has no interval in it; of one through it or across it, the
+/// part between the parameters returned holds every point of it in the slab and no point
+/// far beside it: sampled along random segments through random slabs of a cell, and in
+/// the plain cases.
 #[test]
-fn a_clipped_part_holds_the_points_in_the_slab() {
+fn a_segment_interval_holds_the_points_in_the_slab() {
     let mut random = SplitMix64::new(23);
     let (centre, h) = (DVec3::new(1.0, 2.0, 3.0), 0.002);
     let (mut inside, mut outside) = (0, 0);
@@ -292,7 +293,8 @@ fn a_clipped_part_holds_the_points_in_the_slab() {
         let half = DVec3::splat(0.5 * h);
         let q0 = random.point_in(centre - half, centre + half);
         let q1 = random.point_in(centre - half, centre + half);
-        let part = clip(slab, centre, h, q0, q1).map(|(a, b)| (q0.lerp(q1, a), q0.lerp(q1, b)));
+        let part = interval(slab, centre, h, q0, q1)
+            .map(|(a, b)| (q0.lerp(q1, a.max(0.0)), q0.lerp(q1, b.min(1.0))));
         for k in 0..=200 {
             let point = q0 + f64::from(k) / 200.0 * (q1 - q0);
             let s = n.dot(point - centre) / h;
@@ -325,9 +327,12 @@ fn a_clipped_part_holds_the_points_in_the_slab() {
     let level = |s: f64| ((s + RANGE) / step).round() as u32;
     let slab = code | (level(-0.1) << 16) | (level(0.1) << 24);
     let at = |x: f64, z: f64| centre + DVec3::new(x, 0.0, z) * h;
-    assert_eq!(clip(slab, centre, h, at(-0.5, 0.3), at(0.5, 0.4)), None);
-    assert_eq!(clip(slab, centre, h, at(-0.5, -0.3), at(0.5, -0.2)), None);
-    let (a, b) = clip(slab, centre, h, at(-0.5, 0.3), at(0.5, -0.3)).expect("across");
+    assert_eq!(interval(slab, centre, h, at(-0.5, 0.3), at(0.5, 0.4)), None);
+    assert_eq!(
+        interval(slab, centre, h, at(-0.5, -0.3), at(0.5, -0.2)),
+        None
+    );
+    let (a, b) = interval(slab, centre, h, at(-0.5, 0.3), at(0.5, -0.3)).expect("across");
     // The part crosses the slab's 0.2 of a cell over 0.2 / 0.6 of its length.
     assert!(
         (a - 1.0 / 3.0).abs() < 0.01 && (b - 2.0 / 3.0).abs() < 0.01,
@@ -335,8 +340,9 @@ fn a_clipped_part_holds_the_points_in_the_slab() {
     );
     // A part in the slab, any part with the slab that rejects nothing, and a part whose
     // products overflow are kept whole.
-    let whole =
-        |(q0, q1): (DVec3, DVec3), slab: u32| clip(slab, centre, h, q0, q1) == Some((0.0, 1.0));
+    let whole = |(q0, q1): (DVec3, DVec3), slab: u32| {
+        interval(slab, centre, h, q0, q1).is_some_and(|(a, b)| a <= 0.0 && b >= 1.0)
+    };
     assert!(whole((at(-0.5, 0.05), at(0.5, 0.05)), slab));
     assert!(whole((at(-0.5, 0.49), at(0.5, -0.49)), FULL_SLAB));
     assert!(whole((DVec3::splat(1e308), DVec3::splat(-1e308)), slab));
