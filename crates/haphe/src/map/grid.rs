@@ -187,20 +187,14 @@ impl Grid {
     /// `p0 + t·(p1 − p0)` (metres, object frame) lies in the closed grid box, or `None`
     /// when it misses the box or a point is not finite. Where a 3D-DDA starts and stops.
     pub fn clip_segment(&self, p0: DVec3, p1: DVec3) -> Option<(f64, f64)> {
-        self.clip_in_cells(self.to_grid(p0), self.to_grid(p1))
-    }
-
-    /// [`clip_segment`](Self::clip_segment) of the segment from `a` to `b` given in cell
-    /// units ([`to_grid`](Self::to_grid)).
-    #[inline]
-    pub(crate) fn clip_in_cells(&self, a: DVec3, b: DVec3) -> Option<(f64, f64)> {
-        let d = b - a;
+        let a = self.to_grid(p0);
+        let d = self.to_grid(p1) - a;
         self.clip_along(a, d, d.recip())
     }
 
-    /// [`clip_in_cells`](Self::clip_in_cells) of the segment from `a` along `d` (cell
-    /// units), given `inv = 1 / d` per axis: multiplications, not divisions (the walk
-    /// keeps `inv` for its own steps).
+    /// [`clip_segment`](Self::clip_segment) of the segment from `a` along `d`, in cell
+    /// units ([`to_grid`](Self::to_grid)), given `inv = 1 / d` per axis: multiplications,
+    /// not divisions (the walk keeps `inv` for its own steps).
     #[inline]
     pub(crate) fn clip_along(&self, a: DVec3, d: DVec3, inv: DVec3) -> Option<(f64, f64)> {
         if !(a.is_finite() && d.is_finite()) {
