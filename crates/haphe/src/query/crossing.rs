@@ -2,7 +2,9 @@
 
 use glam::DVec3;
 
-use super::{Segment, SegmentHit, intersect_segment_triangle};
+#[cfg(test)]
+use super::intersect_segment_triangle;
+use super::{Segment, SegmentHit, intersect_segment_framed};
 use crate::map::{
     BLOCK_SIDE, BRICK_SIDE, CellStep, CellWalk, InBrick, Look, REGION_SIDE, RegionLook, VoxelMap,
     slab_interval,
@@ -137,10 +139,13 @@ impl Tested {
 /// through it is filtered against them on its part in the layer only; once a crossing is
 /// found, the cell's remaining triangles are filtered on the part before it (so a thin
 /// wall's far face, listed in the same cells as its near face, costs no exact test when
-/// the near face comes first). On a surface of 2048 triangles or more, the frames and
-/// corners of a cell's triangles are fetched together before they are tested. It never
-/// reads the clearances of free cells, which are cold when the segment comes from far
-/// away.
+/// the near face comes first). A triangle whose plane the segment's line meets beyond an
+/// edge is filtered out from its frame, and one it crosses well inside is answered from
+/// its plane's orientations and its frame (the watertight test's answer, without its
+/// shear of the corners; see `intersect_segment_framed`). On a surface of 2048 triangles
+/// or more, the frames and corners of a cell's triangles are fetched together before they
+/// are tested. It never reads the clearances of free cells, which are cold when the
+/// segment comes from far away.
 ///
 /// # Real-time
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
@@ -179,8 +184,13 @@ pub fn first_crossing_where(
             if cannot_cross(surface, t, p0, until, margin) {
                 continue;
             }
-            if let Some(hit) = intersect_segment_triangle(&segment(), surface.corners(TriId(t)))
-                && accept(&hit)
+            if let Some(hit) = intersect_segment_framed(
+                p0,
+                p1,
+                surface.corners(TriId(t)),
+                surface.frame(TriId(t)),
+                &mut segment,
+            ) && accept(&hit)
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
@@ -297,8 +307,13 @@ pub fn first_crossing_where(
             if cannot_cross(surface, t, q0, q1, plane_margin) || !tested.insert(t) {
                 continue;
             }
-            if let Some(hit) = intersect_segment_triangle(&segment(), surface.corners(TriId(t)))
-                && accept(&hit)
+            if let Some(hit) = intersect_segment_framed(
+                p0,
+                p1,
+                surface.corners(TriId(t)),
+                surface.frame(TriId(t)),
+                &mut segment,
+            ) && accept(&hit)
                 && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
             {
                 best = Some((hit, t));
@@ -449,13 +464,15 @@ fn exit_parameter(map: &VoxelMap, cell: [u32; 3], p0: DVec3, p1: DVec3) -> f64 {
     exit
 }
 
-/// Whether the segment `p0 → p1` certainly misses triangle `t`, by two tests on the
-/// triangle's frame that are cheaper than the watertight test's shear of three corners:
-/// both ends lie on the same side of the triangle's plane, or both lie beyond the same
-/// edge (outside the same side plane of the triangle's prism, where one barycentric
-/// weight of their projections is negative). Each test keeps a margin above the rounding
-/// of the frame and of the products (see [`FRAME_DIRECTION_ERROR`]), so it only skips
-/// triangles the watertight test would miss too: it never changes an answer.
+/// Whether the segment `p0 → p1` certainly misses triangle `t`, by tests on the
+/// triangle's frame that are cheaper than the watertight test: both ends lie on the same
+/// side of the triangle's plane; or, for a segment not nearly parallel to the plane, its
+/// line meets the plane beyond an edge (so the line misses the triangle, wherever on it
+/// `p0` and `p1` lie); or, for one nearly parallel, both ends lie beyond the same edge
+/// (outside the same side plane of the triangle's prism, where one barycentric weight of
+/// their projections is negative). Each test keeps a margin above the rounding of the
+/// frame and of the products (see [`FRAME_DIRECTION_ERROR`]), so it only skips triangles
+/// the watertight test would miss too: it never changes an answer.
 #[inline(always)]
 pub(crate) fn cannot_cross(surface: &Surface, t: u32, p0: DVec3, p1: DVec3, margin: f64) -> bool {
     let frame = surface.frame(TriId(t));
@@ -468,11 +485,27 @@ pub(crate) fn cannot_cross(surface: &Surface, t: u32, p0: DVec3, p1: DVec3, marg
     if (h0 > height_margin && h1 > height_margin) || (h0 < -height_margin && h1 < -height_margin) {
         return true;
     }
+    let dual_norm = frame.dual_b.abs().element_sum() + frame.dual_c.abs().element_sum();
+    let weight_margin = FRAME_DIRECTION_ERROR * dual_norm * extent;
+    // The line of the part meets the plane, far enough from parallel that where is known
+    // well: within `2 hm / (H − 2 hm) ≤ 4 hm / H` (in units of the part) of `h0 / H`, with
+    // `hm` the height margin and `H = |h0 − h1| > 4 hm`, since each height is within `hm`
+    // of the exact one. That point (at most half a part beyond its ends, so within twice
+    // `extent` of the first corner) beyond an edge by more than its weights' margin: the
+    // line misses the triangle, and the exact test too. The weights are taken times `H`,
+    // with no division.
+    let across = (h0 - h1).abs();
+    if across > 4.0 * height_margin {
+        let (sign, part) = (1f64.copysign(h0 - h1), d1 - d0);
+        let x = across * d0 + (sign * h0) * part;
+        let (u, v) = (frame.dual_b.dot(x), frame.dual_c.dot(x));
+        let m = 2.0 * weight_margin * across
+            + dual_norm * 4.0 * height_margin * part.abs().max_element();
+        return u < -m || v < -m || across - u - v < -m;
+    }
+    // Nearly parallel: both ends beyond the same edge.
     let (u0, v0) = (frame.dual_b.dot(d0), frame.dual_c.dot(d0));
     let (u1, v1) = (frame.dual_b.dot(d1), frame.dual_c.dot(d1));
-    let weight_margin = FRAME_DIRECTION_ERROR
-        * (frame.dual_b.abs().element_sum() + frame.dual_c.abs().element_sum())
-        * extent;
     (u0 < -weight_margin && u1 < -weight_margin)
         || (v0 < -weight_margin && v1 < -weight_margin)
         || (1.0 - u0 - v0 < -weight_margin && 1.0 - u1 - v1 < -weight_margin)
@@ -524,8 +557,13 @@ pub fn first_crossing_brute_force_where(
     let segment = Segment::new(p0, p1);
     let mut best: Option<(SegmentHit, u32)> = None;
     for t in 0..surface.triangle_count() as u32 {
-        if let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
-            && accept(&hit)
+        if let Some(hit) = intersect_segment_framed(
+            p0,
+            p1,
+            surface.corners(TriId(t)),
+            surface.frame(TriId(t)),
+            || segment,
+        ) && accept(&hit)
             && best.is_none_or(|(b, _)| hit.t < b.t)
         {
             best = Some((hit, t));
@@ -540,8 +578,14 @@ pub fn all_crossings_brute_force(surface: &Surface, p0: DVec3, p1: DVec3) -> Vec
     let segment = Segment::new(p0, p1);
     let mut hits: Vec<Crossing> = (0..surface.triangle_count() as u32)
         .filter_map(|t| {
-            intersect_segment_triangle(&segment, surface.corners(TriId(t)))
-                .map(|hit| crossing_from_hit(surface, hit, t))
+            intersect_segment_framed(
+                p0,
+                p1,
+                surface.corners(TriId(t)),
+                surface.frame(TriId(t)),
+                || segment,
+            )
+            .map(|hit| crossing_from_hit(surface, hit, t))
         })
         .collect();
     hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.triangle.cmp(&b.triangle)));
@@ -561,3 +605,6 @@ pub(crate) fn crossing_from_hit(surface: &Surface, hit: SegmentHit, t: u32) -> C
         entering: hit.entering,
     }
 }
+
+#[cfg(test)]
+mod tests;

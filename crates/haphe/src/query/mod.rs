@@ -41,6 +41,7 @@ pub use crossing::{
 };
 pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
 pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within, nearest_within_brute_force};
+pub(crate) use segment_triangle::intersect_segment_framed;
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use self_intersect::{
     LISTED_SELF_INTERSECTIONS, SelfIntersections, TOUCH_TOLERANCE_REL, self_intersections,

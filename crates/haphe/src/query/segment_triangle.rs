@@ -7,6 +7,8 @@
 
 use glam::DVec3;
 
+use crate::mesh::TriFrame;
+
 /// A coordinate axis, used as an index that is known to be in range.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(u8)]
@@ -353,7 +355,124 @@ impl Segment {
 /// line within rounding of an edge or a vertex, or a segment almost in a face's plane,
 /// takes the exact path (a few hundred operations, on the stack).
 #[inline]
-pub fn intersect_segment_triangle(segment: &Segment, [a, b, c]: [DVec3; 3]) -> Option<SegmentHit> {
+pub fn intersect_segment_triangle(segment: &Segment, corners: [DVec3; 3]) -> Option<SegmentHit> {
+    intersect(segment, corners, None)
+}
+
+/// The two end points' orientations against a triangle's plane, with their error bounds
+/// (`orient3d` of the corners and each end point, positive behind the plane).
+type Sides = ((f64, f64), (f64, f64));
+
+/// [`intersect_segment_triangle`] of the segment `p0 → p1` (metres) for a triangle of a
+/// surface whose [frame](crate::mesh::TriFrame) is at hand: the same decision (hit or
+/// not), the same parameter and the same side, and weights equal up to rounding.
+/// `segment` gives the prepared segment of `p0 → p1` when the whole test needs it.
+///
+/// A segment that crosses the triangle well inside it (each weight above the frame's
+/// error bound, a few `1e-5` for a well-shaped triangle) with both end points certainly
+/// off its plane is answered from the two plane orientations and the frame's duals,
+/// without the shear of the three corners (nor the segment's, which is only prepared when
+/// the whole test runs). The answer is the whole test's: the line meets the plane strictly
+/// inside the triangle, so every edge function has the sign of the determinant and no
+/// tie-break applies; the end points' sides are the same certain signs the whole test
+/// takes, so `entering` is `p0` in front; and `t` is computed from the same orientations
+/// in the same way (the fast path is only taken when the whole test would not refine
+/// them). Any other case takes the whole watertight test, reusing the orientations.
+///
+/// # Real-time
+/// As [`intersect_segment_triangle`].
+#[inline]
+pub(crate) fn intersect_segment_framed(
+    p0: DVec3,
+    p1: DVec3,
+    corners: [DVec3; 3],
+    frame: &TriFrame,
+    segment: impl FnOnce() -> Segment,
+) -> Option<SegmentHit> {
+    let [a, b, c] = corners;
+    let sides = (
+        super::exact::orient3d_with_bound(a, b, c, p0),
+        super::exact::orient3d_with_bound(a, b, c, p1),
+    );
+    let ((o0, e0), (o1, e1)) = sides;
+    let (s0, s1) = (certain_sign(o0, e0), certain_sign(o1, e1));
+    if s0 * s1 > 0 {
+        // Both end points certainly on one side: the whole test finds them so too.
+        return None;
+    }
+    if s0 * s1 < 0 && e0 + e1 <= PARAMETER_ERROR * (o0.abs() + o1.abs()) {
+        let t = o0 / (o0 - o1);
+        match frame_weights(p0, p1, frame, t) {
+            Certain::Inside(weights) => {
+                return Some(SegmentHit {
+                    t: t.clamp(0.0, 1.0),
+                    weights,
+                    entering: s0 < 0,
+                });
+            }
+            Certain::Outside => return None,
+            Certain::Neither => {}
+        }
+    }
+    intersect(&segment(), corners, Some(sides))
+}
+
+/// Where the line of a segment meets a triangle's plane, as far as the frame's duals
+/// tell for certain.
+enum Certain {
+    /// Strictly inside the triangle, with these weights (each in `(0, 1)`).
+    Inside([f64; 3]),
+    /// Strictly outside: beyond an edge, or a segment the whole test never hits.
+    Outside,
+    /// Too near an edge for the frame's precision: the whole test decides.
+    Neither,
+}
+
+/// The fast path of [`intersect_segment_framed`]: the barycentric weights of the point at
+/// `t` on `p0 → p1` from the frame's duals, and whether each certainly exceeds 0 for the
+/// exact point where the segment's line meets the plane, or one certainly is negative.
+///
+/// The point computed at `t` is within `|Δt| |d| + 4u (|p0| + |d|)` (max norms; `u` the
+/// unit roundoff) of the exact crossing
+/// (`|Δt| ≤ 2⁻³⁹`: the orientations are within `2⁻⁴⁰` of their sum, which is `|o0 − o1|`
+/// since they have opposite signs); a dual is within [`FRAME_DIRECTION_ERROR`] of its
+/// length (in the L1 norm) of the exact one. The margin bounds the sum of both effects on
+/// a weight, with room to spare. A segment that the whole test does not take (a
+/// non-finite point, or a direction too short for its reciprocal) is `Outside`.
+///
+/// [`FRAME_DIRECTION_ERROR`]: super::crossing::FRAME_DIRECTION_ERROR
+#[inline(always)]
+fn frame_weights(p0: DVec3, p1: DVec3, frame: &TriFrame, t: f64) -> Certain {
+    let d = p1 - p0;
+    let x = p0 + t * d;
+    let r = x - frame.origin;
+    let (wb, wc) = (frame.dual_b.dot(r), frame.dual_c.dot(r));
+    let wa = 1.0 - wb - wc;
+    let reach = d.abs().max_element();
+    let position_error =
+        POSITION_ERROR * reach + 8.0 * super::exact::ROUNDOFF * (p0.abs().max_element() + reach);
+    let margin = (frame.dual_b.abs().element_sum() + frame.dual_c.abs().element_sum())
+        * (super::crossing::FRAME_DIRECTION_ERROR * r.abs().max_element() + position_error);
+    // The NaN of a non-finite point or margin fails every comparison below.
+    let usable = (1.0 / reach).is_finite() & p0.is_finite() & p1.is_finite();
+    if !usable {
+        Certain::Outside
+    } else if (wa > margin) & (wb > margin) & (wc > margin) {
+        Certain::Inside([wa, wb, wc])
+    } else if (wa < -margin) | (wb < -margin) | (wc < -margin) {
+        Certain::Outside
+    } else {
+        Certain::Neither
+    }
+}
+
+/// Bound on a fast-path crossing point's error from its parameter's, relative to the
+/// segment's largest coordinate extent: `2⁻³⁸`, twice the parameter's bound.
+const POSITION_ERROR: f64 = 1.0 / (1u64 << 38) as f64;
+
+/// The watertight test; `sides` are the end points' orientations when already computed.
+#[inline(always)]
+fn intersect(segment: &Segment, [a, b, c]: [DVec3; 3], sides: Option<Sides>) -> Option<SegmentHit> {
     if !segment.usable {
         return None;
     }
@@ -394,8 +513,12 @@ pub fn intersect_segment_triangle(segment: &Segment, [a, b, c]: [DVec3; 3]) -> O
 
     // On the segment: p0 in front of the plane (or on it) and p1 behind, or the reverse.
     let (p0, p1) = (segment.p0, segment.p1);
-    let (o0, e0) = super::exact::orient3d_with_bound(a, b, c, p0);
-    let (o1, e1) = super::exact::orient3d_with_bound(a, b, c, p1);
+    let ((o0, e0), (o1, e1)) = sides.unwrap_or_else(|| {
+        (
+            super::exact::orient3d_with_bound(a, b, c, p0),
+            super::exact::orient3d_with_bound(a, b, c, p1),
+        )
+    });
     let mut s0 = certain_sign(o0, e0);
     if s0 == 0 {
         s0 = super::exact::orient3d_sign(a, b, c, p0);

@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use crate::mesh::{Surface, TriId};
-use crate::query::{Segment, intersect_segment_triangle};
+use crate::query::{Segment, intersect_segment_framed, intersect_segment_triangle};
 
 /// The direction of the oracle's rays: generic, so that no ray runs along the axis-aligned
 /// faces and edges of CAD meshes.
@@ -285,7 +285,11 @@ impl TriangleBoxes {
             if !hit || best.is_some_and(|(b, _)| t0 > b.t) {
                 continue;
             }
-            if let Some(h) = intersect_segment_triangle(&segment, surface.corners(TriId(t as u32)))
+            let tri = TriId(t as u32);
+            if let Some(h) =
+                intersect_segment_framed(p0, p1, surface.corners(tri), surface.frame(tri), || {
+                    segment
+                })
                 && accept(&h)
                 && best.is_none_or(|(b, _)| h.t < b.t)
             {

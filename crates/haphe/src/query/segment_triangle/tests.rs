@@ -1,6 +1,8 @@
 //! The watertight segment–triangle test: hits, misses and their parameters, every
 //! dominant axis, degenerate input, and shared edges and vertices reported once.
 
+use proptest::prelude::*;
+
 use super::*;
 
 const A: DVec3 = DVec3::new(0.0, 0.0, 0.0);
@@ -297,4 +299,159 @@ fn the_exact_edge_sign_is_the_sign_of_the_sheared_edge_function() {
         }
     }
     assert!(checked > 1900, "{checked}");
+}
+
+/// The framed test, as the map's queries call it: with the triangle's frame, and the
+/// prepared segment only when the whole test runs.
+fn framed(p0: DVec3, p1: DVec3, tri: [DVec3; 3]) -> Option<SegmentHit> {
+    let [a, b, c] = tri;
+    intersect_segment_framed(p0, p1, tri, &TriFrame::new(a, b, c), || {
+        Segment::new(p0, p1)
+    })
+}
+
+/// The framed test gives the plain one's answer: the same decision, the same parameter
+/// to the bit, the same side, and weights equal up to rounding.
+fn check_framed(p0: DVec3, p1: DVec3, tri: [DVec3; 3]) -> Result<(), String> {
+    let context = || format!("{p0:?} → {p1:?}, triangle {tri:?}");
+    match (hit(p0, p1, tri), framed(p0, p1, tri)) {
+        (None, None) => Ok(()),
+        (Some(plain), Some(fast)) => {
+            if plain.t.to_bits() != fast.t.to_bits() || plain.entering != fast.entering {
+                return Err(format!("{plain:?} ≠ {fast:?}: {}", context()));
+            }
+            let apart = (0..3)
+                .map(|k| (plain.weights[k] - fast.weights[k]).abs())
+                .fold(0.0, f64::max);
+            if apart > 1e-9 {
+                return Err(format!(
+                    "weights {apart:e} apart, {plain:?} {fast:?}: {}",
+                    context()
+                ));
+            }
+            Ok(())
+        }
+        (plain, fast) => Err(format!("plain {plain:?}, framed {fast:?}: {}", context())),
+    }
+}
+
+#[test]
+fn the_framed_test_agrees_on_hand_picked_cases() {
+    let tri = [A, B, C];
+    let down = |x: f64, y: f64| (DVec3::new(x, y, 1.0), DVec3::new(x, y, -1.0));
+    let cases = [
+        down(0.2, 0.2),                                          // well inside: the fast path
+        down(0.5, 0.5),                                          // on the long edge: the whole test
+        down(0.0, 0.0),                                          // through a corner
+        down(0.0, 0.3),                                          // on an edge
+        down(-0.1, 0.3),                                         // beside an edge
+        down(0.5 + 1e-12, 0.5), // a hair outside, within the frame's margin
+        (DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.2, 0.2, 0.0)), // ending on the plane
+        (DVec3::new(0.2, 0.2, 0.0), DVec3::new(0.2, 0.2, 1.0)), // starting on it
+        (DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.2, 0.2, 0.5)), // short of it
+        (DVec3::new(-1.0, 0.2, 0.0), DVec3::new(1.0, 0.2, 0.0)), // in the plane
+        (DVec3::new(-1.0, 0.2, 1e-300), DVec3::new(1.0, 0.2, -1e-300)), // nearly in it
+        // A direction too short for its reciprocal: the whole test takes no such segment.
+        (DVec3::new(0.2, 0.2, 1e-310), DVec3::new(0.2, 0.2, -1e-310)),
+        (DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.2, 0.2, 1.0)), // zero length
+        (DVec3::new(0.2, 0.2, f64::NAN), DVec3::new(0.2, 0.2, -1.0)),
+        (
+            DVec3::new(0.2, 0.2, 1.0),
+            DVec3::new(0.2, f64::INFINITY, -1.0),
+        ),
+    ];
+    for (p0, p1) in cases {
+        check_framed(p0, p1, tri).unwrap();
+        check_framed(p1, p0, tri).unwrap();
+    }
+    assert!(framed(down(0.2, 0.2).0, down(0.2, 0.2).1, tri).is_some());
+    // A degenerate triangle has a zero frame: never hit, by either test.
+    let line = [A, B, 2.0 * B];
+    let (p0, p1) = down(0.5, 0.0);
+    assert_eq!(framed(p0, p1, line), None);
+    check_framed(p0, p1, line).unwrap();
+}
+
+/// A triangle for the framed test's properties: corners in a cube of side `10^scale`
+/// around `centre`, or a sliver (its third corner a hair off the line of the other two).
+fn any_triangle() -> impl Strategy<Value = [DVec3; 3]> {
+    let corner = || prop::array::uniform3(-1.0..1.0f64).prop_map(DVec3::from_array);
+    (
+        corner(),
+        corner(),
+        corner(),
+        0.0..1.0f64,
+        -9.0..-1.0f64,
+        -3.0..1.0f64,
+        corner(),
+    )
+        .prop_map(|(a, b, c, along, thin, scale, centre)| {
+            let c = if thin < -5.0 {
+                c
+            } else {
+                a + along * (b - a) + c * 10f64.powf(thin)
+            };
+            let s = 10f64.powf(scale);
+            [a, b, c].map(|p| p * s + centre * 10.0)
+        })
+}
+
+/// A segment against `tri`: through a point of its plane given by weights (a corner, an
+/// edge point or any point, inside or outside), in any direction or one nearly in the
+/// plane, crossing it, ending on it or stopping short.
+fn any_segment_against(tri: [DVec3; 3]) -> impl Strategy<Value = (DVec3, DVec3)> {
+    let weights = prop_oneof![
+        Just([1.0, 0.0, 0.0]),
+        Just([0.0, 1.0, 0.0]),
+        Just([0.5, 0.5, 0.0]),
+        Just([0.0, 0.25, 0.75]),
+        (-0.3..1.3f64, -0.3..1.3f64).prop_map(|(u, v)| [1.0 - u - v, u, v]),
+        (0.0..1.0f64, 0.0..1.0f64).prop_map(|(u, v)| {
+            let (u, v) = if u + v > 1.0 {
+                (1.0 - u, 1.0 - v)
+            } else {
+                (u, v)
+            };
+            [1.0 - u - v, u, v]
+        }),
+    ];
+    let direction = prop::array::uniform3(-1.0..1.0f64).prop_map(DVec3::from_array);
+    (
+        weights,
+        direction,
+        -14.0..0.0f64,
+        0.0..1.0f64,
+        -0.5..1.5f64,
+        0..4u8,
+    )
+        .prop_map(move |(w, dir, tilt, lift, reach, kind)| {
+            let [a, b, c] = tri;
+            let on = w[0] * a + w[1] * b + w[2] * c;
+            let size = (b - a).length().max((c - a).length());
+            let normal = (b - a).cross(c - a).normalize_or_zero();
+            let dir = match kind {
+                // Nearly in the plane: tilted out of it by 10^tilt.
+                0 => (dir - normal * dir.dot(normal)) + normal * 10f64.powf(tilt),
+                _ => dir,
+            } * size;
+            let start = on + dir * (0.1 + lift);
+            match kind {
+                2 => (start, on),                       // ends on the plane
+                3 => (start, on + dir * (reach - 1.0)), // may stop short or cross
+                _ => (start, on - dir * (0.1 + reach.abs())),
+            }
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4096))]
+
+    #[test]
+    fn the_framed_test_gives_the_watertight_answer(
+        (tri, (p0, p1)) in any_triangle()
+            .prop_flat_map(|tri| (Just(tri), any_segment_against(tri)))
+    ) {
+        check_framed(p0, p1, tri).map_err(TestCaseError::fail)?;
+        check_framed(p1, p0, tri).map_err(TestCaseError::fail)?;
+    }
 }
