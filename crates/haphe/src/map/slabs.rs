@@ -58,11 +58,12 @@ fn direction(slab: u32) -> DVec3 {
     let u = f64::from(slab & 0xff) * STEP - 1.0;
     let v = f64::from((slab >> 8) & 0xff) * STEP - 1.0;
     let z = 1.0 - u.abs() - v.abs();
-    if z >= 0.0 {
-        DVec3::new(u, v, z)
-    } else {
-        DVec3::new((1.0 - v.abs()).copysign(u), (1.0 - u.abs()).copysign(v), z)
-    }
+    // Selects, not a branch: which half a block's direction falls in is not predictable
+    // from one block to the next.
+    let upper = z >= 0.0;
+    let x = if upper { u } else { (1.0 - v.abs()).copysign(u) };
+    let y = if upper { v } else { (1.0 - u.abs()).copysign(v) };
+    DVec3::new(x, y, z)
 }
 
 /// The two octahedral bytes of the non-zero direction `n`.
@@ -226,7 +227,7 @@ pub(crate) fn interval(
     }
     let inv = 1.0 / ds;
     let (a, b) = ((lo - s0) * inv, (hi - s0) * inv);
-    let (from, to) = if a <= b { (a, b) } else { (b, a) };
+    let (from, to) = (a.min(b), a.max(b));
     (from <= 1.0 && to >= 0.0).then_some((from, to))
 }
 
