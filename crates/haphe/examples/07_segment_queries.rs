@@ -13,6 +13,7 @@
 //! rounds (default 1). With more than one round, every segment is answered once per round
 //! and its time is the fastest of its rounds: the cost of the query with the mesh and map
 //! warm in the cache, free of most of a shared machine's noise.
+//!
 //! For an instruction count that does not depend on the machine's load, run it under
 //! callgrind, counting inside the query only:
 //!

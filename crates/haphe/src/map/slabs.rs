@@ -61,8 +61,16 @@ fn direction(slab: u32) -> DVec3 {
     // Selects, not a branch: which half a block's direction falls in is not predictable
     // from one block to the next.
     let upper = z >= 0.0;
-    let x = if upper { u } else { (1.0 - v.abs()).copysign(u) };
-    let y = if upper { v } else { (1.0 - u.abs()).copysign(v) };
+    let x = if upper {
+        u
+    } else {
+        (1.0 - v.abs()).copysign(u)
+    };
+    let y = if upper {
+        v
+    } else {
+        (1.0 - u.abs()).copysign(v)
+    };
     DVec3::new(x, y, z)
 }
 
