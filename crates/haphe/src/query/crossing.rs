@@ -184,15 +184,7 @@ pub fn first_crossing_where(
             if cannot_cross(surface, t, p0, until, margin) {
                 continue;
             }
-            if let Some(hit) = intersect_segment_framed(
-                p0,
-                p1,
-                surface.corners(TriId(t)),
-                surface.frame(TriId(t)),
-                &mut segment,
-            ) && accept(&hit)
-                && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
-            {
+            if let Some(hit) = better_hit(surface, t, (p0, p1), &mut segment, &accept, best) {
                 best = Some((hit, t));
                 until = point_at(p0, p1, filter_end(hit.t));
             }
@@ -307,15 +299,7 @@ pub fn first_crossing_where(
             if cannot_cross(surface, t, q0, q1, plane_margin) || !tested.insert(t) {
                 continue;
             }
-            if let Some(hit) = intersect_segment_framed(
-                p0,
-                p1,
-                surface.corners(TriId(t)),
-                surface.frame(TriId(t)),
-                &mut segment,
-            ) && accept(&hit)
-                && best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt))
-            {
+            if let Some(hit) = better_hit(surface, t, (p0, p1), &mut segment, &accept, best) {
                 best = Some((hit, t));
                 until = filter_end(hit.t);
                 // The cell's remaining triangles too are filtered on the part before it
@@ -327,6 +311,25 @@ pub fn first_crossing_where(
         }
     }
     best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
+}
+
+/// The hit of triangle `t` by the segment `p0 → p1` (`segment` prepares it when the
+/// whole watertight test needs it) when `accept` keeps it and it comes before `best`, or
+/// at the same parameter on a triangle of lower index: the crossing's order.
+#[inline(always)]
+fn better_hit(
+    surface: &Surface,
+    t: u32,
+    (p0, p1): (DVec3, DVec3),
+    segment: &mut impl FnMut() -> Segment,
+    accept: &impl Fn(&SegmentHit) -> bool,
+    best: Option<(SegmentHit, u32)>,
+) -> Option<SegmentHit> {
+    let triangle = TriId(t);
+    let frame = surface.frame(triangle);
+    intersect_segment_framed(p0, p1, surface.corners(triangle), frame, segment)
+        .filter(|hit| accept(hit))
+        .filter(|hit| best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt)))
 }
 
 /// The box of cells of the cube of blocks around `cell`, a cell of a block of `side`
