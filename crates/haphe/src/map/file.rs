@@ -1,6 +1,6 @@
 //! Saving and loading a surface with its voxel map: one checked, sectioned file.
 //!
-//! # Layout (format version 8, all numbers little-endian)
+//! # Layout (format version 9, all numbers little-endian)
 //!
 //! | bytes | content |
 //! |---|---|
@@ -47,7 +47,7 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
-pub const FORMAT_VERSION: u32 = 8;
+pub const FORMAT_VERSION: u32 = 9;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;

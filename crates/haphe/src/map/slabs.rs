@@ -4,7 +4,7 @@
 //! a thin layer of the cell: a piece of a smooth surface, or both faces of a thin plate.
 //! A segment that passes the cell above or below that layer crosses none of them there.
 //! Each surface cell keeps its **slab** in four bytes: a direction `n` (two octahedral
-//! bytes) and the range `[lo, hi]` of `n · (x − centre)` over its triangles' corners (one
+//! bytes, see [`direction`]) and the range `[lo, hi]` of `n · (x − centre)` over its triangles' corners (one
 //! byte each, in cells, rounded outward), which holds every point of the triangles in the
 //! cell since a triangle is the convex hull of its corners. A segment whose part in the
 //! cell lies wholly on one side of the slab ([`interval`]) skips the cell's triangles — their
@@ -49,14 +49,18 @@ pub(crate) const FULL_SLAB: u32 = 0xff00_0000;
 /// The direction of a slab, decoded from its two octahedral bytes: not unit length, its
 /// L1 norm is 1 (its length is between `1/√3` and 1). Every code decodes to a non-zero
 /// direction.
+///
+/// A byte `b` of `0..=254` stands for `b / 127 − 1`, so that 127 is an exact 0 and the
+/// axes are exact: the plane of a plate or of a CAD part's face along an axis gets a slab
+/// as thin as its triangles, where a direction a step off the axis would tilt the slab
+/// across its block (over a region of 32 cells, by a quarter of a cell). A byte of 255,
+/// which no build writes, reads as 254.
 #[inline]
 fn direction(slab: u32) -> DVec3 {
-    // A product, not a quotient: a division's latency sits on every query's path. (The
-    // build and the queries decode the same way; a map saved by a build that divided
-    // differs in the last bit of a direction, far inside the bounds' margin.)
-    const STEP: f64 = 1.0 / 127.5;
-    let u = f64::from(slab & 0xff) * STEP - 1.0;
-    let v = f64::from((slab >> 8) & 0xff) * STEP - 1.0;
+    // A product, not a quotient: a division's latency sits on every query's path.
+    const STEP: f64 = 1.0 / 127.0;
+    let u = f64::from((slab & 0xff).min(254)) * STEP - 1.0;
+    let v = f64::from(((slab >> 8) & 0xff).min(254)) * STEP - 1.0;
     let z = 1.0 - u.abs() - v.abs();
     // Selects, not a branch: which half a block's direction falls in is not predictable
     // from one block to the next.
@@ -85,7 +89,7 @@ fn encode_direction(n: DVec3) -> u32 {
     } else {
         (n.x, n.y)
     };
-    let byte = |x: f64| ((x + 1.0) * 127.5).round().clamp(0.0, 255.0) as u32;
+    let byte = |x: f64| ((x + 1.0) * 127.0).round().clamp(0.0, 254.0) as u32;
     byte(u) | (byte(v) << 8)
 }
 
