@@ -202,9 +202,9 @@ pub struct VoxelMap {
     /// its surface cells lie (see `map/slabs.rs`).
     pub(crate) brick_slabs: Array<u32>,
     /// Per region of 4×4×4 bricks (x fastest): its slab, the layer of the region in
-    /// which the triangles of its surface cells lie (see `map/slabs.rs`; a slab that
-    /// rejects nothing for a region without surface cells).
-    pub(crate) region_slabs: Array<u32>,
+    /// which the triangles of its surface cells lie, with bounds of 16 bits (see
+    /// `map/slabs.rs`; a slab that rejects nothing for a region without surface cells).
+    pub(crate) region_slabs: Array<u64>,
     /// Triangles of the surface the map was built for.
     pub(crate) triangle_count: u32,
     /// Whether inside cells were classified (the surface is a solid).

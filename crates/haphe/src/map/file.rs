@@ -22,7 +22,7 @@
 //! word (`8 × u16`) and first surface cells (`u32`), the clearance nibbles of detailed then
 //! graded bricks (256 bytes each), the triangle start of each surface cell (`u32`), the
 //! triangle references (`u32`), the slab of each surface cell (`u32`), of each detailed
-//! brick (`u32`) and of each region of 4×4×4 bricks (`u32`).
+//! brick (`u32`) and of each region of 4×4×4 bricks (`u64`).
 //!
 //! Every section starts at a multiple of 64 bytes, so on a little-endian machine a loaded
 //! surface and map use their arrays in place, as views of the one buffer the file was read
@@ -150,7 +150,7 @@ const SECTIONS: [(&str, usize); 21] = [
     ("triangle references", 4),
     ("slabs", 4),
     ("brick slabs", 4),
-    ("region slabs", 4),
+    ("region slabs", 8),
 ];
 
 /// A little-endian word of an array.
@@ -255,7 +255,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
         map.triangle_refs.len() * 4,
         map.slabs.len() * 4,
         map.brick_slabs.len() * 4,
-        map.region_slabs.len() * 4,
+        map.region_slabs.len() * 8,
     ];
     let table_end = HEADER_BYTES + SECTIONS.len() * TABLE_ENTRY_BYTES;
     let mut offsets = [0usize; SECTIONS.len()];
@@ -329,7 +329,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     start(&mut out);
     put::<u32, u32>(&mut out, &map.brick_slabs);
     start(&mut out);
-    put::<u32, u32>(&mut out, &map.region_slabs);
+    put::<u64, u64>(&mut out, &map.region_slabs);
     out.resize(total, 0);
     let checksum = checksum(&out);
     out[CHECKSUM_AT..HEADER_BYTES].copy_from_slice(&checksum.to_le_bytes());
@@ -501,7 +501,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         triangle_refs: array::<u32, u32>(file, triangle_refs),
         slabs: array::<u32, u32>(file, slabs),
         brick_slabs: array::<u32, u32>(file, brick_slabs),
-        region_slabs: array::<u32, u32>(file, region_slabs),
+        region_slabs: array::<u64, u64>(file, region_slabs),
         triangle_count: params.triangle_count,
         solid: params.solid,
         cell_size_rule: params.cell_size_rule,

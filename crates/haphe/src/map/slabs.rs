@@ -21,7 +21,8 @@
 //!
 //! Each brick that holds surface cells keeps one too, over the triangles of all its
 //! surface cells, in units of the brick's side (a step is then 0.03 of a cell), and so
-//! does each region of 4×4×4 bricks (0.13 of a cell a step). A long segment's walk reads
+//! does each region of 4×4×4 bricks, in eight bytes with bounds of 16 bits (a step is
+//! 0.0005 of a cell; with a byte it would be 0.13 of one). A long segment's walk reads
 //! a region's slab on entering the region, a brick's with the brick's surface mask, and
 //! skips the cells of the block before the segment reaches the slab and after it leaves
 //! it ([`interval`]): a segment passing near the surface without touching it crosses the
@@ -45,6 +46,14 @@ const RANGE: f64 = 0.51;
 const LEVELS: f64 = 255.0;
 /// A slab that rejects nothing: both bounds at the ends of the range.
 pub(crate) const FULL_SLAB: u32 = 0xff00_0000;
+/// Steps of a region's slab bound (16 bits): 65 535 steps of `2·RANGE/65535`, 0.0005 of
+/// a cell on a region of 32 cells. With a byte a bound (0.13 of a cell a step, rounded
+/// outward and one step more) lay up to a quarter of a cell beyond the region's
+/// triangles on each side; a long segment then walked toward a flat surface cell by cell
+/// through that margin.
+const FINE_LEVELS: f64 = 65_535.0;
+/// A region's slab that rejects nothing: both 16-bit bounds at the ends of the range.
+pub(crate) const FULL_FINE_SLAB: u64 = 0xffff_0000_0000;
 
 /// The direction of a slab, decoded from its two octahedral bytes: not unit length, its
 /// L1 norm is 1 (its length is between `1/√3` and 1). Every code decodes to a non-zero
@@ -104,13 +113,50 @@ fn bounds(slab: u32) -> (f64, f64) {
     )
 }
 
-/// The slab of a block (a surface cell, a brick or a region) with centre `centre`
-/// (metres) and side `h` (metres) whose cells list `triangles`: along the sum of their
-/// normals, or along the dominant axis of the normals where that gives a thinner slab.
+/// The bounds `(lo, hi)` of a region's slab (16 bits each), as [`bounds`].
+#[inline]
+fn fine_bounds(slab: u64) -> (f64, f64) {
+    let step = 2.0 * RANGE / FINE_LEVELS;
+    (
+        ((slab >> 16) & 0xffff) as f64 * step - RANGE,
+        ((slab >> 32) & 0xffff) as f64 * step - RANGE,
+    )
+}
+
+/// The slab of a block (a surface cell or a brick) with centre `centre` (metres) and side
+/// `h` (metres) whose cells list `triangles`: along the sum of their normals, or along the
+/// dominant axis of the normals where that gives a thinner slab.
 fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
-    let Some(&first) = triangles.first() else {
-        return FULL_SLAB;
-    };
+    slab_steps(surface, centre, h, triangles, LEVELS, false).map_or(FULL_SLAB, |(code, lo, hi)| {
+        code | ((lo as u32) << 16) | ((hi as u32) << 24)
+    })
+}
+
+/// The slab of a region, as [`slab_of`] with bounds of 16 bits; both directions are tried
+/// (a tilt of the sum's direction, which bounds of a byte hide, would thicken it).
+fn fine_slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u64 {
+    slab_steps(surface, centre, h, triangles, FINE_LEVELS, true)
+        .map_or(FULL_FINE_SLAB, |(code, lo, hi)| {
+            u64::from(code) | (lo << 16) | (hi << 32)
+        })
+}
+
+/// A slab before packing: the direction's two bytes and the bounds in steps.
+type Steps = (u32, u64, u64);
+
+/// The slab of a block over `triangles`, bounds in steps of `levels`: along the sum of
+/// their normals when it follows a smooth patch (unless `both`), else the thinner of that
+/// and the dominant axis of the normals. `None` without triangles or when products
+/// overflow.
+fn slab_steps(
+    surface: &Surface,
+    centre: DVec3,
+    h: f64,
+    triangles: &[u32],
+    levels: f64,
+    both: bool,
+) -> Option<Steps> {
+    let &first = triangles.first()?;
     // Area-weighted normals from the corners (the frames would be one more array to
     // read), each turned to the side of the first.
     let normal = |t: u32| {
@@ -124,16 +170,17 @@ fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
         sum += if n.dot(reference) < 0.0 { -n } else { n };
         total += n.length();
     }
-    let along_sum = slab_along(surface, centre, h, triangles, sum);
+    let along_sum = slab_along(surface, centre, h, triangles, sum, levels);
     // The sum gives a smooth patch's normal (then it is nearly as long as the normals
     // together) but cancels out, or turns sideways, where faces meet at an angle (the
     // rim of a thin plate: its top and bottom faces turned to the side of a rim
     // triangle's normal cancel out). There the axis of the normals' second moment
     // `Σ n nᵀ / |n|`, the direction most of the area faces either way, is tried too.
-    if let Some(code) = along_sum
+    if !both
+        && let Some(steps) = along_sum
         && sum.length() >= 0.95 * total
     {
-        return code;
+        return Some(steps);
     }
     let mut moment = DMat3::ZERO;
     for &t in triangles {
@@ -143,12 +190,12 @@ fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
             moment += DMat3::from_cols(n * n.x, n * n.y, n * n.z) / length;
         }
     }
-    let along_moment = slab_along(surface, centre, h, triangles, dominant_axis(moment));
+    let axis = dominant_axis(moment);
+    let along_moment = slab_along(surface, centre, h, triangles, axis, levels);
     [along_sum, along_moment]
         .into_iter()
         .flatten()
-        .min_by_key(|&code| (code >> 24) - ((code >> 16) & 0xff))
-        .unwrap_or(FULL_SLAB)
+        .min_by_key(|&(_, lo, hi)| hi - lo)
 }
 
 /// The axis of the largest eigenvalue of the symmetric positive semi-definite `moment`,
@@ -171,19 +218,36 @@ fn dominant_axis(moment: DMat3) -> DVec3 {
 }
 
 /// The slab of direction `n` (non-zero) of a block with centre `centre` and side `h`
-/// over the corners of `triangles`; `None` when `n` is zero or not finite or a product
-/// overflows.
+/// over the corners of `triangles`, bounds in steps of `levels`; `None` when `n` is zero
+/// or not finite or a product overflows.
 fn slab_along(
     surface: &Surface,
     centre: DVec3,
     h: f64,
     triangles: &[u32],
     n: DVec3,
-) -> Option<u32> {
+    levels: f64,
+) -> Option<Steps> {
     if !(n.is_finite() && n.length_squared() > 0.0) {
         return None;
     }
     let code = encode_direction(n);
+    let (lo, hi) = steps_along(surface, centre, h, triangles, code, levels)?;
+    Some((code, lo, hi))
+}
+
+/// The bounds, in steps of `levels` over the range, of the corners of `triangles` along
+/// the direction of `code`, from `centre`, in units of `h`: outward to the step, then one
+/// step more, far beyond the rounding of the products. `None` without triangles or when a
+/// product overflows.
+fn steps_along(
+    surface: &Surface,
+    centre: DVec3,
+    h: f64,
+    triangles: &[u32],
+    code: u32,
+    levels: f64,
+) -> Option<(u64, u64)> {
     let n = direction(code);
     let (lo, hi) = triangles
         .iter()
@@ -195,20 +259,18 @@ fn slab_along(
     if !(lo.is_finite() && hi.is_finite()) {
         return None;
     }
-    // Outward to the step, then one step more: far beyond the rounding of the products.
-    let step = 2.0 * RANGE / LEVELS;
-    let lo = (((lo + RANGE) / step).floor() - 1.0).clamp(0.0, LEVELS) as u32;
-    let hi = (((hi + RANGE) / step).ceil() + 1.0).clamp(0.0, LEVELS) as u32;
-    Some(code | (lo << 16) | (hi << 24))
+    let step = 2.0 * RANGE / levels;
+    let lo = (((lo + RANGE) / step).floor() - 1.0).clamp(0.0, levels) as u64;
+    let hi = (((hi + RANGE) / step).ceil() + 1.0).clamp(0.0, levels) as u64;
+    Some((lo, hi))
 }
 
-/// The bounds of `slab`, the slab of a block with centre `centre` and side `h` (metres),
-/// in metres along its direction from the centre, widened by a margin (a
+/// The bounds `(lo, hi)` of a slab (in sides of its block of centre `centre` and side
+/// `h`, metres) in metres along its direction from the centre, widened by a margin (a
 /// hundred-thousandth of the side, plus `1e-12` of the coordinates) far above the
 /// rounding of the products that are compared with them.
 #[inline]
-fn bounds_with_margin(slab: u32, centre: DVec3, h: f64) -> (f64, f64) {
-    let (lo, hi) = bounds(slab);
+fn with_margin((lo, hi): (f64, f64), centre: DVec3, h: f64) -> (f64, f64) {
     let margin = 1e-5 * h + 1e-12 * centre.abs().max_element();
     (lo * h - margin, hi * h + margin)
 }
@@ -218,7 +280,7 @@ fn bounds_with_margin(slab: u32, centre: DVec3, h: f64) -> (f64, f64) {
 /// segment crosses none of the block's triangles at a point of the block (`from` may be
 /// below 0 and `to` above 1; both infinite for a segment parallel to the slab and in
 /// it). `None` when no point of the segment lies in it. The bounds have the margin of
-/// [`bounds_with_margin`].
+/// [`with_margin`].
 /// A segment whose coordinates overflow the products gets `(−∞, +∞)`: it rejects nothing.
 #[inline]
 pub(crate) fn interval(
@@ -228,7 +290,33 @@ pub(crate) fn interval(
     p0: DVec3,
     p1: DVec3,
 ) -> Option<(f64, f64)> {
-    let (n, (lo, hi)) = (direction(slab), bounds_with_margin(slab, centre, h));
+    let bounds = with_margin(bounds(slab), centre, h);
+    interval_along(direction(slab), bounds, centre, p0, p1)
+}
+
+/// [`interval`] for a region's slab (bounds of 16 bits).
+#[inline]
+pub(crate) fn fine_interval(
+    slab: u64,
+    centre: DVec3,
+    h: f64,
+    p0: DVec3,
+    p1: DVec3,
+) -> Option<(f64, f64)> {
+    let bounds = with_margin(fine_bounds(slab), centre, h);
+    interval_along(direction(slab as u32), bounds, centre, p0, p1)
+}
+
+/// The parameters between which the segment `p0 → p1` lies in the layer `lo ≤ n · (x −
+/// centre) ≤ hi` (metres): see [`interval`].
+#[inline]
+fn interval_along(
+    n: DVec3,
+    (lo, hi): (f64, f64),
+    centre: DVec3,
+    p0: DVec3,
+    p1: DVec3,
+) -> Option<(f64, f64)> {
     let s0 = n.dot(p0 - centre);
     let ds = n.dot(p1 - centre) - s0;
     if !(s0.is_finite() && ds.is_finite()) {
@@ -308,12 +396,12 @@ impl VoxelMap {
                     }
                 }
                 if triangles.is_empty() {
-                    return FULL_SLAB;
+                    return FULL_FINE_SLAB;
                 }
                 triangles.sort_unstable();
                 triangles.dedup();
                 let (lo, _) = self.grid.cell_bounds(region.map(|v| v * REGION_SIDE));
-                slab_of(surface, lo + DVec3::splat(0.5 * side), side, &triangles)
+                fine_slab_of(surface, lo + DVec3::splat(0.5 * side), side, &triangles)
             })
             .collect::<Vec<_>>()
             .into();
@@ -374,8 +462,9 @@ impl VoxelMap {
             .region_slabs
             .get(region as usize)
             .copied()
-            .unwrap_or(FULL_SLAB);
-        self.window(slab, REGION_SIDE, c, p0, p1)
+            .unwrap_or(FULL_FINE_SLAB);
+        let (centre, side) = self.block_of(c, REGION_SIDE);
+        fine_interval(slab, centre, side, p0, p1)
     }
 
     /// The window of the segment in `slab`, the slab of the block of `side` cells (a
@@ -389,10 +478,18 @@ impl VoxelMap {
         p0: DVec3,
         p1: DVec3,
     ) -> Option<(f64, f64)> {
+        let (centre, side) = self.block_of(c, side);
+        interval(slab, centre, side, p0, p1)
+    }
+
+    /// The centre and the side (metres) of the block of `side` cells (a power of two)
+    /// that holds cell `c`.
+    #[inline]
+    fn block_of(&self, c: [u32; 3], side: u32) -> (DVec3, f64) {
         let corner = c.map(|v| v & !(side - 1));
         let side = f64::from(side) * self.grid.cell_size();
         let (lo, _) = self.grid.cell_bounds(corner);
-        interval(slab, lo + DVec3::splat(0.5 * side), side, p0, p1)
+        (lo + DVec3::splat(0.5 * side), side)
     }
 
     /// The slab of surface cell `s` ([`FULL_SLAB`] when out of range).

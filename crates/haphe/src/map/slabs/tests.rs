@@ -77,7 +77,8 @@ fn slabs_hold_the_triangles_in_their_cells() {
                     }
                     let block = map.grid().cell_bounds(c);
                     let what = format!("{shape:?} {c:?}");
-                    points += check_in_slab(&mut random, &surface, listed, block, slab, 20, &what);
+                    let layer = (direction(slab), bounds(slab));
+                    points += check_in_slab(&mut random, &surface, listed, block, layer, 20, &what);
                 }
             }
         }
@@ -95,12 +96,11 @@ fn check_in_slab(
     surface: &Surface,
     triangles: &[u32],
     (lo, hi): (DVec3, DVec3),
-    slab: u32,
+    (n, (a, b)): (DVec3, (f64, f64)),
     samples: usize,
     what: &str,
 ) -> usize {
     let (centre, side) = (0.5 * (lo + hi), hi.x - lo.x);
-    let (n, (a, b)) = (direction(slab), bounds(slab));
     let mut points = 0;
     for &t in triangles {
         let [p, q, r] = surface.corners(TriId(t));
@@ -161,12 +161,14 @@ fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
                 for y in 0..dims[1] {
                     for x in 0..dims[0] {
                         let c = [x, y, z];
-                        let (block, slab) = match (map.look_region(c), map.look(c)) {
+                        let (block, layer) = match (map.look_region(c), map.look(c)) {
                             (RegionLook::Surface(r), _) if side == REGION_SIDE => {
-                                (r, map.region_slabs[r as usize])
+                                let slab = map.region_slabs[r as usize];
+                                (r, (direction(slab as u32), fine_bounds(slab)))
                             }
                             (_, Look::Detailed { brick, .. }) if side == BRICK_SIDE => {
-                                (brick, map.brick_slab(brick))
+                                let slab = map.brick_slab(brick);
+                                (brick, (direction(slab), bounds(slab)))
                             }
                             _ => continue,
                         };
@@ -174,10 +176,16 @@ fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
                             continue;
                         }
                         let corner = c.map(|v| v & !(side - 1));
-                        let (a, b) = bounds(slab);
+                        let (a, b) = layer.1;
                         blocks += 1;
                         if shape == Shape::ThinPlate {
                             assert!(b - a < 0.05, "{shape:?} {side} {c:?}: {} thick", b - a);
+                        }
+                        // The plate's regions away from its rim: as thin as the plate and
+                        // two steps of 16 bits (a tilt, or bounds of a byte, would give
+                        // more than a hundredth of the region).
+                        if shape == Shape::ThinPlate && side == REGION_SIDE {
+                            assert!(b - a < 0.002, "{shape:?} region {c:?}: {} thick", b - a);
                         }
                         // Under two cells for a brick, eight (a quarter) for a region.
                         let cells = (b - a) * f64::from(side);
@@ -195,7 +203,7 @@ fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
                         let (lo, _) = map.grid().cell_bounds(corner);
                         let box_ = (lo, lo + DVec3::splat(length));
                         let what = format!("{shape:?} block {block} of {side}");
-                        points += check_in_slab(&mut random, &surface, &all, box_, slab, 4, &what);
+                        points += check_in_slab(&mut random, &surface, &all, box_, layer, 4, &what);
                     }
                 }
             }
@@ -262,7 +270,6 @@ fn a_window_holds_the_parameters_in_the_slab() {
 /// regions, is refused, naming the section.
 #[test]
 fn a_file_without_a_slab_per_surface_cell_is_refused() {
-    use crate::map::{MapFileError, decode, encode};
     let surface = Surface::new(
         Shape::Blob.with_triangles(1_000),
         &SurfaceOptions::default(),
@@ -275,18 +282,33 @@ fn a_file_without_a_slab_per_surface_cell_is_refused() {
             let slabs = match want {
                 "slabs" => wrong.slabs.to_mut(),
                 "brick slabs" => wrong.brick_slabs.to_mut(),
-                _ => wrong.region_slabs.to_mut(),
+                _ => {
+                    let slabs = wrong.region_slabs.to_mut();
+                    if change < 0 {
+                        slabs.pop();
+                    } else {
+                        slabs.push(FULL_FINE_SLAB);
+                    }
+                    check_refused(&surface, &wrong, want);
+                    continue;
+                }
             };
             if change < 0 {
                 slabs.pop();
             } else {
                 slabs.push(FULL_SLAB);
             }
-            match decode(&encode(&surface, &wrong)) {
-                Err(MapFileError::Invalid { section, .. }) => assert_eq!(section, want),
-                other => panic!("expected the {want} refused, got {other:?}"),
-            }
+            check_refused(&surface, &wrong, want);
         }
+    }
+}
+
+/// The map `wrong`, saved and loaded, is refused for its section `want`.
+fn check_refused(surface: &Surface, wrong: &VoxelMap, want: &str) {
+    use crate::map::{MapFileError, decode, encode};
+    match decode(&encode(surface, wrong)) {
+        Err(MapFileError::Invalid { section, .. }) => assert_eq!(section, want),
+        other => panic!("expected the {want} refused, got {other:?}"),
     }
 }
 
