@@ -4,12 +4,13 @@
 //! a thin layer of the cell: a piece of a smooth surface, or both faces of a thin plate.
 //! A segment that passes the cell above or below that layer crosses none of them there.
 //! Each surface cell keeps its **slab** in four bytes: a direction `n` (two octahedral
-//! bytes, see [`direction`]) and the range `[lo, hi]` of `n · (x − centre)` over its triangles' corners (one
-//! byte each, in cells, rounded outward), which holds every point of the triangles in the
-//! cell since a triangle is the convex hull of its corners. A segment whose part in the
-//! cell lies wholly on one side of the slab ([`interval`]) skips the cell's triangles — their
-//! list and their frames, the reads that are cold on large meshes — and one that passes
-//! through it has only its part in the slab tested against them.
+//! bytes, see [`direction`]) and the range `[lo, hi]` of `n · (x − centre)` over its
+//! triangles' corners (one byte each, in cells, rounded outward), which holds every point
+//! of the triangles in the cell since a triangle is the convex hull of its corners. A
+//! segment whose part in the cell lies wholly on one side of the slab ([`interval`]) skips
+//! the cell's triangles — their list and their frames, the reads that are cold on large
+//! meshes — and one that passes through it has only its part in the slab tested against
+//! them.
 //!
 //! The direction is the sum of the triangles' normals (weighted by area), each turned to
 //! the side of the first one's, which follows a smooth patch. Where that sum falls short

@@ -2,8 +2,6 @@
 
 use glam::DVec3;
 
-#[cfg(test)]
-use super::intersect_segment_triangle;
 use super::{Segment, SegmentHit, intersect_segment_framed};
 use crate::map::{
     BLOCK_SIDE, BRICK_SIDE, CellStep, CellWalk, InBrick, Look, REGION_SIDE, RegionLook, VoxelMap,

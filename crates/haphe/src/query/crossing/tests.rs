@@ -3,6 +3,7 @@
 use super::*;
 use crate::mesh::SurfaceOptions;
 use crate::mesh::shapes::Shape;
+use crate::query::intersect_segment_triangle;
 use crate::rng::SplitMix64;
 use crate::verify::{SegmentKind, segments};
 
