@@ -129,8 +129,9 @@ pub(crate) fn cell_in_brick(bc: [u32; 3], local: usize) -> [u32; 3] {
 ///   [`CellState::Outside`]; so is every point outside the grid box;
 /// - a cell is [`CellState::Surface`] exactly when at least one triangle overlaps it
 ///   (enlarged by [`OVERLAP_TOLERANCE_REL`](super::OVERLAP_TOLERANCE_REL)), and
-///   [`triangles_in`](VoxelMap::triangles_in) lists every such triangle once, in increasing
-///   index order; other cells list none;
+///   [`triangles_in`](VoxelMap::triangles_in) lists every such triangle once, ordered along
+///   the direction of the cell's slab (by the height of their centroids, then by index;
+///   the order a segment crossing the cell that way meets them); other cells list none;
 /// - for a solid surface ([`Surface::is_solid`](crate::mesh::Surface::is_solid)),
 ///   non-surface cells connected to the padding through face-adjacent non-surface cells
 ///   are outside; every other connected region of non-surface cells is inside, unless
@@ -324,8 +325,8 @@ impl VoxelMap {
     }
 
     /// The triangles (indices into the surface the map was built from) that overlap cell
-    /// `c`, in increasing order; empty for a non-surface cell and for any index outside the
-    /// grid.
+    /// `c`, each once (ordered along the direction of the cell's slab, not by index);
+    /// empty for a non-surface cell and for any index outside the grid.
     ///
     /// # Real-time
     /// Constant time (five array reads and a population count), no allocation, never

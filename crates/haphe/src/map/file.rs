@@ -1,6 +1,6 @@
 //! Saving and loading a surface with its voxel map: one checked, sectioned file.
 //!
-//! # Layout (format version 9, all numbers little-endian)
+//! # Layout (format version 10, all numbers little-endian)
 //!
 //! | bytes | content |
 //! |---|---|
@@ -21,8 +21,9 @@
 //! inside masks of the detailed bricks (`8 × u64` each), their surface counts per mask
 //! word (`8 × u16`) and first surface cells (`u32`), the clearance nibbles of detailed then
 //! graded bricks (256 bytes each), the triangle start of each surface cell (`u32`), the
-//! triangle references (`u32`), the slab of each surface cell (`u32`), of each detailed
-//! brick (`u32`) and of each region of 4×4×4 bricks (`u64`).
+//! triangle references (`u32`; each cell's list ordered along its slab's direction), the
+//! slab of each surface cell (`u32`), of each detailed brick (`u32`) and of each region of
+//! 4×4×4 bricks (`u64`).
 //!
 //! Every section starts at a multiple of 64 bytes, so on a little-endian machine a loaded
 //! surface and map use their arrays in place, as views of the one buffer the file was read
@@ -47,7 +48,7 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
-pub const FORMAT_VERSION: u32 = 9;
+pub const FORMAT_VERSION: u32 = 10;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;

@@ -61,7 +61,7 @@ pub(crate) use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
 pub(crate) use grid::floor_to_int;
 pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL, PADDING_SLACK_REL};
 pub use overlap::overlap_triangle_box;
-pub(crate) use slabs::interval as slab_interval;
+pub(crate) use slabs::interval_toward as slab_interval;
 pub use walk::{CellStep, CellWalk};
 
 /// Largest clearance a cell stores, in cells. Cells within 15 cells of the surface store

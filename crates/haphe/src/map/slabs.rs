@@ -291,6 +291,20 @@ pub(crate) fn interval(
     p0: DVec3,
     p1: DVec3,
 ) -> Option<(f64, f64)> {
+    interval_toward(slab, centre, h, p0, p1).map(|(from, to, _)| (from, to))
+}
+
+/// [`interval`], and whether the segment moves along the slab's direction (`false`
+/// against it; `true` when it moves neither way or its products overflow): the way to
+/// walk a cell's list, ordered along that direction.
+#[inline]
+pub(crate) fn interval_toward(
+    slab: u32,
+    centre: DVec3,
+    h: f64,
+    p0: DVec3,
+    p1: DVec3,
+) -> Option<(f64, f64, bool)> {
     let bounds = with_margin(bounds(slab), centre, h);
     interval_along(direction(slab), bounds, centre, p0, p1)
 }
@@ -305,11 +319,11 @@ pub(crate) fn fine_interval(
     p1: DVec3,
 ) -> Option<(f64, f64)> {
     let bounds = with_margin(fine_bounds(slab), centre, h);
-    interval_along(direction(slab as u32), bounds, centre, p0, p1)
+    interval_along(direction(slab as u32), bounds, centre, p0, p1).map(|(from, to, _)| (from, to))
 }
 
 /// The parameters between which the segment `p0 → p1` lies in the layer `lo ≤ n · (x −
-/// centre) ≤ hi` (metres): see [`interval`].
+/// centre) ≤ hi` (metres), and whether it moves along `n`: see [`interval_toward`].
 #[inline]
 fn interval_along(
     n: DVec3,
@@ -317,38 +331,57 @@ fn interval_along(
     centre: DVec3,
     p0: DVec3,
     p1: DVec3,
-) -> Option<(f64, f64)> {
+) -> Option<(f64, f64, bool)> {
     let s0 = n.dot(p0 - centre);
     let ds = n.dot(p1 - centre) - s0;
     if !(s0.is_finite() && ds.is_finite()) {
-        return Some((f64::NEG_INFINITY, f64::INFINITY));
+        return Some((f64::NEG_INFINITY, f64::INFINITY, true));
     }
     if ds == 0.0 {
-        return (lo <= s0 && s0 <= hi).then_some((f64::NEG_INFINITY, f64::INFINITY));
+        return (lo <= s0 && s0 <= hi).then_some((f64::NEG_INFINITY, f64::INFINITY, true));
     }
     let inv = 1.0 / ds;
     let (a, b) = ((lo - s0) * inv, (hi - s0) * inv);
     let (from, to) = (a.min(b), a.max(b));
-    (from <= 1.0 && to >= 0.0).then_some((from, to))
+    (from <= 1.0 && to >= 0.0).then_some((from, to, ds > 0.0))
+}
+
+/// Puts `listed` (a cell's triangles) into `keyed` in the order a segment moving along
+/// `n` meets them: by `n · (a + b + c)`, three times the height of their centroids along
+/// the cell's slab direction, then by index. The query walks a list forwards or backwards
+/// as its segment moves along `n` or against it, so the first triangle it crosses is
+/// mostly the first it tests: the near face of a thin plate before the far one, whose
+/// filter then skips it on the part before the crossing (see
+/// [`first_crossing`](crate::query::first_crossing)). Any order gives the same answers.
+fn order_along(surface: &Surface, n: DVec3, listed: &[u32], keyed: &mut Vec<(f64, u32)>) {
+    keyed.clear();
+    keyed.extend(listed.iter().map(|&t| {
+        let [a, b, c] = surface.corners(TriId(t));
+        (n.dot(a + b + c), t)
+    }));
+    keyed.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
 }
 
 impl VoxelMap {
     /// Sets the slab of every surface cell, in the order of the surface cells (detailed
-    /// bricks in order, cells of a brick in mask order), and of every detailed brick.
-    /// Parallel over bricks.
+    /// bricks in order, cells of a brick in mask order), and of every detailed brick, and
+    /// orders each cell's list along its slab's direction ([`order_along`]). Parallel over
+    /// bricks.
     pub(crate) fn derive_slabs(&mut self, surface: &Surface) {
         let h = self.grid.cell_size();
         let side = f64::from(BRICK_SIDE) * h;
-        let per_brick: Vec<(Vec<u32>, u32)> = (0..self.bricks.len())
+        // Per detailed brick: its cells' slabs, its own slab and its cells' lists, ordered.
+        let per_brick: Vec<(Vec<u32>, u32, Vec<u32>)> = (0..self.bricks.len())
             .into_par_iter()
             .filter(|&b| self.bricks[b] & UNIFORM == 0)
             .map(|b| {
                 let brick = self.bricks[b] as usize;
                 let bc = brick_coords(b, self.brick_dims);
-                let (mut slabs, mut triangles) = (Vec::new(), Vec::new());
+                let (mut slabs, mut triangles, mut ordered) = (Vec::new(), Vec::new(), Vec::new());
                 let Some(bits) = self.surface_bits.get(brick) else {
-                    return (slabs, FULL_SLAB);
+                    return (slabs, FULL_SLAB, ordered);
                 };
+                let mut keyed = Vec::new();
                 for (word, &bits) in bits.iter().enumerate() {
                     let mut rest = bits;
                     while rest != 0 {
@@ -356,21 +389,38 @@ impl VoxelMap {
                         rest &= rest - 1;
                         let (lo, hi) = self.grid.cell_bounds(cell_in_brick(bc, local));
                         let listed = self.listed(brick, local).unwrap_or(&[]);
-                        slabs.push(slab_of(surface, 0.5 * (lo + hi), h, listed));
+                        let slab = slab_of(surface, 0.5 * (lo + hi), h, listed);
+                        slabs.push(slab);
                         triangles.extend_from_slice(listed);
+                        order_along(surface, direction(slab), listed, &mut keyed);
+                        ordered.extend(keyed.iter().map(|&(_, t)| t));
                     }
                 }
                 triangles.sort_unstable();
                 triangles.dedup();
                 let (lo, _) = self.grid.cell_bounds(cell_in_brick(bc, 0));
                 let brick_slab = slab_of(surface, lo + DVec3::splat(0.5 * side), side, &triangles);
-                (slabs, brick_slab)
+                (slabs, brick_slab, ordered)
             })
             .collect();
-        self.brick_slabs = per_brick.iter().map(|&(_, s)| s).collect::<Vec<_>>().into();
+        // The lists follow each other in the same order of surface cells, so the ordered
+        // ones replace them whole.
+        let refs: Vec<u32> = per_brick
+            .iter()
+            .flat_map(|(_, _, o)| o.iter().copied())
+            .collect();
+        debug_assert_eq!(refs.len(), self.triangle_refs.len());
+        if refs.len() == self.triangle_refs.len() {
+            self.triangle_refs = refs.into();
+        }
+        self.brick_slabs = per_brick
+            .iter()
+            .map(|&(_, s, _)| s)
+            .collect::<Vec<_>>()
+            .into();
         self.slabs = per_brick
             .into_iter()
-            .flat_map(|(slabs, _)| slabs)
+            .flat_map(|(slabs, _, _)| slabs)
             .collect::<Vec<_>>()
             .into();
         let dims = region_dims(self.brick_dims);

@@ -500,7 +500,7 @@ fn zero_nibbles(bytes: &[u8]) -> BrickBits {
 }
 
 /// Triangle lists: one start per surface cell plus one, from 0, increasing (no empty
-/// list), up to the references; each list increasing and within the triangles.
+/// list), up to the references; each list within the triangles, none twice.
 fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
     let surface_cells = map.surface_first.last().map_or(0, |&x| x as usize);
     let starts = &map.triangle_start;
@@ -546,28 +546,38 @@ fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
             ));
         }
     }
-    // Every list increasing: the descents of the whole array are exactly those at list
-    // borders (counted in two linear passes, the first vectorised), and all below `t`.
+    // Every reference within the triangles, and no triangle twice in one list (a list is
+    // ordered along its cell's slab, not by index).
     let refs = &map.triangle_refs;
-    let descents: usize = refs.windows(2).map(|w| usize::from(w[0] >= w[1])).sum();
-    let at_borders: usize = starts
-        .iter()
-        .filter_map(|&s| Some(s as usize).filter(|&s| s > 0 && s < refs.len()))
-        .map(|s| usize::from(refs[s - 1] >= refs[s]))
-        .sum();
     let max = refs.iter().fold(0u32, |m, &x| m.max(x));
-    if descents != at_borders || (!refs.is_empty() && max as usize >= t) {
+    if !refs.is_empty() && max as usize >= t {
         let s = starts
             .windows(2)
             .position(|w| {
                 let list = refs.get(w[0] as usize..w[1] as usize).unwrap_or(&[]);
-                !list.windows(2).all(|p| p[0] < p[1]) || list.iter().any(|&x| x as usize >= t)
+                list.iter().any(|&x| x as usize >= t)
             })
             .unwrap_or(0);
         return Err(invalid(
             "triangle references",
-            format!("surface cell {s} lists triangles not increasing or out of range (of {t})"),
+            format!("surface cell {s} lists a triangle out of range (of {t})"),
         ));
+    }
+    // Each triangle marked with the last list it was seen in.
+    let mut seen_in = vec![u32::MAX; t];
+    for (s, w) in starts.windows(2).enumerate() {
+        for &x in refs.get(w[0] as usize..w[1] as usize).unwrap_or(&[]) {
+            let Some(seen) = seen_in.get_mut(x as usize) else {
+                continue;
+            };
+            if *seen == s as u32 {
+                return Err(invalid(
+                    "triangle references",
+                    format!("surface cell {s} lists triangle {x} twice"),
+                ));
+            }
+            *seen = s as u32;
+        }
     }
     Ok(())
 }

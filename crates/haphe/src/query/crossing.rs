@@ -137,7 +137,8 @@ impl Tested {
 /// through it is filtered against them on its part in the layer only; once a crossing is
 /// found, the cell's remaining triangles are filtered on the part before it (so a thin
 /// wall's far face, listed in the same cells as its near face, costs no exact test when
-/// the near face comes first). A triangle whose plane the segment's line meets beyond an
+/// the near face comes first: a cell's list is ordered along its slab's direction and
+/// taken from the side the segment comes from). A triangle whose plane the segment's line meets beyond an
 /// edge is filtered out from its frame, and one it crosses well inside is answered from
 /// its plane's orientations and its frame (the watertight test's answer, without its
 /// shear of the corners; see `intersect_segment_framed`). On a surface of 2048 triangles
@@ -279,21 +280,28 @@ pub fn first_crossing_where(
         // wholly on one side crosses none of them in this cell; one that passes through
         // it can cross them only where it is in the slab: the part the filter tests
         // (the segment's parameters in the slab, found as for a brick's or a region's).
+        // The list is ordered along the slab's direction: a segment moving against it
+        // takes it from the end, so that it meets the triangle it crosses first (the
+        // near face of a plate) early, and the rest are filtered on the part before it.
+        let mut forward = true;
         if let Some(slab) = slab {
             let (lo, hi) = map.grid().cell_bounds(visit.cell);
-            let Some((a, b)) = slab_interval(slab, 0.5 * (lo + hi), h, p0, p1) else {
+            let Some((a, b, along)) = slab_interval(slab, 0.5 * (lo + hi), h, p0, p1) else {
                 continue;
             };
             (from, to) = (from.max(a), to.min(b));
             if from > to {
                 continue;
             }
+            forward = along;
         }
         let (q0, mut q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
         if fetch {
             fetch_ahead(surface, triangles);
         }
-        for &t in triangles {
+        let n = triangles.len();
+        for i in 0..n {
+            let t = triangles[if forward { i } else { n - 1 - i }];
             if cannot_cross(surface, t, q0, q1, plane_margin) || !tested.insert(t) {
                 continue;
             }

@@ -197,6 +197,22 @@ fn crafted_files_with_a_valid_checksum_are_checked() {
         refused_in(last_ref, &u32::MAX.to_le_bytes()),
         "triangle references"
     );
+    // A triangle listed twice in one cell: the second entry of the first list of two or
+    // more made a copy of its first.
+    let (starts, refs) = (
+        find_section_start(bytes, sections - 5),
+        find_section_start(bytes, sections - 4),
+    );
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
+    let first = (0..)
+        .map(|s| (word(starts + 4 * s), word(starts + 4 * s + 4)))
+        .find(|&(a, b)| b - a >= 2)
+        .map(|(a, _)| refs + 4 * a as usize)
+        .expect("a cell listing two triangles");
+    assert_eq!(
+        refused_in(first + 4, &word(first).to_le_bytes()),
+        "triangle references"
+    );
     // A vertex index out of range.
     let vertices = surface.vertex_count() as u32;
     let at = find_section_start(bytes, 2);

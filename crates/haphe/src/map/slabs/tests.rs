@@ -89,6 +89,67 @@ fn slabs_hold_the_triangles_in_their_cells() {
     }
 }
 
+/// Every surface cell lists its triangles each once, ordered by the height of their
+/// centroids along its slab's direction, then by index (three shapes); so in each cell of
+/// the thin plate, one face's triangles all come before the other's.
+#[test]
+fn cell_lists_are_ordered_along_their_slabs() {
+    for (shape, triangles) in [
+        (Shape::Blob, 5_000),
+        (Shape::Sphere, 2_000),
+        (Shape::ThinPlate, 2_000),
+    ] {
+        let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
+            .expect("a surface");
+        let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
+        let dims = map.grid().dims();
+        let (mut cells, mut both_faces) = (0, 0);
+        for z in 0..dims[2] {
+            for y in 0..dims[1] {
+                for x in 0..dims[0] {
+                    let c = [x, y, z];
+                    let listed = map.triangles_in(c);
+                    let Some(slab) = surface_slab(&map, c) else {
+                        continue;
+                    };
+                    cells += 1;
+                    let n = direction(slab);
+                    let key = |t: u32| {
+                        let [a, b, c] = surface.corners(TriId(t));
+                        (n.dot(a + b + c), t)
+                    };
+                    for pair in listed.windows(2) {
+                        let (k0, k1) = (key(pair[0]), key(pair[1]));
+                        assert!(
+                            k0.0 < k1.0 || (k0.0 == k1.0 && k0.1 < k1.1),
+                            "{shape:?} {c:?}: {k0:?} before {k1:?}"
+                        );
+                    }
+                    if shape == Shape::ThinPlate {
+                        // The faces' triangles in list order, by the side they face.
+                        let faces: Vec<bool> = listed
+                            .iter()
+                            .map(|&t| surface.frame(TriId(t)).normal.z)
+                            .filter(|nz| nz.abs() > 0.9)
+                            .map(|nz| nz > 0.0)
+                            .collect();
+                        let changes = faces.windows(2).filter(|w| w[0] != w[1]).count();
+                        assert!(changes <= 1, "{c:?}: the faces interleave: {faces:?}");
+                        both_faces += usize::from(changes == 1);
+                    }
+                }
+            }
+        }
+        assert!(cells > 100, "{shape:?}: {cells} surface cells");
+        if shape == Shape::ThinPlate {
+            assert!(
+                2 * both_faces > cells,
+                "{both_faces} of {cells} with both faces"
+            );
+        }
+    }
+}
+
 /// Checks that `samples` random points of each of `triangles` that lie in the box
 /// `(lo, hi)` lie in `slab`, the slab of that box (a cube); returns how many did.
 fn check_in_slab(
@@ -369,6 +430,10 @@ fn a_segment_interval_holds_the_points_in_the_slab() {
         None
     );
     let (a, b) = interval(slab, centre, h, at(-0.5, 0.3), at(0.5, -0.3)).expect("across");
+    // Which way the part moves along the slab's direction (down here, then up).
+    let toward = |q0, q1| interval_toward(slab, centre, h, q0, q1).map(|(_, _, up)| up);
+    assert_eq!(toward(at(-0.5, 0.3), at(0.5, -0.3)), Some(false));
+    assert_eq!(toward(at(0.5, -0.3), at(-0.5, 0.3)), Some(true));
     // The part crosses the slab's 0.2 of a cell over 0.2 / 0.6 of its length.
     assert!(
         (a - 1.0 / 3.0).abs() < 0.01 && (b - 2.0 / 3.0).abs() < 0.01,
