@@ -7,7 +7,7 @@
 
 use std::fmt;
 use std::io::Read;
-use std::ops::{Deref, DerefMut, Range};
+use std::ops::{Deref, Range};
 use std::sync::Arc;
 
 use bytemuck::Pod;
@@ -114,83 +114,92 @@ impl fmt::Debug for MapBytes {
     }
 }
 
-/// A typed view of a byte range of a [`MapBytes`]: the slice, found once when the view is
-/// made, held together with the buffer it borrows from (a [`Yoke`]), so that reading it
-/// costs what reading a [`Vec`] does.
-struct View<T: 'static> {
-    slice: Yoke<&'static [T], Arc<Backing>>,
-    /// Length in bytes.
-    len: usize,
+/// What an [`Array`]'s slice lives in: its own vector, or the bytes of a loaded map.
+enum Cart<T> {
+    Owned(Vec<T>),
+    Loaded(Arc<Backing>),
 }
 
-impl<T: 'static> Clone for View<T> {
-    fn clone(&self) -> Self {
-        View {
-            slice: self.slice.clone(),
-            len: self.len,
-        }
-    }
-}
-
-/// An array of `T`: owned, or a view of a loaded buffer. Reads as a slice; writing to a
-/// view first copies it (only map building writes, never to a loaded array).
+/// An array of `T`: owned, or a view of a loaded buffer. Reads as a slice: the slice is
+/// found once, when the array is made, and kept with what it borrows from (a [`Yoke`]),
+/// so that reading it costs what reading a [`Vec`] does, with no test of which kind it
+/// is. Clones share the data; changing an array ([`Array::modify`]) copies it first
+/// unless it is the only owner of its vector (only map building changes arrays, never a
+/// loaded one).
 #[derive(Clone)]
 pub(crate) struct Array<T: 'static> {
-    owned: Vec<T>,
-    view: Option<View<T>>,
+    slice: Yoke<&'static [T], Arc<Cart<T>>>,
 }
 
 impl<T: Pod> Array<T> {
     /// A view of `range` of `bytes` when it is aligned for `T` and a whole number of
     /// elements, else `None`.
     pub(crate) fn view(bytes: &MapBytes, range: Range<usize>) -> Option<Array<T>> {
-        let len = range.len();
-        let slice = Yoke::try_attach_to_cart(Arc::clone(&bytes.0), |backing: &Backing| {
-            let part = backing.bytes().get(range).ok_or(())?;
-            bytemuck::try_cast_slice::<u8, T>(part).map_err(|_| ())
+        let cart = Arc::new(Cart::Loaded(Arc::clone(&bytes.0)));
+        let slice = Yoke::try_attach_to_cart(cart, |cart: &Cart<T>| match cart {
+            Cart::Loaded(backing) => {
+                let part = backing.bytes().get(range).ok_or(())?;
+                bytemuck::try_cast_slice::<u8, T>(part).map_err(|_| ())
+            }
+            Cart::Owned(_) => Err(()),
         })
         .ok()?;
-        Some(Array {
-            owned: Vec::new(),
-            view: Some(View { slice, len }),
-        })
+        Some(Array { slice })
     }
 
-    /// The owned vector, copying a view first.
-    pub(crate) fn to_mut(&mut self) -> &mut Vec<T> {
-        if let Some(view) = self.view.take() {
-            self.owned = view.slice.get().to_vec();
+    /// Changes the array through its vector (copying a view, or data another clone
+    /// shares, first), then reads it as before.
+    pub(crate) fn modify<R>(&mut self, change: impl FnOnce(&mut Vec<T>) -> R) -> R {
+        let mut owned = self.take_vec();
+        let result = change(&mut owned);
+        *self = Array::from(owned);
+        result
+    }
+
+    /// The array's vector (a copy of a view, or of data another clone shares), leaving
+    /// the array empty: for changing it in many places before putting it back with
+    /// `Array::from`.
+    pub(crate) fn take_vec(&mut self) -> Vec<T> {
+        let this = std::mem::take(self);
+        let unique = Arc::strong_count(this.slice.backing_cart()) == 1;
+        match this.slice.backing_cart().as_ref() {
+            Cart::Owned(_) if unique => match Arc::try_unwrap(this.slice.into_backing_cart()) {
+                Ok(Cart::Owned(owned)) => owned,
+                _ => Vec::new(),
+            },
+            _ => this.slice.get().to_vec(),
         }
-        &mut self.owned
     }
 
     /// Bytes of memory the array holds (a view: its share of the loaded buffer).
     pub(crate) fn heap_bytes(&self) -> usize {
-        match &self.view {
-            None => self.owned.capacity() * size_of::<T>(),
-            Some(view) => view.len,
+        match self.slice.backing_cart().as_ref() {
+            Cart::Owned(owned) => owned.capacity() * size_of::<T>(),
+            Cart::Loaded(_) => size_of_val(*self.slice.get()),
         }
     }
 
     /// Whether the array is a view of a loaded buffer.
     #[cfg(test)]
     pub(crate) fn is_view(&self) -> bool {
-        self.view.is_some()
+        matches!(self.slice.backing_cart().as_ref(), Cart::Loaded(_))
     }
 }
 
 impl<T: 'static> Default for Array<T> {
     fn default() -> Self {
-        Array {
-            owned: Vec::new(),
-            view: None,
-        }
+        Array::from(Vec::new())
     }
 }
 
 impl<T: 'static> From<Vec<T>> for Array<T> {
     fn from(owned: Vec<T>) -> Self {
-        Array { owned, view: None }
+        let slice =
+            Yoke::attach_to_cart(Arc::new(Cart::Owned(owned)), |cart: &Cart<T>| match cart {
+                Cart::Owned(owned) => owned.as_slice(),
+                Cart::Loaded(_) => &[],
+            });
+        Array { slice }
     }
 }
 
@@ -198,17 +207,7 @@ impl<T: Pod> Deref for Array<T> {
     type Target = [T];
     #[inline]
     fn deref(&self) -> &[T] {
-        match &self.view {
-            None => &self.owned,
-            Some(view) => view.slice.get(),
-        }
-    }
-}
-
-impl<T: Pod> DerefMut for Array<T> {
-    #[inline]
-    fn deref_mut(&mut self) -> &mut [T] {
-        self.to_mut()
+        self.slice.get()
     }
 }
 
@@ -217,14 +216,6 @@ impl<'a, T: Pod> IntoIterator for &'a Array<T> {
     type IntoIter = std::slice::Iter<'a, T>;
     fn into_iter(self) -> Self::IntoIter {
         self.iter()
-    }
-}
-
-impl<'a, T: Pod> IntoIterator for &'a mut Array<T> {
-    type Item = &'a mut T;
-    type IntoIter = std::slice::IterMut<'a, T>;
-    fn into_iter(self) -> Self::IntoIter {
-        self.iter_mut()
     }
 }
 
@@ -251,9 +242,22 @@ mod tests {
         let mut a = Array::<u32>::view(&bytes, 40..80).expect("aligned");
         assert!(a.is_view());
         assert_eq!(&a[..], &words[10..20]);
-        a[0] = 7;
+        let shared = a.clone();
+        a.modify(|a| a[0] = 7);
         assert!(!a.is_view());
         assert_eq!(a[..2], [7, 11]);
+        assert_eq!(shared[..2], [10, 11], "a clone keeps what it had");
+        // An owned array changes in place; one shared with a clone is copied first.
+        let mut owned = Array::from(vec![1u32, 2, 3]);
+        let other = owned.clone();
+        owned.modify(|v| v.push(4));
+        assert_eq!(
+            (&owned[..], &other[..]),
+            (&[1, 2, 3, 4][..], &[1, 2, 3][..])
+        );
+        let before = owned.as_ptr();
+        owned.modify(|v| v[0] = 9);
+        assert_eq!((owned.as_ptr(), owned[0]), (before, 9), "in place");
         assert!(Array::<u64>::view(&bytes, 4..12).is_none(), "misaligned");
         assert!(
             Array::<u32>::view(&bytes, 0..6).is_none(),

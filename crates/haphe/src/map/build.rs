@@ -164,15 +164,15 @@ pub(super) fn build_on_grid(
     compute_clearance(&mut map);
     map.derive_free_space();
     map.derive_slabs(surface);
-    map.bricks.to_mut().shrink_to_fit();
-    map.surface_bits.to_mut().shrink_to_fit();
-    map.inside_bits.to_mut().shrink_to_fit();
-    map.surface_before.to_mut().shrink_to_fit();
-    map.surface_first.to_mut().shrink_to_fit();
-    map.triangle_start.to_mut().shrink_to_fit();
-    map.triangle_refs.to_mut().shrink_to_fit();
-    map.slabs.to_mut().shrink_to_fit();
-    map.clearances.to_mut().shrink_to_fit();
+    map.bricks.modify(Vec::shrink_to_fit);
+    map.surface_bits.modify(Vec::shrink_to_fit);
+    map.inside_bits.modify(Vec::shrink_to_fit);
+    map.surface_before.modify(Vec::shrink_to_fit);
+    map.surface_first.modify(Vec::shrink_to_fit);
+    map.triangle_start.modify(Vec::shrink_to_fit);
+    map.triangle_refs.modify(Vec::shrink_to_fit);
+    map.slabs.modify(Vec::shrink_to_fit);
+    map.clearances.modify(Vec::shrink_to_fit);
     Ok(map)
 }
 

@@ -151,22 +151,21 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
     drop((current, next, along_x, along_y));
 
     let detailed_count = map.detailed_count();
-    map.clearances = vec![0; (detailed_count + graded_count) * NIBBLE_BYTES].into();
+    let mut clearances = vec![0; (detailed_count + graded_count) * NIBBLE_BYTES];
     for (&s, counter) in counted.iter().zip(&counts) {
         let brick = match targets[s] {
             Target::Detailed(d) => d,
             Target::Graded(g) => detailed_count + g,
             Target::Uniform => continue,
         };
-        if let Some(bytes) = map
-            .clearances
-            .get_mut(brick * NIBBLE_BYTES..(brick + 1) * NIBBLE_BYTES)
-        {
+        if let Some(bytes) = clearances.get_mut(brick * NIBBLE_BYTES..(brick + 1) * NIBBLE_BYTES) {
             counter.write_nibbles(bytes);
         }
     }
+    map.clearances = clearances.into();
     let distances = brick_distances(&map.bricks, bdims);
-    for (b, entry) in map.bricks.iter_mut().enumerate() {
+    let mut bricks = map.bricks.take_vec();
+    for (b, entry) in bricks.iter_mut().enumerate() {
         if *entry & UNIFORM == 0 {
             continue;
         }
@@ -180,6 +179,7 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
             _ => uniform_entry(state, far.max(u32::from(MAX_CLEARANCE))),
         };
     }
+    map.bricks = bricks.into();
 }
 
 /// The Chebyshev distance, in bricks, from every brick to the nearest detailed one (0 for

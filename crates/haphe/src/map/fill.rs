@@ -60,19 +60,29 @@ pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
             }
         }
     }
+    // The entries and inside masks change all through the flood: taken out as vectors
+    // and put back at the end.
+    let mut bricks = map.bricks.take_vec();
+    let mut inside_bits = map.inside_bits.take_vec();
     let mut flood = Flood {
         reached: vec![[0; MASK_WORDS]; available.len()],
         available,
-        queued: vec![false; map.bricks.len()],
+        queued: vec![false; bricks.len()],
         work: Vec::new(),
         touched: Vec::new(),
         uniform: Vec::new(),
     };
 
     // 1. The padding is one connected shell of non-surface cells: cell [0, 0, 0] seeds it.
-    flood.grow(map, 0, 0, uniform_entry(CellState::Outside, 0));
+    flood.grow(
+        &mut bricks,
+        bdims,
+        0,
+        0,
+        uniform_entry(CellState::Outside, 0),
+    );
     flood.take_region();
-    for (inside, free) in map.inside_bits.iter_mut().zip(&flood.available) {
+    for (inside, free) in inside_bits.iter_mut().zip(&flood.available) {
         *inside = *free;
     }
 
@@ -80,8 +90,8 @@ pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
     let triangles = surface.triangle_count() as u64;
     let mut budget = MAX_ENCLOSED_WINDING_WORK;
     let mut b = 0;
-    while b < map.bricks.len() && triangles <= budget {
-        let entry = map.bricks[b];
+    while b < bricks.len() && triangles <= budget {
+        let entry = bricks[b];
         let seed = if entry & UNIFORM != 0 {
             (entry_state(entry) == CellState::Inside).then_some(0)
         } else {
@@ -92,7 +102,7 @@ pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
             continue;
         };
         budget -= triangles;
-        flood.grow(map, b, local, VISITED);
+        flood.grow(&mut bricks, bdims, b, local, VISITED);
         let centre = map
             .grid
             .cell_centre(cell_in_brick(brick_coords(b, bdims), local));
@@ -100,20 +110,22 @@ pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
         let (touched, uniform) = flood.take_region();
         if !inside {
             for (d, reached) in touched {
-                for (inside, reached) in map.inside_bits[d].iter_mut().zip(reached) {
+                for (inside, reached) in inside_bits[d].iter_mut().zip(reached) {
                     *inside &= !reached;
                 }
             }
             for u in uniform {
-                map.bricks[u] = uniform_entry(CellState::Outside, 0);
+                bricks[u] = uniform_entry(CellState::Outside, 0);
             }
         }
     }
-    for entry in &mut map.bricks {
+    for entry in &mut bricks {
         if *entry == VISITED {
             *entry = uniform_entry(CellState::Inside, 0);
         }
     }
+    map.bricks = bricks.into();
+    map.inside_bits = inside_bits.into();
 }
 
 /// The first set cell of `bits`.
@@ -164,15 +176,14 @@ struct Flood {
 impl Flood {
     /// Grows a region from cell `local` of brick `seed` through face-adjacent available
     /// cells and uniform inside bricks; reached uniform bricks get `mark` as entry.
-    fn grow(&mut self, map: &mut VoxelMap, seed: usize, local: usize, mark: u32) {
-        let bdims = map.brick_dims;
-        let entry = map.bricks[seed];
+    fn grow(&mut self, bricks: &mut [u32], bdims: [u32; 3], seed: usize, local: usize, mark: u32) {
+        let entry = bricks[seed];
         if entry & UNIFORM == 0 {
             let d = entry as usize;
             self.reached[d][local >> 6] |= 1 << (local & 63);
             self.touched.push(d);
         }
-        self.reach_brick(map, seed, mark);
+        self.reach_brick(bricks, seed, mark);
         if !self.queued[seed] {
             self.queued[seed] = true;
             self.work.push(seed);
@@ -180,14 +191,14 @@ impl Flood {
         while let Some(b) = self.work.pop() {
             self.queued[b] = false;
             let bc = brick_coords(b, bdims);
-            let entry = map.bricks[b];
+            let entry = bricks[b];
             let neighbours = FACES.map(|(axis, up)| {
                 step(bc, axis, up, bdims).map(|n| brick_of(n.map(|x| x << BRICK_BITS), bdims))
             });
             if entry & UNIFORM != 0 {
                 // Reached as a whole: every neighbour can gain from it.
                 for nb in neighbours.into_iter().flatten() {
-                    self.reach_brick(map, nb, mark);
+                    self.reach_brick(bricks, nb, mark);
                 }
                 continue;
             }
@@ -195,7 +206,7 @@ impl Flood {
             let mut seeds = self.reached[d];
             for (face, nb) in neighbours.iter().enumerate() {
                 let Some(nb) = *nb else { continue };
-                let n_entry = map.bricks[nb];
+                let n_entry = bricks[nb];
                 let layer = if n_entry == mark {
                     FULL
                 } else if n_entry & UNIFORM == 0 {
@@ -216,7 +227,7 @@ impl Flood {
             for (face, nb) in neighbours.iter().enumerate() {
                 let Some(nb) = *nb else { continue };
                 if touches_face(&grown, face) {
-                    self.reach_brick(map, nb, mark);
+                    self.reach_brick(bricks, nb, mark);
                 }
             }
         }
@@ -224,13 +235,13 @@ impl Flood {
 
     /// A brick next to reached cells: a uniform inside brick joins the region (its entry
     /// becomes `mark`); either kind goes on the work list (once).
-    fn reach_brick(&mut self, map: &mut VoxelMap, b: usize, mark: u32) {
-        let entry = map.bricks[b];
+    fn reach_brick(&mut self, bricks: &mut [u32], b: usize, mark: u32) {
+        let entry = bricks[b];
         if entry & UNIFORM != 0 {
             if entry_state(entry) != CellState::Inside || entry == mark {
                 return;
             }
-            map.bricks[b] = mark;
+            bricks[b] = mark;
             self.uniform.push(b);
         }
         if !self.queued[b] {

@@ -340,24 +340,23 @@ fn a_file_without_a_slab_per_surface_cell_is_refused() {
     for want in ["slabs", "brick slabs", "region slabs"] {
         for change in [-1i64, 1] {
             let mut wrong = map.clone();
-            let slabs = match want {
-                "slabs" => wrong.slabs.to_mut(),
-                "brick slabs" => wrong.brick_slabs.to_mut(),
-                _ => {
-                    let slabs = wrong.region_slabs.to_mut();
-                    if change < 0 {
-                        slabs.pop();
-                    } else {
-                        slabs.push(FULL_FINE_SLAB);
-                    }
-                    check_refused(&surface, &wrong, want);
-                    continue;
+            let resize = |slabs: &mut Vec<_>, full| {
+                if change < 0 {
+                    slabs.pop();
+                } else {
+                    slabs.push(full);
                 }
             };
-            if change < 0 {
-                slabs.pop();
-            } else {
-                slabs.push(FULL_SLAB);
+            match want {
+                "slabs" => wrong.slabs.modify(|s| resize(s, FULL_SLAB)),
+                "brick slabs" => wrong.brick_slabs.modify(|s| resize(s, FULL_SLAB)),
+                _ => wrong.region_slabs.modify(|s| {
+                    if change < 0 {
+                        s.pop();
+                    } else {
+                        s.push(FULL_FINE_SLAB)
+                    }
+                }),
             }
             check_refused(&surface, &wrong, want);
         }
