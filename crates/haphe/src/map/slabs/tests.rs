@@ -48,39 +48,19 @@ fn axis_directions_are_exact() {
 #[test]
 fn slabs_hold_the_triangles_in_their_cells() {
     let mut random = SplitMix64::new(9);
-    for (shape, triangles) in [
-        (Shape::Blob, 5_000),
-        (Shape::Sphere, 2_000),
-        (Shape::ThinPlate, 2_000),
-    ] {
-        let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
-            .expect("a surface");
-        let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
-        let dims = map.grid().dims();
+    for (shape, surface, map) in three_shapes() {
         let (mut cells, mut thin, mut points) = (0, 0, 0);
-        for z in 0..dims[2] {
-            for y in 0..dims[1] {
-                for x in 0..dims[0] {
-                    let c = [x, y, z];
-                    let listed = map.triangles_in(c);
-                    if listed.is_empty() {
-                        continue;
-                    }
-                    let Some(slab) = surface_slab(&map, c) else {
-                        panic!("{shape:?} {c:?}: a surface cell");
-                    };
-                    let (a, b) = bounds(slab);
-                    cells += 1;
-                    thin += usize::from(b - a < 1.0 / 3.0);
-                    if shape == Shape::ThinPlate {
-                        assert!(b - a < 0.05, "{shape:?} {c:?}: a slab {} thick", b - a);
-                    }
-                    let block = map.grid().cell_bounds(c);
-                    let what = format!("{shape:?} {c:?}");
-                    let layer = (direction(slab), bounds(slab));
-                    points += check_in_slab(&mut random, &surface, listed, block, layer, 20, &what);
-                }
+        for (c, listed, slab) in surface_cells(&map) {
+            let (a, b) = bounds(slab);
+            cells += 1;
+            thin += usize::from(b - a < 1.0 / 3.0);
+            if shape == Shape::ThinPlate {
+                assert!(b - a < 0.05, "{shape:?} {c:?}: a slab {} thick", b - a);
             }
+            let block = map.grid().cell_bounds(c);
+            let what = format!("{shape:?} {c:?}");
+            let layer = (direction(slab), bounds(slab));
+            points += check_in_slab(&mut random, &surface, listed, block, layer, 20, &what);
         }
         assert!(points > 1000, "{shape:?}: {points}");
         if shape != Shape::Sphere {
@@ -94,50 +74,33 @@ fn slabs_hold_the_triangles_in_their_cells() {
 /// the thin plate, one face's triangles all come before the other's.
 #[test]
 fn cell_lists_are_ordered_along_their_slabs() {
-    for (shape, triangles) in [
-        (Shape::Blob, 5_000),
-        (Shape::Sphere, 2_000),
-        (Shape::ThinPlate, 2_000),
-    ] {
-        let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
-            .expect("a surface");
-        let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
-        let dims = map.grid().dims();
+    for (shape, surface, map) in three_shapes() {
         let (mut cells, mut both_faces) = (0, 0);
-        for z in 0..dims[2] {
-            for y in 0..dims[1] {
-                for x in 0..dims[0] {
-                    let c = [x, y, z];
-                    let listed = map.triangles_in(c);
-                    let Some(slab) = surface_slab(&map, c) else {
-                        continue;
-                    };
-                    cells += 1;
-                    let n = direction(slab);
-                    let key = |t: u32| {
-                        let [a, b, c] = surface.corners(TriId(t));
-                        (n.dot(a + b + c), t)
-                    };
-                    for pair in listed.windows(2) {
-                        let (k0, k1) = (key(pair[0]), key(pair[1]));
-                        assert!(
-                            k0.0 < k1.0 || (k0.0 == k1.0 && k0.1 < k1.1),
-                            "{shape:?} {c:?}: {k0:?} before {k1:?}"
-                        );
-                    }
-                    if shape == Shape::ThinPlate {
-                        // The faces' triangles in list order, by the side they face.
-                        let faces: Vec<bool> = listed
-                            .iter()
-                            .map(|&t| surface.frame(TriId(t)).normal.z)
-                            .filter(|nz| nz.abs() > 0.9)
-                            .map(|nz| nz > 0.0)
-                            .collect();
-                        let changes = faces.windows(2).filter(|w| w[0] != w[1]).count();
-                        assert!(changes <= 1, "{c:?}: the faces interleave: {faces:?}");
-                        both_faces += usize::from(changes == 1);
-                    }
-                }
+        for (c, listed, slab) in surface_cells(&map) {
+            cells += 1;
+            let n = direction(slab);
+            let key = |t: u32| {
+                let [a, b, c] = surface.corners(TriId(t));
+                (n.dot(a + b + c), t)
+            };
+            for pair in listed.windows(2) {
+                let (k0, k1) = (key(pair[0]), key(pair[1]));
+                assert!(
+                    k0.0 < k1.0 || (k0.0 == k1.0 && k0.1 < k1.1),
+                    "{shape:?} {c:?}: {k0:?} before {k1:?}"
+                );
+            }
+            if shape == Shape::ThinPlate {
+                // The faces' triangles in list order, by the side they face.
+                let faces: Vec<bool> = listed
+                    .iter()
+                    .map(|&t| surface.frame(TriId(t)).normal.z)
+                    .filter(|nz| nz.abs() > 0.9)
+                    .map(|nz| nz > 0.0)
+                    .collect();
+                let changes = faces.windows(2).filter(|w| w[0] != w[1]).count();
+                assert!(changes <= 1, "{c:?}: the faces interleave: {faces:?}");
+                both_faces += usize::from(changes == 1);
             }
         }
         assert!(cells > 100, "{shape:?}: {cells} surface cells");
@@ -148,6 +111,37 @@ fn cell_lists_are_ordered_along_their_slabs() {
             );
         }
     }
+}
+
+/// The blob, the sphere and the thin plate with their maps: shapes whose cells hold a
+/// smooth patch, a curved one and both faces of a plate.
+fn three_shapes() -> Vec<(Shape, Surface, VoxelMap)> {
+    [
+        (Shape::Blob, 5_000),
+        (Shape::Sphere, 2_000),
+        (Shape::ThinPlate, 2_000),
+    ]
+    .into_iter()
+    .map(|(shape, triangles)| {
+        let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
+            .expect("a surface");
+        let map = VoxelMap::build(&surface, &MapOptions::default()).expect("a map");
+        (shape, surface, map)
+    })
+    .collect()
+}
+
+/// Every cell of `map` that lists triangles, with its list and its slab, as a walk reads
+/// them (a listing cell without a slab fails).
+fn surface_cells(map: &VoxelMap) -> impl Iterator<Item = ([u32; 3], &[u32], u32)> + '_ {
+    let [dx, dy, dz] = map.grid().dims();
+    (0..dz)
+        .flat_map(move |z| (0..dy).flat_map(move |y| (0..dx).map(move |x| [x, y, z])))
+        .filter(|&c| !map.triangles_in(c).is_empty())
+        .map(|c| {
+            let slab = surface_slab(map, c).unwrap_or_else(|| panic!("{c:?}: a surface cell"));
+            (c, map.triangles_in(c), slab)
+        })
 }
 
 /// Checks that `samples` random points of each of `triangles` that lie in the box
