@@ -547,28 +547,17 @@ fn check_triangle_lists(map: &VoxelMap, t: usize) -> Result<(), MapFileError> {
         }
     }
     // Every reference within the triangles, and no triangle twice in one list (a list is
-    // ordered along its cell's slab, not by index).
+    // ordered along its cell's slab, not by index): each triangle marked with the last
+    // list it was seen in.
     let refs = &map.triangle_refs;
-    let max = refs.iter().fold(0u32, |m, &x| m.max(x));
-    if !refs.is_empty() && max as usize >= t {
-        let s = starts
-            .windows(2)
-            .position(|w| {
-                let list = refs.get(w[0] as usize..w[1] as usize).unwrap_or(&[]);
-                list.iter().any(|&x| x as usize >= t)
-            })
-            .unwrap_or(0);
-        return Err(invalid(
-            "triangle references",
-            format!("surface cell {s} lists a triangle out of range (of {t})"),
-        ));
-    }
-    // Each triangle marked with the last list it was seen in.
     let mut seen_in = vec![u32::MAX; t];
     for (s, w) in starts.windows(2).enumerate() {
         for &x in refs.get(w[0] as usize..w[1] as usize).unwrap_or(&[]) {
             let Some(seen) = seen_in.get_mut(x as usize) else {
-                continue;
+                return Err(invalid(
+                    "triangle references",
+                    format!("surface cell {s} lists triangle {x}, out of range (of {t})"),
+                ));
             };
             if *seen == s as u32 {
                 return Err(invalid(

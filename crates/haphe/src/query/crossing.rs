@@ -138,13 +138,13 @@ impl Tested {
 /// found, the cell's remaining triangles are filtered on the part before it (so a thin
 /// wall's far face, listed in the same cells as its near face, costs no exact test when
 /// the near face comes first: a cell's list is ordered along its slab's direction and
-/// taken from the side the segment comes from). A triangle whose plane the segment's line meets beyond an
-/// edge is filtered out from its frame, and one it crosses well inside is answered from
-/// its plane's orientations and its frame (the watertight test's answer, without its
-/// shear of the corners; see `intersect_segment_framed`). On a surface of 2048 triangles
-/// or more, the frames and corners of a cell's triangles are fetched together before they
-/// are tested. It never reads the clearances of free cells, which are cold when the
-/// segment comes from far away.
+/// taken from the side the segment comes from). A triangle whose plane the segment's
+/// line meets beyond an edge is filtered out from its frame, and one it crosses well
+/// inside is answered from its plane's orientations and its frame (the watertight test's
+/// answer, without its shear of the corners; see `intersect_segment_framed`). On a
+/// surface of 2048 triangles or more, the frames and corners of a cell's triangles are
+/// fetched together before they are tested. It never reads the clearances of free cells,
+/// which are cold when the segment comes from far away.
 ///
 /// # Real-time
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
@@ -331,11 +331,23 @@ fn better_hit(
     accept: &impl Fn(&SegmentHit) -> bool,
     best: Option<(SegmentHit, u32)>,
 ) -> Option<SegmentHit> {
-    let triangle = TriId(t);
-    let frame = surface.frame(triangle);
-    intersect_segment_framed(p0, p1, surface.corners(triangle), frame, segment)
+    triangle_hit(surface, TriId(t), (p0, p1), segment)
         .filter(|hit| accept(hit))
         .filter(|hit| best.is_none_or(|(b, bt)| hit.t < b.t || (hit.t == b.t && t < bt)))
+}
+
+/// The watertight hit of the segment `p0 → p1` (metres, object frame) on triangle `t` of
+/// `surface`, answered from the triangle's frame where that is certain
+/// (`intersect_segment_framed`); `segment` prepares the segment when the whole test runs.
+/// The one segment–triangle test of the queries, the oracles and the clear zones.
+#[inline(always)]
+pub(crate) fn triangle_hit(
+    surface: &Surface,
+    t: TriId,
+    (p0, p1): (DVec3, DVec3),
+    segment: impl FnOnce() -> Segment,
+) -> Option<SegmentHit> {
+    intersect_segment_framed(p0, p1, surface.corners(t), surface.frame(t), segment)
 }
 
 /// The box of cells of the cube of blocks around `cell`, a cell of a block of `side`
@@ -566,13 +578,8 @@ pub fn first_crossing_brute_force_where(
     let segment = Segment::new(p0, p1);
     let mut best: Option<(SegmentHit, u32)> = None;
     for t in 0..surface.triangle_count() as u32 {
-        if let Some(hit) = intersect_segment_framed(
-            p0,
-            p1,
-            surface.corners(TriId(t)),
-            surface.frame(TriId(t)),
-            || segment,
-        ) && accept(&hit)
+        if let Some(hit) = triangle_hit(surface, TriId(t), (p0, p1), || segment)
+            && accept(&hit)
             && best.is_none_or(|(b, _)| hit.t < b.t)
         {
             best = Some((hit, t));
@@ -587,14 +594,8 @@ pub fn all_crossings_brute_force(surface: &Surface, p0: DVec3, p1: DVec3) -> Vec
     let segment = Segment::new(p0, p1);
     let mut hits: Vec<Crossing> = (0..surface.triangle_count() as u32)
         .filter_map(|t| {
-            intersect_segment_framed(
-                p0,
-                p1,
-                surface.corners(TriId(t)),
-                surface.frame(TriId(t)),
-                || segment,
-            )
-            .map(|hit| crossing_from_hit(surface, hit, t))
+            triangle_hit(surface, TriId(t), (p0, p1), || segment)
+                .map(|hit| crossing_from_hit(surface, hit, t))
         })
         .collect();
     hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.triangle.cmp(&b.triangle)));

@@ -10,7 +10,7 @@ use crate::mesh::Surface;
 mod behind;
 mod closest;
 mod crossing;
-pub(crate) use crossing::crossing_from_hit;
+pub(crate) use crossing::{crossing_from_hit, triangle_hit};
 mod exact;
 mod inside;
 mod near;

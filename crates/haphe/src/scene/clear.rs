@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::{BOUND_SLACK, Hit, Scene, SceneObject, Sides, segment_point_distance};
 use crate::mesh::TriId;
 use crate::proxy::Probe;
-use crate::query::{ClearZone, Segment, crossing_from_hit, intersect_segment_framed};
+use crate::query::{ClearZone, Segment, crossing_from_hit, triangle_hit};
 
 /// Smallest barycentric weight of a crossing that [`Scene::first_hit_shown`] takes as
 /// strictly inside its triangle: far above the rounding of the weights, so that no
@@ -80,13 +80,7 @@ impl Scene {
         if !zone.holds_in_front(surface.frame(triangle), a) {
             return None;
         }
-        let hit = intersect_segment_framed(
-            a,
-            b,
-            surface.corners(triangle),
-            surface.frame(triangle),
-            || Segment::new(a, b),
-        )?;
+        let hit = triangle_hit(surface, triangle, (a, b), || Segment::new(a, b))?;
         // Entering (decided exactly: the probe lies in front of the plane up to the
         // crossing, where no other triangle of the zone reaches) and strictly inside (no
         // neighbour shares the point).

@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use crate::mesh::{Surface, TriId};
-use crate::query::{Segment, intersect_segment_framed, intersect_segment_triangle};
+use crate::query::{Segment, intersect_segment_triangle, triangle_hit};
 
 /// The direction of the oracle's rays: generic, so that no ray runs along the axis-aligned
 /// faces and edges of CAD meshes.
@@ -286,10 +286,7 @@ impl TriangleBoxes {
                 continue;
             }
             let tri = TriId(t as u32);
-            if let Some(h) =
-                intersect_segment_framed(p0, p1, surface.corners(tri), surface.frame(tri), || {
-                    segment
-                })
+            if let Some(h) = triangle_hit(surface, tri, (p0, p1), || segment)
                 && accept(&h)
                 && best.is_none_or(|(b, _)| h.t < b.t)
             {
