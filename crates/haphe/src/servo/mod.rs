@@ -36,7 +36,7 @@
 //!
 //! A tick allocates nothing, takes no lock, does no I/O and never panics (with a standby
 //! thread, the two threads claim each tick with a non-blocking `try_lock` that neither
-//! ever waits on; the claim allocates nothing, see `servo/standby.rs`); the test
+//! ever waits on; the claim allocates nothing, see `servo/realtime/standby.rs`); the test
 //! `tests/servo_alloc.rs` runs the loop with the simulated hand, a moving object and the
 //! statistics under a counting allocator. A shape computes each triangle's clear zone on
 //! its first contact (a few microseconds, once); call
@@ -68,35 +68,25 @@
 //! ```
 
 mod device;
-mod hand;
-mod interference;
-mod motion;
-mod path;
 mod realtime;
-mod replay;
-mod scripted;
-mod standby;
-mod stats;
+mod simulated;
 mod tick;
 mod trace;
 
 pub use device::{
     Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
 };
-pub use hand::{HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HandOptions, SimulatedHand};
-pub use interference::Interference;
-pub use motion::{Motion, ObjectMotion};
-pub use path::{Path, PathError};
 pub use realtime::{
-    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, FIFO_PRIORITY, RealtimeOptions, RealtimeRun,
-    RealtimeSetup, ServoLoop,
+    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, FIFO_PRIORITY, Interference, RealtimeOptions,
+    RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport,
 };
-pub use replay::{HipTrace, ReplayDevice, TraceError};
-pub use scripted::{
-    HOVER_M, PRESS_DEPTH_M, PathKind, SLIDE_SPEED, STRIKE_SPEED, ScriptedDevice, scene_bounds,
-    scripted_path, simulated_spec, surface_below,
+pub use simulated::{
+    HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, Path,
+    PathError, PathKind, ReplayDevice, SLIDE_SPEED, STRIKE_SPEED, ScriptedDevice, SimulatedHand,
+    TraceError, scene_bounds, scripted_path, simulated_spec, surface_below,
 };
-pub use standby::{STANDBY_GRACE_S, StandbyReport};
-pub use stats::{Histogram, TickStats};
-pub use tick::{MAX_RATE_HZ, MIN_RATE_HZ, Servo, ServoError, ServoOptions, StopReason};
+pub use tick::{
+    Histogram, MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions,
+    StopReason, TickStats,
+};
 pub use trace::{CSV_HEADER, Phase, TickRecord, write_csv_header};

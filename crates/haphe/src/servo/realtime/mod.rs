@@ -1,6 +1,12 @@
 //! [`ServoLoop`]: the servo on a dedicated thread, ticking on absolute deadlines of the
 //! wall clock, with real-time priority and core pinning where the system permits.
 
+mod interference;
+mod standby;
+
+pub use interference::Interference;
+pub use standby::{STANDBY_GRACE_S, StandbyReport};
+
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::thread::JoinHandle;
@@ -8,11 +14,11 @@ use std::time::{Duration, Instant};
 
 use rtrb::{Consumer, RingBuffer};
 
-use super::device::Device;
-use super::interference::{Counters, Interference};
-use super::standby::{StandbyReport, with_standby};
-use super::tick::{Servo, ServoError, StopReason};
-use super::trace::TickRecord;
+use crate::servo::device::Device;
+use crate::servo::tick::{Servo, ServoError, StopReason};
+use crate::servo::trace::TickRecord;
+use interference::Counters;
+use standby::with_standby;
 
 /// Longest part of a period spun before a deadline (instead of sleeping), seconds: the
 /// operating system's wake-up is often late by tens of microseconds, so the last part is

@@ -14,9 +14,9 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use super::device::Device;
 use super::interference::{Counters, Interference};
-use super::realtime::{Run, Schedule, wait_until};
+use super::{Run, Schedule, wait_until};
+use crate::servo::device::Device;
 
 /// How late a tick may start before the standby thread (see
 /// [`RealtimeOptions::standby_core`](super::RealtimeOptions::standby_core)) takes it,

@@ -2,17 +2,21 @@
 //! write the force — with safe start and fault handling, and a simulation mode that runs
 //! it on a virtual clock.
 
+mod motion;
+mod stats;
+
+pub use motion::{Motion, ObjectMotion};
+pub use stats::{Histogram, TickStats};
+
 use std::time::Instant;
 
 use glam::DVec3;
 
-use super::device::{Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
-use super::motion::ObjectMotion;
-use super::stats::TickStats;
-use super::trace::{Phase, TickRecord};
 use crate::proxy::{Proxy, ProxyOptions, TickStatus};
 use crate::query::{Side, classify_point};
 use crate::scene::Scene;
+use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
+use crate::servo::trace::{Phase, TickRecord};
 
 /// Lowest servo rate accepted, Hz.
 pub const MIN_RATE_HZ: f64 = 1.0;

@@ -4,8 +4,8 @@ use std::io::BufRead;
 
 use glam::DVec3;
 
-use super::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
 use super::scripted::simulated_spec;
+use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
 
 /// Why a HIP trace could not be read. Every variant names the file and the line (1-based).
 #[derive(Debug, thiserror::Error)]

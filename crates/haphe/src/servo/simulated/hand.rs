@@ -4,9 +4,9 @@
 
 use glam::DVec3;
 
-use super::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
 use super::path::Path;
 use super::scripted::simulated_spec;
+use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
 
 /// Longest integration step of the hand, seconds: the arm is integrated in sub-steps of
 /// at most this between two reads, so its motion does not depend on the servo rate.

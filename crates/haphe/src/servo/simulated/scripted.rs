@@ -6,10 +6,10 @@ use std::str::FromStr;
 
 use glam::DVec3;
 
-use super::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
 use super::path::{Path, PathError};
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
+use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
 
 /// How far below the surface a pressing target goes, metres: with the simulated hand's
 /// default spring (300 N/m) against a 500 N/m surface it settles about 2.3 mm deep, a
