@@ -23,9 +23,9 @@ pub struct Args {
     /// Triangles per built-in model.
     #[arg(long, default_value_t = 20_000)]
     triangles: usize,
-    /// Seconds of simulated time.
-    #[arg(long, default_value_t = 6.0)]
-    seconds: f64,
+    /// Seconds of simulated time (default 6; with --view, 60 seconds of wall-clock time).
+    #[arg(long)]
+    seconds: Option<f64>,
     /// Servo rate, Hz.
     #[arg(long, default_value_t = 1000.0)]
     rate: f64,
@@ -41,14 +41,28 @@ pub struct Args {
     /// Run on the wall clock on a real-time thread instead of the virtual clock.
     #[arg(long)]
     realtime: bool,
+    /// Show the demo live in the browser (`haphe view`): the hand explores on the wall
+    /// clock while the page draws it; no summary or plot.
+    #[arg(long)]
+    view: bool,
+    #[command(flatten)]
+    serve: crate::view::Serve,
 }
+
+/// Seconds of the demo without `--seconds`.
+pub const DEMO_SECONDS: f64 = 6.0;
 
 /// Runs the demo.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let (triangles, seconds) = if args.fast {
-        (2_000, 3.0)
+        (2_000, args.seconds.unwrap_or(3.0))
+    } else if args.view {
+        (
+            args.triangles,
+            args.seconds.unwrap_or(crate::view::HAND_SECONDS),
+        )
     } else {
-        (args.triangles, args.seconds)
+        (args.triangles, args.seconds.unwrap_or(DEMO_SECONDS))
     };
     let map = MapOptions::default();
     let started = Instant::now();
@@ -86,6 +100,15 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             motion: None,
         },
     ];
+    if args.view {
+        return crate::view::live(
+            objects,
+            crate::view::ViewDevice::Hand(seconds),
+            args.rate,
+            "the demo (a blob and a 0.1 mm thin plate)",
+            &args.serve,
+        );
+    }
     let build_seconds = started.elapsed().as_secs_f64();
     let session = Session {
         title: format!(

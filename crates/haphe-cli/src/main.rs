@@ -13,6 +13,7 @@ mod simulate;
 mod validate;
 mod verify;
 mod verify_proxy;
+mod view;
 
 use std::process::ExitCode;
 
@@ -45,6 +46,8 @@ enum Command {
     Demo(demo::Args),
     /// Time haphe's queries beside parry3d-f64 and brute force, on procedural meshes and files.
     Bench(bench::Args),
+    /// A live 3D view in the browser: touch a mesh with the mouse, or replay a trace.
+    View(view::Args),
 }
 
 fn main() -> ExitCode {
@@ -58,6 +61,7 @@ fn main() -> ExitCode {
         Command::Simulate(args) => simulate::run(&args),
         Command::Demo(args) => demo::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::View(args) => view::run(&args),
     };
     match result {
         Ok(code) => code,

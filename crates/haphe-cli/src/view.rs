@@ -1,0 +1,262 @@
+//! `haphe view`: the live 3D view in the browser — a mesh, a built-in shape or a scene
+//! file touched with the mouse (or the simulated hand), or a recorded trace replayed.
+
+use std::fs::File;
+use std::io::BufReader;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+
+use anyhow::{Context, anyhow, bail};
+use haphe::DVec3;
+use haphe::map::MapOptions;
+use haphe::mesh::Units;
+use haphe::mesh::shapes::Shape as Catalog;
+use haphe::proxy::ProxyOptions;
+use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
+use haphe::servo::{
+    Device, HandOptions, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind, RealtimeOptions,
+    ServoOptions, SimulatedHand, scene_bounds, scripted_path,
+};
+use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
+
+use crate::simulate::scene_file::{LoadedObject, load_scene, mesh_shape, shape_of};
+
+/// Port the view serves on by default.
+pub const DEFAULT_PORT: u16 = 8417;
+
+/// Length of a `--device hand` run, seconds, unless `--seconds` says.
+pub const HAND_SECONDS: f64 = 60.0;
+
+/// Arguments of `haphe view`.
+#[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("model").args(["mesh", "scene", "shape"])))]
+pub struct Args {
+    /// A mesh file (OBJ, STL, PLY, OFF) placed at the origin.
+    #[arg(long, value_name = "FILE")]
+    mesh: Option<PathBuf>,
+    /// A scene file (TOML): objects, poses, materials, motions.
+    #[arg(long, value_name = "FILE.toml")]
+    scene: Option<PathBuf>,
+    /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
+    #[arg(long, value_name = "NAME")]
+    shape: Option<String>,
+    /// Replay a trace written by `haphe simulate --out` (with --mesh, --shape or --scene
+    /// the objects are drawn too).
+    #[arg(long, value_name = "RUN.csv")]
+    replay: Option<PathBuf>,
+    /// Triangles of the built-in shape.
+    #[arg(long, default_value_t = 20_000)]
+    triangles: usize,
+    /// Length unit of the mesh file: m, mm, cm, in, or metres per unit.
+    #[arg(long, default_value = "m", value_parser = crate::validate::parse_units)]
+    units: Units,
+    /// The device: `mouse` (the pointer moves the device point) or `hand` (the simulated
+    /// hand explores the scene).
+    #[arg(long, default_value = "mouse", value_name = "SPEC")]
+    device: String,
+    /// Servo rate, Hz.
+    #[arg(long, default_value_t = 1000.0)]
+    rate: f64,
+    /// Length of a `--device hand` run, seconds (default 60).
+    #[arg(long)]
+    seconds: Option<f64>,
+    /// Stiffness of a --mesh or --shape object, N/m.
+    #[arg(long, default_value_t = 600.0)]
+    stiffness: f64,
+    /// Static friction coefficient of a --mesh or --shape object.
+    #[arg(long, default_value_t = 0.3)]
+    static_friction: f64,
+    /// Dynamic friction coefficient of a --mesh or --shape object.
+    #[arg(long, default_value_t = 0.2)]
+    dynamic_friction: f64,
+    #[command(flatten)]
+    serve: Serve,
+}
+
+/// Where the view is served; shared with `haphe demo --view`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Serve {
+    /// TCP port on 127.0.0.1 (0: any free port).
+    #[arg(long, default_value_t = DEFAULT_PORT)]
+    pub port: u16,
+    /// Do not open the browser; print the address only.
+    #[arg(long)]
+    pub no_open: bool,
+}
+
+/// The device of a live view.
+pub enum ViewDevice {
+    /// The pointer moves the device point.
+    Mouse,
+    /// The simulated hand explores the scene for this many seconds.
+    Hand(f64),
+}
+
+/// Runs `haphe view`.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let map = MapOptions::default();
+    let material = Material {
+        stiffness: args.stiffness,
+        damping: 1.0,
+        static_friction: args.static_friction,
+        dynamic_friction: args.dynamic_friction,
+    };
+    let single = |name: String, shape| {
+        vec![LoadedObject {
+            name,
+            object: SceneObject::new(ObjectId(0), Arc::new(shape), Pose::IDENTITY, material),
+            motion: None,
+        }]
+    };
+    let objects = if let Some(file) = &args.scene {
+        load_scene(file, &map)?
+    } else if let Some(file) = &args.mesh {
+        single(
+            file.display().to_string(),
+            mesh_shape(file, args.units, &map)?,
+        )
+    } else if let Some(name) = &args.shape {
+        let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
+        single(name.clone(), shape_of(which, args.triangles, &map)?)
+    } else if args.replay.is_some() {
+        Vec::new()
+    } else {
+        bail!("say what to show: --mesh FILE, --shape NAME, --scene FILE or --replay RUN.csv");
+    };
+    if let Some(file) = &args.replay {
+        let name = file.display().to_string();
+        let reader =
+            BufReader::new(File::open(file).with_context(|| format!("cannot read {name}"))?);
+        let trace = Trace::read(&name, reader)?;
+        let (scene, names, _) = scene_of(objects)?;
+        let model = Model::from_scene(&scene, &names);
+        let title = format!("haphe view: replay of {name} ({} ticks)", trace.rows.len());
+        return serve(model, Source::Replay(trace), &title, &args.serve);
+    }
+    let device = match args.device.as_str() {
+        "mouse" => ViewDevice::Mouse,
+        "hand" => ViewDevice::Hand(args.seconds.unwrap_or(HAND_SECONDS)),
+        other => bail!("--device {other:?}: this build knows `mouse` and `hand`"),
+    };
+    let what = args
+        .scene
+        .as_ref()
+        .or(args.mesh.as_ref())
+        .map(|p| p.display().to_string())
+        .or(args.shape.clone())
+        .unwrap_or_default();
+    live(objects, device, args.rate, &what, &args.serve)
+}
+
+/// Builds the scene of `objects`: the scene, the objects' names and their motions.
+fn scene_of(objects: Vec<LoadedObject>) -> anyhow::Result<(Scene, Vec<String>, Vec<ObjectMotion>)> {
+    let mut scene = Scene::local(objects.len() + 4);
+    let mut names = Vec::new();
+    let mut motions = Vec::new();
+    for o in objects {
+        names.push(o.name);
+        motions.extend(o.motion);
+        scene
+            .insert(o.object)
+            .map_err(|(e, _)| anyhow!("cannot add an object: {e}"))?;
+    }
+    Ok((scene, names, motions))
+}
+
+/// Serves a live view of `objects` touched by `device` until Ctrl-C.
+pub fn live(
+    objects: Vec<LoadedObject>,
+    device: ViewDevice,
+    rate_hz: f64,
+    what: &str,
+    serve_options: &Serve,
+) -> anyhow::Result<ExitCode> {
+    if !(rate_hz.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&rate_hz)) {
+        bail!("--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {rate_hz}");
+    }
+    let (scene, names, motions) = scene_of(objects)?;
+    let model = Model::from_scene(&scene, &names);
+    let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
+    let (device, mouse, seconds, title): (Box<dyn Device>, _, _, _) = match device {
+        ViewDevice::Mouse => {
+            let size = (hi - lo).max_element();
+            let centre = 0.5 * (lo + hi);
+            // Start above the objects, outside them, so that the proxy is placed at once.
+            let start = DVec3::new(centre.x, centre.y, hi.z + 0.1 * size);
+            let (device, handle) =
+                MouseDevice::new(start, lo - DVec3::splat(size), hi + DVec3::splat(size));
+            (
+                Box::new(device),
+                Some(handle),
+                None,
+                format!("haphe view: the mouse on {what}"),
+            )
+        }
+        ViewDevice::Hand(seconds) => {
+            let path = scripted_path(PathKind::Explore, &scene, seconds, 3)?;
+            (
+                Box::new(SimulatedHand::new(path, HandOptions::default())),
+                None,
+                Some(seconds),
+                format!("haphe view: the simulated hand explores {what} for {seconds} s"),
+            )
+        }
+    };
+    let source = LiveSource {
+        device,
+        scene,
+        options: ServoOptions {
+            rate_hz,
+            proxy: ProxyOptions::default(),
+            ..ServoOptions::default()
+        },
+        motions,
+        seconds,
+        realtime: RealtimeOptions::default(),
+    };
+    serve(model, Source::Live { source, mouse }, &title, serve_options)
+}
+
+/// Starts the view, opens the browser, serves until Ctrl-C, and prints how the servo ran.
+fn serve(
+    model: Model,
+    source: Source,
+    title: &str,
+    serve_options: &Serve,
+) -> anyhow::Result<ExitCode> {
+    let view = ViewServer::start(
+        model,
+        source,
+        &ViewOptions {
+            port: serve_options.port,
+            title: title.to_string(),
+        },
+    )?;
+    let url = view.url();
+    println!("{title}");
+    if !serve_options.no_open && haphe_view::open_in_browser(&url) {
+        println!("view: {url} (opened in the browser; Ctrl-C stops)");
+    } else {
+        println!("view: {url} (open it in a browser; Ctrl-C stops)");
+    }
+    view.wait_for_interrupt();
+    if let Some(run) = view.stop()? {
+        let s = run.servo.stats();
+        println!(
+            "servo: {} ticks at {:.0} Hz achieved, compute p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs; {} overruns; {}",
+            s.ticks,
+            s.achieved_rate(),
+            s.compute.quantile(0.5) as f64 * 1e-3,
+            s.compute.quantile(0.99) as f64 * 1e-3,
+            s.compute.max() as f64 * 1e-3,
+            s.overruns,
+            if run.setup.realtime_priority {
+                "real-time priority"
+            } else {
+                "normal priority"
+            }
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}

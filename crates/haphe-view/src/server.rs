@@ -1,0 +1,147 @@
+//! The HTTP and WebSocket server: the embedded page and three.js, the meshes and the trace
+//! once per connection, then the live frames at display rate; pointer points from the page
+//! go to the mouse device.
+
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use axum::Router;
+use axum::extract::State;
+use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
+use axum::http::{StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use axum::routing::get;
+use glam::DVec3;
+use tokio::sync::watch;
+
+use crate::live::{FRAME_RATE_HZ, Published};
+use crate::mouse::MouseHandle;
+
+/// Everything the handlers share.
+pub(crate) struct Shared {
+    pub(crate) info: String,
+    pub(crate) mesh: Vec<u8>,
+    pub(crate) trace: Option<Vec<u8>>,
+    pub(crate) frames: watch::Receiver<Option<Published>>,
+    pub(crate) mouse: Option<Mutex<MouseHandle>>,
+    pub(crate) closing: watch::Receiver<bool>,
+}
+
+macro_rules! asset {
+    ($path:literal) => {
+        include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/", $path)).as_slice()
+    };
+}
+
+/// The page and its scripts, embedded in the binary.
+const ASSETS: [(&str, &str, &[u8]); 6] = [
+    ("/", "text/html; charset=utf-8", asset!("index.html")),
+    ("/view.js", "text/javascript", asset!("view.js")),
+    ("/chart.js", "text/javascript", asset!("chart.js")),
+    (
+        "/vendor/three.module.js",
+        "text/javascript",
+        asset!("vendor/three.module.js"),
+    ),
+    (
+        "/vendor/three.core.js",
+        "text/javascript",
+        asset!("vendor/three.core.js"),
+    ),
+    (
+        "/vendor/OrbitControls.js",
+        "text/javascript",
+        asset!("vendor/OrbitControls.js"),
+    ),
+];
+
+/// The router of a view.
+pub(crate) fn router(shared: Arc<Shared>) -> Router {
+    let mut app = Router::new();
+    for (path, mime, body) in ASSETS {
+        app = app.route(
+            path,
+            get(move || async move { ([(header::CONTENT_TYPE, mime)], body) }),
+        );
+    }
+    app.route("/info", get(info))
+        .route("/mesh.bin", get(mesh))
+        .route("/trace.bin", get(trace))
+        .route("/ws", get(ws))
+        .with_state(shared)
+}
+
+async fn info(State(s): State<Arc<Shared>>) -> Response {
+    ([(header::CONTENT_TYPE, "application/json")], s.info.clone()).into_response()
+}
+
+async fn mesh(State(s): State<Arc<Shared>>) -> Response {
+    (
+        [(header::CONTENT_TYPE, "application/octet-stream")],
+        s.mesh.clone(),
+    )
+        .into_response()
+}
+
+async fn trace(State(s): State<Arc<Shared>>) -> Response {
+    match &s.trace {
+        Some(t) => (
+            [(header::CONTENT_TYPE, "application/octet-stream")],
+            t.clone(),
+        )
+            .into_response(),
+        None => (StatusCode::NOT_FOUND, "no trace: this view is live").into_response(),
+    }
+}
+
+async fn ws(State(s): State<Arc<Shared>>, upgrade: WebSocketUpgrade) -> Response {
+    upgrade.on_upgrade(move |socket| stream(socket, s))
+}
+
+/// One connection: the latest frame at display rate (when there is a new one), and the
+/// pointer's points to the mouse device.
+async fn stream(mut socket: WebSocket, s: Arc<Shared>) {
+    let mut frames = s.frames.clone();
+    let mut closing = s.closing.clone();
+    let mut every = tokio::time::interval(Duration::from_secs_f64(1.0 / FRAME_RATE_HZ));
+    every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    loop {
+        tokio::select! {
+            _ = every.tick() => {
+                if !frames.has_changed().unwrap_or(false) {
+                    continue;
+                }
+                let json = frames.borrow_and_update().as_ref().map(|p| Arc::clone(&p.json));
+                if let Some(json) = json
+                    && socket.send(Message::Text(json.as_ref().into())).await.is_err()
+                {
+                    return;
+                }
+            }
+            message = socket.recv() => match message {
+                Some(Ok(Message::Text(text))) => pointer(&s, text.as_str()),
+                Some(Ok(_)) => {}
+                Some(Err(_)) | None => return,
+            },
+            _ = closing.changed() => {
+                let _ = socket.send(Message::Close(None)).await;
+                return;
+            }
+        }
+    }
+}
+
+/// A message from the page: `{"hip":[x,y,z]}`, the device point it asks for (metres, world
+/// frame). Anything else is ignored.
+fn pointer(s: &Shared, text: &str) {
+    #[derive(serde::Deserialize)]
+    struct Pointer {
+        hip: [f64; 3],
+    }
+    let Some(mouse) = &s.mouse else { return };
+    if let Ok(p) = serde_json::from_str::<Pointer>(text)
+        && let Ok(mut m) = mouse.lock()
+    {
+        m.set(DVec3::from_array(p.hip));
+    }
+}
