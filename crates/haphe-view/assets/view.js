@@ -115,7 +115,7 @@ function show(f) {
   const t = o && f.triangle != null ? o.bySource.get(f.triangle) : undefined;
   if (o && t !== undefined) {
     const shade = Math.min(1, magnitude / maxForce);
-    o.material.emissive.setRGB(0.45 * shade, 0.08 * shade, 0);
+    o.material.emissive.setRGB(0.3 * shade, 0.05 * shade, 0);
     const p = triGeometry.attributes.position;
     const corners = [];
     for (let k = 0; k < 3; k++) {
@@ -276,6 +276,13 @@ function stepReplay(dt) {
   }
   chart.replace(points);
 }
+
+// Where a world point is on the page, CSS pixels (for tests and tools driving the page).
+state.project = (x, y, z) => {
+  const p = new THREE.Vector3(x, y, z).project(camera);
+  const rect = canvas.getBoundingClientRect();
+  return [rect.left + (p.x + 1) / 2 * rect.width, rect.top + (1 - p.y) / 2 * rect.height];
+};
 
 // Render loop.
 function resize() {

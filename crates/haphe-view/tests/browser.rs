@@ -1,0 +1,215 @@
+//! End to end, in a real headless browser (Chromium, software WebGL, driven over the
+//! DevTools protocol): the page loads without console errors and draws the scene; mouse
+//! events push the device point into a sphere and the server reports contact with a force
+//! pointing out of it; a recorded trace replays to its last tick.
+//!
+//! Needs Chromium (`apt-get install chromium`; `.ci/run` installs it). With
+//! `HAPHE_VIEW_SCREENSHOT=docs/view.png` the test also writes the screenshot of the
+//! contact for the documentation.
+
+mod support;
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use haphe::DVec3;
+use haphe::map::MapOptions;
+use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::{Surface, SurfaceOptions};
+use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::servo::{
+    PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions, scene_bounds, scripted_path,
+};
+use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
+use serde_json::Value;
+use support::cdp::{Browser, decode_png};
+
+const WIDTH: u32 = 1280;
+const HEIGHT: u32 = 800;
+
+fn sphere_scene() -> Scene {
+    let surface = Surface::new(
+        Catalog::Sphere.with_triangles(2_000),
+        &SurfaceOptions::default(),
+    )
+    .expect("surface");
+    let shape = Arc::new(Shape::build(surface, &MapOptions::default()).expect("map"));
+    let mut scene = Scene::local(2);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            shape,
+            Pose::IDENTITY,
+            Material {
+                stiffness: 600.0,
+                damping: 1.0,
+                static_friction: 0.3,
+                dynamic_friction: 0.2,
+            },
+        ))
+        .map_err(|(e, _)| e)
+        .expect("room");
+    scene
+}
+
+fn options(title: &str) -> ViewOptions {
+    ViewOptions {
+        port: 0,
+        title: title.into(),
+    }
+}
+
+fn xy(v: &Value) -> (f64, f64) {
+    (
+        v[0].as_f64().expect("x on the page"),
+        v[1].as_f64().expect("y on the page"),
+    )
+}
+
+#[test]
+fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
+    let started = Instant::now();
+    let scene = sphere_scene();
+    let (lo, hi) = scene_bounds(&scene).expect("bounds");
+    let centre = 0.5 * (lo + hi);
+    let radius = 0.5 * (hi.z - lo.z);
+    let model = Model::from_scene(&scene, &["sphere".to_string()]);
+    let start = DVec3::new(centre.x, centre.y, hi.z + 0.2 * radius);
+    let (device, mouse) = MouseDevice::new(start, lo - (hi - lo), hi + (hi - lo));
+    let source = LiveSource {
+        device: Box::new(device),
+        scene,
+        options: ServoOptions::default(),
+        motions: Vec::new(),
+        seconds: None,
+        realtime: RealtimeOptions {
+            realtime_priority: false,
+            ..RealtimeOptions::default()
+        },
+    };
+    let view = ViewServer::start(
+        model.clone(),
+        Source::Live {
+            source,
+            mouse: Some(mouse),
+        },
+        &options("haphe view: the mouse on a sphere"),
+    )
+    .expect("the view starts");
+
+    let mut browser = Browser::start(WIDTH, HEIGHT);
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.ready && window.haphe.frames > 2 && window.haphe.connected)",
+        Duration::from_secs(40),
+        "the page to draw and receive frames",
+    );
+
+    // The scene is drawn: the sphere's grey-blue fills a good part of the middle of the
+    // page, which is otherwise the dark background.
+    let (w, h, pixels) = decode_png(&browser.screenshot());
+    let middle = |x: u32, y: u32| x > w / 4 && x < 3 * w / 4 && y > h / 8 && y < 7 * h / 8;
+    let (mut object, mut total) = (0usize, 0usize);
+    for (i, p) in pixels.iter().enumerate() {
+        let (x, y) = (i as u32 % w, i as u32 / w);
+        if middle(x, y) {
+            total += 1;
+            let lum = (u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2])) / 3;
+            if lum > 70 && p[2] > p[0] {
+                object += 1;
+            }
+        }
+    }
+    let covered = object as f64 / total as f64;
+    println!(
+        "screenshot {w}x{h}: {:.0} % of the middle is the sphere",
+        100.0 * covered
+    );
+    assert!(covered > 0.15, "the sphere is not drawn: {covered}");
+    let before = view.latest().expect("frames");
+    assert!(before.object.is_none() && before.force().length() == 0.0);
+
+    // Mouse events move the device point from above the sphere to its centre on the page.
+    let from = xy(&browser.eval(&format!(
+        "window.haphe.project({}, {}, {})",
+        start.x, start.y, start.z
+    )));
+    let to = xy(&browser.eval(&format!(
+        "window.haphe.project({}, {}, {})",
+        centre.x, centre.y, centre.z
+    )));
+    let steps = 40;
+    for k in 0..=steps {
+        let a = f64::from(k) / f64::from(steps);
+        browser.mouse_move(from.0 + a * (to.0 - from.0), from.1 + a * (to.1 - from.1));
+        std::thread::sleep(Duration::from_millis(25));
+    }
+    std::thread::sleep(Duration::from_millis(400));
+    let f = view.latest().expect("frames");
+    println!("after the mouse: {f:?}");
+    assert_eq!(f.object, Some(0), "the server reports no contact: {f:?}");
+    let hip = DVec3::from_array(f.hip);
+    let proxy = DVec3::from_array(f.proxy);
+    let force = f.force();
+    assert!(
+        (hip - centre).length() < 0.95 * radius,
+        "the device point is not in: {f:?}"
+    );
+    assert!(
+        ((proxy - centre).length() - radius).abs() < 0.03 * radius,
+        "the proxy is not on the surface: {f:?}"
+    );
+    assert!(force.length() > 1.0, "too little force: {f:?}");
+    let outward = force.normalize().dot((proxy - centre).normalize());
+    assert!(outward > 0.8, "the force does not point out: {outward}");
+    // The page shows the contact too.
+    browser.wait_for(
+        "document.getElementById('touch').textContent.includes('triangle') && window.haphe.normal !== null",
+        Duration::from_secs(5),
+        "the page to show the contact",
+    );
+    if let Some(path) = std::env::var_os("HAPHE_VIEW_SCREENSHOT") {
+        std::fs::write(&path, browser.screenshot()).expect("write the screenshot");
+        println!("wrote {}", std::path::Path::new(&path).display());
+    }
+    let run = view.stop().expect("stops").expect("a live run");
+    let stats = run.servo.stats();
+    println!(
+        "servo: {} ticks, compute p50 {} ns p99 {} ns",
+        stats.ticks,
+        stats.compute.quantile(0.5),
+        stats.compute.quantile(0.99)
+    );
+    assert!(stats.ticks > 1000 && stats.contact_ticks > 100);
+
+    // Replay: a short press recorded in simulation plays to its last tick.
+    let scene = sphere_scene();
+    let path = scripted_path(PathKind::Press, &scene, 0.6, 1).expect("path");
+    let mut servo =
+        Servo::new(ScriptedDevice::new(path), scene, ServoOptions::default()).expect("servo");
+    let mut csv = Vec::new();
+    haphe::servo::write_csv_header(&mut csv).expect("header");
+    servo.run_simulated(600, |r| r.write_csv(&mut csv).expect("row"));
+    let trace = Trace::read("press.csv", csv.as_slice()).expect("reads back");
+    let rows = trace.rows.len();
+    assert!(trace.rows.iter().any(|r| r.object.is_some()));
+    let view = ViewServer::start(model, Source::Replay(trace), &options("replay"))
+        .expect("the replay view starts");
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.replay && window.haphe.replay.atEnd)",
+        Duration::from_secs(30),
+        "the replay to reach its last tick",
+    );
+    let r = browser.eval("window.haphe.replay");
+    assert_eq!(r["index"].as_u64(), Some(rows as u64 - 1), "{r}");
+    assert_eq!(
+        browser.eval("document.getElementById('clock').textContent.startsWith('tick 600 / 600')"),
+        Value::Bool(true)
+    );
+    view.stop().expect("stops");
+
+    let errors = std::mem::take(&mut browser.errors);
+    assert!(errors.is_empty(), "console errors: {errors:#?}");
+    println!("browser test took {:.1} s", started.elapsed().as_secs_f64());
+}
