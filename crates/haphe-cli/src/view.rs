@@ -215,7 +215,15 @@ pub fn live(
         seconds,
         realtime: RealtimeOptions::default(),
     };
-    serve(model, Source::Live { source, mouse }, &title, serve_options)
+    serve(
+        model,
+        Source::Live {
+            source: Box::new(source),
+            mouse,
+        },
+        &title,
+        serve_options,
+    )
 }
 
 /// Starts the view, opens the browser, serves until Ctrl-C, and prints how the servo ran.

@@ -104,7 +104,7 @@ fn with_view(rate: f64, seconds: f64, browser: &mut cdp::Browser) -> TickStats {
     let view = ViewServer::start(
         model,
         Source::Live {
-            source,
+            source: Box::new(source),
             mouse: Some(mouse),
         },
         &ViewOptions {

@@ -31,7 +31,7 @@ mod replay;
 mod server;
 mod timing;
 
-pub use live::{FRAME_RATE_HZ, Frame, LiveSource, Published, STATS_WINDOW_S};
+pub use live::{FRAME_RATE_HZ, Frame, LiveRun, LiveSource, Published, STATS_WINDOW_S};
 pub use model::{MESH_MAGIC, Model, ObjectInfo, ObjectMesh};
 pub use mouse::{MOUSE_MAX_FORCE_N, MOUSE_VELOCITY_TAU_S, MouseDevice, MouseHandle};
 pub use replay::{ROW_VALUES, STATUS_NAMES, Trace, TraceError, TraceRow};
@@ -41,7 +41,7 @@ use std::net::{SocketAddr, TcpListener};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
-use haphe::servo::{Device, RealtimeRun, ServoError};
+use haphe::servo::{Device, ServoError};
 use serde::Serialize;
 use tokio::sync::watch;
 
@@ -53,8 +53,8 @@ pub enum Source {
     /// A servo loop running now; `mouse` is the handle of a [`MouseDevice`] when that is
     /// the device, so that the page's pointer moves it.
     Live {
-        /// The servo's device, scene and options.
-        source: LiveSource,
+        /// The servo's device, scene and options (boxed: it is large).
+        source: Box<LiveSource>,
         /// The handle of the mouse device, when the device is one.
         mouse: Option<MouseHandle>,
     },
@@ -146,7 +146,7 @@ impl ViewServer {
             Source::Live { source, mouse } => {
                 let rate = source.options.rate_hz;
                 let device = source.device.spec().name;
-                let live = Live::start(source, frames_in)?;
+                let live = Live::start(*source, frames_in)?;
                 (Some(live), mouse, None, Some(rate), Some(device))
             }
             Source::Replay(trace) => (None, None, Some(trace), None, None),
@@ -238,7 +238,7 @@ impl ViewServer {
     ///
     /// # Errors
     /// [`ServoError::Panicked`] when the servo thread panicked.
-    pub fn stop(mut self) -> Result<Option<RealtimeRun<Timed<Box<dyn Device>>>>, ServoError> {
+    pub fn stop(mut self) -> Result<Option<LiveRun>, ServoError> {
         let run = self.live.take().map(Live::stop).transpose()?;
         let _ = self.closing.send(true);
         if let Some(server) = self.server.take() {

@@ -118,10 +118,14 @@ pub struct LiveSource {
     pub realtime: RealtimeOptions,
 }
 
+/// How a live view's servo ran: its device is the view's timed wrapper around the one
+/// given.
+pub type LiveRun = RealtimeRun<Timed<Box<dyn Device>>>;
+
 /// The servo and pump threads of a live view.
 pub(crate) struct Live {
     stop: Arc<AtomicBool>,
-    pump: JoinHandle<Result<RealtimeRun<Timed<Box<dyn Device>>>, ServoError>>,
+    pump: JoinHandle<Result<LiveRun, ServoError>>,
 }
 
 impl Live {
@@ -166,7 +170,7 @@ impl Live {
     }
 
     /// Stops the servo loop (zero force written, device closed) and hands its run back.
-    pub(crate) fn stop(self) -> Result<RealtimeRun<Timed<Box<dyn Device>>>, ServoError> {
+    pub(crate) fn stop(self) -> Result<LiveRun, ServoError> {
         self.stop.store(true, Ordering::Relaxed);
         let mut run = self.pump.join().map_err(|_| ServoError::Panicked)??;
         run.servo.close();

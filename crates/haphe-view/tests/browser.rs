@@ -90,7 +90,7 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
     let view = ViewServer::start(
         model.clone(),
         Source::Live {
-            source,
+            source: Box::new(source),
             mouse: Some(mouse),
         },
         &options("haphe view: the mouse on a sphere"),

@@ -67,6 +67,9 @@ fn mouse_ticks_with_the_view_hand_offs_allocate_nothing() {
     writer.join().expect("writer");
     println!("20000 ticks, {contact} in contact, {timed_ticks} timed");
     assert_eq!(total, 0, "the servo path allocated");
+    // The counter counts: an allocation here is seen.
+    let seen = allocation_counter::measure(|| drop(std::hint::black_box(vec![0u8; 64])));
+    assert!(seen.count_total >= 1);
     assert!(contact > 1_000, "{contact}");
     assert_eq!(timed_ticks, 20_000);
 }

@@ -1,0 +1,158 @@
+//! `haphe view` from the command line: bad input is refused with where it is; a live view
+//! and a replay serve their page, and Ctrl-C stops them cleanly with the servo's figures.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn haphe(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_haphe"))
+        .args(args)
+        .output()
+        .expect("haphe runs")
+}
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("haphe-view-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    dir.join(name)
+}
+
+#[test]
+fn bad_input_is_refused_with_where_it_is() {
+    let bad = scratch("bad.csv");
+    std::fs::write(&bad, "t,x,y,z\n0,0,0,0\n").expect("write");
+    let out = haphe(&[
+        "view",
+        "--replay",
+        bad.to_str().expect("utf-8"),
+        "--no-open",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("bad.csv: line 1: not a haphe trace"), "{err}");
+    let _ = std::fs::remove_file(&bad);
+
+    let out = haphe(&["view", "--shape", "sphere", "--device", "dhd", "--no-open"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("--device \"dhd\""), "{err}");
+
+    let out = haphe(&["view", "--no-open"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("say what to show"), "{err}");
+}
+
+/// Kills the child if the test fails half way.
+struct Running(Child);
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// Starts `haphe view ARGS --no-open --port 0`, reads its address, fetches `/info`,
+/// interrupts it and returns the info and everything it printed.
+fn serve_and_interrupt(args: &[&str]) -> (String, String) {
+    let mut child = Running(
+        Command::new(env!("CARGO_BIN_EXE_haphe"))
+            .arg("view")
+            .args(args)
+            .args(["--no-open", "--port", "0"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("haphe runs"),
+    );
+    let mut lines = BufReader::new(child.0.stdout.take().expect("stdout")).lines();
+    let mut printed = String::new();
+    let addr = loop {
+        let line = lines
+            .next()
+            .expect("haphe prints the address")
+            .expect("utf-8");
+        printed.push_str(&line);
+        printed.push('\n');
+        if let Some(rest) = line.strip_prefix("view: http://") {
+            break rest.split('/').next().expect("host:port").to_string();
+        }
+    };
+    let mut s = TcpStream::connect(&addr).expect("the view listens");
+    s.set_read_timeout(Some(Duration::from_secs(10)))
+        .expect("timeout");
+    write!(
+        s,
+        "GET /info HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n"
+    )
+    .expect("request");
+    let mut response = String::new();
+    s.read_to_string(&mut response).expect("response");
+    let info = response
+        .split_once("\r\n\r\n")
+        .map(|(_, b)| b.to_string())
+        .unwrap_or_default();
+    // Ctrl-C: the view stops the servo and prints how it ran.
+    let status = Command::new("kill")
+        .args(["-INT", &child.0.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(status.success());
+    let started = Instant::now();
+    for line in lines {
+        printed.push_str(&line.expect("utf-8"));
+        printed.push('\n');
+        assert!(started.elapsed() < Duration::from_secs(20), "no clean stop");
+    }
+    let code = child.0.wait().expect("exits");
+    assert!(code.success(), "{printed}");
+    (info, printed)
+}
+
+#[test]
+fn a_live_view_and_a_replay_serve_and_stop_on_ctrl_c() {
+    let (info, printed) = serve_and_interrupt(&["--shape", "sphere", "--triangles", "500"]);
+    assert!(
+        info.contains("\"mode\":\"live\"") && info.contains("\"device\":\"mouse\""),
+        "{info}"
+    );
+    assert!(
+        printed.contains("servo: ") && printed.contains(" ticks at "),
+        "{printed}"
+    );
+
+    let trace = scratch("press.csv");
+    let out = haphe(&[
+        "simulate",
+        "--shape",
+        "sphere",
+        "--triangles",
+        "500",
+        "--path",
+        "press",
+        "--seconds",
+        "0.2",
+        "--out",
+        trace.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (info, _) = serve_and_interrupt(&[
+        "--replay",
+        trace.to_str().expect("utf-8"),
+        "--shape",
+        "sphere",
+        "--triangles",
+        "500",
+    ]);
+    assert!(
+        info.contains("\"mode\":\"replay\"") && info.contains("\"trace_rows\":200"),
+        "{info}"
+    );
+    let _ = std::fs::remove_file(&trace);
+}
