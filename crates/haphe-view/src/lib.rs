@@ -7,7 +7,7 @@
 //! with the mouse. The page and three.js are embedded in the binary: it works offline.
 //!
 //! Two sources:
-//! - [`Source::Live`]: any [`Device`](haphe::servo::Device) (the [`MouseDevice`], whose
+//! - [`Source::Live`]: any [`Device`] (the [`MouseDevice`], whose
 //!   point the page's pointer moves; the simulated hand; a real device) ticked by a
 //!   [`ServoLoop`](haphe::servo::ServoLoop) on its real-time thread;
 //! - [`Source::Replay`]: a recorded [`Trace`], played in the page with play, pause, speed
