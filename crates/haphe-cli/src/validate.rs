@@ -5,13 +5,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::{
-    Mesh, MeshReport, ReadOptions, Surface, SurfaceOptions, Units, Usability,
-    is_degenerate_triangle,
-};
-use haphe::query::{SelfIntersections, self_intersections};
-use serde::Serialize;
+use haphe::mesh::{ReadOptions, Units};
+use haphe::query::Validation;
 
 use crate::load::{load, weld_mode};
 
@@ -64,47 +59,6 @@ pub fn parse_units(s: &str) -> Result<Units, String> {
     s.parse()
 }
 
-#[derive(Serialize)]
-struct JsonLine<'a> {
-    file: String,
-    format: String,
-    seconds: f64,
-    weld: WeldJson,
-    #[serde(flatten)]
-    report: &'a MeshReport,
-    /// Triangle pairs that intersect (other than in shared corners); `null` when the mesh
-    /// has no usable surface.
-    self_intersections: Option<usize>,
-    /// Of those, pairs that cross each other (or overlap in a plane).
-    self_intersections_crossing: Option<usize>,
-    /// The first intersecting pairs.
-    self_intersection_pairs: Option<&'a [[u32; 2]]>,
-}
-
-/// The report of a mesh, and its self-intersections when it has a usable surface (found
-/// with the surface's voxel map).
-fn validate_mesh(mesh: Mesh) -> anyhow::Result<(MeshReport, Option<SelfIntersections>)> {
-    let has_area = (0..mesh.triangles.len()).any(|t| {
-        let [a, b, c] = mesh.corners(t);
-        !is_degenerate_triangle(a, b, c)
-    });
-    if has_area {
-        let surface = Surface::new(mesh, &SurfaceOptions::default())?;
-        let map = VoxelMap::build(&surface, &MapOptions::default())?;
-        let intersections = self_intersections(&surface, &map);
-        Ok((surface.report().clone(), Some(intersections)))
-    } else {
-        Ok((MeshReport::of(&mesh), None))
-    }
-}
-
-#[derive(Serialize)]
-struct WeldJson {
-    vertices_before: usize,
-    merged: usize,
-    unreferenced: usize,
-}
-
 /// Runs the command; the exit code is the worst file's.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
@@ -133,29 +87,18 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             Ok(loaded) => {
                 let triangles = loaded.mesh.triangles.len();
                 let validated = Instant::now();
-                let (report, intersections) = if args.skip_self_intersections {
-                    (MeshReport::of(&loaded.mesh), None)
-                } else {
-                    validate_mesh(loaded.mesh)?
-                };
+                let validation = Validation::of(loaded.mesh, !args.skip_self_intersections)?;
+                let (report, intersections) = (&validation.report, &validation.intersections);
                 let t_validate = validated.elapsed();
                 let seconds = start.elapsed().as_secs_f64();
-                let crossing_itself = intersections.as_ref().is_some_and(|s| s.crossing > 0);
+                let crossing_itself = validation.crosses_itself();
                 if args.json {
-                    let line = JsonLine {
-                        file: path.display().to_string(),
-                        format: format!("{:?}", loaded.format).to_lowercase(),
+                    let line = validation.record(
+                        &path.display().to_string(),
+                        loaded.format,
+                        loaded.weld,
                         seconds,
-                        weld: WeldJson {
-                            vertices_before: loaded.weld.vertices_before,
-                            merged: loaded.weld.merged,
-                            unreferenced: loaded.weld.unreferenced,
-                        },
-                        report: &report,
-                        self_intersections: intersections.as_ref().map(|s| s.count),
-                        self_intersections_crossing: intersections.as_ref().map(|s| s.crossing),
-                        self_intersection_pairs: intersections.as_ref().map(|s| s.pairs.as_slice()),
-                    };
+                    );
                     writeln!(out, "{}", serde_json::to_string(&line)?)?;
                 } else {
                     writeln!(
@@ -200,12 +143,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                     }
                     writeln!(out)?;
                 }
-                match report.usable_as {
-                    Usability::Solid if crossing_itself => 1,
-                    Usability::Solid => 0,
-                    Usability::Surface => 1,
-                    Usability::Unusable => 2,
-                }
+                validation.exit_code()
             }
         };
         worst = worst.max(code);

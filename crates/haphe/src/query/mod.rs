@@ -17,6 +17,7 @@ mod near;
 mod segment_triangle;
 mod self_intersect;
 mod triangle_triangle;
+mod validation;
 mod walk;
 mod zone;
 
@@ -47,6 +48,7 @@ pub use self_intersect::{
     LISTED_SELF_INTERSECTIONS, SelfIntersections, TOUCH_TOLERANCE_REL, self_intersections,
 };
 pub use triangle_triangle::intersect_triangle_triangle;
+pub use validation::{Validation, ValidationError, ValidationRecord, WeldRecord};
 pub use walk::{
     MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, nearest_point_brute_force,
     walk_to_nearest,

@@ -1,0 +1,34 @@
+"""haphe: haptic rendering against triangle meshes.
+
+Shapes from mesh files or numpy arrays, with batch queries (inside/outside, watertight
+first crossings of segments, nearest surface points) that take and give numpy arrays and
+run without the GIL; scenes of placed shapes; the god-object proxy ticked against them;
+and the servo loop with a device.
+
+Units are SI (metres, newtons, seconds); triangles are counter-clockwise seen from
+outside. Triangle indices are always the face indices of the mesh as given.
+"""
+
+from ._haphe import (
+    Contact,
+    HapheError,
+    Proxy,
+    Scene,
+    Shape,
+    __version__,
+    allocations,
+    run,
+    validate,
+)
+
+__all__ = [
+    "Contact",
+    "HapheError",
+    "Proxy",
+    "Scene",
+    "Shape",
+    "__version__",
+    "allocations",
+    "run",
+    "validate",
+]

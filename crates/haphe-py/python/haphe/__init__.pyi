@@ -1,0 +1,119 @@
+"""Type stubs of haphe (the native module haphe._haphe)."""
+
+from os import PathLike
+from typing import Any, Dict, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+_Path = Union[str, PathLike[str]]
+_Vec3 = Union[Sequence[float], npt.NDArray[np.float64]]
+_Rotation = Union[Sequence[float], Sequence[Sequence[float]], npt.NDArray[np.float64]]
+
+class HapheError(ValueError):
+    """A file or an input haphe cannot use: the message names the file and the place."""
+
+def validate(
+    path: _Path,
+    units: str = "m",
+    weld_tolerance: Optional[float] = None,
+    self_intersections: bool = True,
+) -> Dict[str, Any]:
+    """The record of ``haphe validate --json`` for a mesh file, plus ``exit_code``."""
+
+def allocations() -> Optional[int]:
+    """Allocation calls of the Rust side so far; None unless built with count-allocations."""
+
+def run(
+    scene: Scene,
+    device: str = "hand",
+    seconds: float = 2.0,
+    path: str = "explore",
+    rate_hz: float = 1000.0,
+    seed: int = 1,
+) -> Dict[str, npt.NDArray[Any]]:
+    """Runs the servo loop with a device; arrays t, hip, proxy, force, contact, object,
+    triangle, penetration, one row per tick."""
+
+class Shape:
+    """A surface with its voxel map (object frame, metres)."""
+
+    @staticmethod
+    def from_file(
+        path: _Path, units: str = "m", weld_tolerance: Optional[float] = None
+    ) -> Shape: ...
+    @staticmethod
+    def from_arrays(
+        vertices: npt.NDArray[np.float64], faces: npt.NDArray[np.int64]
+    ) -> Shape: ...
+    @staticmethod
+    def load(path: _Path) -> Shape: ...
+    def save(self, path: _Path) -> None: ...
+    def inside(self, points: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
+        """(N, 3) points -> (N,) bool: inside the solid."""
+    def first_crossing(
+        self, p0: npt.NDArray[np.float64], p1: npt.NDArray[np.float64]
+    ) -> Dict[str, npt.NDArray[Any]]:
+        """Arrays t (NaN none), triangle (-1 none), point, normal (N, 3), entering."""
+    def nearest(
+        self, points: npt.NDArray[np.float64], max_distance: float
+    ) -> Dict[str, npt.NDArray[Any]]:
+        """Arrays distance (inf none), triangle (-1 none), point (N, 3)."""
+    @property
+    def triangles(self) -> int: ...
+    @property
+    def vertices(self) -> int: ...
+    @property
+    def is_solid(self) -> bool: ...
+    @property
+    def bounds(self) -> Tuple[Tuple[float, float, float], Tuple[float, float, float]]: ...
+
+class Scene:
+    """Shapes placed in the world with materials."""
+
+    def __init__(self, capacity: int = 64) -> None: ...
+    def add(
+        self,
+        shape: Shape,
+        position: _Vec3 = (0.0, 0.0, 0.0),
+        rotation: Optional[_Rotation] = None,
+        stiffness: float = 500.0,
+        damping: float = 0.0,
+        friction: float = 0.0,
+        dynamic_friction: Optional[float] = None,
+        two_sided: Optional[bool] = None,
+    ) -> int: ...
+    def move(self, id: int, position: _Vec3, rotation: Optional[_Rotation] = None) -> None: ...
+    def remove(self, id: int) -> None: ...
+    def __len__(self) -> int: ...
+
+class Contact:
+    """Where the proxy touches an object (world frame, metres)."""
+
+    object: int
+    triangle: int
+    point: Tuple[float, float, float]
+    normal: Tuple[float, float, float]
+    shading_normal: Tuple[float, float, float]
+    penetration: float
+    constraints: int
+
+class Proxy:
+    """The god-object proxy of a point device."""
+
+    def __init__(
+        self,
+        position: _Vec3 = (0.0, 0.0, 0.0),
+        max_force: float = 3.3,
+        skin: float = 1e-6,
+        workspace_radius: float = 1000.0,
+    ) -> None: ...
+    def tick(
+        self, scene: Scene, hip: _Vec3, velocity: _Vec3 = (0.0, 0.0, 0.0)
+    ) -> Tuple[Tuple[float, float, float], Tuple[float, float, float], Optional[Contact]]:
+        """One tick: (force N, proxy position m, contact or None)."""
+    def reset(self, position: _Vec3) -> None: ...
+    @property
+    def position(self) -> Tuple[float, float, float]: ...

@@ -1,0 +1,34 @@
+//! Library errors as Python exceptions.
+
+use std::path::Path;
+
+use pyo3::create_exception;
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyPermissionError, PyValueError};
+use pyo3::prelude::*;
+
+create_exception!(
+    haphe,
+    HapheError,
+    PyValueError,
+    "A file or an input haphe cannot use: the message names the file and the place."
+);
+
+/// A library error as a [`HapheError`], with its message (which names the file and the
+/// place) prefixed by `context` when that is not empty.
+pub fn haphe_error(context: &str, e: impl std::fmt::Display) -> PyErr {
+    if context.is_empty() {
+        HapheError::new_err(e.to_string())
+    } else {
+        HapheError::new_err(format!("{context}: {e}"))
+    }
+}
+
+/// An I/O error on `path` as the matching `OSError` subclass, naming the file.
+pub fn io_error(what: &str, path: &Path, e: &std::io::Error) -> PyErr {
+    let message = format!("cannot {what} {}: {e}", path.display());
+    match e.kind() {
+        std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(message),
+        std::io::ErrorKind::PermissionDenied => PyPermissionError::new_err(message),
+        _ => PyOSError::new_err(message),
+    }
+}

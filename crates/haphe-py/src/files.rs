@@ -1,0 +1,133 @@
+//! Files: reading meshes, validating them, saving and loading maps.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use haphe::map::{decode, encode};
+use haphe::mesh::{
+    Format, Mesh, ReadError, ReadOptions, Surface, Units, Weld, WeldStats, read_unwelded, weld,
+};
+use haphe::query::Validation;
+use pyo3::prelude::*;
+
+use crate::errors::{haphe_error, io_error};
+
+/// A mesh read from a file: welded, with its format and what welding did.
+pub struct Loaded {
+    pub mesh: Mesh,
+    pub format: Format,
+    pub weld: WeldStats,
+}
+
+/// The read options for a `units` string (`m`, `mm`, `cm`, `in` or metres per file unit)
+/// and a weld tolerance in metres (`None` or 0: exact).
+pub fn read_options(units: &str, weld_tolerance: Option<f64>) -> PyResult<ReadOptions> {
+    let units: Units = units.parse().map_err(|e| haphe_error("units", e))?;
+    let weld = match weld_tolerance {
+        None => Weld::Exact,
+        Some(t) if t == 0.0 => Weld::Exact,
+        Some(t) if t.is_finite() && t > 0.0 => Weld::Tolerance(t),
+        Some(t) => {
+            return Err(haphe_error(
+                "weld_tolerance",
+                format!("must be a non-negative distance in metres, not {t}"),
+            ));
+        }
+    };
+    Ok(ReadOptions {
+        units,
+        weld,
+        format: None,
+    })
+}
+
+/// Reads the bytes of `path`.
+pub fn read_bytes(path: &Path) -> PyResult<Vec<u8>> {
+    std::fs::read(path).map_err(|e| io_error("read", path, &e))
+}
+
+/// Parses and welds the mesh file whose bytes are `bytes`; errors name `name`.
+pub fn parse(name: &str, bytes: &[u8], options: &ReadOptions) -> Result<Loaded, ReadError> {
+    let format = match options.format {
+        Some(f) => f,
+        None => Format::detect(name, bytes).map_err(|kind| ReadError {
+            file: name.to_owned(),
+            kind,
+        })?,
+    };
+    let options = ReadOptions {
+        format: Some(format),
+        ..*options
+    };
+    let raw = read_unwelded(name, bytes, &options)?;
+    let (mesh, weld) = weld(&raw, options.weld);
+    Ok(Loaded { mesh, format, weld })
+}
+
+/// Writes `bytes` to `path` through a new file renamed over it, so that a reader of the
+/// old file never sees a half-written one.
+pub fn write_replacing(path: &Path, bytes: &[u8]) -> PyResult<()> {
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(format!(".{}.tmp", std::process::id()));
+    let temporary = path.with_file_name(name);
+    std::fs::write(&temporary, bytes).map_err(|e| io_error("write", &temporary, &e))?;
+    std::fs::rename(&temporary, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        io_error("replace", path, &e)
+    })
+}
+
+/// Saves a surface and its map as a map file (the format of `haphe build`).
+pub fn save_map(path: &Path, surface: &Surface, map: &haphe::map::VoxelMap) -> PyResult<()> {
+    write_replacing(path, &encode(surface, map))
+}
+
+/// Loads a map file written by `save` or `haphe build`.
+pub fn load_map(path: &Path) -> PyResult<(Surface, haphe::map::VoxelMap)> {
+    let bytes = read_bytes(path)?;
+    decode(&bytes).map_err(|e| haphe_error(&path.display().to_string(), e))
+}
+
+/// validate(path, units="m", weld_tolerance=None, self_intersections=True)
+/// --
+///
+/// Validates a mesh file (OBJ, STL, PLY or OFF, told apart by content) and returns the
+/// record ``haphe validate --json`` prints: ``file``, ``format``, ``seconds``, ``weld``,
+/// the report (``triangles``, ``vertices``, ``closed``, ``usable_as``, ``volume``, …,
+/// ``defects``) and ``self_intersections``, ``self_intersections_crossing``,
+/// ``self_intersection_pairs`` (``None`` when skipped or the mesh is unusable), plus
+/// ``exit_code`` (0 a valid solid, 1 a surface only, 2 unusable).
+///
+/// Raises ``HapheError`` (naming the file and the place) for an unreadable file and
+/// ``OSError`` when the file cannot be read.
+#[pyfunction]
+#[pyo3(signature = (path, units = "m", weld_tolerance = None, self_intersections = true))]
+pub fn validate<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    units: &str,
+    weld_tolerance: Option<f64>,
+    self_intersections: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let options = read_options(units, weld_tolerance)?;
+    let start = Instant::now();
+    let bytes = read_bytes(&path)?;
+    let name = path.display().to_string();
+    let json = py.detach(|| -> Result<String, String> {
+        let loaded = parse(&name, &bytes, &options).map_err(|e| e.to_string())?;
+        let validation =
+            Validation::of(loaded.mesh, self_intersections).map_err(|e| format!("{name}: {e}"))?;
+        let seconds = start.elapsed().as_secs_f64();
+        let mut value =
+            serde_json::to_value(validation.record(&name, loaded.format, loaded.weld, seconds))
+                .map_err(|e| format!("{name}: {e}"))?;
+        if let Some(object) = value.as_object_mut() {
+            object.insert("exit_code".into(), validation.exit_code().into());
+        }
+        Ok(value.to_string())
+    });
+    let json = json.map_err(|e| haphe_error("", e))?;
+    // The record goes through Python's json module, so that it is made of plain dicts,
+    // lists, numbers and None exactly as `json.loads` of the command's output would be.
+    py.import("json")?.getattr("loads")?.call1((json,))
+}

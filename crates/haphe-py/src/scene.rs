@@ -1,0 +1,310 @@
+//! `haphe.Scene`, `haphe.Proxy` and `haphe.Contact`: objects placed in the world, and the
+//! god-object proxy ticked against them.
+
+use haphe::DVec3;
+use haphe::glam::{DMat3, DQuat};
+use haphe::proxy::{self, ProxyOptions};
+use haphe::scene::{self as hs, Material, ObjectId, Pose, SceneObject};
+use std::sync::{Mutex, PoisonError};
+
+use pyo3::prelude::*;
+
+use crate::errors::haphe_error;
+use crate::shape::Shape;
+
+/// Objects the proxy touches: shapes placed in the world (metres) with a material.
+///
+/// ``Scene(capacity=64)`` holds up to ``capacity`` objects (storage is reserved once, as
+/// for the servo thread). One proxy ticks against a scene: each ``proxy.tick`` starts the
+/// scene's tick (objects moved since the previous tick push the proxy).
+#[pyclass(module = "haphe")]
+pub struct Scene {
+    /// The scene, in a mutex only because Python objects must be shareable between
+    /// threads (the library's scene is `Send`, not `Sync`); every method but `snapshot`
+    /// has the scene exclusively (`&mut self`) and reaches it with `get_mut`, no lock.
+    inner: Mutex<hs::Scene>,
+    next_id: u32,
+}
+
+/// A rotation from a quaternion ``(x, y, z, w)`` (the order of SciPy's ``as_quat``) or a
+/// 3×3 matrix (rows); `None` is the identity.
+fn rotation(r: Option<&Bound<'_, PyAny>>) -> PyResult<DQuat> {
+    let Some(r) = r else {
+        return Ok(DQuat::IDENTITY);
+    };
+    if let Ok([x, y, z, w]) = r.extract::<[f64; 4]>() {
+        let q = DQuat::from_xyzw(x, y, z, w);
+        let norm = q.length();
+        if !(norm.is_finite() && norm > 0.0) {
+            return Err(haphe_error(
+                "rotation",
+                format!("the quaternion {:?} has no direction", [x, y, z, w]),
+            ));
+        }
+        return Ok(q / norm);
+    }
+    let rows: [[f64; 3]; 3] = r.extract().map_err(|_| {
+        haphe_error(
+            "rotation",
+            "expected a quaternion (x, y, z, w) or a 3x3 rotation matrix",
+        )
+    })?;
+    let m = DMat3::from_cols_array_2d(&rows).transpose();
+    let orthonormal = (m.transpose() * m).abs_diff_eq(DMat3::IDENTITY, 1e-6);
+    if !(m.is_finite() && orthonormal && m.determinant() > 0.0) {
+        return Err(haphe_error(
+            "rotation",
+            format!("{rows:?} is not a rotation matrix (orthonormal, determinant 1)"),
+        ));
+    }
+    Ok(DQuat::from_mat3(&m))
+}
+
+/// A point or vector from three finite numbers; the error names `what`.
+fn vector(what: &str, v: [f64; 3]) -> PyResult<DVec3> {
+    let v = DVec3::from_array(v);
+    if !v.is_finite() {
+        return Err(haphe_error(
+            what,
+            format!("{:?} is not finite", v.to_array()),
+        ));
+    }
+    Ok(v)
+}
+
+#[pymethods]
+impl Scene {
+    #[new]
+    #[pyo3(signature = (capacity = 64))]
+    fn new(capacity: usize) -> Scene {
+        Scene {
+            inner: Mutex::new(hs::Scene::local(capacity)),
+            next_id: 0,
+        }
+    }
+
+    /// add(shape, position=(0, 0, 0), rotation=None, stiffness=500.0, damping=0.0, friction=0.0, dynamic_friction=None, two_sided=None)
+    /// --
+    ///
+    /// Places ``shape`` at ``position`` (metres) turned by ``rotation`` (a quaternion
+    /// ``(x, y, z, w)`` or a 3×3 matrix; object to world) with a material: ``stiffness``
+    /// N/m, ``damping`` N·s/m, static ``friction`` coefficient and ``dynamic_friction``
+    /// (default: equal to ``friction``). A closed solid is touched from outside only, an
+    /// open surface from both sides, unless ``two_sided`` says otherwise. Returns the
+    /// object's id.
+    #[pyo3(signature = (shape, position = [0.0; 3], rotation = None, stiffness = 500.0, damping = 0.0, friction = 0.0, dynamic_friction = None, two_sided = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn add(
+        &mut self,
+        shape: &Shape,
+        position: [f64; 3],
+        rotation: Option<&Bound<'_, PyAny>>,
+        stiffness: f64,
+        damping: f64,
+        friction: f64,
+        dynamic_friction: Option<f64>,
+        two_sided: Option<bool>,
+    ) -> PyResult<u32> {
+        let pose = Pose::new(self::rotation(rotation)?, vector("position", position)?);
+        let material = Material {
+            stiffness,
+            damping,
+            static_friction: friction,
+            dynamic_friction: dynamic_friction.unwrap_or(friction),
+        };
+        let id = ObjectId(self.next_id);
+        let mut object = SceneObject::new(id, shape.inner.clone(), pose, material);
+        if let Some(two) = two_sided {
+            object = object.with_sides(if two {
+                hs::Sides::Both
+            } else {
+                hs::Sides::Front
+            });
+        }
+        self.scene()
+            .insert(object)
+            .map_err(|(e, _)| haphe_error("scene", e))?;
+        self.next_id += 1;
+        Ok(id.0)
+    }
+
+    /// move(id, position, rotation=None)
+    /// --
+    ///
+    /// Moves object ``id`` to a new pose; the motion is rendered at the next tick (a moving
+    /// object pushes the proxy). Raises ``KeyError`` for an unknown id.
+    #[pyo3(name = "move", signature = (id, position, rotation = None))]
+    fn move_to(
+        &mut self,
+        id: u32,
+        position: [f64; 3],
+        rotation: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let pose = Pose::new(self::rotation(rotation)?, vector("position", position)?);
+        if self.scene().set_pose(ObjectId(id), pose) {
+            Ok(())
+        } else {
+            Err(pyo3::exceptions::PyKeyError::new_err(id))
+        }
+    }
+
+    /// remove(id)
+    /// --
+    ///
+    /// Removes object ``id``. Raises ``KeyError`` for an unknown id.
+    fn remove(&mut self, id: u32) -> PyResult<()> {
+        self.scene()
+            .remove(ObjectId(id))
+            .map(|_| ())
+            .ok_or_else(|| pyo3::exceptions::PyKeyError::new_err(id))
+    }
+
+    fn __len__(&mut self) -> usize {
+        self.scene().objects().len()
+    }
+}
+
+impl Scene {
+    /// A copy of the objects in a new scene (shapes shared), for a servo run.
+    pub fn snapshot(&self) -> hs::Scene {
+        let scene = self.inner.lock().unwrap_or_else(PoisonError::into_inner);
+        let objects = scene.objects();
+        let mut copy = hs::Scene::local(objects.len());
+        for o in objects {
+            // Cannot fail: the copy has room for every object and the ids are unique.
+            let _ = copy.insert(o.clone());
+        }
+        copy
+    }
+
+    /// The scene, reached without a lock through the exclusive borrow.
+    pub fn scene(&mut self) -> &mut hs::Scene {
+        self.inner.get_mut().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+/// Where the proxy touches an object (world frame, metres).
+#[pyclass(module = "haphe", frozen, get_all)]
+pub struct Contact {
+    /// The id of the object touched (as returned by ``scene.add``).
+    pub object: u32,
+    /// The triangle under the proxy: the face index of the object's mesh as given.
+    pub triangle: u32,
+    /// The surface point nearest to the proxy.
+    pub point: (f64, f64, f64),
+    /// Unit normal of the last constraint plane, toward the proxy's side.
+    pub normal: (f64, f64, f64),
+    /// Unit shading normal at ``point``: the direction of the rendered normal force.
+    pub shading_normal: (f64, f64, f64),
+    /// How far the device point is behind the proxy along ``normal``, metres.
+    pub penetration: f64,
+    /// Active constraint planes: 1 on a face, 2 in a concave edge, 3 in a corner.
+    pub constraints: u8,
+}
+
+#[pymethods]
+impl Contact {
+    fn __repr__(&self) -> String {
+        format!(
+            "Contact(object={}, triangle={}, point={:?}, penetration={:e})",
+            self.object, self.triangle, self.point, self.penetration
+        )
+    }
+}
+
+/// Three numbers as a tuple.
+fn tuple(v: DVec3) -> (f64, f64, f64) {
+    (v.x, v.y, v.z)
+}
+
+/// The god-object proxy of a point device: a point that never enters an object, moved each
+/// tick toward the device point (HIP) and stopped and slid by the surfaces it meets; the
+/// force pulls the device toward it.
+///
+/// ``Proxy(position=(0, 0, 0), max_force=3.3, skin=1e-6, workspace_radius=1000.0)``:
+/// the start position (metres, normally the device point at start-up), the largest force
+/// rendered (N), the distance kept from a touched surface (m), and the radius beyond which
+/// device points are pulled back (m).
+#[pyclass(module = "haphe")]
+pub struct Proxy {
+    inner: proxy::Proxy,
+}
+
+#[pymethods]
+impl Proxy {
+    #[new]
+    #[pyo3(signature = (position = [0.0; 3], max_force = 3.3, skin = proxy::DEFAULT_SKIN, workspace_radius = 1e3))]
+    fn new(
+        position: [f64; 3],
+        max_force: f64,
+        skin: f64,
+        workspace_radius: f64,
+    ) -> PyResult<Proxy> {
+        if !(skin.is_finite() && skin > 0.0) {
+            return Err(haphe_error(
+                "skin",
+                format!("must be a positive distance in metres, not {skin}"),
+            ));
+        }
+        let options = ProxyOptions {
+            skin,
+            max_force,
+            workspace_radius,
+        };
+        Ok(Proxy {
+            inner: proxy::Proxy::new(vector("position", position)?, options),
+        })
+    }
+
+    /// tick(scene, hip, velocity=(0, 0, 0))
+    /// --
+    ///
+    /// One servo tick: starts the scene's tick, moves the proxy toward the device point
+    /// ``hip`` (metres, world frame; ``velocity`` in m/s, for damping) and returns
+    /// ``(force, position, contact)``: the force to render (N, world frame, finite and
+    /// within ``max_force``), the proxy position (m) and a ``Contact`` or ``None``.
+    ///
+    /// Allocates nothing on the Rust side; a non-finite input gives zero force and leaves
+    /// the proxy where it was.
+    #[pyo3(signature = (scene, hip, velocity = [0.0; 3]))]
+    fn tick(
+        &mut self,
+        mut scene: PyRefMut<'_, Scene>,
+        hip: [f64; 3],
+        velocity: [f64; 3],
+    ) -> ((f64, f64, f64), (f64, f64, f64), Option<Contact>) {
+        let scene = scene.scene();
+        scene.begin_tick();
+        let out = self
+            .inner
+            .tick(scene, DVec3::from_array(hip), DVec3::from_array(velocity));
+        let contact = out.contact.and_then(|c| {
+            let object = scene.objects().get(c.object)?;
+            Some(Contact {
+                object: c.id.0,
+                triangle: object.shape.surface().source_triangle(c.triangle),
+                point: tuple(c.point),
+                normal: tuple(c.normal),
+                shading_normal: tuple(c.shading_normal),
+                penetration: c.penetration,
+                constraints: c.constraints,
+            })
+        });
+        (tuple(out.force), tuple(out.proxy), contact)
+    }
+
+    /// reset(position)
+    /// --
+    ///
+    /// Puts the proxy at ``position`` (metres) with no contact.
+    fn reset(&mut self, position: [f64; 3]) -> PyResult<()> {
+        self.inner.reset(vector("position", position)?);
+        Ok(())
+    }
+
+    /// The proxy position, metres, world frame.
+    #[getter]
+    fn position(&self) -> (f64, f64, f64) {
+        tuple(self.inner.position())
+    }
+}

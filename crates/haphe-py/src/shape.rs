@@ -1,0 +1,341 @@
+//! `haphe.Shape`: a closed solid or open surface with its voxel map, and the batch
+//! queries against it (object frame, metres).
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use haphe::DVec3;
+use haphe::map::MapOptions;
+use haphe::mesh::{Mesh, Surface, SurfaceOptions};
+use haphe::query::{Side, classify_point, first_crossing, nearest_within};
+use haphe::scene;
+use numpy::ndarray::{Array1, Array2, ArrayView2};
+use numpy::{IntoPyArray, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::haphe_error;
+use crate::files::{load_map, parse, read_bytes, read_options, save_map};
+
+/// A shape: a mesh's surface (topology, normals) and its voxel map, immutable and shared
+/// by every scene it is placed in. Build it from a mesh file (``Shape.from_file``), from
+/// arrays (``Shape.from_arrays``) or from a saved map (``Shape.load``).
+///
+/// All coordinates are metres in the shape's own (object) frame. Triangle indices are
+/// those of the faces as given (the file's face order, or the rows of ``faces``).
+#[pyclass(module = "haphe", frozen)]
+pub struct Shape {
+    pub inner: Arc<scene::Shape>,
+    /// Where it came from, for messages.
+    pub name: String,
+}
+
+/// Builds the surface and map of `mesh`; errors are prefixed with `name`.
+fn build(name: &str, mesh: Mesh) -> Result<scene::Shape, String> {
+    let surface =
+        Surface::new(mesh, &SurfaceOptions::default()).map_err(|e| format!("{name}: {e}"))?;
+    let shape =
+        scene::Shape::build(surface, &MapOptions::default()).map_err(|e| format!("{name}: {e}"))?;
+    shape.prepare_clear_zones();
+    Ok(shape)
+}
+
+/// The rows of an `(N, 3)` array as points.
+fn points(a: &ArrayView2<'_, f64>) -> impl Iterator<Item = DVec3> {
+    a.rows().into_iter().map(|r| DVec3::new(r[0], r[1], r[2]))
+}
+
+/// Checks that `a` has shape `(N, 3)`; the error names the argument.
+fn check_n3(what: &str, a: &ArrayView2<'_, f64>) -> PyResult<()> {
+    if a.ncols() != 3 {
+        return Err(haphe_error(
+            what,
+            format!("expected an array of shape (N, 3), got {:?}", a.shape()),
+        ));
+    }
+    Ok(())
+}
+
+#[pymethods]
+impl Shape {
+    /// Shape.from_file(path, units="m", weld_tolerance=None)
+    /// --
+    ///
+    /// Reads a mesh file (OBJ, STL, PLY or OFF, told apart by content), welds it (exactly,
+    /// or within ``weld_tolerance`` metres), scales it to metres (``units``: ``"m"``,
+    /// ``"mm"``, ``"cm"``, ``"in"`` or metres per file unit) and builds its voxel map.
+    ///
+    /// Raises ``HapheError`` naming the file and the place for bad content, ``OSError``
+    /// when the file cannot be read.
+    #[staticmethod]
+    #[pyo3(signature = (path, units = "m", weld_tolerance = None))]
+    fn from_file(
+        py: Python<'_>,
+        path: PathBuf,
+        units: &str,
+        weld_tolerance: Option<f64>,
+    ) -> PyResult<Shape> {
+        let options = read_options(units, weld_tolerance)?;
+        let bytes = read_bytes(&path)?;
+        let name = path.display().to_string();
+        let inner = py
+            .detach(|| {
+                let loaded = parse(&name, &bytes, &options).map_err(|e| e.to_string())?;
+                build(&name, loaded.mesh)
+            })
+            .map_err(|e| haphe_error("", e))?;
+        Ok(Shape {
+            inner: Arc::new(inner),
+            name,
+        })
+    }
+
+    /// Shape.from_arrays(vertices, faces)
+    /// --
+    ///
+    /// A shape from a ``(V, 3)`` float array of vertex positions (metres) and an
+    /// ``(F, 3)`` integer array of triangles (vertex indices, counter-clockwise seen from
+    /// outside). Vertices are welded exactly.
+    ///
+    /// Raises ``HapheError`` naming the vertex or face for a non-finite coordinate or an
+    /// index out of range.
+    #[staticmethod]
+    fn from_arrays(
+        py: Python<'_>,
+        vertices: PyReadonlyArray2<'_, f64>,
+        faces: PyReadonlyArray2<'_, i64>,
+    ) -> PyResult<Shape> {
+        let v = vertices.as_array();
+        check_n3("vertices", &v)?;
+        let f = faces.as_array();
+        if f.ncols() != 3 {
+            return Err(haphe_error(
+                "faces",
+                format!("expected an array of shape (F, 3), got {:?}", f.shape()),
+            ));
+        }
+        let count = v.nrows();
+        let mut triangles = Vec::with_capacity(f.nrows());
+        for (face, row) in f.rows().into_iter().enumerate() {
+            let mut t = [0u32; 3];
+            for (slot, &i) in t.iter_mut().zip(row.iter()) {
+                *slot = u32::try_from(i)
+                    .ok()
+                    .filter(|&i| (i as usize) < count)
+                    .ok_or_else(|| {
+                        haphe_error(
+                            "faces",
+                            format!(
+                                "face {face}: vertex index {i} is out of range (there are {count} vertices)"
+                            ),
+                        )
+                    })?;
+            }
+            triangles.push(t);
+        }
+        let mesh = Mesh {
+            vertices: points(&v).collect(),
+            triangles,
+        };
+        mesh.check_indices_and_finite()
+            .map_err(|e| haphe_error("arrays", e))?;
+        let name = "arrays".to_owned();
+        let (mesh, _) = haphe::mesh::weld(&mesh, haphe::mesh::Weld::Exact);
+        let inner = py
+            .detach(|| build(&name, mesh))
+            .map_err(|e| haphe_error("", e))?;
+        Ok(Shape {
+            inner: Arc::new(inner),
+            name,
+        })
+    }
+
+    /// Shape.load(path)
+    /// --
+    ///
+    /// Loads a map file saved by ``shape.save`` or ``haphe build`` (checked: checksum and
+    /// invariants). Raises ``HapheError`` naming the file for a damaged or foreign file.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Shape> {
+        let (surface, map) = load_map(&path)?;
+        let name = path.display().to_string();
+        let inner = py.detach(|| {
+            let shape = scene::Shape::new(surface, map);
+            shape.prepare_clear_zones();
+            shape
+        });
+        Ok(Shape {
+            inner: Arc::new(inner),
+            name,
+        })
+    }
+
+    /// save(path)
+    /// --
+    ///
+    /// Saves the surface and its map as one file (the format of ``haphe build``), written
+    /// to a new file renamed over ``path``.
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let inner = &self.inner;
+        py.detach(|| save_map(&path, inner.surface(), inner.map()))
+    }
+
+    /// inside(points)
+    /// --
+    ///
+    /// Whether each point of an ``(N, 3)`` float array (metres) is inside the solid:
+    /// an ``(N,)`` bool array. Always ``False`` for an open surface. Runs without the GIL.
+    fn inside<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, numpy::PyArray1<bool>>> {
+        let p = points.as_array();
+        check_n3("points", &p)?;
+        let shape = &*self.inner;
+        let out = py.detach(|| {
+            Array1::from_iter(
+                self::points(&p)
+                    .map(|q| classify_point(shape.surface(), shape.map(), q).0 == Side::Inside),
+            )
+        });
+        Ok(out.into_pyarray(py))
+    }
+
+    /// first_crossing(p0, p1)
+    /// --
+    ///
+    /// The first place where each segment ``p0[i] → p1[i]`` (two ``(N, 3)`` float arrays,
+    /// metres) crosses the surface, found watertight (a segment through an edge or a
+    /// corner meets exactly one triangle). Returns a dict of arrays: ``t`` (N,) parameter
+    /// along the segment (NaN where none), ``triangle`` (N,) the file's face index (-1
+    /// where none), ``point`` (N, 3) and ``normal`` (N, 3) the crossing and the unit face
+    /// normal (NaN where none), ``entering`` (N,) bool (the segment goes from the front to
+    /// the back of the triangle: into a solid). Runs without the GIL.
+    fn first_crossing<'py>(
+        &self,
+        py: Python<'py>,
+        p0: PyReadonlyArray2<'py, f64>,
+        p1: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let (a, b) = (p0.as_array(), p1.as_array());
+        check_n3("p0", &a)?;
+        check_n3("p1", &b)?;
+        if a.nrows() != b.nrows() {
+            return Err(haphe_error(
+                "p0, p1",
+                format!("have {} and {} rows", a.nrows(), b.nrows()),
+            ));
+        }
+        let n = a.nrows();
+        let shape = &*self.inner;
+        let (t, triangle, point, normal, entering) = py.detach(|| {
+            let mut t = Array1::from_elem(n, f64::NAN);
+            let mut triangle = Array1::from_elem(n, -1i64);
+            let mut point = Array2::from_elem((n, 3), f64::NAN);
+            let mut normal = Array2::from_elem((n, 3), f64::NAN);
+            let mut entering = Array1::from_elem(n, false);
+            let surface = shape.surface();
+            for (i, (q0, q1)) in points(&a).zip(points(&b)).enumerate() {
+                if let Some(c) = first_crossing(surface, shape.map(), q0, q1) {
+                    t[i] = c.t;
+                    triangle[i] = i64::from(surface.source_triangle(c.triangle));
+                    for k in 0..3 {
+                        point[[i, k]] = c.point[k];
+                        normal[[i, k]] = c.face_normal[k];
+                    }
+                    entering[i] = c.entering;
+                }
+            }
+            (t, triangle, point, normal, entering)
+        });
+        let d = PyDict::new(py);
+        d.set_item("t", t.into_pyarray(py))?;
+        d.set_item("triangle", triangle.into_pyarray(py))?;
+        d.set_item("point", point.into_pyarray(py))?;
+        d.set_item("normal", normal.into_pyarray(py))?;
+        d.set_item("entering", entering.into_pyarray(py))?;
+        Ok(d)
+    }
+
+    /// nearest(points, max_distance)
+    /// --
+    ///
+    /// The nearest surface point to each point of an ``(N, 3)`` float array among those
+    /// within ``max_distance`` metres (searched in the map cells next to the point's: exact
+    /// for a radius up to a map cell). Returns a dict of arrays: ``distance`` (N,) metres
+    /// (inf where none), ``triangle`` (N,) the file's face index (-1 where none),
+    /// ``point`` (N, 3) (NaN where none). Runs without the GIL.
+    fn nearest<'py>(
+        &self,
+        py: Python<'py>,
+        points: PyReadonlyArray2<'py, f64>,
+        max_distance: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let p = points.as_array();
+        check_n3("points", &p)?;
+        if !(max_distance.is_finite() && max_distance >= 0.0) {
+            return Err(haphe_error(
+                "max_distance",
+                format!("must be a non-negative distance in metres, not {max_distance}"),
+            ));
+        }
+        let n = p.nrows();
+        let shape = &*self.inner;
+        let (distance, triangle, point) = py.detach(|| {
+            let mut distance = Array1::from_elem(n, f64::INFINITY);
+            let mut triangle = Array1::from_elem(n, -1i64);
+            let mut point = Array2::from_elem((n, 3), f64::NAN);
+            let surface = shape.surface();
+            for (i, q) in self::points(&p).enumerate() {
+                if let Some(near) = nearest_within(surface, shape.map(), q, max_distance) {
+                    distance[i] = near.distance;
+                    triangle[i] = i64::from(surface.source_triangle(near.triangle));
+                    for k in 0..3 {
+                        point[[i, k]] = near.closest.point[k];
+                    }
+                }
+            }
+            (distance, triangle, point)
+        });
+        let d = PyDict::new(py);
+        d.set_item("distance", distance.into_pyarray(py))?;
+        d.set_item("triangle", triangle.into_pyarray(py))?;
+        d.set_item("point", point.into_pyarray(py))?;
+        Ok(d)
+    }
+
+    /// Number of triangles of the surface.
+    #[getter]
+    fn triangles(&self) -> usize {
+        self.inner.surface().triangle_count()
+    }
+
+    /// Number of vertices of the surface (after welding).
+    #[getter]
+    fn vertices(&self) -> usize {
+        self.inner.surface().vertex_count()
+    }
+
+    /// Whether the shape is a closed, consistently oriented solid (it has an inside).
+    #[getter]
+    fn is_solid(&self) -> bool {
+        self.inner.is_solid()
+    }
+
+    /// The axis-aligned bounding box ``((xmin, ymin, zmin), (xmax, ymax, zmax))``, metres.
+    #[getter]
+    fn bounds(&self) -> ([f64; 3], [f64; 3]) {
+        let (lo, hi) = self.inner.surface().bounds();
+        (lo.to_array(), hi.to_array())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Shape({:?}, triangles={}, solid={})",
+            self.name,
+            self.inner.surface().triangle_count(),
+            self.inner.is_solid()
+        )
+    }
+}

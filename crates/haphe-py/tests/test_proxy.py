@@ -1,0 +1,65 @@
+"""The scene, the proxy and the servo loop from Python."""
+
+import numpy as np
+import pytest
+
+import haphe
+from test_queries import cube
+
+
+def test_pressing_on_a_cube_pushes_back():
+    scene = haphe.Scene()
+    oid = scene.add(cube(), position=(0, 0, -1), stiffness=1000.0)
+    proxy = haphe.Proxy(position=(0.5, 0.5, 0.1))
+    force, position, contact = proxy.tick(scene, (0.5, 0.5, 0.05))
+    assert contact is None and force == (0.0, 0.0, 0.0)
+    force, position, contact = proxy.tick(scene, np.array([0.5, 0.5, -0.001]))
+    assert contact is not None and contact.object == oid
+    assert contact.triangle in (10, 11)
+    assert position[2] >= 0.0 and abs(position[2]) < 1e-5
+    np.testing.assert_allclose(force, (0, 0, 1000.0 * 0.001), rtol=1e-2)
+
+
+def test_rotation_and_friction_are_accepted():
+    scene = haphe.Scene(capacity=2)
+    scene.add(cube(), rotation=(0, 0, np.sin(0.3), np.cos(0.3)), friction=0.5)
+    scene.add(cube(), position=(3, 0, 0), rotation=np.eye(3))
+    with pytest.raises(haphe.HapheError, match="capacity|full"):
+        scene.add(cube())
+    with pytest.raises(haphe.HapheError, match="rotation"):
+        haphe.Scene().add(cube(), rotation=[[1, 0, 0], [0, 1, 0], [0, 0, 2]])
+    assert len(scene) == 2
+
+
+def test_tick_loop_allocates_nothing():
+    count = haphe.allocations()
+    if count is None:
+        pytest.fail("built without the count-allocations feature")
+    scene = haphe.Scene()
+    scene.add(cube(), position=(0, 0, -1), stiffness=800.0, friction=0.3)
+    proxy = haphe.Proxy(position=(0.5, 0.5, 0.1))
+    proxy.tick(scene, (0.5, 0.5, 0.1))  # the first tick may prepare what it needs
+    t = np.linspace(0, 20 * np.pi, 100_000)
+    hips = np.stack([0.5 + 0.3 * np.cos(t), 0.5 + 0.3 * np.sin(t), -0.002 + 0.004 * np.sin(7 * t)], 1)
+    hips = [tuple(h) for h in hips]
+    before = haphe.allocations()
+    touched = 0
+    for hip in hips:
+        force, position, contact = proxy.tick(scene, hip)
+        touched += contact is not None
+    after = haphe.allocations()
+    assert touched > 10_000
+    assert after - before == 0, f"{after - before} allocations in 100000 ticks"
+
+
+def test_run_with_the_simulated_hand():
+    scene = haphe.Scene()
+    scene.add(cube(), position=(-0.5, -0.5, -1.0), stiffness=600.0)
+    out = haphe.run(scene, device="hand", seconds=1.0, path="press")
+    assert out["t"].shape == (1000,) and out["force"].shape == (1000, 3)
+    assert out["contact"].sum() > 100
+    assert np.isfinite(out["force"]).all()
+    assert (np.linalg.norm(out["force"], axis=1) <= 3.3 + 1e-9).all()
+    assert out["force"][out["contact"], 2].max() > 0.1
+    with pytest.raises(haphe.HapheError, match="not available"):
+        haphe.run(scene, device="dhd", seconds=0.1)
