@@ -4,20 +4,11 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use haphe::map::{decode, encode};
-use haphe::mesh::{
-    Format, Mesh, ReadError, ReadOptions, Surface, Units, Weld, WeldStats, read_unwelded, weld,
-};
+use haphe::mesh::{ReadOptions, Surface, Units, Weld, read_mesh_with_stats};
 use haphe::query::Validation;
 use pyo3::prelude::*;
 
 use crate::errors::{haphe_error, io_error};
-
-/// A mesh read from a file: welded, with its format and what welding did.
-pub struct Loaded {
-    pub mesh: Mesh,
-    pub format: Format,
-    pub weld: WeldStats,
-}
 
 /// The read options for a `units` string (`m`, `mm`, `cm`, `in` or metres per file unit)
 /// and a weld tolerance in metres (`None` or 0: exact).
@@ -44,24 +35,6 @@ pub fn read_options(units: &str, weld_tolerance: Option<f64>) -> PyResult<ReadOp
 /// Reads the bytes of `path`.
 pub fn read_bytes(path: &Path) -> PyResult<Vec<u8>> {
     std::fs::read(path).map_err(|e| io_error("read", path, &e))
-}
-
-/// Parses and welds the mesh file whose bytes are `bytes`; errors name `name`.
-pub fn parse(name: &str, bytes: &[u8], options: &ReadOptions) -> Result<Loaded, ReadError> {
-    let format = match options.format {
-        Some(f) => f,
-        None => Format::detect(name, bytes).map_err(|kind| ReadError {
-            file: name.to_owned(),
-            kind,
-        })?,
-    };
-    let options = ReadOptions {
-        format: Some(format),
-        ..*options
-    };
-    let raw = read_unwelded(name, bytes, &options)?;
-    let (mesh, weld) = weld(&raw, options.weld);
-    Ok(Loaded { mesh, format, weld })
 }
 
 /// Writes `bytes` to `path` through a new file renamed over it, so that a reader of the
@@ -114,7 +87,7 @@ pub fn validate<'py>(
     let bytes = read_bytes(&path)?;
     let name = path.display().to_string();
     let json = py.detach(|| -> Result<String, String> {
-        let loaded = parse(&name, &bytes, &options).map_err(|e| e.to_string())?;
+        let loaded = read_mesh_with_stats(&name, &bytes, &options).map_err(|e| e.to_string())?;
         let validation =
             Validation::of(loaded.mesh, self_intersections).map_err(|e| format!("{name}: {e}"))?;
         let seconds = start.elapsed().as_secs_f64();

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use haphe::DVec3;
 use haphe::map::MapOptions;
-use haphe::mesh::{Mesh, Surface, SurfaceOptions};
+use haphe::mesh::{Mesh, Surface, SurfaceOptions, read_mesh_with_stats};
 use haphe::query::{Side, classify_point, first_crossing, nearest_within};
 use haphe::scene;
 use numpy::ndarray::{Array1, Array2, ArrayView2};
@@ -15,7 +15,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::haphe_error;
-use crate::files::{load_map, parse, read_bytes, read_options, save_map};
+use crate::files::{load_map, read_bytes, read_options, save_map};
 
 /// A shape: a mesh's surface (topology, normals) and its voxel map, immutable and shared
 /// by every scene it is placed in. Build it from a mesh file (``Shape.from_file``), from
@@ -80,7 +80,8 @@ impl Shape {
         let name = path.display().to_string();
         let inner = py
             .detach(|| {
-                let loaded = parse(&name, &bytes, &options).map_err(|e| e.to_string())?;
+                let loaded =
+                    read_mesh_with_stats(&name, &bytes, &options).map_err(|e| e.to_string())?;
                 build(&name, loaded.mesh)
             })
             .map_err(|e| haphe_error("", e))?;

@@ -31,7 +31,9 @@ pub use frame::{
 };
 pub use ids::{NONE, TriId, VertId};
 pub use normals::DEFAULT_CREASE_ANGLE_RAD;
-pub use read::{Format, ReadOptions, Units, read_mesh, read_unwelded};
+pub use read::{
+    Format, ReadMesh, ReadOptions, Units, read_mesh, read_mesh_with_stats, read_unwelded,
+};
 pub use report::{
     ComponentReport, Defects, EdgeUse, MAX_NESTING_WORK, MeshReport, ReportText, Usability,
 };

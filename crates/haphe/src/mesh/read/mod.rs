@@ -12,7 +12,7 @@ mod stl;
 
 use std::str::FromStr;
 
-use super::{Mesh, ReadError, ReadErrorKind, Weld, weld};
+use super::{Mesh, ReadError, ReadErrorKind, Weld, WeldStats, weld};
 
 /// A mesh file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -190,6 +190,44 @@ pub struct ReadOptions {
 /// ```
 pub fn read_mesh(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<Mesh, ReadError> {
     read_unwelded(file, bytes, options).map(|mesh| weld(&mesh, options.weld).0)
+}
+
+/// A mesh file read and welded, with what was found on the way.
+#[derive(Debug, Clone)]
+pub struct ReadMesh {
+    /// The welded mesh.
+    pub mesh: Mesh,
+    /// The format (detected unless the options gave one).
+    pub format: Format,
+    /// What welding did.
+    pub weld: WeldStats,
+}
+
+/// Like [`read_mesh`], also saying which format was read and what welding did (what the
+/// front ends report).
+///
+/// # Errors
+/// As [`read_mesh`], and [`ReadErrorKind::Empty`] or [`ReadErrorKind::UnknownFormat`]
+/// when no format was given and none is recognised.
+pub fn read_mesh_with_stats(
+    file: &str,
+    bytes: &[u8],
+    options: &ReadOptions,
+) -> Result<ReadMesh, ReadError> {
+    let format = match options.format {
+        Some(f) => f,
+        None => Format::detect(file, bytes).map_err(|kind| ReadError {
+            file: file.to_owned(),
+            kind,
+        })?,
+    };
+    let options = ReadOptions {
+        format: Some(format),
+        ..*options
+    };
+    let raw = read_unwelded(file, bytes, &options)?;
+    let (mesh, weld) = weld(&raw, options.weld);
+    Ok(ReadMesh { mesh, format, weld })
 }
 
 /// Like [`read_mesh`] but without welding: the mesh exactly as the file indexes it (scaled

@@ -1,0 +1,309 @@
+//! Scenes and the proxy tick.
+
+use haphe_lib::DVec3;
+use haphe_lib::glam::DQuat;
+use haphe_lib::proxy::{DEFAULT_SKIN, Proxy, ProxyOptions};
+use haphe_lib::scene::{Material, ObjectId, Pose, Scene, SceneObject};
+
+use crate::error::{Failure, HapheStatus, guard};
+use crate::shape::{HapheShape, shape};
+
+/// A scene: shapes placed in the world with materials. Opaque; made by `haphe_scene_new`,
+/// freed by `haphe_scene_free`.
+pub struct HapheScene {
+    pub(crate) inner: Scene,
+    next_id: u32,
+}
+
+/// The god-object proxy of one point device. Opaque; made by `haphe_proxy_new`, freed by
+/// `haphe_proxy_free`.
+pub struct HapheProxy {
+    inner: Proxy,
+}
+
+/// How a surface feels.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct HapheMaterial {
+    /// Spring constant between proxy and device, N/m (500 is safe on common devices).
+    pub stiffness: f64,
+    /// Damping along the contact normal, N·s/m.
+    pub damping: f64,
+    /// Static friction coefficient (≥ 0).
+    pub static_friction: f64,
+    /// Dynamic friction coefficient (0 ≤ dynamic ≤ static).
+    pub dynamic_friction: f64,
+}
+
+/// What one proxy tick gives.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct HapheTick {
+    /// The force to render, newtons, world frame (finite, within the proxy's maximum).
+    pub force: [f64; 3],
+    /// The proxy position, metres, world frame.
+    pub proxy: [f64; 3],
+    /// 1 when the proxy touches an object (the fields below are then set, else zero).
+    pub in_contact: u8,
+    /// The id of the object touched (from `haphe_scene_add`).
+    pub object: u32,
+    /// The triangle under the proxy, as the face index of that object's mesh as given.
+    pub triangle: u32,
+    /// The surface point nearest to the proxy, metres, world frame.
+    pub point: [f64; 3],
+    /// Unit shading normal at that point (the direction of the normal force), world frame.
+    pub normal: [f64; 3],
+    /// How far the device point is behind the proxy along the contact normal, metres.
+    pub penetration: f64,
+}
+
+/// The scene behind a handle.
+pub(crate) fn scene_mut<'a>(s: *mut HapheScene) -> Result<&'a mut HapheScene, Failure> {
+    // SAFETY: a non-null handle comes from this library, is not freed yet and is not used
+    // by another thread during the call (documented).
+    unsafe { s.as_mut() }.ok_or_else(|| Failure::argument("scene is null"))
+}
+
+/// Three doubles at `p`, checked finite; `default` when `p` is null.
+pub(crate) fn vec3(what: &str, p: *const f64, default: DVec3) -> Result<DVec3, Failure> {
+    if p.is_null() {
+        return Ok(default);
+    }
+    // SAFETY: a non-null `p` points to 3 readable doubles (documented).
+    let v = DVec3::from_array(unsafe { *p.cast::<[f64; 3]>() });
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Failure::argument(format!(
+            "{what} {:?} is not finite",
+            v.to_array()
+        )))
+    }
+}
+
+/// A rotation from a quaternion `x, y, z, w` at `q`; the identity when `q` is null.
+fn rotation(q: *const f64) -> Result<DQuat, Failure> {
+    if q.is_null() {
+        return Ok(DQuat::IDENTITY);
+    }
+    // SAFETY: a non-null `q` points to 4 readable doubles (documented).
+    let [x, y, z, w] = unsafe { *q.cast::<[f64; 4]>() };
+    let q = DQuat::from_xyzw(x, y, z, w);
+    let norm = q.length();
+    if norm.is_finite() && norm > 0.0 {
+        Ok(q / norm)
+    } else {
+        Err(Failure::argument(format!(
+            "the rotation {:?} is not a quaternion",
+            [x, y, z, w]
+        )))
+    }
+}
+
+/// Writes a new handle to `out`.
+fn give<T>(what: &str, out: *mut *mut T, value: T) -> Result<(), Failure> {
+    if out.is_null() {
+        return Err(Failure::argument(format!("{what} out is null")));
+    }
+    // SAFETY: `out` is non-null and points to writable storage for a pointer (documented).
+    unsafe { *out = Box::into_raw(Box::new(value)) };
+    Ok(())
+}
+
+/// Frees a handle made by `give` (null is ignored).
+fn free<T>(p: *mut T) {
+    let _ = guard(|| {
+        if !p.is_null() {
+            // SAFETY: a non-null handle was made by `Box::into_raw` here and is freed once
+            // (documented).
+            drop(unsafe { Box::from_raw(p) });
+        }
+        Ok(())
+    });
+}
+
+/// A new empty scene with room for `capacity` objects (storage reserved once). On success
+/// `*out` is owned by the caller: free it with `haphe_scene_free`.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_scene_new(capacity: usize, out: *mut *mut HapheScene) -> HapheStatus {
+    guard(|| {
+        give(
+            "scene",
+            out,
+            HapheScene {
+                inner: Scene::local(capacity),
+                next_id: 0,
+            },
+        )
+    })
+}
+
+/// Frees a scene (null is ignored). The shapes it holds are released.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_scene_free(scene: *mut HapheScene) {
+    free(scene);
+}
+
+/// Places `shape` in the scene at `position` (3 doubles, metres; null: the origin),
+/// turned by the quaternion `rotation` (x, y, z, w, object to world; null: none), with
+/// `material` (null: 500 N/m, no damping, no friction). The scene keeps its own reference
+/// to the shape (the caller may free its handle). `*id` (may be null) receives the
+/// object's id. Errors: `HAPHE_STATUS_FULL` at capacity, `HAPHE_STATUS_INVALID_ARGUMENT`.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_scene_add(
+    scene: *mut HapheScene,
+    shape: *const HapheShape,
+    position: *const f64,
+    rotation: *const f64,
+    material: *const HapheMaterial,
+    id: *mut u32,
+) -> HapheStatus {
+    guard(|| {
+        let sc = scene_mut(scene)?;
+        let sh = self::shape(shape)?;
+        let pose = Pose::new(
+            self::rotation(rotation)?,
+            vec3("position", position, DVec3::ZERO)?,
+        );
+        // SAFETY: a non-null `material` points to a readable HapheMaterial (documented).
+        let material = match unsafe { material.as_ref() } {
+            None => Material::default(),
+            Some(m) => Material {
+                stiffness: m.stiffness,
+                damping: m.damping,
+                static_friction: m.static_friction,
+                dynamic_friction: m.dynamic_friction,
+            },
+        };
+        let object_id = ObjectId(sc.next_id);
+        sc.inner
+            .insert(SceneObject::new(
+                object_id,
+                sh.inner.clone(),
+                pose,
+                material,
+            ))
+            .map_err(|(e, _)| Failure(HapheStatus::Full, e.to_string()))?;
+        sc.next_id += 1;
+        if !id.is_null() {
+            // SAFETY: a non-null `id` points to a writable u32 (documented).
+            unsafe { *id = object_id.0 };
+        }
+        Ok(())
+    })
+}
+
+/// Moves object `id` to `position` (metres) turned by `rotation` (x, y, z, w; null: none);
+/// the motion is rendered at the next tick. Allocates nothing. Errors:
+/// `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_scene_set_pose(
+    scene: *mut HapheScene,
+    id: u32,
+    position: *const f64,
+    rotation: *const f64,
+) -> HapheStatus {
+    guard(|| {
+        let sc = scene_mut(scene)?;
+        let pose = Pose::new(
+            self::rotation(rotation)?,
+            vec3("position", position, DVec3::ZERO)?,
+        );
+        if sc.inner.set_pose(ObjectId(id), pose) {
+            Ok(())
+        } else {
+            Err(Failure::argument(format!("no object {id} in the scene")))
+        }
+    })
+}
+
+/// A new proxy at `position` (3 doubles, metres; null: the origin), rendering at most
+/// `max_force` newtons. On success `*out` is owned by the caller: free it with
+/// `haphe_proxy_free`.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_proxy_new(
+    position: *const f64,
+    max_force: f64,
+    out: *mut *mut HapheProxy,
+) -> HapheStatus {
+    guard(|| {
+        let options = ProxyOptions {
+            skin: DEFAULT_SKIN,
+            max_force,
+            ..ProxyOptions::default()
+        };
+        let p = vec3("position", position, DVec3::ZERO)?;
+        give(
+            "proxy",
+            out,
+            HapheProxy {
+                inner: Proxy::new(p, options),
+            },
+        )
+    })
+}
+
+/// Frees a proxy (null is ignored).
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_proxy_free(proxy: *mut HapheProxy) {
+    free(proxy);
+}
+
+/// One servo tick: starts the scene's tick (objects moved since the last one push the
+/// proxy), moves the proxy toward the device point `hip` (3 doubles, metres, world frame;
+/// `velocity` 3 doubles m/s or null) and writes the force, proxy and contact to `*out`.
+///
+/// Real-time: allocates nothing, takes no lock, never panics; a non-finite input gives
+/// zero force and leaves the proxy where it was. One proxy per scene.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_proxy_tick(
+    proxy: *mut HapheProxy,
+    scene: *mut HapheScene,
+    hip: *const f64,
+    velocity: *const f64,
+    out: *mut HapheTick,
+) -> HapheStatus {
+    guard(|| {
+        // SAFETY: a non-null handle comes from this library and is not freed or shared
+        // during the call (documented).
+        let px = unsafe { proxy.as_mut() }.ok_or_else(|| Failure::argument("proxy is null"))?;
+        let sc = scene_mut(scene)?;
+        if hip.is_null() || out.is_null() {
+            return Err(Failure::argument("hip or out is null"));
+        }
+        // SAFETY: `hip` and a non-null `velocity` point to 3 readable doubles (documented);
+        // non-finite values are handled by the proxy (zero force).
+        let h = DVec3::from_array(unsafe { *hip.cast::<[f64; 3]>() });
+        let v = if velocity.is_null() {
+            DVec3::ZERO
+        } else {
+            // SAFETY: as above.
+            DVec3::from_array(unsafe { *velocity.cast::<[f64; 3]>() })
+        };
+        sc.inner.begin_tick();
+        let t = px.inner.tick(&sc.inner, h, v);
+        let mut tick = HapheTick {
+            force: t.force.to_array(),
+            proxy: t.proxy.to_array(),
+            in_contact: 0,
+            object: 0,
+            triangle: 0,
+            point: [0.0; 3],
+            normal: [0.0; 3],
+            penetration: 0.0,
+        };
+        if let Some(c) = t.contact
+            && let Some(o) = sc.inner.objects().get(c.object)
+        {
+            tick.in_contact = 1;
+            tick.object = c.id.0;
+            tick.triangle = o.shape.surface().source_triangle(c.triangle);
+            tick.point = c.point.to_array();
+            tick.normal = c.shading_normal.to_array();
+            tick.penetration = c.penetration;
+        }
+        // SAFETY: `out` is non-null and points to a writable HapheTick (documented).
+        unsafe { *out = tick };
+        Ok(())
+    })
+}

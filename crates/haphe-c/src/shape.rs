@@ -1,0 +1,295 @@
+//! Shapes: from mesh files, arrays or saved maps; batch inside and first-crossing queries.
+
+use std::ffi::{CStr, c_char};
+use std::path::Path;
+use std::sync::Arc;
+
+use haphe_lib::DVec3;
+use haphe_lib::map::{MapOptions, decode, encode};
+use haphe_lib::mesh::{
+    Mesh, ReadOptions, Surface, SurfaceOptions, Units, Weld, read_mesh_with_stats, weld,
+};
+use haphe_lib::query::{Side, classify_point, first_crossing};
+use haphe_lib::scene::Shape;
+
+use crate::error::{Failure, HapheStatus, guard};
+
+/// A shape: a mesh's surface and its voxel map, immutable. Opaque; made by
+/// `haphe_shape_from_file`, `haphe_shape_from_arrays` or `haphe_shape_load`, freed by
+/// `haphe_shape_free`. A scene holding the shape keeps it alive after it is freed.
+pub struct HapheShape {
+    pub(crate) inner: Arc<Shape>,
+}
+
+/// The first crossing of a segment with a surface.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct HapheCrossing {
+    /// Parameter along the segment in [0, 1]; NaN when the segment crosses nothing.
+    pub t: f64,
+    /// The triangle crossed, as the face index of the mesh as given; -1 when none.
+    pub triangle: i64,
+    /// The crossing point, metres, object frame (NaN when none).
+    pub point: [f64; 3],
+    /// The unit face normal of the triangle, object frame (NaN when none).
+    pub normal: [f64; 3],
+    /// 1 when the segment goes from the front to the back of the triangle (into a solid).
+    pub entering: u8,
+}
+
+/// A string argument as UTF-8.
+pub(crate) fn text<'a>(what: &str, s: *const c_char) -> Result<&'a str, Failure> {
+    if s.is_null() {
+        return Err(Failure::argument(format!("{what} is null")));
+    }
+    // SAFETY: the caller passes a NUL-terminated string that outlives the call (documented
+    // on every function taking one); it was checked non-null.
+    let c = unsafe { CStr::from_ptr(s) };
+    c.to_str()
+        .map_err(|_| Failure::argument(format!("{what} is not UTF-8")))
+}
+
+/// `n` points (3 doubles each) at `p`.
+pub(crate) fn points<'a>(what: &str, p: *const f64, n: usize) -> Result<&'a [[f64; 3]], Failure> {
+    if n == 0 {
+        return Ok(&[]);
+    }
+    if p.is_null() {
+        return Err(Failure::argument(format!("{what} is null")));
+    }
+    // SAFETY: the caller passes 3·n readable doubles at `p` (documented), non-null and
+    // aligned for f64; `[f64; 3]` has the layout of three consecutive doubles.
+    Ok(unsafe { std::slice::from_raw_parts(p.cast::<[f64; 3]>(), n) })
+}
+
+/// A writable array of `n` values at `p`.
+pub(crate) fn output<'a, T>(what: &str, p: *mut T, n: usize) -> Result<&'a mut [T], Failure> {
+    if n == 0 {
+        return Ok(&mut []);
+    }
+    if p.is_null() {
+        return Err(Failure::argument(format!("{what} is null")));
+    }
+    // SAFETY: the caller passes `n` writable, aligned values at `p` that nothing else
+    // accesses during the call (documented).
+    Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })
+}
+
+/// Hands a new shape to the caller through `out`.
+fn give(out: *mut *mut HapheShape, shape: Shape) -> Result<(), Failure> {
+    if out.is_null() {
+        return Err(Failure::argument("out is null"));
+    }
+    shape.prepare_clear_zones();
+    let handle = Box::into_raw(Box::new(HapheShape {
+        inner: Arc::new(shape),
+    }));
+    // SAFETY: `out` is non-null and points to writable storage for a pointer (documented).
+    unsafe { *out = handle };
+    Ok(())
+}
+
+/// The shape behind a handle.
+pub(crate) fn shape<'a>(s: *const HapheShape) -> Result<&'a HapheShape, Failure> {
+    // SAFETY: a non-null handle comes from this library and is not freed yet (documented).
+    unsafe { s.as_ref() }.ok_or_else(|| Failure::argument("shape is null"))
+}
+
+/// Builds the surface and map of `mesh`; errors are prefixed with `name`.
+fn build(name: &str, mesh: Mesh) -> Result<Shape, Failure> {
+    let fail = |e: &dyn std::fmt::Display| Failure(HapheStatus::Format, format!("{name}: {e}"));
+    let surface = Surface::new(mesh, &SurfaceOptions::default()).map_err(|e| fail(&e))?;
+    Shape::build(surface, &MapOptions::default()).map_err(|e| fail(&e))
+}
+
+/// Reads the file at `path`.
+fn read(path: &str) -> Result<Vec<u8>, Failure> {
+    std::fs::read(path).map_err(|e| Failure(HapheStatus::Io, format!("cannot read {path}: {e}")))
+}
+
+/// Reads a mesh file (OBJ, STL, PLY or OFF, told apart by content), welds its vertices
+/// exactly, scales it by `metres_per_unit` (1 for metres, 0.001 for millimetres) and
+/// builds its voxel map.
+///
+/// `path`: NUL-terminated UTF-8, borrowed for the call. On success `*out` is a new shape
+/// owned by the caller (free it with `haphe_shape_free`); on failure `*out` is untouched.
+/// Errors: `HAPHE_STATUS_IO` (cannot read), `HAPHE_STATUS_FORMAT` (the message names the
+/// file and the place), `HAPHE_STATUS_INVALID_ARGUMENT`.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_shape_from_file(
+    path: *const c_char,
+    metres_per_unit: f64,
+    out: *mut *mut HapheShape,
+) -> HapheStatus {
+    guard(|| {
+        let path = text("path", path)?;
+        if !(metres_per_unit.is_finite() && metres_per_unit > 0.0) {
+            return Err(Failure::argument(format!(
+                "metres_per_unit must be positive and finite, not {metres_per_unit}"
+            )));
+        }
+        let bytes = read(path)?;
+        let options = ReadOptions {
+            units: Units::Factor(metres_per_unit),
+            weld: Weld::Exact,
+            format: None,
+        };
+        let loaded = read_mesh_with_stats(path, &bytes, &options)
+            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
+        give(out, build(path, loaded.mesh)?)
+    })
+}
+
+/// A shape from arrays: `vertex_count` vertices (3 doubles each, metres) and `face_count`
+/// triangles (3 vertex indices each, counter-clockwise seen from outside). Vertices are
+/// welded exactly.
+///
+/// Both arrays are borrowed for the call. On success `*out` is a new shape owned by the
+/// caller (free it with `haphe_shape_free`). Errors: `HAPHE_STATUS_FORMAT` naming the
+/// vertex or face (index out of range, coordinate not finite, no area),
+/// `HAPHE_STATUS_INVALID_ARGUMENT`.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_shape_from_arrays(
+    vertices: *const f64,
+    vertex_count: usize,
+    faces: *const u32,
+    face_count: usize,
+    out: *mut *mut HapheShape,
+) -> HapheStatus {
+    guard(|| {
+        let v = points("vertices", vertices, vertex_count)?;
+        let f: &[[u32; 3]] = if face_count == 0 {
+            &[]
+        } else if faces.is_null() {
+            return Err(Failure::argument("faces is null"));
+        } else {
+            // SAFETY: the caller passes 3·face_count readable u32 at `faces` (documented),
+            // non-null; `[u32; 3]` has the layout of three consecutive u32.
+            unsafe { std::slice::from_raw_parts(faces.cast::<[u32; 3]>(), face_count) }
+        };
+        let mesh = Mesh {
+            vertices: v.iter().map(|&p| DVec3::from_array(p)).collect(),
+            triangles: f.to_vec(),
+        };
+        mesh.check_indices_and_finite()
+            .map_err(|e| Failure(HapheStatus::Format, format!("arrays: {e}")))?;
+        let (mesh, _) = weld(&mesh, Weld::Exact);
+        give(out, build("arrays", mesh)?)
+    })
+}
+
+/// Loads a map file written by `haphe_shape_save` or `haphe build` (checksum and
+/// invariants checked). `path` is borrowed for the call; on success `*out` is a new shape
+/// owned by the caller. Errors: `HAPHE_STATUS_IO`, `HAPHE_STATUS_FORMAT` (naming the file).
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_shape_load(path: *const c_char, out: *mut *mut HapheShape) -> HapheStatus {
+    guard(|| {
+        let path = text("path", path)?;
+        let bytes = read(path)?;
+        let (surface, map) =
+            decode(&bytes).map_err(|e| Failure(HapheStatus::Format, format!("{path}: {e}")))?;
+        give(out, Shape::new(surface, map))
+    })
+}
+
+/// Saves the shape's surface and map as one map file at `path` (a new file renamed over
+/// it, so a reader never sees half a file). `path` is borrowed for the call.
+/// Errors: `HAPHE_STATUS_IO`.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_shape_save(shape: *const HapheShape, path: *const c_char) -> HapheStatus {
+    guard(|| {
+        let s = self::shape(shape)?;
+        let path = text("path", path)?;
+        let bytes = encode(s.inner.surface(), s.inner.map());
+        let temporary = format!("{path}.{}.tmp", std::process::id());
+        let io =
+            |e: std::io::Error, p: &str| Failure(HapheStatus::Io, format!("cannot write {p}: {e}"));
+        std::fs::write(&temporary, &bytes).map_err(|e| io(e, &temporary))?;
+        std::fs::rename(&temporary, Path::new(path)).map_err(|e| {
+            let _ = std::fs::remove_file(&temporary);
+            io(e, path)
+        })
+    })
+}
+
+/// Frees a shape made by this library (null is ignored). Scenes holding it keep their
+/// reference; the handle must not be used again.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_shape_free(shape: *mut HapheShape) {
+    let _ = guard(|| {
+        if !shape.is_null() {
+            // SAFETY: a non-null handle was made by `Box::into_raw` in this library and is
+            // freed once (documented).
+            drop(unsafe { Box::from_raw(shape) });
+        }
+        Ok(())
+    });
+}
+
+/// Number of triangles of the shape's surface (0 for a null handle).
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_shape_triangle_count(shape: *const HapheShape) -> usize {
+    self::shape(shape).map_or(0, |s| s.inner.surface().triangle_count())
+}
+
+/// Whether each of `n` points (3 doubles each, metres, object frame) is inside the solid:
+/// `inside[i]` is 1 or 0 (always 0 for an open surface). Both arrays are borrowed for the
+/// call. Allocates nothing.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_shape_inside(
+    shape: *const HapheShape,
+    points: *const f64,
+    n: usize,
+    inside: *mut u8,
+) -> HapheStatus {
+    guard(|| {
+        let s = self::shape(shape)?;
+        let p = self::points("points", points, n)?;
+        let out = output("inside", inside, n)?;
+        let (surface, map) = (s.inner.surface(), s.inner.map());
+        for (o, &q) in out.iter_mut().zip(p) {
+            *o = u8::from(classify_point(surface, map, DVec3::from_array(q)).0 == Side::Inside);
+        }
+        Ok(())
+    })
+}
+
+/// The first crossing of each of `n` segments `p0[i] → p1[i]` (3 doubles each, metres,
+/// object frame) with the surface, found watertight (a segment through an edge or corner
+/// meets exactly one triangle), written to `out[i]`. All arrays are borrowed for the call.
+/// Allocates nothing.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_shape_first_crossing(
+    shape: *const HapheShape,
+    p0: *const f64,
+    p1: *const f64,
+    n: usize,
+    out: *mut HapheCrossing,
+) -> HapheStatus {
+    guard(|| {
+        let s = self::shape(shape)?;
+        let a = points("p0", p0, n)?;
+        let b = points("p1", p1, n)?;
+        let out = output("out", out, n)?;
+        let (surface, map) = (s.inner.surface(), s.inner.map());
+        for ((o, &q0), &q1) in out.iter_mut().zip(a).zip(b) {
+            *o = match first_crossing(surface, map, DVec3::from_array(q0), DVec3::from_array(q1)) {
+                Some(c) => HapheCrossing {
+                    t: c.t,
+                    triangle: i64::from(surface.source_triangle(c.triangle)),
+                    point: c.point.to_array(),
+                    normal: c.face_normal.to_array(),
+                    entering: u8::from(c.entering),
+                },
+                None => HapheCrossing {
+                    t: f64::NAN,
+                    triangle: -1,
+                    point: [f64::NAN; 3],
+                    normal: [f64::NAN; 3],
+                    entering: 0,
+                },
+            };
+        }
+        Ok(())
+    })
+}
