@@ -16,7 +16,7 @@ pub fn read_options(units: &str, weld_tolerance: Option<f64>) -> PyResult<ReadOp
     let units: Units = units.parse().map_err(|e| haphe_error("units", e))?;
     let weld = match weld_tolerance {
         None => Weld::Exact,
-        Some(t) if t == 0.0 => Weld::Exact,
+        Some(0.0) => Weld::Exact,
         Some(t) if t.is_finite() && t > 0.0 => Weld::Tolerance(t),
         Some(t) => {
             return Err(haphe_error(

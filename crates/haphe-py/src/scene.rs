@@ -212,6 +212,9 @@ impl Contact {
     }
 }
 
+/// A point or vector as Python sees it.
+type Vec3 = (f64, f64, f64);
+
 /// Three numbers as a tuple.
 fn tuple(v: DVec3) -> (f64, f64, f64) {
     (v.x, v.y, v.z)
@@ -272,7 +275,7 @@ impl Proxy {
         mut scene: PyRefMut<'_, Scene>,
         hip: [f64; 3],
         velocity: [f64; 3],
-    ) -> ((f64, f64, f64), (f64, f64, f64), Option<Contact>) {
+    ) -> (Vec3, Vec3, Option<Contact>) {
         let scene = scene.scene();
         scene.begin_tick();
         let out = self

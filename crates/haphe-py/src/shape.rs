@@ -7,8 +7,11 @@ use std::sync::Arc;
 use haphe::DVec3;
 use haphe::map::MapOptions;
 use haphe::mesh::{Mesh, Surface, SurfaceOptions, read_mesh_with_stats};
-use haphe::query::{Side, classify_point, first_crossing, nearest_within};
+use haphe::query::{
+    Side, classify_point, first_crossing, first_crossing_brute_force, nearest_within,
+};
 use haphe::scene;
+use haphe::verify::{SegmentKind, segments};
 use numpy::ndarray::{Array1, Array2, ArrayView2};
 use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -29,6 +32,9 @@ pub struct Shape {
     /// Where it came from, for messages.
     pub name: String,
 }
+
+/// An `(N, 3)` array of points handed to Python.
+type Points<'py> = Bound<'py, numpy::PyArray2<f64>>;
 
 /// Builds the surface and map of `mesh`; errors are prefixed with `name`.
 fn build(name: &str, mesh: Mesh) -> Result<scene::Shape, String> {
@@ -203,7 +209,7 @@ impl Shape {
         Ok(out.into_pyarray(py))
     }
 
-    /// first_crossing(p0, p1)
+    /// first_crossing(p0, p1, brute_force=False)
     /// --
     ///
     /// The first place where each segment ``p0[i] → p1[i]`` (two ``(N, 3)`` float arrays,
@@ -213,11 +219,16 @@ impl Shape {
     /// where none), ``point`` (N, 3) and ``normal`` (N, 3) the crossing and the unit face
     /// normal (NaN where none), ``entering`` (N,) bool (the segment goes from the front to
     /// the back of the triangle: into a solid). Runs without the GIL.
+    ///
+    /// ``brute_force=True`` tests every triangle instead of walking the map: the oracle of
+    /// ``haphe verify`` (the same answers, thousands of times slower on large meshes).
+    #[pyo3(signature = (p0, p1, brute_force = false))]
     fn first_crossing<'py>(
         &self,
         py: Python<'py>,
         p0: PyReadonlyArray2<'py, f64>,
         p1: PyReadonlyArray2<'py, f64>,
+        brute_force: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let (a, b) = (p0.as_array(), p1.as_array());
         check_n3("p0", &a)?;
@@ -238,7 +249,12 @@ impl Shape {
             let mut entering = Array1::from_elem(n, false);
             let surface = shape.surface();
             for (i, (q0, q1)) in points(&a).zip(points(&b)).enumerate() {
-                if let Some(c) = first_crossing(surface, shape.map(), q0, q1) {
+                let hit = if brute_force {
+                    first_crossing_brute_force(surface, q0, q1)
+                } else {
+                    first_crossing(surface, shape.map(), q0, q1)
+                };
+                if let Some(c) = hit {
                     t[i] = c.t;
                     triangle[i] = i64::from(surface.source_triangle(c.triangle));
                     for k in 0..3 {
@@ -304,6 +320,55 @@ impl Shape {
         d.set_item("triangle", triangle.into_pyarray(py))?;
         d.set_item("point", point.into_pyarray(py))?;
         Ok(d)
+    }
+
+    /// sample_segments(kind, n, seed=1)
+    /// --
+    ///
+    /// ``n`` segments of one of the kinds ``haphe verify`` tests, deterministic for a
+    /// ``seed``: ``random`` (in the box grown by a fifth), ``through_vertex``,
+    /// ``through_edge``, ``in_face_plane``, ``along_edge``, ``short`` (1 nm to 10 µm through
+    /// a surface point), ``long`` (a thousand to a million object sizes). Returns
+    /// ``(p0, p1)``, two ``(n, 3)`` arrays.
+    #[pyo3(signature = (kind, n, seed = 1))]
+    fn sample_segments<'py>(
+        &self,
+        py: Python<'py>,
+        kind: &str,
+        n: usize,
+        seed: u64,
+    ) -> PyResult<(Points<'py>, Points<'py>)> {
+        let kind = match kind {
+            "random" => SegmentKind::Random,
+            "through_vertex" => SegmentKind::ThroughVertex,
+            "through_edge" => SegmentKind::ThroughEdge,
+            "in_face_plane" => SegmentKind::InFacePlane,
+            "along_edge" => SegmentKind::AlongEdge,
+            "short" => SegmentKind::Short,
+            "long" => SegmentKind::Long,
+            other => {
+                return Err(haphe_error(
+                    "kind",
+                    format!(
+                        "unknown segment kind {other:?} (random, through_vertex, through_edge, in_face_plane, along_edge, short, long)"
+                    ),
+                ));
+            }
+        };
+        let shape = &*self.inner;
+        let (a, b) = py.detach(|| {
+            let s = segments(shape.surface(), kind, n, seed);
+            let mut a = Array2::zeros((s.len(), 3));
+            let mut b = Array2::zeros((s.len(), 3));
+            for (i, (p, q)) in s.iter().enumerate() {
+                for k in 0..3 {
+                    a[[i, k]] = p[k];
+                    b[[i, k]] = q[k];
+                }
+            }
+            (a, b)
+        });
+        Ok((a.into_pyarray(py), b.into_pyarray(py)))
     }
 
     /// Number of triangles of the surface.

@@ -131,3 +131,18 @@ def test_strided_and_integer_inputs():
     shape = cube()
     pts = np.array([[0.5, 0.5, 0.5, 9.0], [2.0, 0.5, 0.5, 9.0]])[:, :3]  # not contiguous
     np.testing.assert_array_equal(shape.inside(pts), [True, False])
+
+
+@pytest.mark.parametrize("kind", ["random", "through_vertex", "through_edge", "in_face_plane",
+                                  "along_edge", "short", "long"])
+def test_crossings_equal_brute_force_on_adversarial_segments(kind, models):
+    shape = haphe.Shape.from_file(models / "spot.obj")
+    p0, p1 = shape.sample_segments(kind, 300, seed=5)
+    assert p0.shape == (300, 3) and p1.shape == (300, 3)
+    fast = shape.first_crossing(p0, p1)
+    brute = shape.first_crossing(p0, p1, brute_force=True)
+    np.testing.assert_array_equal(fast["triangle"], brute["triangle"])
+    np.testing.assert_array_equal(fast["t"], brute["t"])
+    np.testing.assert_array_equal(fast["entering"], brute["entering"])
+    with pytest.raises(haphe.HapheError, match="unknown segment kind"):
+        shape.sample_segments("sideways", 1)

@@ -54,9 +54,16 @@ class Shape:
     def inside(self, points: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
         """(N, 3) points -> (N,) bool: inside the solid."""
     def first_crossing(
-        self, p0: npt.NDArray[np.float64], p1: npt.NDArray[np.float64]
+        self,
+        p0: npt.NDArray[np.float64],
+        p1: npt.NDArray[np.float64],
+        brute_force: bool = False,
     ) -> Dict[str, npt.NDArray[Any]]:
         """Arrays t (NaN none), triangle (-1 none), point, normal (N, 3), entering."""
+    def sample_segments(
+        self, kind: str, n: int, seed: int = 1
+    ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """n segments of a kind haphe verify tests: (p0, p1)."""
     def nearest(
         self, points: npt.NDArray[np.float64], max_distance: float
     ) -> Dict[str, npt.NDArray[Any]]:
