@@ -77,8 +77,8 @@ pub use device::{
     Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
 };
 pub use realtime::{
-    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, FIFO_PRIORITY, Interference, RealtimeOptions,
-    RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport,
+    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, DeviceClock, FIFO_PRIORITY, Interference,
+    RealtimeOptions, RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport,
 };
 pub use simulated::{
     HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, Path,
