@@ -73,7 +73,7 @@ impl VendorLibrary {
         let library = unsafe { Library::new(&path) }.map_err(|e| LoadError {
             library: *self,
             where_from: where_from.clone(),
-            reason: e.to_string(),
+            reason: with_source(&e),
         })?;
         Ok(Loaded {
             library,
@@ -87,9 +87,18 @@ impl VendorLibrary {
             library: *self,
             where_from: path.to_string(),
             reason: format!(
-                "it has no symbol {symbol} ({why}): not the vendor's library, or too old"
+                "it has no symbol {symbol} ({}): not the vendor's library, or too old",
+                with_source(why)
             ),
         }
+    }
+}
+
+/// An error with its source (libloading keeps the loader's message there).
+fn with_source(e: &libloading::Error) -> String {
+    match std::error::Error::source(e) {
+        Some(s) => format!("{e}: {s}"),
+        None => e.to_string(),
     }
 }
 
