@@ -432,11 +432,10 @@ unsafe extern "C" fn servo_callback(user: *mut c_void) -> c_uint {
     // SAFETY: only this thread touches `tick`, and the HD scheduler runs one callback at
     // a time, so this is the only reference.
     let tick = unsafe { &mut *shared.tick.get() };
-    let going =
-        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| tick())).unwrap_or_else(|_| {
-            shared.panicked.store(true, Ordering::Relaxed);
-            false
-        });
+    let going = std::panic::catch_unwind(std::panic::AssertUnwindSafe(tick)).unwrap_or_else(|_| {
+        shared.panicked.store(true, Ordering::Relaxed);
+        false
+    });
     shared.calls.fetch_add(1, Ordering::Release);
     if going {
         HD_CALLBACK_CONTINUE

@@ -85,7 +85,7 @@ fn udp_ticks_allocate_nothing() {
                 buttons: 0,
             };
             let _ = socket.send_to(&d.encode(), address);
-            if k % 7 == 0 {
+            if k.is_multiple_of(7) {
                 let _ = socket.send_to(b"junk", address);
             }
             k += 1;

@@ -69,7 +69,7 @@ fn udp_peer() {
     let mut k = 0usize;
     while k < records.len() {
         let seq = k as u64 + 1;
-        if seq % MALFORMED_EVERY == 0 {
+        if seq.is_multiple_of(MALFORMED_EVERY) {
             send(b"not a datagram");
             let mut wrong = datagram(k);
             wrong[0] = b'X';
