@@ -133,6 +133,16 @@ fn parse_point(s: &str) -> Result<DVec3, String> {
 /// Set by Ctrl-C.
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
+/// Set once the servo thread is about to start: from then on Ctrl-C asks it to stop
+/// (with zero force); before, Ctrl-C ends the process at once (no force is being
+/// rendered while the scene is built or a device is opened).
+static SERVO_RUNNING: AtomicBool = AtomicBool::new(false);
+
+/// Called just before the servo thread starts.
+pub fn servo_starting() {
+    SERVO_RUNNING.store(true, Ordering::SeqCst);
+}
+
 /// Whether Ctrl-C was pressed.
 pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::Relaxed)
@@ -156,8 +166,14 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             args.udp_workspace
         );
     }
-    ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::Relaxed))
-        .context("cannot install the Ctrl-C handler")?;
+    ctrlc::set_handler(|| {
+        if SERVO_RUNNING.load(Ordering::SeqCst) {
+            INTERRUPTED.store(true, Ordering::Relaxed);
+        } else {
+            std::process::exit(130);
+        }
+    })
+    .context("cannot install the Ctrl-C handler")?;
     let material = Material {
         stiffness: args.stiffness,
         damping: args.damping,

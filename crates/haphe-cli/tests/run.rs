@@ -42,7 +42,16 @@ fn run_and_devices_with_the_stand_in() {
             "--triangles",
             "500",
         ])
-        .args(["--seconds", "0.3", "--normal-priority", "--out"])
+        // No overrun budget here: the test machine is shared (the budget has its own
+        // tests in haphe's tests/servo_clocked.rs).
+        .args([
+            "--seconds",
+            "0.3",
+            "--normal-priority",
+            "--overrun-budget",
+            "1000000",
+        ])
+        .arg("--out")
         .arg(&csv)
         .output()
         .expect("runs");
@@ -101,7 +110,7 @@ fn ctrl_c_stops_a_run_without_end() {
             "--triangles",
             "500",
         ])
-        .arg("--normal-priority")
+        .args(["--normal-priority", "--overrun-budget", "1000000"])
         .stdout(Stdio::piped())
         .spawn()
         .expect("runs");

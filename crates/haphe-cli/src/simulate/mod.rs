@@ -420,6 +420,7 @@ impl Session {
                 }
             }
             out.flush()?;
+            crate::run::servo_starting();
             let running = match clock {
                 Some(clock) => ServoLoop::spawn_clocked(servo, clock, limit, options)?,
                 None => ServoLoop::spawn(servo, limit, options)?,
