@@ -21,7 +21,10 @@
 //!   handed out through a wait-free ring, and the [`Interference`] the system reports
 //!   (steal time of the servo's core, preemptions of its thread); optionally a standby
 //!   thread on a second core that ticks in its place when it is late
-//!   ([`RealtimeOptions::standby_core`], [`StandbyReport`]).
+//!   ([`RealtimeOptions::standby_core`], [`StandbyReport`]); and, for devices whose SDK
+//!   owns the servo thread (OpenHaptics), the same tick clocked by the device's own
+//!   callbacks ([`DeviceClock`], [`ServoLoop::spawn_clocked`]). An overrun budget
+//!   ([`RealtimeOptions::overrun_budget`]) stops a run with zero force.
 //! - [`TickStats`] — compute time and lateness histograms ([`Histogram`], preallocated)
 //!   and counters; [`TickRecord`] — one tick, written as CSV by
 //!   [`TickRecord::write_csv`] under [`CSV_HEADER`].
