@@ -9,6 +9,7 @@ mod load;
 mod mapped;
 mod object;
 mod query;
+mod run;
 mod simulate;
 mod validate;
 mod verify;
@@ -42,6 +43,10 @@ enum Command {
     Generate(generate::Args),
     /// Run a simulated haptic session (simulated hand, scripted path or replayed trace).
     Simulate(simulate::Args),
+    /// Run a haptic session with a device: dhd, openhaptics, udp:HOST:PORT or hand.
+    Run(run::Args),
+    /// List the haptic devices found: vendor libraries loaded or not, devices connected.
+    Devices(run::DevicesArgs),
     /// A simulated hand explores built-in models; summary and plot (no files needed).
     Demo(demo::Args),
     /// Time haphe's queries beside parry3d-f64 and brute force, on procedural meshes and files.
@@ -59,6 +64,8 @@ fn main() -> ExitCode {
         Command::Verify(args) => verify::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Run(args) => run::run(&args),
+        Command::Devices(args) => run::devices(&args),
         Command::Demo(args) => demo::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::View(args) => view::run(&args),

@@ -127,35 +127,17 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         static_friction: args.static_friction,
         dynamic_friction: args.dynamic_friction,
     };
-    let map = MapOptions::default();
     let started = Instant::now();
-    let (objects, what) = if let Some(file) = &args.scene {
-        (load_scene(file, &map)?, file.display().to_string())
-    } else if let Some(file) = &args.mesh {
-        let shape = Arc::new(mesh_shape(file, args.units, &map)?);
-        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
-        (
-            vec![LoadedObject {
-                name: file.display().to_string(),
-                object: o,
-                motion: None,
-            }],
-            file.display().to_string(),
-        )
-    } else {
-        let name = args.shape.as_deref().unwrap_or("blob");
-        let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
-        let shape = Arc::new(shape_of(which, args.triangles, &map)?);
-        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
-        (
-            vec![LoadedObject {
-                name: name.to_string(),
-                object: o,
-                motion: None,
-            }],
-            format!("the built-in {name}"),
-        )
-    };
+    let (objects, what) = load_model(
+        Model {
+            scene: args.scene.as_deref(),
+            mesh: args.mesh.as_deref(),
+            shape: args.shape.as_deref(),
+            triangles: args.triangles,
+            units: args.units,
+        },
+        material,
+    )?;
     let build_seconds = started.elapsed().as_secs_f64();
     let device = if let Some(file) = &args.replay {
         let name = file.display().to_string();
@@ -187,7 +169,52 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Which simulated device drives the run.
+/// Where the objects of a run come from: one of a scene file, a mesh file, a built-in shape.
+pub struct Model<'a> {
+    pub scene: Option<&'a Path>,
+    pub mesh: Option<&'a Path>,
+    pub shape: Option<&'a str>,
+    pub triangles: usize,
+    pub units: Units,
+}
+
+/// Loads the objects of a run (a --mesh or --shape object gets `material`), and says
+/// what they are.
+pub fn load_model(
+    model: Model<'_>,
+    material: Material,
+) -> anyhow::Result<(Vec<LoadedObject>, String)> {
+    let map = MapOptions::default();
+    Ok(if let Some(file) = model.scene {
+        (load_scene(file, &map)?, file.display().to_string())
+    } else if let Some(file) = model.mesh {
+        let shape = Arc::new(mesh_shape(file, model.units, &map)?);
+        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
+        (
+            vec![LoadedObject {
+                name: file.display().to_string(),
+                object: o,
+                motion: None,
+            }],
+            file.display().to_string(),
+        )
+    } else {
+        let name = model.shape.unwrap_or("blob");
+        let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
+        let shape = Arc::new(shape_of(which, model.triangles, &map)?);
+        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
+        (
+            vec![LoadedObject {
+                name: name.to_string(),
+                object: o,
+                motion: None,
+            }],
+            format!("the built-in {name}"),
+        )
+    })
+}
+
+/// Which device drives the run.
 pub enum DeviceChoice {
     /// The simulated hand following a scripted path.
     Hand(PathKind, HandOptions),
@@ -195,6 +222,8 @@ pub enum DeviceChoice {
     Scripted(PathKind),
     /// A recorded trace.
     Replay(HipTrace),
+    /// A real device, or the network device, named by a specification (`haphe run`).
+    Vendor(crate::run::VendorChoice),
 }
 
 impl DeviceChoice {
@@ -203,6 +232,7 @@ impl DeviceChoice {
             DeviceChoice::Hand(p, _) => format!("the simulated hand, path {p}"),
             DeviceChoice::Scripted(p) => format!("a scripted device (no hand), path {p}"),
             DeviceChoice::Replay(t) => format!("a replayed trace of {} samples", t.len()),
+            DeviceChoice::Vendor(v) => format!("device {}", v.spec),
         }
     }
 }
@@ -294,13 +324,18 @@ impl Session {
                 .insert(o.object)
                 .map_err(|(e, _)| anyhow!("cannot add an object: {e}"))?;
         }
+        // A real device runs until Ctrl-C unless told otherwise.
+        let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.spec != "hand")
+            && self.seconds.is_none();
         let seconds = match (&self.device, self.seconds) {
             (_, Some(s)) if s.is_finite() && s > 0.0 => s,
             (_, Some(s)) => bail!("--seconds must be positive, not {s}"),
+            (DeviceChoice::Vendor(_), None) if until_stopped => crate::run::PLOT_SECONDS,
             // Every sample, the last one included.
             (DeviceChoice::Replay(t), None) => t.end_time() - t.start_time() + 1.0 / self.rate_hz,
             (_, None) => DEFAULT_SECONDS,
         };
+        let mut vendor = None;
         let device: Box<dyn Device> = match self.device {
             DeviceChoice::Hand(kind, hand) => Box::new(SimulatedHand::new(
                 scripted_path(kind, &scene, seconds, self.seed)?,
@@ -310,6 +345,16 @@ impl Session {
                 kind, &scene, seconds, self.seed,
             )?)),
             DeviceChoice::Replay(trace) => Box::new(ReplayDevice::new(trace)),
+            DeviceChoice::Vendor(choice) => {
+                let opened = crate::run::open(&choice, &scene, seconds)?;
+                let device = opened.device;
+                vendor = Some((choice, opened.description, opened.clock, opened.report));
+                device
+            }
+        };
+        let mapping = match &vendor {
+            Some((choice, ..)) => crate::run::mapping(choice, &device.spec(), &scene),
+            None => haphe::servo::DeviceMapping::IDENTITY,
         };
         let options = ServoOptions {
             rate_hz: self.rate_hz,
@@ -317,8 +362,14 @@ impl Session {
                 max_force: self.max_force,
                 ..ProxyOptions::default()
             },
+            mapping,
             ..ServoOptions::default()
         };
+        let stiffness = scene
+            .objects()
+            .iter()
+            .map(|o| o.material.stiffness)
+            .fold(0.0, f64::max);
         let mut servo = Servo::new(device, scene, options)?;
         servo.set_motions(motions);
         let max_force = servo.options().proxy.max_force;
@@ -333,6 +384,12 @@ impl Session {
         for n in &names {
             writeln!(out, "  {n}")?;
         }
+        if let Some((choice, description, ..)) = &vendor {
+            writeln!(out, "device: {description}")?;
+            crate::run::print_mapping(out, choice, &mapping, stiffness)?;
+        }
+        let realtime = self.realtime || vendor.is_some();
+        let limit = (!until_stopped).then_some(seconds);
         let ticks = (seconds * self.rate_hz).round().max(1.0) as u64;
         let mut summary = Summary::new(ticks);
         let mut trace = match &self.out {
@@ -345,15 +402,30 @@ impl Session {
                 t.add(r);
             }
         };
-        let (stats, stop, setup, interference, standby, dropped) = if self.realtime {
-            let realtime = RealtimeOptions {
+        let mut report = None;
+        let (stats, stop, setup, interference, standby, dropped) = if realtime {
+            let mut options = RealtimeOptions {
                 spin_seconds: self.spin_seconds,
                 realtime_priority: self.fifo,
                 standby_core: self.standby_core,
                 ..RealtimeOptions::default()
             };
-            let running = ServoLoop::spawn(servo, Some(seconds), realtime)?;
-            let run = running.wait(&mut on_tick)?;
+            let mut clock = None;
+            if let Some((choice, _, c, r)) = vendor {
+                options.overrun_budget = choice.overrun_budget;
+                clock = c;
+                report = Some(r);
+                if limit.is_none() {
+                    writeln!(out, "running until Ctrl-C")?;
+                }
+            }
+            out.flush()?;
+            crate::run::servo_starting();
+            let running = match clock {
+                Some(clock) => ServoLoop::spawn_clocked(servo, clock, limit, options)?,
+                None => ServoLoop::spawn(servo, limit, options)?,
+            };
+            let run = crate::run::wait(running, &mut on_tick)?;
             let stats = run.servo.stats().clone();
             (
                 stats,
@@ -375,7 +447,7 @@ impl Session {
             &stats,
             &RunInfo {
                 rate_hz: self.rate_hz,
-                realtime: self.realtime,
+                realtime,
                 max_force,
                 stop,
                 setup: setup.as_ref(),
@@ -397,10 +469,22 @@ impl Session {
                 p.display()
             )?;
         }
+        let said = report.as_ref().and_then(|r| r());
+        if let Some(line) = &said {
+            writeln!(out, "{line}")?;
+        }
         if let StopReason::Fault(f) = stop
             && f != haphe::servo::DeviceFault::Ended
         {
-            bail!("the device faulted: {f}");
+            match said {
+                Some(line) => bail!("the device faulted: {f} ({line}); zero force was written"),
+                None => bail!("the device faulted: {f}; zero force was written"),
+            }
+        }
+        if stop == StopReason::Overruns {
+            bail!(
+                "the servo missed more deadlines than its overrun budget; zero force was written"
+            );
         }
         Ok(())
     }

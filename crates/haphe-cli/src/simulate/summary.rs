@@ -168,6 +168,8 @@ pub fn print(
         match info.stop {
             StopReason::Finished => String::new(),
             StopReason::Requested => " (stopped)".into(),
+            StopReason::Overruns =>
+                " (stopped: the overrun budget was exceeded, zero force written)".into(),
             StopReason::Fault(haphe::servo::DeviceFault::Ended) => " (the trace ended)".into(),
             StopReason::Fault(f) =>
                 format!(" (stopped by a device fault: {f}; zero force written)"),

@@ -21,7 +21,10 @@
 //!   handed out through a wait-free ring, and the [`Interference`] the system reports
 //!   (steal time of the servo's core, preemptions of its thread); optionally a standby
 //!   thread on a second core that ticks in its place when it is late
-//!   ([`RealtimeOptions::standby_core`], [`StandbyReport`]).
+//!   ([`RealtimeOptions::standby_core`], [`StandbyReport`]); and, for devices whose SDK
+//!   owns the servo thread (OpenHaptics), the same tick clocked by the device's own
+//!   callbacks ([`DeviceClock`], [`ServoLoop::spawn_clocked`]). An overrun budget
+//!   ([`RealtimeOptions::overrun_budget`]) stops a run with zero force.
 //! - [`TickStats`] — compute time and lateness histograms ([`Histogram`], preallocated)
 //!   and counters; [`TickRecord`] — one tick, written as CSV by
 //!   [`TickRecord::write_csv`] under [`CSV_HEADER`].
@@ -77,8 +80,8 @@ pub use device::{
     Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
 };
 pub use realtime::{
-    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, FIFO_PRIORITY, Interference, RealtimeOptions,
-    RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport,
+    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, DeviceClock, FIFO_PRIORITY, Interference,
+    RealtimeOptions, RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport,
 };
 pub use simulated::{
     HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, Path,

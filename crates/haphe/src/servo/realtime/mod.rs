@@ -1,9 +1,11 @@
 //! [`ServoLoop`]: the servo on a dedicated thread, ticking on absolute deadlines of the
 //! wall clock, with real-time priority and core pinning where the system permits.
 
+mod external;
 mod interference;
 mod standby;
 
+pub use external::DeviceClock;
 pub use interference::Interference;
 pub use standby::{STANDBY_GRACE_S, StandbyReport};
 
@@ -60,11 +62,17 @@ pub struct RealtimeOptions {
     /// no standby. A core the servo thread is pinned to gets no standby (said in
     /// [`RealtimeSetup::notes`]).
     pub standby_core: Option<usize>,
+    /// Stop the run (zero force, [`StopReason::Overruns`]) once more deadlines than this
+    /// were missed (overruns and skipped deadlines together, see
+    /// [`TickStats::missed`](super::TickStats::missed)); `None` (the
+    /// default): never. A real device should have one: a servo that keeps missing its
+    /// deadlines renders unstable walls.
+    pub overrun_budget: Option<u64>,
 }
 
 impl Default for RealtimeOptions {
     /// Real-time priority, the last core, the default spin, one second of records at
-    /// 40 kHz, no standby thread.
+    /// 40 kHz, no standby thread, no overrun budget.
     fn default() -> RealtimeOptions {
         RealtimeOptions {
             realtime_priority: true,
@@ -72,6 +80,7 @@ impl Default for RealtimeOptions {
             spin_seconds: None,
             record_capacity: 40_000,
             standby_core: None,
+            overrun_budget: None,
         }
     }
 }
@@ -279,6 +288,8 @@ pub(super) struct Run<D: Device> {
     pub(super) dropped: u64,
     /// Why the run ended, once it has.
     pub(super) stop: Option<StopReason>,
+    /// See [`RealtimeOptions::overrun_budget`].
+    pub(super) overrun_budget: Option<u64>,
 }
 
 /// The deadlines of a run.
@@ -315,6 +326,26 @@ impl<D: Device> Run<D> {
     /// hands its record on, and moves on to the next deadline not yet past.
     pub(super) fn tick(&mut self, schedule: &Schedule) {
         let (deadline, offset) = schedule.deadline(self.k);
+        let done = self.timed_tick(deadline, offset, schedule.period_ns);
+        // More than a period behind: skip the deadlines already past.
+        let behind = nanos(done.saturating_duration_since(schedule.start)) / schedule.period_ns;
+        if behind > self.k {
+            self.servo.stats_mut().skipped += behind + 1 - self.k;
+            self.k = behind + 1;
+        }
+        self.check_budget();
+    }
+
+    /// Runs tick `k` at the time `offset` since the start, its deadline having been
+    /// `deadline`: records lateness, compute time and an overrun (the tick ended after
+    /// the next deadline), hands its record on, notes a fault. Returns when it ended.
+    /// Shared by haphe's own clock and a device's ([`DeviceClock`]).
+    pub(super) fn timed_tick(
+        &mut self,
+        deadline: Instant,
+        offset: Duration,
+        period_ns: u64,
+    ) -> Instant {
         let began = Instant::now();
         let record = self.servo.tick_at(offset.as_secs_f64());
         let done = Instant::now();
@@ -325,21 +356,28 @@ impl<D: Device> Run<D> {
         stats
             .compute
             .record(nanos(done.saturating_duration_since(began)));
-        if done > deadline + Duration::from_nanos(schedule.period_ns) {
+        if done > deadline + Duration::from_nanos(period_ns) {
             stats.overruns += 1;
         }
         self.k += 1;
-        // More than a period behind: skip the deadlines already past.
-        let behind = nanos(done.saturating_duration_since(schedule.start)) / schedule.period_ns;
-        if behind > self.k {
-            stats.skipped += behind + 1 - self.k;
-            self.k = behind + 1;
-        }
         if self.producer.push(record).is_err() {
             self.dropped += 1;
         }
         if let Some(f) = record.fault {
             self.stop = Some(StopReason::Fault(f));
+        }
+        done
+    }
+
+    /// Ends the run with zero force when more deadlines were missed than the budget.
+    pub(super) fn check_budget(&mut self) {
+        if self.stop.is_none()
+            && self
+                .overrun_budget
+                .is_some_and(|b| self.servo.stats().missed() > b)
+        {
+            self.servo.zero_force();
+            self.stop = Some(StopReason::Overruns);
         }
     }
 }
@@ -379,6 +417,7 @@ fn run_thread<D: Device>(
         k: 0,
         dropped: 0,
         stop: None,
+        overrun_budget: options.overrun_budget,
     };
     let counters = Counters::read(setup.pinned_core);
     let (mut run, standby) = match standby_core {

@@ -184,6 +184,7 @@ mod tests {
             k: 0,
             dropped: 0,
             stop: None,
+            overrun_budget: None,
         };
         let schedule = Schedule {
             start: Instant::now() + Duration::from_secs(3600),

@@ -79,6 +79,9 @@ pub enum StopReason {
     Requested,
     /// The device faulted (a replay that ended reports [`DeviceFault::Ended`]).
     Fault(DeviceFault),
+    /// More deadlines were missed than the overrun budget allows (see
+    /// [`RealtimeOptions::overrun_budget`](crate::servo::RealtimeOptions::overrun_budget)).
+    Overruns,
 }
 
 /// The servo's tick function over a device and a scene, with its statistics.
