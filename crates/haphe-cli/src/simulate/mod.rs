@@ -7,8 +7,7 @@ pub mod plot;
 pub mod scene_file;
 pub mod summary;
 
-use std::fs::File;
-use std::io::{BufReader, BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -19,12 +18,15 @@ use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Shape as Catalog;
 use haphe::proxy::ProxyOptions;
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
+use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, check_max_force};
 use haphe::servo::{
     Device, HandOptions, HipTrace, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind,
     RealtimeOptions, ReplayDevice, ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand,
     StopReason, TickRecord, scripted_path, write_csv_header,
 };
+
+use crate::files::input::{self, read_input};
+use crate::files::output::{Staged, check_outputs};
 
 use self::scene_file::{LoadedObject, load_scene, mesh_shape, shape_of};
 use self::summary::{RunInfo, Summary};
@@ -64,9 +66,9 @@ pub struct Args {
     /// Servo rate, Hz (1 to 40000).
     #[arg(long, default_value_t = 1000.0)]
     rate: f64,
-    /// Length of the run, seconds (default 5, or the length of the replayed trace; a
-    /// replay stops when its trace ends).
-    #[arg(long)]
+    /// Length of the run, seconds, at most 3600 (default 5, or the length of the replayed
+    /// trace; a replay stops when its trace ends).
+    #[arg(long, allow_negative_numbers = true)]
     seconds: Option<f64>,
     /// Run on the wall clock on a real-time thread (default: a virtual clock, as fast as
     /// possible).
@@ -121,12 +123,28 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             args.rate
         );
     }
+    let outputs: Vec<&Path> = [&args.out, &args.plot]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    let inputs: Vec<&Path> = [&args.mesh, &args.scene, &args.replay]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    check_outputs(&outputs, &inputs)?;
+    // The same check as a scene file's materials.
     let material = Material {
         stiffness: args.stiffness,
         damping: args.damping,
         static_friction: args.static_friction,
         dynamic_friction: args.dynamic_friction,
-    };
+    }
+    .checked()
+    .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
+    check_max_force(args.max_force)
+        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
     let map = MapOptions::default();
     let started = Instant::now();
     let (objects, what) = if let Some(file) = &args.scene {
@@ -159,9 +177,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let build_seconds = started.elapsed().as_secs_f64();
     let device = if let Some(file) = &args.replay {
         let name = file.display().to_string();
-        let reader =
-            BufReader::new(File::open(file).with_context(|| format!("cannot read {name}"))?);
-        DeviceChoice::Replay(HipTrace::read(&name, reader)?)
+        let bytes = read_input(file, input::TRACE)?;
+        DeviceChoice::Replay(HipTrace::read(&name, bytes.as_slice())?)
     } else if args.no_hand && !args.hand {
         DeviceChoice::Scripted(args.path)
     } else {
@@ -231,30 +248,30 @@ pub struct Session {
 /// Default length of a run, seconds.
 pub const DEFAULT_SECONDS: f64 = 5.0;
 
-/// The CSV trace writer, when asked for.
+/// The longest run, seconds (an hour: 3.6 million ticks at 1 kHz, a 400 MB trace).
+pub const MAX_SECONDS: f64 = 3600.0;
+
+/// The CSV trace writer, when asked for: a temporary file beside the target, renamed over
+/// it when the run is complete (an earlier trace stays as it was if the run fails).
 struct TraceOut {
-    writer: BufWriter<File>,
-    path: PathBuf,
+    staged: Staged,
     error: Option<std::io::Error>,
 }
 
 impl TraceOut {
     fn create(path: &Path) -> anyhow::Result<TraceOut> {
-        let file =
-            File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-        let mut writer = BufWriter::with_capacity(1 << 20, file);
-        write_csv_header(&mut writer)
+        let mut staged = Staged::create(path)?;
+        write_csv_header(staged.writer())
             .with_context(|| format!("cannot write {}", path.display()))?;
         Ok(TraceOut {
-            writer,
-            path: path.to_path_buf(),
+            staged,
             error: None,
         })
     }
 
     fn add(&mut self, r: &TickRecord) {
         if self.error.is_none()
-            && let Err(e) = r.write_csv(&mut self.writer)
+            && let Err(e) = r.write_csv(self.staged.writer())
         {
             self.error = Some(e);
         }
@@ -262,11 +279,10 @@ impl TraceOut {
 
     fn finish(mut self) -> anyhow::Result<()> {
         if let Some(e) = self.error.take() {
-            return Err(e).with_context(|| format!("cannot write {}", self.path.display()));
+            return Err(e)
+                .with_context(|| format!("cannot write {}", self.staged.path().display()));
         }
-        self.writer
-            .flush()
-            .with_context(|| format!("cannot write {}", self.path.display()))
+        self.staged.commit()
     }
 }
 
@@ -295,10 +311,20 @@ impl Session {
                 .map_err(|(e, _)| anyhow!("cannot add an object: {e}"))?;
         }
         let seconds = match (&self.device, self.seconds) {
-            (_, Some(s)) if s.is_finite() && s > 0.0 => s,
-            (_, Some(s)) => bail!("--seconds must be positive, not {s}"),
+            (_, Some(s)) if s.is_finite() && s > 0.0 && s <= MAX_SECONDS => s,
+            (_, Some(s)) => {
+                bail!("--seconds must be a positive number of at most {MAX_SECONDS}, not {s}")
+            }
             // Every sample, the last one included.
-            (DeviceChoice::Replay(t), None) => t.end_time() - t.start_time() + 1.0 / self.rate_hz,
+            (DeviceChoice::Replay(t), None) => {
+                let length = t.end_time() - t.start_time();
+                if !(length <= MAX_SECONDS) {
+                    bail!(
+                        "the replayed trace spans {length} s, more than a run may last ({MAX_SECONDS} s); give --seconds to replay its beginning"
+                    );
+                }
+                length + 1.0 / self.rate_hz
+            }
             (_, None) => DEFAULT_SECONDS,
         };
         let device: Box<dyn Device> = match self.device {
@@ -385,7 +411,7 @@ impl Session {
             },
         )?;
         if let Some(t) = trace {
-            let path = t.path.clone();
+            let path = t.staged.path().to_owned();
             t.finish()?;
             writeln!(out, "trace: {} ({} ticks)", path.display(), summary.ticks)?;
         }

@@ -86,7 +86,8 @@ pub use simulated::{
     TraceError, scene_bounds, scripted_path, simulated_spec, surface_below,
 };
 pub use tick::{
-    Histogram, MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions,
-    StopReason, TickStats,
+    Histogram, MAX_MOTION_AMPLITUDE, MAX_MOTION_FREQUENCY, MAX_MOTION_RATE, MAX_MOTION_SPEED,
+    MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions, StopReason,
+    TickStats,
 };
 pub use trace::{CSV_HEADER, Phase, TickRecord, write_csv_header};

@@ -129,12 +129,23 @@ impl<D: Device + 'static> ServoLoop<D> {
     /// Starts `servo` on a new thread for `seconds` (`None`: until [`stop`](Self::stop)).
     ///
     /// # Errors
-    /// [`ServoError::Spawn`] when the thread cannot be started.
+    /// [`ServoError::NoSuchCore`] when [`RealtimeOptions::standby_core`] names a core this
+    /// process may not run on; [`ServoError::Spawn`] when the thread cannot be started.
     pub fn spawn(
         servo: Servo<D>,
         seconds: Option<f64>,
         options: RealtimeOptions,
     ) -> Result<ServoLoop<D>, ServoError> {
+        if let Some(core) = options.standby_core {
+            let cores: Vec<usize> = core_affinity::get_core_ids()
+                .unwrap_or_default()
+                .iter()
+                .map(|c| c.id)
+                .collect();
+            if !cores.contains(&core) {
+                return Err(ServoError::NoSuchCore { core, cores });
+            }
+        }
         let (producer, consumer) = RingBuffer::new(options.record_capacity.max(1));
         let stop = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&stop);
