@@ -26,7 +26,7 @@ pub struct Object {
 /// mesh file, whose surface and map are built now.
 pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow::Result<Object> {
     let start = Instant::now();
-    let mut input = open_input(path, input::MAP)?;
+    let mut input = open_input(path, input::OBJECT)?;
     let mut head = Vec::with_capacity(MAGIC.len());
     (&mut input.file)
         .take(MAGIC.len() as u64)

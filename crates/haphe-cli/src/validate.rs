@@ -5,12 +5,16 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
+use anyhow::Context;
 use haphe::map::{MapOptions, VoxelMap};
 use haphe::mesh::{
     Mesh, MeshReport, ReadOptions, Surface, SurfaceOptions, Units, Usability,
     is_degenerate_triangle,
 };
-use haphe::query::{SelfIntersections, self_intersections};
+use haphe::query::{
+    SELF_INTERSECTION_BUDGET_PER_TRIANGLE, SelfIntersections, self_intersection_budget,
+    self_intersections,
+};
 use serde::Serialize;
 
 use crate::load::{load, weld_mode};
@@ -34,7 +38,8 @@ JSON (--json) prints one object per file and line: file, format, seconds, weld, 
   self_intersections (pairs of triangles that cross or touch other than in shared corners;
   null for an unusable mesh), self_intersections_crossing (of those, pairs that pass through
   each other: a closed mesh with any is not a valid solid), self_intersection_pairs (the
-  first 100 pairs).
+  first 100 pairs), self_intersections_complete (false when the search stopped at its
+  budget of 256 candidate pairs per triangle: the counts are then lower bounds).
   An unreadable file gives {\"file\": ..., \"error\": ...}.";
 
 /// Arguments of `haphe validate`.
@@ -79,6 +84,9 @@ struct JsonLine<'a> {
     self_intersections_crossing: Option<usize>,
     /// The first intersecting pairs.
     self_intersection_pairs: Option<&'a [[u32; 2]]>,
+    /// Whether the search tested every candidate pair (else it stopped at its budget and
+    /// the counts are lower bounds).
+    self_intersections_complete: Option<bool>,
 }
 
 /// The report of a mesh, and its self-intersections when it has a usable surface (found
@@ -136,7 +144,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 let (report, intersections) = if args.skip_self_intersections {
                     (MeshReport::of(&loaded.mesh), None)
                 } else {
-                    validate_mesh(loaded.mesh)?
+                    validate_mesh(loaded.mesh).with_context(|| path.display().to_string())?
                 };
                 let t_validate = validated.elapsed();
                 let seconds = start.elapsed().as_secs_f64();
@@ -155,6 +163,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         self_intersections: intersections.as_ref().map(|s| s.count),
                         self_intersections_crossing: intersections.as_ref().map(|s| s.crossing),
                         self_intersection_pairs: intersections.as_ref().map(|s| s.pairs.as_slice()),
+                        self_intersections_complete: intersections.as_ref().map(|s| s.complete),
                     };
                     writeln!(out, "{}", serde_json::to_string(&line)?)?;
                 } else {
@@ -169,12 +178,31 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         loaded.weld.unreferenced,
                     )?;
                     write!(out, "{}", report.text(crossing_itself))?;
-                    if let Some(s) = intersections.as_ref().filter(|s| s.count > 0) {
+                    if let Some(s) = intersections
+                        .as_ref()
+                        .filter(|s| s.count > 0 || !s.complete)
+                    {
+                        let at_least = if s.complete { "" } else { "at least " };
                         writeln!(
                             out,
-                            "  self-intersections: {} triangle pairs ({} crossing, {} only touching)",
-                            s.count, s.crossing, s.touching
+                            "  self-intersections: {at_least}{} triangle pairs ({} crossing, {} only touching{})",
+                            s.count,
+                            s.crossing,
+                            s.touching,
+                            if s.coincident > 0 {
+                                format!("; {} pairs of coincident triangles", s.coincident)
+                            } else {
+                                String::new()
+                            }
                         )?;
+                        if !s.complete {
+                            writeln!(
+                                out,
+                                "  self-intersections: the search stopped at its budget of {} candidate pairs ({} per triangle); the counts are lower bounds",
+                                self_intersection_budget(triangles),
+                                SELF_INTERSECTION_BUDGET_PER_TRIANGLE
+                            )?;
+                        }
                         let shown: Vec<String> =
                             s.pairs.iter().take(8).map(|p| format!("{p:?}")).collect();
                         writeln!(

@@ -28,6 +28,12 @@ pub const MAP: Limit = Limit {
     what: "map file",
     bytes: 4 * GIB,
 };
+/// The object of `query` and `verify`, a mesh or a map file: 4 GiB (a mesh file is then
+/// held to [`MESH`]).
+pub const OBJECT: Limit = Limit {
+    what: "mesh or map file",
+    bytes: 4 * GIB,
+};
 /// Query CSV files: 1 GiB.
 pub const CSV: Limit = Limit {
     what: "CSV file",

@@ -33,9 +33,11 @@ use self::summary::{RunInfo, Summary};
 
 /// Arguments of `haphe simulate`.
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 #[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape"])))]
 pub struct Args {
-    /// A mesh file (OBJ, STL, PLY, OFF) placed at the origin.
+    /// A mesh file (OBJ, STL, PLY, OFF) placed with the centre of its bounding box at the
+    /// origin.
     #[arg(long, value_name = "FILE")]
     mesh: Option<PathBuf>,
     /// A scene file (TOML): objects, poses, materials, motions (see the README).
@@ -134,6 +136,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .map(PathBuf::as_path)
         .collect();
     check_outputs(&outputs, &inputs)?;
+    if let Some(core) = args.standby_core {
+        haphe::servo::check_core(core).map_err(|e| anyhow!("--standby-core: {e}"))?;
+    }
     // The same check as a scene file's materials.
     let material = Material {
         stiffness: args.stiffness,
@@ -151,7 +156,22 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         (load_scene(file, &map)?, file.display().to_string())
     } else if let Some(file) = &args.mesh {
         let shape = Arc::new(mesh_shape(file, args.units, &map)?);
-        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
+        // The paths explore the workspace around the origin: the mesh is placed there.
+        let (lo, hi) = shape.surface().bounds();
+        let centre = (lo + hi) * 0.5;
+        if centre.length() > 1e-9 {
+            eprintln!(
+                "haphe simulate: {} placed with its centre at the origin (moved by {:.6?} m)",
+                file.display(),
+                (-centre).to_array()
+            );
+        }
+        let o = SceneObject::new(
+            ObjectId(0),
+            shape,
+            Pose::from_translation(-centre),
+            material,
+        );
         (
             vec![LoadedObject {
                 name: file.display().to_string(),
@@ -327,6 +347,7 @@ impl Session {
             }
             (_, None) => DEFAULT_SECONDS,
         };
+        let replay = matches!(self.device, DeviceChoice::Replay(_));
         let device: Box<dyn Device> = match self.device {
             DeviceChoice::Hand(kind, hand) => Box::new(SimulatedHand::new(
                 scripted_path(kind, &scene, seconds, self.seed)?,
@@ -421,6 +442,12 @@ impl Session {
                 out,
                 "plot: {} (force and penetration over time; the path seen from the side)",
                 p.display()
+            )?;
+        }
+        if summary.contact_ticks == 0 && !replay {
+            writeln!(
+                out,
+                "warning: the device never touched any object (the path stays outside them all)"
             )?;
         }
         if let StopReason::Fault(f) = stop

@@ -44,7 +44,8 @@ pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within, nearest_wi
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use self_intersect::{
-    LISTED_SELF_INTERSECTIONS, SelfIntersections, TOUCH_TOLERANCE_REL, self_intersections,
+    LISTED_SELF_INTERSECTIONS, SELF_INTERSECTION_BUDGET_MIN, SELF_INTERSECTION_BUDGET_PER_TRIANGLE,
+    SelfIntersections, TOUCH_TOLERANCE_REL, self_intersection_budget, self_intersections,
 };
 pub use triangle_triangle::intersect_triangle_triangle;
 pub use walk::{

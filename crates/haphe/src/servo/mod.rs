@@ -78,7 +78,7 @@ pub use device::{
 };
 pub use realtime::{
     DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, FIFO_PRIORITY, Interference, RealtimeOptions,
-    RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport,
+    RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport, check_core,
 };
 pub use simulated::{
     HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, Path,

@@ -125,6 +125,23 @@ pub struct ServoLoop<D: Device + 'static> {
     handle: JoinHandle<RealtimeRun<D>>,
 }
 
+/// Checks that this process may run on `core` (for [`RealtimeOptions::standby_core`]).
+///
+/// # Errors
+/// [`ServoError::NoSuchCore`], with the cores it may run on.
+pub fn check_core(core: usize) -> Result<(), ServoError> {
+    let cores: Vec<usize> = core_affinity::get_core_ids()
+        .unwrap_or_default()
+        .iter()
+        .map(|c| c.id)
+        .collect();
+    if cores.contains(&core) {
+        Ok(())
+    } else {
+        Err(ServoError::NoSuchCore { core, cores })
+    }
+}
+
 impl<D: Device + 'static> ServoLoop<D> {
     /// Starts `servo` on a new thread for `seconds` (`None`: until [`stop`](Self::stop)).
     ///
@@ -137,14 +154,7 @@ impl<D: Device + 'static> ServoLoop<D> {
         options: RealtimeOptions,
     ) -> Result<ServoLoop<D>, ServoError> {
         if let Some(core) = options.standby_core {
-            let cores: Vec<usize> = core_affinity::get_core_ids()
-                .unwrap_or_default()
-                .iter()
-                .map(|c| c.id)
-                .collect();
-            if !cores.contains(&core) {
-                return Err(ServoError::NoSuchCore { core, cores });
-            }
+            check_core(core)?;
         }
         let (producer, consumer) = RingBuffer::new(options.record_capacity.max(1));
         let stop = Arc::new(AtomicBool::new(false));
