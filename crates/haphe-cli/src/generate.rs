@@ -27,6 +27,7 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
+    Shape::check_triangles(args.triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
     crate::files::output::check_outputs(&[&args.output], &[])?;
     let start = Instant::now();
     let mut mesh = args.shape.with_triangles(args.triangles);

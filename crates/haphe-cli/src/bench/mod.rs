@@ -150,6 +150,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     if samples == 0 {
         bail!("--samples must be at least 1");
     }
+    for &n in &sizes {
+        Shape::check_triangles(n).map_err(|e| anyhow!("--sizes: {e}"))?;
+    }
     let sources: Vec<Source> = args
         .shapes
         .iter()

@@ -82,6 +82,13 @@ pub fn check_outputs(outputs: &[&Path], inputs: &[&Path]) -> anyhow::Result<Vec<
             if m.is_dir() {
                 bail!("cannot write {shown}: it is a directory");
             }
+            if !m.is_file() {
+                // Renaming over a device or a pipe would replace it with a file.
+                bail!(
+                    "cannot write {shown}: it is {}; outputs are regular files, written whole and renamed into place",
+                    crate::files::input::kind_name(m.file_type())
+                );
+            }
             if identities.contains(&(m.dev(), m.ino())) {
                 bail!("cannot write {shown}: it is one of the input files");
             }

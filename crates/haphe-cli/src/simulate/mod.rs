@@ -183,6 +183,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     } else {
         let name = args.shape.as_deref().unwrap_or("blob");
         let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
+        Catalog::check_triangles(args.triangles).map_err(|e| anyhow!("--triangles: {e}"))?;
         let shape = Arc::new(shape_of(which, args.triangles, &map)?);
         let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
         (

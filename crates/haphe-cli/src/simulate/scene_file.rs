@@ -148,6 +148,7 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
                     bail!("{place}: `units` applies to a mesh file, not to a built-in shape");
                 }
                 let n = spec.triangles.unwrap_or(DEFAULT_TRIANGLES);
+                Catalog::check_triangles(n).map_err(|e| anyhow!("{place}: {e}"))?;
                 (format!("shape {shape} {n}"), shape.clone())
             }
             (None, Some(mesh)) => {
