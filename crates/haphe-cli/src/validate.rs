@@ -205,17 +205,19 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         }
                         let shown: Vec<String> =
                             s.pairs.iter().take(8).map(|p| format!("{p:?}")).collect();
-                        writeln!(
-                            out,
-                            "  self-intersecting triangle pairs ({}): {}{}",
-                            s.count,
-                            shown.join(" "),
-                            if s.count > 8 {
-                                format!(" … and {} more", s.count - 8)
-                            } else {
-                                String::new()
-                            }
-                        )?;
+                        if s.count > 0 {
+                            writeln!(
+                                out,
+                                "  self-intersecting triangle pairs ({}): {}{}",
+                                s.count,
+                                shown.join(" "),
+                                if s.count > 8 {
+                                    format!(" … and {} more", s.count - 8)
+                                } else {
+                                    String::new()
+                                }
+                            )?;
+                        }
                     }
                     for problem in report.problems() {
                         writeln!(out, "  problem: {problem}")?;

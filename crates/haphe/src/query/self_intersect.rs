@@ -121,6 +121,17 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
             .collect();
         let pairs = list.len() * list.len().saturating_sub(1) / 2;
         if planned + pairs > budget {
+            // The part of this cell the budget allows: the pairs of its first `k`
+            // triangles, `k (k - 1) / 2` of them.
+            let room = budget - planned;
+            let k = (((8 * room + 1) as f64).sqrt() as usize)
+                .div_ceil(2)
+                .min(list.len());
+            let k = (0..=k)
+                .rev()
+                .find(|k| k * k.saturating_sub(1) / 2 <= room)
+                .unwrap_or(0);
+            lists.push(list[..k].to_vec());
             complete = false;
             break;
         }
