@@ -44,6 +44,12 @@ pub fn load(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
 /// Parses and welds the bytes of the mesh file at `path`.
 pub fn load_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<Loaded, LoadFailure> {
     let name = path.display().to_string();
+    // Whatever its extension, a map file is recognised by its header in every command.
+    if bytes.starts_with(&haphe::map::MAGIC) {
+        return Err(LoadFailure::Io(anyhow::anyhow!(
+            "{name}: a map file written by `haphe build`, not a mesh file (query and verify read map files)"
+        )));
+    }
     let start = Instant::now();
     let format = match options.format {
         Some(f) => f,

@@ -86,3 +86,29 @@ fn negative_seconds_are_a_value_with_a_clear_refusal() {
     ]);
     assert_error(&o, &["--seconds", "3600", "1000000000"]);
 }
+
+/// A map file is recognised by its header in every command, whatever its name.
+#[test]
+fn a_map_named_like_a_mesh_is_recognised_everywhere() {
+    let dir = scratch("map-as-ply");
+    let mesh = crate::common::write(&dir, "t.obj", crate::common::tetrahedron(0.0));
+    let map = dir.join("t.ply");
+    let o = haphe(&["build", &mesh, "-o", map.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = haphe(&["validate", map.to_str().unwrap()]);
+    let out = crate::common::stdout(&o);
+    assert!(
+        out.contains("t.ply: a map file written by `haphe build`, not a mesh file"),
+        "{out}"
+    );
+    let o = haphe(&[
+        "build",
+        map.to_str().unwrap(),
+        "-o",
+        dir.join("again.map").to_str().unwrap(),
+    ]);
+    assert_error(&o, &["t.ply: a map file written by `haphe build`"]);
+    let points = crate::common::write(&dir, "p.csv", "0.01,0.01,0.01\n");
+    let o = haphe(&["query", map.to_str().unwrap(), "--inside", &points]);
+    assert_eq!(crate::common::stdout(&o), "inside\n", "{}", stderr(&o));
+}
