@@ -190,7 +190,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                             s.crossing,
                             s.touching,
                             if s.coincident > 0 {
-                                format!("; {} pairs of coincident triangles", s.coincident)
+                                format!(
+                                    "; {} pairs of coincident triangles, duplicate faces not counted here",
+                                    s.coincident
+                                )
                             } else {
                                 String::new()
                             }

@@ -476,7 +476,7 @@ fn order_fan(
         let start = if open_cursor < fan.len() {
             Some(fan[open_cursor])
         } else {
-            while any_cursor < fan.len() && !slot(fan[any_cursor]).is_some_and(|k| !visited[k]) {
+            while any_cursor < fan.len() && slot(fan[any_cursor]).is_none_or(|k| visited[k]) {
                 any_cursor += 1;
             }
             fan.get(any_cursor).copied()

@@ -30,8 +30,10 @@ pub struct SelfIntersections {
     pub pairs: Vec<[u32; 2]>,
     /// How many candidate pairs (sharing a cell) were tested exactly.
     pub candidates: usize,
-    /// Of `count`, pairs of coincident triangles (the same three corners, in any order),
-    /// found first by sorting the triangles' corner triples.
+    /// Pairs of coincident triangles (the same three corners, in any order), found first
+    /// by sorting the triangles' corner triples. They are duplicate faces, not counted in
+    /// `count` (which, as [`intersect_triangle_triangle`], does not count triangles that
+    /// share all their corners); each copy's intersections with other triangles are.
     pub coincident: usize,
     /// Whether every candidate pair was tested. `false` when the candidates exceeded the
     /// work budget ([`self_intersection_budget`]): `count` is then a lower bound.
@@ -56,7 +58,8 @@ pub fn self_intersection_budget(triangles: usize) -> usize {
 
 /// Finds every pair of triangles that intersect other than in shared corners. Coincident
 /// triangles (the same three corners) are found first, by sorting the triangles' corner
-/// triples, and only one of each group takes part in the rest of the search. Then the
+/// triples, and only one of each group takes part in the rest of the search (its pairs
+/// counted once per copy). Then the
 /// pairs listed together in some cell of `map` (a triangle pair that meets shares a cell,
 /// since cells list every triangle that overlaps them), deduplicated, are tested exactly
 /// with [`intersect_triangle_triangle`]. Neighbours sharing an edge or a vertex are
@@ -83,7 +86,6 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
     let mut is_copy = vec![false; triangles.len()];
     // How many triangles each representative stands for (1 for most).
     let mut copies = vec![1u32; triangles.len()];
-    let mut coincident_pairs: Vec<[u32; 2]> = Vec::new();
     let mut coincident = 0usize;
     for run in keyed.chunk_by(|a, b| a.0 == b.0) {
         let k = run.len();
@@ -94,18 +96,6 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
         copies[run[0].1 as usize] = k as u32;
         for &(_, t) in &run[1..] {
             is_copy[t as usize] = true;
-        }
-        for (i, &(_, a)) in run.iter().enumerate() {
-            if coincident_pairs.len() >= LISTED_SELF_INTERSECTIONS {
-                break;
-            }
-            for &(_, b) in &run[i + 1..] {
-                let (a, b) = (
-                    surface.source_triangle(TriId(a)),
-                    surface.source_triangle(TriId(b)),
-                );
-                coincident_pairs.push([a.min(b), a.max(b)]);
-            }
         }
     }
     // Candidate pairs, cell by cell, within the budget.
@@ -166,10 +156,11 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
                 .then(|| ([a.min(b), a.max(b)], crosses(ta, tb), weight))
         })
         .collect();
-    // Coincident triangles overlap in their plane: they cross.
-    let count = coincident + found.iter().map(|f| f.2).sum::<usize>();
-    let crossing = coincident + found.iter().filter(|f| f.1).map(|f| f.2).sum::<usize>();
-    let mut pairs: Vec<[u32; 2]> = found.iter().map(|f| f.0).chain(coincident_pairs).collect();
+    // Coincident pairs are duplicate faces (the report lists them): as for the exact test,
+    // triangles that share all their corners do not count as intersecting.
+    let count = found.iter().map(|f| f.2).sum::<usize>();
+    let crossing = found.iter().filter(|f| f.1).map(|f| f.2).sum::<usize>();
+    let mut pairs: Vec<[u32; 2]> = found.iter().map(|f| f.0).collect();
     pairs.par_sort_unstable();
     pairs.truncate(LISTED_SELF_INTERSECTIONS);
     SelfIntersections {
