@@ -339,7 +339,7 @@ impl Session {
             // Every sample, the last one included.
             (DeviceChoice::Replay(t), None) => {
                 let length = t.end_time() - t.start_time();
-                if !(length <= MAX_SECONDS) {
+                if length > MAX_SECONDS {
                     bail!(
                         "the replayed trace spans {length} s, more than a run may last ({MAX_SECONDS} s); give --seconds to replay its beginning"
                     );
