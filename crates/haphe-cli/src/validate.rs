@@ -180,7 +180,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                     write!(out, "{}", report.text(crossing_itself))?;
                     if let Some(s) = intersections
                         .as_ref()
-                        .filter(|s| s.count > 0 || !s.complete)
+                        .filter(|s| s.count > 0 || s.coincident > 0 || !s.complete)
                     {
                         let at_least = if s.complete { "" } else { "at least " };
                         writeln!(
