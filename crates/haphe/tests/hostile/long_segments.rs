@@ -2,7 +2,6 @@
 //! every length (they used to report an exit for an entry from about 3e11 m, and nothing
 //! from 3e12 m).
 
-use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
 use haphe::mesh::shapes::Shape;
 use haphe::mesh::{Surface, SurfaceOptions};
