@@ -55,6 +55,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         weld: weld_mode(args.weld_tolerance)?,
         format: None,
     };
+    crate::files::output::check_outputs(&[&args.output], &[&args.file])?;
     let loaded = load(&args.file, &read).map_err(|e| anyhow!("{e}"))?;
     let triangles = loaded.mesh.triangles.len();
     let start = Instant::now();
@@ -88,7 +89,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
 
     let start = Instant::now();
     let bytes = encode(&surface, &map);
-    crate::mapped::write_replacing(&args.output, &bytes)?;
+    crate::files::output::write_output(&args.output, |out| Ok(out.write_all(&bytes)?))?;
     let t_write = start.elapsed();
 
     let stats = map.stats();

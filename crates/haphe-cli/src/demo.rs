@@ -64,6 +64,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     } else {
         (args.triangles, args.seconds.unwrap_or(DEMO_SECONDS))
     };
+    Catalog::check_triangles(triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
+    let outputs: Vec<&std::path::Path> = std::iter::once(args.plot.as_path())
+        .chain(args.out.as_deref())
+        .collect();
+    crate::files::output::check_outputs(&outputs, &[])?;
     let map = MapOptions::default();
     let started = Instant::now();
     let blob = Arc::new(shape_of(Catalog::Blob, triangles, &map)?);

@@ -1,12 +1,10 @@
 //! `haphe generate`: write a procedural test mesh as a binary STL file.
 
-use std::io::BufWriter;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::Context;
 use haphe::mesh::shapes::Shape;
 
 /// Arguments of `haphe generate`.
@@ -29,6 +27,8 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
+    Shape::check_triangles(args.triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
+    crate::files::output::check_outputs(&[&args.output], &[])?;
     let start = Instant::now();
     let mut mesh = args.shape.with_triangles(args.triangles);
     if let Some(seed) = args.shuffle_faces {
@@ -44,10 +44,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             vertices: [f32x3(a), f32x3(b), f32x3(c)],
         }
     });
-    let file = std::fs::File::create(&args.output)
-        .with_context(|| format!("cannot create {}", args.output.display()))?;
-    stl_io::write_stl(&mut BufWriter::new(file), triangles)
-        .with_context(|| format!("cannot write {}", args.output.display()))?;
+    crate::files::output::write_output(&args.output, |out| {
+        Ok(stl_io::write_stl(&mut &mut *out, triangles)?)
+    })?;
     writeln!(
         out,
         "{}: {}{} ({} triangles, {} vertices), generated in {:.1} ms",

@@ -3,7 +3,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use anyhow::Context;
+use crate::files::input::{self, read_input};
 use haphe::mesh::{Format, Mesh, ReadError, ReadOptions, Weld, WeldStats, read_unwelded, weld};
 
 /// A mesh read from a file, with what it took.
@@ -35,16 +35,25 @@ impl std::fmt::Display for LoadFailure {
     }
 }
 
-/// Reads, parses and welds a mesh file.
+/// Reads, parses and welds a mesh file (opened once, within [`input::MESH`]).
 pub fn load(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
-    let bytes = std::fs::read(path)
-        .with_context(|| format!("cannot read {}", path.display()))
-        .map_err(LoadFailure::Io)?;
+    let bytes = read_input(path, input::MESH).map_err(LoadFailure::Io)?;
+    load_bytes(path, &bytes, options)
+}
+
+/// Parses and welds the bytes of the mesh file at `path`.
+pub fn load_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<Loaded, LoadFailure> {
     let name = path.display().to_string();
+    // Whatever its extension, a map file is recognised by its header in every command.
+    if bytes.starts_with(&haphe::map::MAGIC) {
+        return Err(LoadFailure::Io(anyhow::anyhow!(
+            "{name}: a map file written by `haphe build`, not a mesh file (query and verify read map files)"
+        )));
+    }
     let start = Instant::now();
     let format = match options.format {
         Some(f) => f,
-        None => Format::detect(&name, &bytes).map_err(|kind| {
+        None => Format::detect(&name, bytes).map_err(|kind| {
             LoadFailure::Read(ReadError {
                 file: name.clone(),
                 kind,
@@ -55,7 +64,7 @@ pub fn load(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
         format: Some(format),
         ..*options
     };
-    let raw = read_unwelded(&name, &bytes, &options).map_err(LoadFailure::Read)?;
+    let raw = read_unwelded(&name, bytes, &options).map_err(LoadFailure::Read)?;
     let (mesh, weld) = weld(&raw, options.weld);
     Ok(Loaded {
         mesh,

@@ -4,6 +4,7 @@
 mod bench;
 mod build;
 mod demo;
+mod files;
 mod generate;
 mod load;
 mod mapped;
@@ -74,15 +75,38 @@ fn main() -> ExitCode {
         Ok(code) => code,
         // A reader that stops early (`haphe validate ... | head`) is not an error.
         Err(error)
-            if error
-                .downcast_ref::<std::io::Error>()
-                .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) =>
+            if error.chain().any(|e| {
+                e.downcast_ref::<std::io::Error>()
+                    .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+            }) =>
         {
             ExitCode::SUCCESS
         }
         Err(error) => {
-            eprintln!("haphe: error: {error:#}");
+            eprintln!("haphe: error: {}", message(&error));
             ExitCode::from(2)
         }
     }
+}
+
+/// The error as one line: each cause once (a cause whose text an outer message already
+/// contains is not repeated), and a bare input/output error, which only writing the
+/// command's own output can give (every file access names its file), named as standard
+/// output's.
+fn message(error: &anyhow::Error) -> String {
+    if error.chain().count() == 1 && error.downcast_ref::<std::io::Error>().is_some() {
+        return format!("cannot write to standard output: {error}");
+    }
+    let mut message = String::new();
+    for cause in error.chain() {
+        let text = cause.to_string();
+        if message.contains(&text) {
+            continue;
+        }
+        if !message.is_empty() {
+            message.push_str(": ");
+        }
+        message.push_str(&text);
+    }
+    message
 }

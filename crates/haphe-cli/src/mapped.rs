@@ -8,44 +8,18 @@
 //! keeps the old contents), which is the discipline the safety argument relies on.
 #![allow(unsafe_code)]
 
-use std::fs::File;
-use std::path::Path;
-
-use anyhow::Context;
 use haphe::map::MapBytes;
+use std::fs::File;
 
-/// The bytes of the map file at `path`, mapped read-only and prefaulted.
+/// The bytes of the open map file `file`, mapped read-only and prefaulted.
 ///
 /// # Errors
-/// When the file cannot be opened or mapped.
-pub fn map_file(path: &Path) -> anyhow::Result<MapBytes> {
-    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+/// When the file cannot be mapped.
+pub fn map_file(file: &File) -> std::io::Result<MapBytes> {
     // SAFETY: the mapping is read-only and private to this process; map files are
     // replaced by renaming a new file over them, never rewritten in place (see the module
     // documentation), so the mapped bytes do not change while haphe uses them. Everything
     // read from them is checked (checksum, then invariants) before use.
-    let map = unsafe { memmap2::MmapOptions::new().populate().map(&file) }
-        .with_context(|| format!("cannot map {}", path.display()))?;
+    let map = unsafe { memmap2::MmapOptions::new().populate().map(file) }?;
     Ok(MapBytes::from_mmap(map))
-}
-
-/// Writes `bytes` to `path` through a new file renamed over it, so a process that has the
-/// old file mapped keeps seeing the old contents.
-///
-/// # Errors
-/// When the temporary file cannot be written or renamed.
-pub fn write_replacing(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(format!(".{}.tmp", std::process::id()));
-    let temporary = path.with_file_name(name);
-    std::fs::write(&temporary, bytes)
-        .with_context(|| format!("cannot write {}", temporary.display()))?;
-    std::fs::rename(&temporary, path).with_context(|| {
-        let _ = std::fs::remove_file(&temporary);
-        format!(
-            "cannot rename {} to {}",
-            temporary.display(),
-            path.display()
-        )
-    })
 }

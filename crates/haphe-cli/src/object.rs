@@ -1,14 +1,16 @@
 //! Loading an object for the query commands: a saved map file (surface and map), or a
 //! mesh file from which both are built.
 
+use std::io::Read;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow};
-use haphe::map::{MAGIC, MapOptions, VoxelMap, decode_in_place};
+use haphe::map::{MAGIC, MapBytes, MapOptions, VoxelMap, decode_in_place};
 use haphe::mesh::{ReadOptions, Surface, SurfaceOptions};
 
-use crate::load::load;
+use crate::files::input::{self, open_input};
+use crate::load::load_bytes;
 use crate::mapped::map_file;
 
 /// A surface with its voxel map, and how long it took to get them.
@@ -20,12 +22,24 @@ pub struct Object {
     pub from_map_file: bool,
 }
 
-/// Opens `path`: a map file written by `haphe build` (recognised by its header), or a
+/// Opens `path` once: a map file written by `haphe build` (recognised by its header), or a
 /// mesh file, whose surface and map are built now.
 pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow::Result<Object> {
     let start = Instant::now();
-    if starts_with_magic(path)? {
-        let bytes = map_file(path)?;
+    let mut input = open_input(path, input::OBJECT)?;
+    let mut head = Vec::with_capacity(MAGIC.len());
+    (&mut input.file)
+        .take(MAGIC.len() as u64)
+        .read_to_end(&mut head)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    if head == MAGIC {
+        let bytes = if input.regular {
+            map_file(&input.file).with_context(|| format!("cannot map {}", path.display()))?
+        } else {
+            head.reserve(1 << 20);
+            input.read_rest(input::MAP, &mut head)?;
+            MapBytes::copy_from_slice(&head)
+        };
         let (surface, map) =
             decode_in_place(&bytes).with_context(|| format!("{}", path.display()))?;
         return Ok(Object {
@@ -35,7 +49,17 @@ pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow
             from_map_file: true,
         });
     }
-    let loaded = load(path, read).map_err(|e| anyhow!("{e}"))?;
+    if input.regular && input.file.metadata().map_or(0, |m| m.len()) > input::MESH.bytes {
+        // Not a map: the mesh limit applies.
+        return Err(anyhow!(
+            "cannot read {}: larger than the limit for a {} ({} bytes)",
+            path.display(),
+            input::MESH.what,
+            input::MESH.bytes
+        ));
+    }
+    input.read_rest(input::MESH, &mut head)?;
+    let loaded = load_bytes(path, &head, read).map_err(|e| anyhow!("{e}"))?;
     let surface = Surface::new(loaded.mesh, &SurfaceOptions::default())
         .with_context(|| format!("{}", path.display()))?;
     let map =
@@ -46,22 +70,4 @@ pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow
         elapsed: start.elapsed(),
         from_map_file: false,
     })
-}
-
-/// Whether the file at `path` starts with the map file's [`MAGIC`].
-fn starts_with_magic(path: &Path) -> anyhow::Result<bool> {
-    use std::io::Read;
-    let mut head = [0u8; MAGIC.len()];
-    let mut file =
-        std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut filled = 0;
-    while filled < head.len() {
-        match file.read(&mut head[filled..]) {
-            Ok(0) => break,
-            Ok(n) => filled += n,
-            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-            Err(e) => return Err(e).with_context(|| format!("cannot read {}", path.display())),
-        }
-    }
-    Ok(filled == head.len() && head == MAGIC)
 }

@@ -38,16 +38,31 @@ pub struct Args {
     weld_tolerance: Option<f64>,
 }
 
-/// Reads rows of `width` numbers from a CSV file; a first row that is not numeric is a
-/// header and skipped. Errors name the file and the line.
+/// The names a header row may use, in order: `x,y,z` for points and
+/// `x0,y0,z0,x1,y1,z1` for segments (any case, spaces allowed).
+fn header_names(width: usize) -> &'static [&'static str] {
+    if width == 3 {
+        &["x", "y", "z"]
+    } else {
+        &["x0", "y0", "z0", "x1", "y1", "z1"]
+    }
+}
+
+/// Reads rows of `width` numbers from a CSV file. A first row is a header only when it
+/// holds exactly the column names ([`header_names`]); every other line that is not
+/// `width` finite numbers is an error naming the file and the line, so the output always
+/// lines up with the input.
 fn read_rows(path: &Path, width: usize) -> anyhow::Result<Vec<Vec<f64>>> {
+    let bytes = crate::files::input::read_input(path, crate::files::input::CSV)?;
+    let text = bytes
+        .strip_prefix(b"\xEF\xBB\xBF".as_slice())
+        .unwrap_or(&bytes);
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
         .flexible(true)
-        .from_path(path)
-        .with_context(|| format!("cannot read {}", path.display()))?;
+        .from_reader(text);
     let mut rows = Vec::new();
     for (i, record) in reader.records().enumerate() {
         let record = record.with_context(|| format!("{}", path.display()))?;
@@ -66,8 +81,27 @@ fn read_rows(path: &Path, width: usize) -> anyhow::Result<Vec<Vec<f64>>> {
                 path.display(),
                 v.len()
             ),
-            Err(_) if rows.is_empty() && i == 0 => continue, // a header
-            Err(e) => bail!("{}: line {line}: {e}", path.display()),
+            Err(_)
+                if i == 0
+                    && record.len() == width
+                    && record
+                        .iter()
+                        .zip(header_names(width))
+                        .all(|(f, name)| f.eq_ignore_ascii_case(name)) =>
+            {
+                continue; // the header
+            }
+            Err(_) => {
+                let bad = record
+                    .iter()
+                    .find(|f| f.parse::<f64>().is_err())
+                    .unwrap_or_default();
+                bail!(
+                    "{}: line {line}: {bad:?} is not a number (a header must be {})",
+                    path.display(),
+                    header_names(width).join(",")
+                )
+            }
         }
     }
     Ok(rows)

@@ -29,7 +29,8 @@ JSON (--json) prints one object per file and line: file, format, seconds, weld, 
   self_intersections (pairs of triangles that cross or touch other than in shared corners;
   null for an unusable mesh), self_intersections_crossing (of those, pairs that pass through
   each other: a closed mesh with any is not a valid solid), self_intersection_pairs (the
-  first 100 pairs).
+  first 100 pairs), self_intersections_complete (false when the search stopped at its
+  budget of 256 candidate pairs per triangle: the counts are then lower bounds).
   An unreadable file gives {\"file\": ..., \"error\": ...}.";
 
 /// Arguments of `haphe validate`.
@@ -112,25 +113,49 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         loaded.weld.unreferenced,
                     )?;
                     write!(out, "{}", report.text(crossing_itself))?;
-                    if let Some(s) = intersections.as_ref().filter(|s| s.count > 0) {
+                    if let Some(s) = intersections
+                        .as_ref()
+                        .filter(|s| s.count > 0 || s.coincident > 0 || !s.complete)
+                    {
+                        let at_least = if s.complete { "" } else { "at least " };
                         writeln!(
                             out,
-                            "  self-intersections: {} triangle pairs ({} crossing, {} only touching)",
-                            s.count, s.crossing, s.touching
-                        )?;
-                        let shown: Vec<String> =
-                            s.pairs.iter().take(8).map(|p| format!("{p:?}")).collect();
-                        writeln!(
-                            out,
-                            "  self-intersecting triangle pairs ({}): {}{}",
+                            "  self-intersections: {at_least}{} triangle pairs ({} crossing, {} only touching{})",
                             s.count,
-                            shown.join(" "),
-                            if s.count > 8 {
-                                format!(" … and {} more", s.count - 8)
+                            s.crossing,
+                            s.touching,
+                            if s.coincident > 0 {
+                                format!(
+                                    "; {} pairs of coincident triangles, duplicate faces not counted here",
+                                    s.coincident
+                                )
                             } else {
                                 String::new()
                             }
                         )?;
+                        if !s.complete {
+                            writeln!(
+                                out,
+                                "  self-intersections: the search stopped at its budget of {} candidate pairs ({} per triangle); the counts are lower bounds",
+                                self_intersection_budget(triangles),
+                                SELF_INTERSECTION_BUDGET_PER_TRIANGLE
+                            )?;
+                        }
+                        let shown: Vec<String> =
+                            s.pairs.iter().take(8).map(|p| format!("{p:?}")).collect();
+                        if s.count > 0 {
+                            writeln!(
+                                out,
+                                "  self-intersecting triangle pairs ({}): {}{}",
+                                s.count,
+                                shown.join(" "),
+                                if s.count > 8 {
+                                    format!(" … and {} more", s.count - 8)
+                                } else {
+                                    String::new()
+                                }
+                            )?;
+                        }
                     }
                     for problem in report.problems() {
                         writeln!(out, "  problem: {problem}")?;

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::anyhow;
+use anyhow::{anyhow, bail};
 use haphe::mesh::{ReadOptions, Surface};
 use haphe::verify::{
     CrossingCheck, InsideCheck, SegmentKind, WalkCheck, bounds, check_crossings_with_peer,
@@ -112,6 +112,22 @@ fn parry_mesh(surface: &Surface) -> Option<TriMesh> {
 
 /// Runs the command; exit 0 when every check passes, 1 otherwise.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let n = args.samples;
+    let checked = [
+        args.random,
+        args.adversarial,
+        args.points,
+        args.walks,
+        args.ticks,
+    ]
+    .into_iter()
+    .map(|count| count.unwrap_or(n))
+    .sum::<usize>();
+    if checked == 0 {
+        bail!(
+            "nothing to check: --samples 0 (and no --random, --adversarial, --points, --walks or --ticks above 0) would pass having checked nothing"
+        );
+    }
     let start = Instant::now();
     let read = ReadOptions {
         units: args.units,
@@ -121,7 +137,6 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let object = open(&args.file, &read, &map_options(None, None)).map_err(|e| anyhow!("{e:#}"))?;
     let (surface, map) = (&object.surface, &object.map);
     let parry = parry_mesh(surface);
-    let n = args.samples;
 
     let crossings: Vec<CrossingRow> = SegmentKind::ALL
         .iter()

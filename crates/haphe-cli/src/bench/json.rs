@@ -3,7 +3,6 @@
 
 use std::path::Path;
 
-use anyhow::Context as _;
 use serde::Serialize;
 
 use super::MeshResult;
@@ -197,5 +196,5 @@ pub fn ratio(a: f64, b: f64) -> Option<f64> {
 /// When the file cannot be written.
 pub fn write(path: &Path, records: &[Record]) -> anyhow::Result<()> {
     let text = serde_json::to_string_pretty(records)?;
-    std::fs::write(path, text + "\n").with_context(|| format!("cannot write {}", path.display()))
+    crate::files::output::write_output(path, |out| Ok(out.write_all((text + "\n").as_bytes())?))
 }

@@ -37,17 +37,18 @@ mod structures;
 mod table;
 mod timing;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Instant;
 
-use anyhow::{anyhow, bail};
+use anyhow::{Context as _, anyhow, bail};
 use haphe::mesh::shapes::Shape;
 use haphe::mesh::{Mesh, ReadOptions, Units, Weld};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
 use haphe::verify::WindingOracle;
 
+use crate::files::output::check_outputs;
 use crate::load::load;
 use crate::validate::parse_units;
 use methods::{Context, Measured, Query};
@@ -149,6 +150,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     if samples == 0 {
         bail!("--samples must be at least 1");
     }
+    for &n in &sizes {
+        Shape::check_triangles(n).map_err(|e| anyhow!("--sizes: {e}"))?;
+    }
     let sources: Vec<Source> = args
         .shapes
         .iter()
@@ -157,6 +161,20 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .collect();
     if sources.is_empty() {
         bail!("nothing to measure: give --sizes, --shapes or --mesh");
+    }
+
+    // The outputs are checked before the run, not after it.
+    let inputs: Vec<&Path> = args.meshes.iter().map(PathBuf::as_path).collect();
+    if let Some(path) = &args.json {
+        check_outputs(&[path], &inputs)?;
+    }
+    if let Some(dir) = &args.plot {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create the plot folder {}", dir.display()))?;
+        check_outputs(
+            &[&dir.join(format!("{}.png", Query::ALL[0].name()))],
+            &inputs,
+        )?;
     }
 
     // Start the build thread pool before anything is weighed.

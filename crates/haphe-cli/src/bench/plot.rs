@@ -32,7 +32,7 @@ pub fn write(dir: &Path, records: &[Record]) -> anyhow::Result<Vec<PathBuf>> {
             continue;
         }
         let path = dir.join(format!("{}.png", query.name()));
-        draw(&path, query, &rows).map_err(|e| anyhow!("cannot draw {}: {e}", path.display()))?;
+        crate::files::output::write_png(&path, SIZE, |pixels| draw(pixels, query, &rows))?;
         written.push(path);
     }
     Ok(written)
@@ -67,7 +67,10 @@ fn marker(family: usize, (cx, cy): (i32, i32)) -> Vec<(i32, i32)> {
     offsets.into_iter().map(|(x, y)| (cx + x, cy + y)).collect()
 }
 
-fn draw(path: &Path, query: Query, rows: &[&Record]) -> Result<(), Box<dyn Error>> {
+/// A plot's size in pixels.
+const SIZE: (u32, u32) = (1000, 650);
+
+fn draw(pixels: &mut [u8], query: Query, rows: &[&Record]) -> Result<(), Box<dyn Error>> {
     let at_least = |v: f64| {
         if v.is_finite() {
             v.max(SMALLEST_NS)
@@ -89,7 +92,7 @@ fn draw(path: &Path, query: Query, rows: &[&Record]) -> Result<(), Box<dyn Error
         }
     }
 
-    let root = BitMapBackend::new(path, (1000, 650)).into_drawing_area();
+    let root = BitMapBackend::with_buffer(pixels, SIZE).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(

@@ -7,8 +7,7 @@ pub mod plot;
 pub mod scene_file;
 pub mod summary;
 
-use std::fs::File;
-use std::io::{BufReader, BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -19,21 +18,26 @@ use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Shape as Catalog;
 use haphe::proxy::ProxyOptions;
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
+use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, check_max_force};
 use haphe::servo::{
     Device, HandOptions, HipTrace, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind,
     RealtimeOptions, ReplayDevice, ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand,
     StopReason, TickRecord, scripted_path, write_csv_header,
 };
 
+use crate::files::input::{self, read_input};
+use crate::files::output::{Staged, check_outputs};
+
 use self::scene_file::{LoadedObject, load_scene, mesh_shape, shape_of};
 use self::summary::{RunInfo, Summary};
 
 /// Arguments of `haphe simulate`.
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 #[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape"])))]
 pub struct Args {
-    /// A mesh file (OBJ, STL, PLY, OFF) placed at the origin.
+    /// A mesh file (OBJ, STL, PLY, OFF) placed with the centre of its bounding box at the
+    /// origin.
     #[arg(long, value_name = "FILE")]
     mesh: Option<PathBuf>,
     /// A scene file (TOML): objects, poses, materials, motions (see the README).
@@ -64,9 +68,9 @@ pub struct Args {
     /// Servo rate, Hz (1 to 40000).
     #[arg(long, default_value_t = 1000.0)]
     rate: f64,
-    /// Length of the run, seconds (default 5, or the length of the replayed trace; a
-    /// replay stops when its trace ends).
-    #[arg(long)]
+    /// Length of the run, seconds, at most 3600 (default 5, or the length of the replayed
+    /// trace; a replay stops when its trace ends).
+    #[arg(long, allow_negative_numbers = true)]
     seconds: Option<f64>,
     /// Run on the wall clock on a real-time thread (default: a virtual clock, as fast as
     /// possible).
@@ -121,12 +125,31 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             args.rate
         );
     }
+    let outputs: Vec<&Path> = [&args.out, &args.plot]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    let inputs: Vec<&Path> = [&args.mesh, &args.scene, &args.replay]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    check_outputs(&outputs, &inputs)?;
+    if let Some(core) = args.standby_core {
+        haphe::servo::check_core(core).map_err(|e| anyhow!("--standby-core: {e}"))?;
+    }
+    // The same check as a scene file's materials.
     let material = Material {
         stiffness: args.stiffness,
         damping: args.damping,
         static_friction: args.static_friction,
         dynamic_friction: args.dynamic_friction,
-    };
+    }
+    .checked()
+    .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
+    check_max_force(args.max_force)
+        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
     let started = Instant::now();
     let (objects, what) = load_model(
         Model {
@@ -141,9 +164,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let build_seconds = started.elapsed().as_secs_f64();
     let device = if let Some(file) = &args.replay {
         let name = file.display().to_string();
-        let reader =
-            BufReader::new(File::open(file).with_context(|| format!("cannot read {name}"))?);
-        DeviceChoice::Replay(HipTrace::read(&name, reader)?)
+        let bytes = read_input(file, input::TRACE)?;
+        DeviceChoice::Replay(HipTrace::read(&name, bytes.as_slice())?)
     } else if args.no_hand && !args.hand {
         DeviceChoice::Scripted(args.path)
     } else {
@@ -189,7 +211,22 @@ pub fn load_model(
         (load_scene(file, &map)?, file.display().to_string())
     } else if let Some(file) = model.mesh {
         let shape = Arc::new(mesh_shape(file, model.units, &map)?);
-        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
+        // The paths explore the workspace around the origin: the mesh is placed there.
+        let (lo, hi) = shape.surface().bounds();
+        let centre = (lo + hi) * 0.5;
+        if centre.length() > 1e-9 {
+            eprintln!(
+                "haphe: {} placed with its centre at the origin (moved by {:.6?} m)",
+                file.display(),
+                (-centre).to_array()
+            );
+        }
+        let o = SceneObject::new(
+            ObjectId(0),
+            shape,
+            Pose::from_translation(-centre),
+            material,
+        );
         (
             vec![LoadedObject {
                 name: file.display().to_string(),
@@ -201,6 +238,7 @@ pub fn load_model(
     } else {
         let name = model.shape.unwrap_or("blob");
         let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
+        Catalog::check_triangles(model.triangles).map_err(|e| anyhow!("--triangles: {e}"))?;
         let shape = Arc::new(shape_of(which, model.triangles, &map)?);
         let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
         (
@@ -261,30 +299,30 @@ pub struct Session {
 /// Default length of a run, seconds.
 pub const DEFAULT_SECONDS: f64 = 5.0;
 
-/// The CSV trace writer, when asked for.
+/// The longest run, seconds (an hour: 3.6 million ticks at 1 kHz, a 400 MB trace).
+pub const MAX_SECONDS: f64 = 3600.0;
+
+/// The CSV trace writer, when asked for: a temporary file beside the target, renamed over
+/// it when the run is complete (an earlier trace stays as it was if the run fails).
 struct TraceOut {
-    writer: BufWriter<File>,
-    path: PathBuf,
+    staged: Staged,
     error: Option<std::io::Error>,
 }
 
 impl TraceOut {
     fn create(path: &Path) -> anyhow::Result<TraceOut> {
-        let file =
-            File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-        let mut writer = BufWriter::with_capacity(1 << 20, file);
-        write_csv_header(&mut writer)
+        let mut staged = Staged::create(path)?;
+        write_csv_header(staged.writer())
             .with_context(|| format!("cannot write {}", path.display()))?;
         Ok(TraceOut {
-            writer,
-            path: path.to_path_buf(),
+            staged,
             error: None,
         })
     }
 
     fn add(&mut self, r: &TickRecord) {
         if self.error.is_none()
-            && let Err(e) = r.write_csv(&mut self.writer)
+            && let Err(e) = r.write_csv(self.staged.writer())
         {
             self.error = Some(e);
         }
@@ -292,11 +330,10 @@ impl TraceOut {
 
     fn finish(mut self) -> anyhow::Result<()> {
         if let Some(e) = self.error.take() {
-            return Err(e).with_context(|| format!("cannot write {}", self.path.display()));
+            return Err(e)
+                .with_context(|| format!("cannot write {}", self.staged.path().display()));
         }
-        self.writer
-            .flush()
-            .with_context(|| format!("cannot write {}", self.path.display()))
+        self.staged.commit()
     }
 }
 
@@ -328,14 +365,25 @@ impl Session {
         let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.spec != "hand")
             && self.seconds.is_none();
         let seconds = match (&self.device, self.seconds) {
-            (_, Some(s)) if s.is_finite() && s > 0.0 => s,
-            (_, Some(s)) => bail!("--seconds must be positive, not {s}"),
+            (_, Some(s)) if s.is_finite() && s > 0.0 && s <= MAX_SECONDS => s,
+            (_, Some(s)) => {
+                bail!("--seconds must be a positive number of at most {MAX_SECONDS}, not {s}")
+            }
             (DeviceChoice::Vendor(_), None) if until_stopped => crate::run::PLOT_SECONDS,
             // Every sample, the last one included.
-            (DeviceChoice::Replay(t), None) => t.end_time() - t.start_time() + 1.0 / self.rate_hz,
+            (DeviceChoice::Replay(t), None) => {
+                let length = t.end_time() - t.start_time();
+                if length > MAX_SECONDS {
+                    bail!(
+                        "the replayed trace spans {length} s, more than a run may last ({MAX_SECONDS} s); give --seconds to replay its beginning"
+                    );
+                }
+                length + 1.0 / self.rate_hz
+            }
             (_, None) => DEFAULT_SECONDS,
         };
         let mut vendor = None;
+        let replay = matches!(self.device, DeviceChoice::Replay(_));
         let device: Box<dyn Device> = match self.device {
             DeviceChoice::Hand(kind, hand) => Box::new(SimulatedHand::new(
                 scripted_path(kind, &scene, seconds, self.seed)?,
@@ -457,7 +505,7 @@ impl Session {
             },
         )?;
         if let Some(t) = trace {
-            let path = t.path.clone();
+            let path = t.staged.path().to_owned();
             t.finish()?;
             writeln!(out, "trace: {} ({} ticks)", path.display(), summary.ticks)?;
         }
@@ -472,6 +520,12 @@ impl Session {
         let said = report.as_ref().and_then(|r| r());
         if let Some(line) = &said {
             writeln!(out, "{line}")?;
+        }
+        if summary.contact_ticks == 0 && !replay {
+            writeln!(
+                out,
+                "warning: the device never touched any object (the path stays outside them all)"
+            )?;
         }
         if let StopReason::Fault(f) = stop
             && f != haphe::servo::DeviceFault::Ended

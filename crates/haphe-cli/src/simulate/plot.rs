@@ -20,7 +20,7 @@ const DEPTH: RGBColor = RGBColor(44, 160, 44);
 pub fn write(path: &Path, title: &str, points: &[PlotPoint]) -> anyhow::Result<()> {
     plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
         .map_err(|_| anyhow!("the embedded DejaVu Sans font is unreadable"))?;
-    draw(path, title, points).map_err(|e| anyhow!("cannot draw {}: {e}", path.display()))
+    crate::files::output::write_png(path, SIZE, |pixels| draw(pixels, title, points))
 }
 
 fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
@@ -36,8 +36,11 @@ fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
     (lo - pad * span, hi + pad * span)
 }
 
-fn draw(path: &Path, title: &str, points: &[PlotPoint]) -> Result<(), Box<dyn Error>> {
-    let root = BitMapBackend::new(path, (1200, 950)).into_drawing_area();
+/// The picture's size in pixels.
+const SIZE: (u32, u32) = (1200, 950);
+
+fn draw(pixels: &mut [u8], title: &str, points: &[PlotPoint]) -> Result<(), Box<dyn Error>> {
+    let root = BitMapBackend::with_buffer(pixels, SIZE).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(title, ("sans-serif", 22))?;
     let (top, bottom) = root.split_vertically(420);

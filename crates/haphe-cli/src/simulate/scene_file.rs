@@ -120,7 +120,7 @@ fn vec3(a: [f64; 3]) -> DVec3 {
 /// the same shape and size or the same mesh file).
 pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObject>> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {file}"))?;
+    let text = crate::files::input::read_text(path, crate::files::input::SCENE)?;
     let parsed: SceneFile = toml::from_str(&text).map_err(|e| {
         let line = e.span().map(|s| line_of(&text, s.start));
         match line {
@@ -148,6 +148,7 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
                     bail!("{place}: `units` applies to a mesh file, not to a built-in shape");
                 }
                 let n = spec.triangles.unwrap_or(DEFAULT_TRIANGLES);
+                Catalog::check_triangles(n).map_err(|e| anyhow!("{place}: {e}"))?;
                 (format!("shape {shape} {n}"), shape.clone())
             }
             (None, Some(mesh)) => {
@@ -175,29 +176,14 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
             }
         }
         let m = &spec.material;
-        for (what, v) in [
-            ("stiffness", m.stiffness),
-            ("damping", m.damping),
-            ("static_friction", m.static_friction),
-            ("dynamic_friction", m.dynamic_friction),
-        ] {
-            if !(v.is_finite() && v >= 0.0) {
-                bail!("{place}: material {what} must be a non-negative number, not {v}");
-            }
-        }
-        if m.dynamic_friction > m.static_friction {
-            bail!(
-                "{place}: dynamic_friction ({}) may not exceed static_friction ({})",
-                m.dynamic_friction,
-                m.static_friction
-            );
-        }
         let material = Material {
             stiffness: m.stiffness,
             damping: m.damping,
             static_friction: m.static_friction,
             dynamic_friction: m.dynamic_friction,
-        };
+        }
+        .checked()
+        .map_err(|e| anyhow!("{place}: material {e}"))?;
         let [rx, ry, rz] = spec.rotation.map(f64::to_radians);
         let pose = Pose::new(
             DQuat::from_euler(EulerRot::ZYX, rz, ry, rx),
@@ -224,6 +210,8 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
                 rate: *rate,
             }),
         }
+        .map(|motion| motion.checked().map_err(|e| anyhow!("{place}: {e}")))
+        .transpose()?
         .map(|motion| ObjectMotion {
             id,
             base: pose,

@@ -75,6 +75,19 @@ impl Summary {
         self.max_force = self.max_force.max(r.force.length());
         self.max_speed = self.max_speed.max(r.velocity.length());
         if r.tick.is_multiple_of(self.every) {
+            // A run longer than expected (a realtime run's extra ticks) keeps the plot
+            // bounded: every other sample is dropped and the spacing doubled.
+            if self.plot.len() >= 2 * PLOT_SAMPLES {
+                let mut keep = false;
+                self.plot.retain(|_| {
+                    keep = !keep;
+                    keep
+                });
+                self.every *= 2;
+                if !r.tick.is_multiple_of(self.every) {
+                    return;
+                }
+            }
             self.plot.push(PlotPoint {
                 t: r.t,
                 hip: r.hip,

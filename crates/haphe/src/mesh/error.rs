@@ -78,6 +78,18 @@ pub enum ReadErrorKind {
         /// The vertex (or its line).
         at: Place,
     },
+    /// A vertex coordinate is larger than [`MAX_COORDINATE`](super::MAX_COORDINATE)
+    /// (areas and volumes of such a mesh overflow).
+    #[error(
+        "{at}: a vertex coordinate of {value:e} m is beyond the {limit:e} m haphe accepts (after scaling to metres)",
+        limit = super::MAX_COORDINATE
+    )]
+    CoordinateTooLarge {
+        /// The vertex.
+        at: Place,
+        /// The coordinate, metres.
+        value: f64,
+    },
     /// A face with fewer than three corners.
     #[error("{at}: a face has {corners} corner(s); a face needs at least 3")]
     TooFewCorners {

@@ -57,6 +57,11 @@ pub struct Mesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
+/// The largest vertex coordinate accepted, metres (a million kilometres; the proxy's
+/// workspace radius has the same bound). Squared and cubed, as areas and volumes are, it
+/// stays far from overflow.
+pub const MAX_COORDINATE: f64 = 1e9;
+
 impl Mesh {
     /// The three corner positions of triangle `t` (metres, object frame).
     ///
@@ -82,14 +87,27 @@ impl Mesh {
         )
     }
 
-    /// Checks the invariants a reader guarantees: indices in range, coordinates finite.
+    /// Checks the invariants a reader guarantees: indices in range, coordinates finite and
+    /// within [`MAX_COORDINATE`].
     ///
     /// # Errors
-    /// The first vertex with a non-finite coordinate or triangle with an index out of range.
+    /// The first vertex with a non-finite or too large coordinate, or triangle with an
+    /// index out of range.
     pub fn check_indices_and_finite(&self) -> Result<(), ReadErrorKind> {
         if let Some(v) = self.vertices.iter().position(|p| !p.is_finite()) {
             return Err(ReadErrorKind::NonFinite {
                 at: Place::Vertex(v),
+            });
+        }
+        if let Some((v, p)) = self
+            .vertices
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p.abs().max_element() > MAX_COORDINATE)
+        {
+            return Err(ReadErrorKind::CoordinateTooLarge {
+                at: Place::Vertex(v),
+                value: p.abs().max_element(),
             });
         }
         let count = self.vertices.len();

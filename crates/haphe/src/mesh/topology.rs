@@ -460,15 +460,27 @@ fn order_fan(
         let i = corner_of(t, v).unwrap_or(0);
         neighbours[t as usize][(i + 1) % 3] == NONE
     };
+    // Cursors over `fan` for the next start: they only move forward (a triangle passed
+    // over is visited, or not open, for good), so a fan of many pieces (a vertex shared by
+    // thousands of stacked triangles) costs `O(k log k)`, not `O(k²)`.
+    let (mut open_cursor, mut any_cursor) = (0, 0);
     while ordered.len() < fan.len() {
         // Prefer a start whose one edge at `v` is open, so an open fan is walked end to end.
-        let unvisited = |t: &&u32| slot(**t).is_some_and(|k| !visited[k]);
-        let start = fan
-            .iter()
-            .filter(unvisited)
-            .find(|&&t| opens_at_v(t))
-            .or_else(|| fan.iter().find(unvisited))
-            .copied();
+        while open_cursor < fan.len() {
+            let t = fan[open_cursor];
+            if slot(t).is_some_and(|k| !visited[k]) && opens_at_v(t) {
+                break;
+            }
+            open_cursor += 1;
+        }
+        let start = if open_cursor < fan.len() {
+            Some(fan[open_cursor])
+        } else {
+            while any_cursor < fan.len() && slot(fan[any_cursor]).is_none_or(|k| visited[k]) {
+                any_cursor += 1;
+            }
+            fan.get(any_cursor).copied()
+        };
         let Some(mut t) = start else { break };
         // Enter `t` as if across its edge opposite corner i+1, i.e. from vertex tri[i+2].
         let i = corner_of(t, v).unwrap_or(0);

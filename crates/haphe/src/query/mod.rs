@@ -37,15 +37,16 @@ pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64
 
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use crossing::{
-    Crossing, all_crossings_brute_force, first_crossing, first_crossing_brute_force,
-    first_crossing_brute_force_where, first_crossing_where,
+    Crossing, LONG_SEGMENT_FACTOR, all_crossings_brute_force, first_crossing,
+    first_crossing_brute_force, first_crossing_brute_force_where, first_crossing_where,
 };
 pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
 pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within, nearest_within_brute_force};
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use self_intersect::{
-    LISTED_SELF_INTERSECTIONS, SelfIntersections, TOUCH_TOLERANCE_REL, self_intersections,
+    LISTED_SELF_INTERSECTIONS, SELF_INTERSECTION_BUDGET_MIN, SELF_INTERSECTION_BUDGET_PER_TRIANGLE,
+    SelfIntersections, TOUCH_TOLERANCE_REL, self_intersection_budget, self_intersections,
 };
 pub use triangle_triangle::intersect_triangle_triangle;
 pub use validation::{Validation, ValidationError, ValidationRecord, WeldRecord};

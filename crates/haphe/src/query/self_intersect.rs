@@ -30,21 +30,105 @@ pub struct SelfIntersections {
     pub pairs: Vec<[u32; 2]>,
     /// How many candidate pairs (sharing a cell) were tested exactly.
     pub candidates: usize,
+    /// Pairs of coincident triangles (the same three corners, in any order), found first
+    /// by sorting the triangles' corner triples. They are duplicate faces, not counted in
+    /// `count` (which, as [`intersect_triangle_triangle`], does not count triangles that
+    /// share all their corners); each copy's intersections with other triangles are.
+    pub coincident: usize,
+    /// Whether every candidate pair was tested. `false` when the candidates exceeded the
+    /// work budget ([`self_intersection_budget`]): `count` is then a lower bound.
+    pub complete: bool,
 }
 
-/// Finds every pair of triangles that intersect other than in shared corners: the pairs
-/// listed together in some cell of `map` (a triangle pair that meets shares a cell, since
-/// cells list every triangle that overlaps them), deduplicated, then tested exactly with
-/// [`intersect_triangle_triangle`]. Neighbours sharing an edge or a vertex are reported
-/// only where they overlap beyond it (a fold).
+/// The fewest candidate pairs the search tests before it may stop.
+pub const SELF_INTERSECTION_BUDGET_MIN: usize = 1 << 21;
+
+/// Candidate pairs per triangle the search tests before it stops (a smooth surface has
+/// about ten per triangle; only stacked or repeated triangles reach this).
+pub const SELF_INTERSECTION_BUDGET_PER_TRIANGLE: usize = 256;
+
+/// The most candidate pairs [`self_intersections`] tests on a surface of `triangles`
+/// triangles: [`SELF_INTERSECTION_BUDGET_PER_TRIANGLE`] per triangle, and at least
+/// [`SELF_INTERSECTION_BUDGET_MIN`].
+pub fn self_intersection_budget(triangles: usize) -> usize {
+    triangles
+        .saturating_mul(SELF_INTERSECTION_BUDGET_PER_TRIANGLE)
+        .max(SELF_INTERSECTION_BUDGET_MIN)
+}
+
+/// Finds every pair of triangles that intersect other than in shared corners. Coincident
+/// triangles (the same three corners) are found first, by sorting the triangles' corner
+/// triples, and only one of each group takes part in the rest of the search (its pairs
+/// counted once per copy). Then the
+/// pairs listed together in some cell of `map` (a triangle pair that meets shares a cell,
+/// since cells list every triangle that overlaps them), deduplicated, are tested exactly
+/// with [`intersect_triangle_triangle`]. Neighbours sharing an edge or a vertex are
+/// reported only where they overlap beyond it (a fold).
 ///
 /// # Performance
 /// Offline: parallel; proportional to the number of pairs sharing a cell (about ten per
-/// triangle with the map's default cell size).
+/// triangle with the map's default cell size), and never more than
+/// [`self_intersection_budget`] of them: a surface whose triangles are stacked in a few
+/// cells stops there, with [`SelfIntersections::complete`] false.
 pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersections {
-    let mut candidates: Vec<u64> = map
-        .surface_cell_triangles()
-        .collect::<Vec<_>>()
+    let triangles = surface.triangles();
+    // Coincident triangles, in O(n log n): a run of equal sorted corner triples.
+    let mut keyed: Vec<([u32; 3], u32)> = triangles
+        .par_iter()
+        .enumerate()
+        .map(|(t, corners)| {
+            let mut key = *corners;
+            key.sort_unstable();
+            (key, t as u32)
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    let mut is_copy = vec![false; triangles.len()];
+    // How many triangles each representative stands for (1 for most).
+    let mut copies = vec![1u32; triangles.len()];
+    let mut coincident = 0usize;
+    for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+        let k = run.len();
+        if k < 2 {
+            continue;
+        }
+        coincident += k * (k - 1) / 2;
+        copies[run[0].1 as usize] = k as u32;
+        for &(_, t) in &run[1..] {
+            is_copy[t as usize] = true;
+        }
+    }
+    // Candidate pairs, cell by cell, within the budget.
+    let budget = self_intersection_budget(triangles.len());
+    let mut lists: Vec<Vec<u32>> = Vec::new();
+    let mut planned = 0usize;
+    let mut complete = true;
+    for list in map.surface_cell_triangles() {
+        let list: Vec<u32> = list
+            .iter()
+            .copied()
+            .filter(|&t| !is_copy[t as usize])
+            .collect();
+        let pairs = list.len() * list.len().saturating_sub(1) / 2;
+        if planned + pairs > budget {
+            // The part of this cell the budget allows: the pairs of its first `k`
+            // triangles, `k (k - 1) / 2` of them.
+            let room = budget - planned;
+            let k = (((8 * room + 1) as f64).sqrt() as usize)
+                .div_ceil(2)
+                .min(list.len());
+            let k = (0..=k)
+                .rev()
+                .find(|k| k * k.saturating_sub(1) / 2 <= room)
+                .unwrap_or(0);
+            lists.push(list[..k].to_vec());
+            complete = false;
+            break;
+        }
+        planned += pairs;
+        lists.push(list);
+    }
+    let mut candidates: Vec<u64> = lists
         .par_iter()
         .flat_map_iter(|list| {
             list.iter().enumerate().flat_map(move |(i, &a)| {
@@ -54,9 +138,11 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
             })
         })
         .collect();
+    drop(lists);
     candidates.par_sort_unstable();
     candidates.dedup();
-    let mut found: Vec<([u32; 2], bool)> = candidates
+    // Each pair found stands for as many pairs as its triangles have copies.
+    let found: Vec<([u32; 2], bool, usize)> = candidates
         .par_iter()
         .filter_map(|&key| {
             let (a, b) = (TriId((key >> 32) as u32), TriId(key as u32));
@@ -64,22 +150,27 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
             if clearly_apart(ta, tb) {
                 return None;
             }
+            let weight = copies[a.0 as usize] as usize * copies[b.0 as usize] as usize;
             let (a, b) = (surface.source_triangle(a), surface.source_triangle(b));
-            intersect_triangle_triangle(ta, tb).then(|| ([a.min(b), a.max(b)], crosses(ta, tb)))
+            intersect_triangle_triangle(ta, tb)
+                .then(|| ([a.min(b), a.max(b)], crosses(ta, tb), weight))
         })
         .collect();
-    found.par_sort_unstable();
-    let crossing = found.iter().filter(|(_, c)| *c).count();
+    // Coincident pairs are duplicate faces (the report lists them): as for the exact test,
+    // triangles that share all their corners do not count as intersecting.
+    let count = found.iter().map(|f| f.2).sum::<usize>();
+    let crossing = found.iter().filter(|f| f.1).map(|f| f.2).sum::<usize>();
+    let mut pairs: Vec<[u32; 2]> = found.iter().map(|f| f.0).collect();
+    pairs.par_sort_unstable();
+    pairs.truncate(LISTED_SELF_INTERSECTIONS);
     SelfIntersections {
-        count: found.len(),
+        count,
         crossing,
-        touching: found.len() - crossing,
-        pairs: found
-            .iter()
-            .take(LISTED_SELF_INTERSECTIONS)
-            .map(|(p, _)| *p)
-            .collect(),
+        touching: count - crossing,
+        pairs,
         candidates: candidates.len(),
+        coincident,
+        complete,
     }
 }
 

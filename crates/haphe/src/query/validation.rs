@@ -101,6 +101,7 @@ impl Validation {
             self_intersections: s.map(|s| s.count),
             self_intersections_crossing: s.map(|s| s.crossing),
             self_intersection_pairs: s.map(|s| s.pairs.as_slice()),
+            self_intersections_complete: s.map(|s| s.complete),
         }
     }
 }
@@ -127,6 +128,9 @@ pub struct ValidationRecord<'a> {
     pub self_intersections_crossing: Option<usize>,
     /// The first intersecting pairs.
     pub self_intersection_pairs: Option<&'a [[u32; 2]]>,
+    /// Whether the search tested every candidate pair (else it stopped at its budget and
+    /// the counts are lower bounds).
+    pub self_intersections_complete: Option<bool>,
 }
 
 /// What welding did, as serialised.

@@ -1,5 +1,7 @@
 //! What a surface feels like: stiffness, damping and friction.
 
+use super::InvalidValue;
+
 /// The haptic material of an object.
 ///
 /// Friction follows Coulomb's law on the proxy: it sticks while the tangential force stays
@@ -30,6 +32,30 @@ impl Default for Material {
 }
 
 impl Material {
+    /// Checks every field: finite and non-negative, the dynamic friction coefficient at
+    /// most the static one. Scene files, command-line flags and code use this one check.
+    ///
+    /// # Errors
+    /// An [`InvalidValue`] naming the first field that is not usable.
+    pub fn checked(self) -> Result<Material, InvalidValue> {
+        for (field, v) in [
+            ("stiffness", self.stiffness),
+            ("damping", self.damping),
+            ("static_friction", self.static_friction),
+            ("dynamic_friction", self.dynamic_friction),
+        ] {
+            InvalidValue::check_range(field, v, 0.0, f64::MAX)?;
+        }
+        if self.dynamic_friction > self.static_friction {
+            return Err(InvalidValue {
+                field: "dynamic_friction",
+                value: self.dynamic_friction,
+                expected: format!("at most static_friction ({})", self.static_friction),
+            });
+        }
+        Ok(self)
+    }
+
     /// The material with every field made usable: non-finite or negative values become 0,
     /// and the dynamic coefficient is capped by the static one.
     pub fn sanitised(self) -> Material {

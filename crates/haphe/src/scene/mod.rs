@@ -13,11 +13,13 @@
 
 mod clear;
 mod handoff;
+mod invalid;
 mod material;
 mod pose;
 mod shape;
 
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
+pub use invalid::{InvalidValue, MAX_FORCE_LIMIT_N, check_max_force};
 pub use material::Material;
 pub use pose::Pose;
 pub use shape::Shape;

@@ -82,6 +82,7 @@ pub use device::{
 pub use realtime::{
     DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, DeviceClock, FIFO_PRIORITY, Interference,
     RealtimeOptions, RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport,
+    check_core,
 };
 pub use simulated::{
     HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, Path,
@@ -89,7 +90,8 @@ pub use simulated::{
     TraceError, scene_bounds, scripted_path, simulated_spec, surface_below,
 };
 pub use tick::{
-    Histogram, MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions,
-    StopReason, TickStats,
+    Histogram, MAX_MOTION_AMPLITUDE, MAX_MOTION_FREQUENCY, MAX_MOTION_RATE, MAX_MOTION_SPEED,
+    MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions, StopReason,
+    TickStats,
 };
 pub use trace::{CSV_HEADER, Phase, TickRecord, write_csv_header};

@@ -36,6 +36,7 @@ impl Format {
     /// [`ReadErrorKind::Empty`] for no bytes, [`ReadErrorKind::UnknownFormat`] when nothing
     /// matches.
     pub fn detect(name: &str, bytes: &[u8]) -> Result<Format, ReadErrorKind> {
+        let bytes = without_byte_order_mark(bytes);
         let text_start = skip_ascii_whitespace(bytes);
         if text_start.is_empty() {
             return Err(ReadErrorKind::Empty);
@@ -85,6 +86,16 @@ fn is_off_keyword(text: &[u8]) -> bool {
         .all(|b| matches!(b, b'S' | b'T' | b'C' | b'N' | b'4'));
     let rest_ok = word[at + 3..].iter().all(u8::is_ascii_digit);
     prefix_ok && rest_ok && at <= 5
+}
+
+/// `bytes` without a leading UTF-8 byte-order mark, which some editors write at the start
+/// of text files; a binary STL (whose 80-byte header may start with anything) is kept as
+/// it is.
+pub(crate) fn without_byte_order_mark(bytes: &[u8]) -> &[u8] {
+    match bytes.strip_prefix(b"\xEF\xBB\xBF".as_slice()) {
+        Some(rest) if !stl::looks_binary(bytes) => rest,
+        _ => bytes,
+    }
 }
 
 fn skip_ascii_whitespace(bytes: &[u8]) -> &[u8] {
@@ -247,6 +258,7 @@ pub fn read_unwelded(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<
             message: format!("the unit factor {scale} is not a positive finite number"),
         }));
     }
+    let bytes = without_byte_order_mark(bytes);
     let format = match options.format {
         Some(f) => f,
         None => Format::detect(file, bytes).map_err(fail)?,

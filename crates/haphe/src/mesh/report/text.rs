@@ -7,6 +7,15 @@ use super::{MeshReport, Usability};
 /// How many places of each defect the text lists before "… and N more".
 const LISTED: usize = 8;
 
+/// Text shown as it is by [`list`] (which shows its items' `Debug` form).
+struct Verbatim(String);
+
+impl fmt::Debug for Verbatim {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
 fn list<T: fmt::Debug>(f: &mut fmt::Formatter<'_>, what: &str, items: &[T]) -> fmt::Result {
     if items.is_empty() {
         return Ok(());
@@ -88,9 +97,20 @@ impl fmt::Display for ReportText<'_> {
         }
         let d = &report.defects;
         list(f, "boundary edges", &d.boundary_edges)?;
+        // An edge shared by thousands of triangles shows its first few and their count.
         let edges = |uses: &[super::EdgeUse]| {
             uses.iter()
-                .map(|u| (u.edge, u.triangles.clone()))
+                .map(|u| {
+                    let shown: Vec<String> =
+                        u.triangles.iter().take(8).map(u32::to_string).collect();
+                    let more = u.triangles.len().saturating_sub(8);
+                    let tail = if more > 0 {
+                        format!(", … {more} more")
+                    } else {
+                        String::new()
+                    };
+                    (u.edge, Verbatim(format!("[{}{tail}]", shown.join(", "))))
+                })
                 .collect::<Vec<_>>()
         };
         list(

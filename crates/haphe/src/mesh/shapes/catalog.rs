@@ -66,6 +66,10 @@ pub enum Shape {
     Blob,
 }
 
+/// The most triangles a built-in shape may be asked for in a front end (a binary STL of
+/// 500 MB); [`Shape::check_triangles`].
+pub const MAX_SHAPE_TRIANGLES: usize = 10_000_000;
+
 impl Shape {
     /// Every shape, in the order of the enum.
     pub const ALL: [Shape; 6] = [
@@ -107,6 +111,26 @@ impl Shape {
     /// Linear in the triangle count; about 4 million triangles take a fraction of a second
     /// in a release build.
     pub fn with_triangles(self, target: usize) -> Mesh {
+        self.with_triangles_unchecked(target)
+    }
+
+    /// Checks a triangle count asked of a built-in shape: at least 1 and at most
+    /// [`MAX_SHAPE_TRIANGLES`] (front ends call this before building, so a typing mistake
+    /// is an error instead of minutes and gigabytes).
+    ///
+    /// # Errors
+    /// A sentence naming the count and the limit.
+    pub fn check_triangles(target: usize) -> Result<usize, String> {
+        if (1..=MAX_SHAPE_TRIANGLES).contains(&target) {
+            Ok(target)
+        } else {
+            Err(format!(
+                "a built-in shape has from 1 to {MAX_SHAPE_TRIANGLES} triangles, not {target}"
+            ))
+        }
+    }
+
+    fn with_triangles_unchecked(self, target: usize) -> Mesh {
         match self.resolution_for(target) {
             Resolution::Sphere { frequency } => geodesic_sphere(SPHERE_RADIUS_M, frequency),
             Resolution::Torus { ring, tube } => {

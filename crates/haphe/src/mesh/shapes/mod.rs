@@ -52,7 +52,7 @@ pub use blob::{MAX_BLOB_AMPLITUDE_FRACTION, blob, geodesic_blob};
 pub use boxes::{
     MAX_CONCAVE_CORNER_DIVISIONS, MAX_CUBOID_DIVISIONS, concave_corner, cuboid, thin_plate,
 };
-pub use catalog::{ParseShapeError, Shape};
+pub use catalog::{MAX_SHAPE_TRIANGLES, ParseShapeError, Shape};
 pub use sphere::{MAX_SPHERE_FREQUENCY, MAX_SPHERE_SUBDIVISIONS, geodesic_sphere, sphere};
 pub use torus::{MAX_TORUS_SEGMENTS, MIN_TORUS_SEGMENTS, torus};
 

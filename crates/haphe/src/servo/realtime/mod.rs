@@ -134,16 +134,37 @@ pub struct ServoLoop<D: Device + 'static> {
     handle: JoinHandle<RealtimeRun<D>>,
 }
 
+/// Checks that this process may run on `core` (for [`RealtimeOptions::standby_core`]).
+///
+/// # Errors
+/// [`ServoError::NoSuchCore`], with the cores it may run on.
+pub fn check_core(core: usize) -> Result<(), ServoError> {
+    let cores: Vec<usize> = core_affinity::get_core_ids()
+        .unwrap_or_default()
+        .iter()
+        .map(|c| c.id)
+        .collect();
+    if cores.contains(&core) {
+        Ok(())
+    } else {
+        Err(ServoError::NoSuchCore { core, cores })
+    }
+}
+
 impl<D: Device + 'static> ServoLoop<D> {
     /// Starts `servo` on a new thread for `seconds` (`None`: until [`stop`](Self::stop)).
     ///
     /// # Errors
-    /// [`ServoError::Spawn`] when the thread cannot be started.
+    /// [`ServoError::NoSuchCore`] when [`RealtimeOptions::standby_core`] names a core this
+    /// process may not run on; [`ServoError::Spawn`] when the thread cannot be started.
     pub fn spawn(
         servo: Servo<D>,
         seconds: Option<f64>,
         options: RealtimeOptions,
     ) -> Result<ServoLoop<D>, ServoError> {
+        if let Some(core) = options.standby_core {
+            check_core(core)?;
+        }
         let (producer, consumer) = RingBuffer::new(options.record_capacity.max(1));
         let stop = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&stop);

@@ -168,6 +168,11 @@ impl HipTrace {
         let (t0, t1) = (self.times[i], self.times[i + 1]);
         let (p0, p1) = (self.points[i], self.points[i + 1]);
         let v = (p1 - p0) / (t1 - t0);
+        if !v.is_finite() {
+            // Samples closer in time than the positions' difference can be divided by
+            // (a step over a few ulps): the nearer sample, at rest.
+            return Some((if t - t0 <= t1 - t { p0 } else { p1 }, DVec3::ZERO));
+        }
         Some((p0 + v * (t - t0), v))
     }
 }

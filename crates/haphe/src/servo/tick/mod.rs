@@ -5,7 +5,10 @@
 mod motion;
 mod stats;
 
-pub use motion::{Motion, ObjectMotion};
+pub use motion::{
+    MAX_MOTION_AMPLITUDE, MAX_MOTION_FREQUENCY, MAX_MOTION_RATE, MAX_MOTION_SPEED, Motion,
+    ObjectMotion,
+};
 pub use stats::{Histogram, TickStats};
 
 use std::time::Instant;
@@ -62,6 +65,14 @@ pub enum ServoError {
     /// The device could not be opened or calibrated.
     #[error(transparent)]
     Device(#[from] DeviceError),
+    /// A core asked for does not exist or is not one this process may run on.
+    #[error("core {core} is not one this process may run on (it may use {cores:?})")]
+    NoSuchCore {
+        /// The core asked for.
+        core: usize,
+        /// The cores this process may run on.
+        cores: Vec<usize>,
+    },
     /// The servo thread could not be started.
     #[error("cannot start the servo thread: {0}")]
     Spawn(#[source] std::io::Error),

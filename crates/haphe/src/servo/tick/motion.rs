@@ -2,7 +2,7 @@
 
 use glam::{DQuat, DVec3};
 
-use crate::scene::{ObjectId, Pose};
+use crate::scene::{InvalidValue, ObjectId, Pose};
 
 /// How an object moves over time, from its base pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,6 +37,56 @@ pub struct ObjectMotion {
     pub base: Pose,
     /// The motion.
     pub motion: Motion,
+}
+
+/// The fastest linear motion accepted, m/s.
+pub const MAX_MOTION_SPEED: f64 = 100.0;
+/// The largest oscillation amplitude accepted, metres.
+pub const MAX_MOTION_AMPLITUDE: f64 = 100.0;
+/// The highest oscillation frequency accepted, Hz (a 1 kHz servo samples it twice a cycle
+/// at 500 Hz; faster motions are aliased noise).
+pub const MAX_MOTION_FREQUENCY: f64 = 500.0;
+/// The fastest rotation accepted, rad/s.
+pub const MAX_MOTION_RATE: f64 = 1000.0;
+
+impl Motion {
+    /// Checks the motion's numbers: finite, within [`MAX_MOTION_SPEED`],
+    /// [`MAX_MOTION_AMPLITUDE`], [`MAX_MOTION_FREQUENCY`] and [`MAX_MOTION_RATE`], and a
+    /// rotation axis of non-zero length. Scene files and code use this one check.
+    ///
+    /// # Errors
+    /// An [`InvalidValue`] naming the first value that is not usable.
+    pub fn checked(self) -> Result<Motion, InvalidValue> {
+        match self {
+            Motion::Linear { velocity } => {
+                InvalidValue::check_vector("motion velocity", velocity, MAX_MOTION_SPEED)?;
+            }
+            Motion::Oscillating {
+                amplitude,
+                frequency,
+            } => {
+                InvalidValue::check_vector("motion amplitude", amplitude, MAX_MOTION_AMPLITUDE)?;
+                InvalidValue::check_range(
+                    "motion frequency",
+                    frequency,
+                    0.0,
+                    MAX_MOTION_FREQUENCY,
+                )?;
+            }
+            Motion::Rotating { axis, rate } => {
+                InvalidValue::check_vector("motion axis", axis, f64::MAX)?;
+                if axis.length() < 1e-12 {
+                    return Err(InvalidValue {
+                        field: "motion axis",
+                        value: axis.length(),
+                        expected: "a direction (of non-zero length)".into(),
+                    });
+                }
+                InvalidValue::check_range("motion rate", rate, -MAX_MOTION_RATE, MAX_MOTION_RATE)?;
+            }
+        }
+        Ok(self)
+    }
 }
 
 impl ObjectMotion {

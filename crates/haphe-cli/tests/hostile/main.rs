@@ -1,0 +1,12 @@
+//! Hostile inputs through the real `haphe` binary: every one gets a clear answer (an error
+//! naming the file and the place, or a correct result) — never a hang, a silent wrong
+//! answer or a lost file. One file per theme; see `docs/limits-of-input.md`.
+
+mod common;
+mod disk_full;
+mod inputs;
+mod messages;
+mod outputs;
+mod queries;
+mod validate;
+mod values;
