@@ -67,6 +67,7 @@
 //! semantics as the fast one.
 
 mod constraints;
+mod deep;
 mod force;
 mod godobject;
 mod output;
@@ -77,6 +78,8 @@ pub use constraints::{
     Constraints, MAX_CONSTRAINTS, MIN_PAIR_SINE_SQUARED, MIN_TRIPLE_DETERMINANT, Plane,
     advance_to_plane,
 };
+pub(crate) use deep::Hold;
+pub use deep::{is_deep, saturation_depth};
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
 pub use godobject::{
     DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions, clamp_to_radius,
