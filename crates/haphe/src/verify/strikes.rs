@@ -9,7 +9,7 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::proxy::{Proxy, ProxyOptions};
+use crate::proxy::{Proxy, ProxyOptions, saturation_depth};
 use crate::query::{Side, classify_point};
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
@@ -60,7 +60,7 @@ pub struct StrikeCheck {
     /// Drawn strikes not run: their start was not outside, or the line did not enter the
     /// object first at the drawn point.
     pub skipped: usize,
-    /// Strikes that went deeper than the saturation depth (the proxy held).
+    /// Strikes that went deeper than the saturation depth.
     pub deep_strikes: usize,
     /// Ticks run.
     pub ticks: usize,
@@ -70,21 +70,21 @@ pub struct StrikeCheck {
     pub held_ticks: usize,
     /// Checked ticks with a force along the strike above [`STRIKE_FORCE_TOLERANCE_N`].
     pub pushes_on: usize,
-    /// Of those, ticks before the strike's first hold (the god-object in the physical
-    /// range, sliding over a curved surface with the hand never deeper than the
-    /// saturation depth).
+    /// Of those, ticks before the proxy first held: the god-object's own ticks, in the
+    /// physical range (a grazing strike sliding over a curved surface) or on the tick that
+    /// first goes beyond the saturation depth.
     pub pushes_on_shallow: usize,
     /// Checked ticks where the proxy's contact plane faces along the strike (the far
     /// side).
     pub far_side: usize,
-    /// Of those, ticks before the strike's first hold.
+    /// Of those, ticks before the proxy first held.
     pub far_side_shallow: usize,
     /// Largest force along the strike, newtons.
     pub max_push_n: f64,
-    /// Strikes (index, angle in degrees, speed m/s, depth m) with a failing tick after a
-    /// hold, a few.
+    /// Strikes (index, angle in degrees, speed m/s, depth m) with a failing tick after
+    /// the proxy first held, a few.
     pub failures: Vec<(usize, f64, f64, f64)>,
-    /// Strikes (the same) with a failing tick before any hold, a few.
+    /// Strikes (the same) with a failing tick before that, a few.
     pub shallow_failures: Vec<(usize, f64, f64, f64)>,
 }
 
@@ -121,6 +121,7 @@ pub fn check_strikes(
         return check;
     };
     let surface = o.shape.surface();
+    let saturation = saturation_depth(&o.material, options.max_force);
     for index in 0..count {
         let t = crate::mesh::TriId(random.index(surface.triangle_count()) as u32);
         let [a, b, c] = surface.corners(t);
@@ -156,6 +157,7 @@ pub fn check_strikes(
         let mut proxy = Proxy::new(start, options);
         let mut touched = false;
         let mut held = false;
+        let mut deep = false;
         let mut failed = false;
         let mut failed_shallow = false;
         let mut previous = start;
@@ -163,10 +165,11 @@ pub fn check_strikes(
             let out = proxy.tick(scene, hip, (hip - previous) * rate_hz);
             previous = hip;
             check.ticks += 1;
-            if out.status.deep_hold {
-                check.held_ticks += 1;
-                held = true;
-            }
+            check.held_ticks += usize::from(out.status.deep_hold);
+            held |= out.status.deep_hold;
+            deep |= out
+                .contact
+                .is_some_and(|c| saturation.is_some_and(|d| c.penetration > d));
             touched |= out.contact.is_some();
             if !touched || k > last_moving {
                 continue;
@@ -187,7 +190,7 @@ pub fn check_strikes(
                 failed_shallow |= !held;
             }
         }
-        check.deep_strikes += usize::from(held);
+        check.deep_strikes += usize::from(deep);
         if failed && check.failures.len() < super::KEPT_FAILURES {
             check.failures.push((index, angle, speed, depth));
         }
