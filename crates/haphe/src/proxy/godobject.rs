@@ -313,11 +313,14 @@ impl Proxy {
             (normal, hold.constraints),
             &mut status,
         );
+        // The plain spring toward the held point: no force shading, whose normal (turned
+        // toward the next face near an edge) would, this deep, lead the force off the
+        // line back to the point of entry.
         let (force, force_clamped) = contact_force(
             p,
             hip,
             velocity,
-            contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
+            contact.map(|c| (c.normal, c.normal, c.constraints)),
             &material,
             self.options.max_force,
         );

@@ -51,8 +51,8 @@
 //!    alone reaches the device's maximum force; [`saturation_depth`]), the proxy *holds*
 //!    from the next tick on: while the device point stays deeper than that behind the held
 //!    plane, steps 2 and 3 are skipped — the proxy stays where it is (moving objects still
-//!    carry it), on the same contact, and the force keeps pointing from the hand back to
-//!    where it went deep ([`TickStatus::deep_hold`]). On the first tick the device point
+//!    carry it), on the same contact, and the force is the plain spring–damper from the
+//!    hand back to where it went deep, without force shading ([`TickStatus::deep_hold`]). On the first tick the device point
 //!    is back within the saturation depth of that plane, the proxy lets go and the
 //!    god-object resumes from where it held.
 //!
