@@ -30,7 +30,7 @@ const RUN_UP_M: f64 = 0.01;
 const STILL_TICKS: usize = 20;
 
 /// One straight strike at `rate_hz`: the device points from `start` along the unit `dir`
-/// at `speed` m/s for `length` metres, then [`STILL_TICKS`] ticks at rest. Returns the
+/// at `speed` m/s for `length` metres, then `STILL_TICKS` (20) ticks at rest. Returns the
 /// points and the index of the last one where the hand still moves forward.
 pub fn strike_path(
     start: DVec3,
