@@ -45,6 +45,10 @@ pub struct Args {
     /// the brute-force proxy on the model scaled to 0.2 m (default: --samples; 0 skips).
     #[arg(long)]
     ticks: Option<usize>,
+    /// Deep strikes on a closed model scaled to 0.2 m: the force never pulls the hand on
+    /// through the object once the proxy holds (0 skips).
+    #[arg(long, default_value_t = 0)]
+    strikes: usize,
     /// Seed of the samples (the same seed gives the same samples).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -96,6 +100,8 @@ struct Verification {
     walk_seconds: f64,
     /// The proxy against the brute-force proxy, when run.
     proxy: Option<crate::verify_proxy::ProxyReport>,
+    /// Deep strikes, when run on a closed model.
+    strikes: Option<crate::verify_proxy::StrikeReport>,
     passed: bool,
 }
 
@@ -210,6 +216,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let proxy = (ticks > 0)
         .then(|| crate::verify_proxy::check(surface, ticks, args.seed))
         .transpose()?;
+    let strikes = (args.strikes > 0 && surface.is_solid())
+        .then(|| crate::verify_proxy::strikes(surface, args.strikes, args.seed))
+        .transpose()?;
 
     let passed = crossings
         .iter()
@@ -217,7 +226,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         && inside.check.mismatches == 0
         && walk.not_local_minimum == 0
         && walk.not_nearest == 0
-        && proxy.as_ref().is_none_or(|p| p.passed());
+        && proxy.as_ref().is_none_or(|p| p.passed())
+        && strikes.as_ref().is_none_or(|s| s.passed());
     let report = Verification {
         file: args.file.display().to_string(),
         triangles: surface.triangle_count(),
@@ -231,6 +241,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         walk,
         walk_seconds,
         proxy,
+        strikes,
         passed,
     };
     let mut out = std::io::stdout().lock();
@@ -349,6 +360,31 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
                 c.bad_forces
             )?;
         }
+    }
+    if let Some(s) = &r.strikes {
+        let c = &s.check;
+        writeln!(
+            out,
+            "\ndeep strikes (model scaled by {:.4} to 0.2 m, saturation depth {:.1} mm; {:.1} s, {:.2} µs per proxy tick):\n",
+            s.scale,
+            s.saturation_depth_m * 1e3,
+            s.seconds,
+            s.us_per_tick
+        )?;
+        writeln!(
+            out,
+            "{} strikes ({} drawn not run), {} went deep; {} ticks checked, {} held; force along the strike: {} ticks after a hold, {} before (largest {:.3} N); on the far side: {} after a hold, {} before",
+            c.strikes,
+            c.skipped,
+            c.deep_strikes,
+            c.checked_ticks,
+            c.held_ticks,
+            c.pushes_on - c.pushes_on_shallow,
+            c.pushes_on_shallow,
+            c.max_push_n,
+            c.far_side - c.far_side_shallow,
+            c.far_side_shallow
+        )?;
     }
     writeln!(out, "\n{}", if r.passed { "PASSED" } else { "FAILED" })?;
     Ok(())

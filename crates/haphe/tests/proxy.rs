@@ -5,6 +5,8 @@ mod support;
 
 #[path = "proxy/adversarial.rs"]
 mod adversarial;
+#[path = "proxy/deep.rs"]
+mod deep;
 #[path = "proxy/open.rs"]
 mod open;
 

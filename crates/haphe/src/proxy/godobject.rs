@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use super::constraints::{Constraints, Plane, advance_to_plane};
+use super::deep::{Hold, is_deep, saturation_depth};
 use super::force::{contact_force, friction_target};
 use super::output::{Contact, TickOutput, TickStatus};
 use super::rest::Rest;
@@ -88,6 +89,8 @@ pub struct Proxy {
     sticking: bool,
     /// Placed (by [`Proxy::new`] or [`Proxy::reset`]) and not ticked yet.
     placed: bool,
+    /// The contact held beyond the saturation depth (see [`super::deep`]).
+    hold: Option<Hold>,
 }
 
 impl Proxy {
@@ -106,6 +109,7 @@ impl Proxy {
             rest: None,
             sticking: false,
             placed: true,
+            hold: None,
         }
     }
 
@@ -118,6 +122,11 @@ impl Proxy {
     /// device point stays behind it.
     pub(crate) fn rest(&self) -> Option<Rest> {
         self.rest
+    }
+
+    /// The contact held beyond the saturation depth, if any.
+    pub(crate) fn hold(&self) -> Option<Hold> {
+        self.hold
     }
 
     /// The settings.
@@ -151,6 +160,7 @@ impl Proxy {
             self.last = None;
             self.rest = None;
             self.sticking = false;
+            self.hold = None;
             return TickOutput {
                 proxy: self.position,
                 force: DVec3::ZERO,
@@ -162,6 +172,11 @@ impl Proxy {
         status.input_clamped = clamped;
 
         let mut p = carry(scene, self.position, &self.options);
+        if let Some(hold) = self.hold.take()
+            && let Some(out) = self.hold_tick(scene, p, hip, velocity, hold, status)
+        {
+            return out;
+        }
         let held = p;
         let placed = std::mem::take(&mut self.placed);
         let under = self.last.map(|l| (l.object, l.triangle));
@@ -220,27 +235,14 @@ impl Proxy {
         status.sticking = self.sticking;
         status.in_contact = true;
 
-        let contact = scene
-            .surface_point(hit.object, hit.triangle, p)
-            .map(|(s, walk)| {
-                status.walk_cap_hit = walk == crate::query::WalkStatus::BoundHit;
-                let side = if s.face_normal.dot(plane.normal) >= 0.0 {
-                    1.0
-                } else {
-                    -1.0
-                };
-                Contact {
-                    object: hit.object,
-                    id: object.id,
-                    triangle: s.triangle,
-                    weights: s.weights,
-                    point: s.point,
-                    normal: plane.normal,
-                    shading_normal: side * s.shading_normal,
-                    penetration: (p - hip).dot(plane.normal).max(0.0),
-                    constraints: sweep.planes.len() as u8,
-                }
-            });
+        let contact = contact_at(
+            scene,
+            (hit.object, hit.triangle),
+            p,
+            hip,
+            (plane.normal, sweep.planes.len() as u8),
+            &mut status,
+        );
         let (force, force_clamped) = contact_force(
             p,
             hip,
@@ -255,6 +257,20 @@ impl Proxy {
             object: c.object,
             triangle: c.triangle,
         });
+        // Beyond the saturation depth the proxy holds from the next tick on.
+        if is_deep(
+            p,
+            hip,
+            plane.normal,
+            saturation_depth(&material, self.options.max_force),
+        ) {
+            self.hold = Some(Hold {
+                object: hit.object,
+                triangle: contact.map_or(hit.triangle, |c| c.triangle),
+                normal_object: object.pose.vector_to_object(plane.normal),
+                constraints: sweep.planes.len() as u8,
+            });
+        }
         TickOutput {
             proxy: p,
             force,
@@ -262,6 +278,104 @@ impl Proxy {
             status,
         }
     }
+    /// A tick of a holding proxy (see [`super::deep`]): while the device point `hip` stays
+    /// deeper than the saturation depth behind the held plane, the proxy at `p` stays, on
+    /// the same contact; `None` (and no change) once it is back within that depth or the
+    /// held object is gone.
+    fn hold_tick(
+        &mut self,
+        scene: &Scene,
+        p: DVec3,
+        hip: DVec3,
+        velocity: DVec3,
+        hold: Hold,
+        mut status: TickStatus,
+    ) -> Option<TickOutput> {
+        let object = scene.objects().get(hold.object)?;
+        let normal = hold.normal(&object.pose);
+        let material = object.material;
+        if !is_deep(
+            p,
+            hip,
+            normal,
+            saturation_depth(&material, self.options.max_force),
+        ) {
+            return None;
+        }
+        status.in_contact = true;
+        status.deep_hold = true;
+        status.sticking = self.sticking;
+        let contact = contact_at(
+            scene,
+            (hold.object, hold.triangle),
+            p,
+            hip,
+            (normal, hold.constraints),
+            &mut status,
+        );
+        // The plain spring toward the held point: no force shading, whose normal (turned
+        // toward the next face near an edge) would, this deep, lead the force off the
+        // line back to the point of entry.
+        let (force, force_clamped) = contact_force(
+            p,
+            hip,
+            velocity,
+            contact.map(|c| (c.normal, c.normal, c.constraints)),
+            &material,
+            self.options.max_force,
+        );
+        status.force_clamped = force_clamped;
+        self.position = p;
+        if let Some(c) = contact {
+            self.last = Some(LastContact {
+                object: c.object,
+                triangle: c.triangle,
+            });
+        }
+        self.hold = Some(Hold {
+            triangle: contact.map_or(hold.triangle, |c| c.triangle),
+            ..hold
+        });
+        Some(TickOutput {
+            proxy: p,
+            force,
+            contact,
+            status,
+        })
+    }
+}
+
+/// The contact of a proxy at `p` on `object`, found by walking its surface from
+/// `triangle`, with the contact plane's unit `normal` (toward the proxy) and the number of
+/// active planes; `None` where the walk finds no triangle.
+fn contact_at(
+    scene: &Scene,
+    (object, triangle): (usize, TriId),
+    p: DVec3,
+    hip: DVec3,
+    (normal, constraints): (DVec3, u8),
+    status: &mut TickStatus,
+) -> Option<Contact> {
+    let id = scene.objects()[object].id;
+    scene.surface_point(object, triangle, p).map(|(s, walk)| {
+        status.walk_cap_hit = walk == crate::query::WalkStatus::BoundHit;
+        let side = if s.face_normal.dot(normal) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        Contact {
+            object,
+            id,
+            triangle: s.triangle,
+            weights: s.weights,
+            point: s.point,
+            normal,
+            shading_normal: side * s.shading_normal,
+            penetration: (p - hip).dot(normal).max(0.0),
+            constraints,
+        }
+    })
 }
 
 /// Largest workspace radius honoured, metres: a larger (or non-finite)

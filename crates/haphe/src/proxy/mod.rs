@@ -46,6 +46,27 @@
 //! 4. **Contact and force.** The surface point under the proxy is found by walking from
 //!    the last triangle touched; the force is the spring–damper toward the proxy with
 //!    force shading, clamped ([`contact_force`]).
+//! 5. **Deep penetration.** When the tick ends with the device point deeper than the
+//!    *saturation depth* `max_force / stiffness` behind the contact plane (where the spring
+//!    alone reaches the device's maximum force; [`saturation_depth`]), the proxy *holds*
+//!    from the next tick on: while the device point stays deeper than that behind the held
+//!    plane, steps 2 and 3 are skipped — the proxy stays where it is (moving objects still
+//!    carry it), on the same contact, and the force is the plain spring–damper from the
+//!    hand back to where it went deep, without force shading ([`TickStatus::deep_hold`]). On the first tick the device point
+//!    is back within the saturation depth of that plane, the proxy lets go and the
+//!    god-object resumes from where it held.
+//!
+//! Below the saturation depth (the physical range) the proxy is exactly the god-object of
+//! Zilles & Salisbury. Beyond it the god-object's rule — get as close to the device point
+//! as the surface allows — is wrong for a thick part: the closest surface point of a
+//! point deep inside a convex body lies toward its far side, the god-object crawls around
+//! the body after it (about a quarter of the way round a sphere in a 35° strike at
+//! 1.5 m/s) and the force then pulls the hand on through the object. A proxy that holds
+//! keeps the side of entry at any depth: a straight strike, however deep, and on out of
+//! the far side, feels a force back toward the entry point only, as a thin wall does. The
+//! price: pushed past the device's maximum force, the surface holds the hand's contact
+//! point (as a very sticky surface would) until the hand eases back within the saturation
+//! depth; with no stiffness or no maximum force there is no saturation and no hold.
 //!
 //! # Real-time
 //!
@@ -67,6 +88,7 @@
 //! semantics as the fast one.
 
 mod constraints;
+mod deep;
 mod force;
 mod godobject;
 mod output;
@@ -77,6 +99,8 @@ pub use constraints::{
     Constraints, MAX_CONSTRAINTS, MIN_PAIR_SINE_SQUARED, MIN_TRIPLE_DETERMINANT, Plane,
     advance_to_plane,
 };
+pub(crate) use deep::Hold;
+pub use deep::{is_deep, saturation_depth};
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
 pub use godobject::{
     DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions, clamp_to_radius,

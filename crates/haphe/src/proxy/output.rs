@@ -59,6 +59,10 @@ pub struct TickStatus {
     /// ([`Scene::clear_move`](crate::scene::Scene::clear_move)), so its crossing and
     /// touching searches were skipped (the result is the same).
     pub cleared: bool,
+    /// The device point is deeper than the saturation depth (`max_force / stiffness`)
+    /// behind the contact plane: the proxy holds where it was, on the same contact (see
+    /// [`crate::proxy`], "Deep penetration").
+    pub deep_hold: bool,
 }
 
 /// The result of one proxy tick.

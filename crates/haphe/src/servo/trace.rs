@@ -72,7 +72,8 @@ impl TickRecord {
     }
 
     /// The status column: the phase while not running, else the most important flag
-    /// (`rejected`, `wedged`, `capped`, `clamped`), else `sticking`, `contact` or `free`.
+    /// (`rejected`, `wedged`, `capped`, `held` — beyond the saturation depth —,
+    /// `clamped`), else `sticking`, `contact` or `free`.
     pub fn status_name(&self) -> &'static str {
         let s = &self.status;
         if self.fault.is_some() {
@@ -85,6 +86,8 @@ impl TickRecord {
             "wedged"
         } else if s.step_cap_hit || s.walk_cap_hit {
             "capped"
+        } else if s.deep_hold {
+            "held"
         } else if s.force_clamped {
             "clamped"
         } else if self.phase == Phase::Ramping {

@@ -10,12 +10,17 @@
 mod oracle;
 mod proxy;
 mod samples;
+mod strikes;
 
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
 pub use proxy::{
     BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy, haptic_path, haptic_path_in_contact,
 };
 pub use samples::{SegmentKind, bounds, points, segments, trajectory};
+pub use strikes::{
+    MAX_STRIKE_ANGLE_DEG, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEEDS, StrikeCheck, check_strikes,
+    strike_path,
+};
 
 use glam::DVec3;
 use rayon::prelude::*;

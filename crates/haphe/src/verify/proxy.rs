@@ -14,8 +14,8 @@ use super::oracle::TriangleBoxes;
 use super::{KEPT_FAILURES, bounds, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, Rest, advance_to_plane,
-    clamp_to_radius, friction_target, rests_on,
+    Constraints, Hold, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, Rest, advance_to_plane,
+    clamp_to_radius, friction_target, is_deep, rests_on, saturation_depth,
 };
 use crate::query::{Side, classify_point, nearest_within_brute_force, walk_to_nearest};
 use crate::rng::SplitMix64;
@@ -46,6 +46,8 @@ pub struct BruteProxy {
     placed: bool,
     /// The last constraint of the previous tick.
     rest: Option<Rest>,
+    /// The contact held beyond the saturation depth.
+    hold: Option<Hold>,
 }
 
 /// A crossing found by brute force, world frame.
@@ -83,6 +85,7 @@ impl BruteProxy {
             sticking: false,
             placed: true,
             rest: None,
+            hold: None,
         }
     }
 
@@ -98,6 +101,7 @@ impl BruteProxy {
         self.sticking = sticking;
         self.placed = false;
         self.rest = proxy.rest();
+        self.hold = proxy.hold();
     }
 
     /// Reads the objects' poses and materials from the scene, which must hold the same
@@ -197,6 +201,7 @@ impl BruteProxy {
             self.in_contact = false;
             self.sticking = false;
             self.rest = None;
+            self.hold = None;
             return (self.position, false);
         }
         let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
@@ -212,11 +217,23 @@ impl BruteProxy {
                 p = advance_to_plane(from, p, &self.plane(&h, from, p));
             }
         }
+        // Beyond the saturation depth of the held plane, the proxy stays.
+        if let Some(hold) = self.hold.take() {
+            let o = &self.objects[hold.object];
+            let depth = saturation_depth(&o.material, self.options.max_force);
+            if is_deep(p, hip, hold.normal(&o.pose), depth) {
+                self.hold = Some(hold);
+                self.position = p;
+                self.in_contact = true;
+                return (p, true);
+            }
+        }
         let held = p;
         // Constraint steps.
         let mut planes = Constraints::NONE;
         let mut touch_down = None;
         let mut last_object = 0;
+        let mut last_plane = None;
         let mut rest = None;
         if std::mem::take(&mut self.placed)
             && let Some(h) = self.touching(p)
@@ -226,6 +243,7 @@ impl BruteProxy {
                 planes.push(plane);
                 touch_down = Some(p);
                 last_object = h.object;
+                last_plane = Some(plane);
                 rest = Some(Rest {
                     object: h.object,
                     triangle: h.triangle,
@@ -263,6 +281,7 @@ impl BruteProxy {
             };
             touch_down.get_or_insert(p);
             last_object = h.object;
+            last_plane = Some(plane);
             rest = Some(Rest {
                 object: h.object,
                 triangle: h.triangle,
@@ -296,6 +315,24 @@ impl BruteProxy {
             self.sticking = sticking;
         } else {
             self.sticking = false;
+        }
+        // Beyond the saturation depth the proxy holds from the next tick on.
+        if let (Some(plane), Some(r)) = (last_plane, rest)
+            && is_deep(
+                p,
+                hip,
+                plane.normal,
+                saturation_depth(&material, self.options.max_force),
+            )
+        {
+            self.hold = Some(Hold {
+                object: last_object,
+                triangle: r.triangle,
+                normal_object: self.objects[last_object]
+                    .pose
+                    .vector_to_object(plane.normal),
+                constraints: planes.len() as u8,
+            });
         }
         self.position = p;
         self.in_contact = true;

@@ -1,0 +1,86 @@
+//! Deep penetration: the proxy holds its place once the force saturates.
+//!
+//! In the physical range — the device point no deeper behind the contact plane than the
+//! saturation depth `F_max / k`, where the spring's force reaches the device's maximum —
+//! the proxy is the god-object. Beyond it the god-object's rule ("get as close to the
+//! device point as the surface allows") is wrong: with the hand pushed deep into a thick
+//! convex part, the closest surface point moves around the body, the proxy crawls after it
+//! to the far side and the force then pulls the hand on through the object. So a proxy
+//! whose device point lies deeper than the saturation depth behind its contact plane
+//! *holds*: it stays where it is, on the same contact, and the force keeps pointing from
+//! the hand back to that point, the way the hand came in. It lets go (the god-object
+//! resumes from where it held) on the first tick the device point is back within the
+//! saturation depth of the held plane — the hand has come back out toward the side of
+//! entry.
+
+use glam::DVec3;
+
+use super::force::MIN_MAX_FORCE;
+use crate::mesh::TriId;
+use crate::scene::{Material, Pose};
+
+/// The saturation depth of `material` with a device of `max_force` newtons, metres: the
+/// penetration at which the spring alone reaches the maximum force. `None` where no force
+/// is rendered (a maximum below [`MIN_MAX_FORCE`] or no stiffness): then the proxy never
+/// holds.
+#[inline]
+pub fn saturation_depth(material: &Material, max_force: f64) -> Option<f64> {
+    let k = material.stiffness;
+    let depth = max_force / k;
+    (max_force.is_finite()
+        && max_force >= MIN_MAX_FORCE
+        && k.is_finite()
+        && k > 0.0
+        && depth.is_finite())
+    .then_some(depth)
+}
+
+/// Whether a proxy at `proxy` whose contact plane has the unit `normal` (world frame,
+/// toward the proxy) holds with the device point at `hip`: the device point lies more than
+/// `depth` metres behind the plane through the proxy.
+#[inline]
+pub fn is_deep(proxy: DVec3, hip: DVec3, normal: DVec3, depth: Option<f64>) -> bool {
+    depth.is_some_and(|d| (proxy - hip).dot(normal) > d)
+}
+
+/// The contact a holding proxy keeps: its object, the triangle under it, the contact
+/// plane's normal in the object's frame (so that it turns with a moving object) and the
+/// number of planes that were active.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Hold {
+    pub object: usize,
+    pub triangle: TriId,
+    pub normal_object: DVec3,
+    pub constraints: u8,
+}
+
+impl Hold {
+    /// The held plane's unit normal in the world frame, with the object at `pose`.
+    #[inline]
+    pub fn normal(&self, pose: &Pose) -> DVec3 {
+        pose.vector_to_world(self.normal_object)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn saturation_depth_is_max_force_over_stiffness_or_none() {
+        let m = Material::default();
+        assert_eq!(saturation_depth(&m, 3.3), Some(3.3 / 500.0));
+        assert_eq!(saturation_depth(&m, 0.0), None);
+        assert_eq!(saturation_depth(&m, f64::NAN), None);
+        let soft = Material {
+            stiffness: 0.0,
+            ..m
+        };
+        assert_eq!(saturation_depth(&soft, 3.3), None);
+        let n = DVec3::Z;
+        let d = saturation_depth(&m, 3.3);
+        assert!(!is_deep(DVec3::ZERO, DVec3::new(0.5, 0.0, -0.006), n, d));
+        assert!(is_deep(DVec3::ZERO, DVec3::new(0.5, 0.0, -0.007), n, d));
+        assert!(!is_deep(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), n, None));
+    }
+}

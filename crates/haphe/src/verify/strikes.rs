@@ -1,0 +1,202 @@
+//! Deep strikes: the hand driven in a straight line into an object, to any depth up to
+//! passing through it and out the other side, and what the proxy's force does meanwhile.
+//!
+//! A solid never pulls the hand on into itself: from the tick a strike first touches
+//! until the hand stops, the force must have no component along the strike direction, and
+//! the proxy must stay on the side of entry (never on a surface that faces along the
+//! strike, the side the hand leaves through).
+
+use glam::DVec3;
+use serde::Serialize;
+
+use crate::proxy::{Proxy, ProxyOptions, saturation_depth};
+use crate::query::{Side, classify_point};
+use crate::rng::SplitMix64;
+use crate::scene::Scene;
+
+/// Largest force along the strike direction a check accepts, newtons (rounding).
+pub const STRIKE_FORCE_TOLERANCE_N: f64 = 1e-6;
+
+/// Largest strike angle from the surface's inward normal, degrees.
+pub const MAX_STRIKE_ANGLE_DEG: f64 = 70.0;
+
+/// Strike speeds, m/s (drawn log-uniformly).
+pub const STRIKE_SPEEDS: (f64, f64) = (0.5, 10.0);
+
+/// How far outside the surface a strike starts, metres.
+const RUN_UP_M: f64 = 0.01;
+
+/// Ticks the hand stays still at the end of a strike.
+const STILL_TICKS: usize = 20;
+
+/// One straight strike at `rate_hz`: the device points from `start` along the unit `dir`
+/// at `speed` m/s for `length` metres, then `STILL_TICKS` (20) ticks at rest. Returns the
+/// points and the index of the last one where the hand still moves forward.
+pub fn strike_path(
+    start: DVec3,
+    dir: DVec3,
+    speed: f64,
+    length: f64,
+    rate_hz: f64,
+) -> (Vec<DVec3>, usize) {
+    let step = speed / rate_hz;
+    let moving = ((length / step).ceil() as usize).clamp(1, 1_000_000);
+    let mut out = Vec::with_capacity(moving + 1 + STILL_TICKS);
+    out.push(start);
+    for k in 1..=moving {
+        out.push(start + dir * (k as f64 * step).min(length));
+    }
+    let last = out.len() - 1;
+    let end = out[last];
+    out.extend(std::iter::repeat_n(end, STILL_TICKS));
+    (out, last)
+}
+
+/// The force along the strike and the side of the proxy over deep strikes on one object.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StrikeCheck {
+    /// Strikes run.
+    pub strikes: usize,
+    /// Drawn strikes not run: their start was not outside, or the line did not enter the
+    /// object first at the drawn point.
+    pub skipped: usize,
+    /// Strikes that went deeper than the saturation depth.
+    pub deep_strikes: usize,
+    /// Ticks run.
+    pub ticks: usize,
+    /// Ticks checked (from first touch until the hand stops).
+    pub checked_ticks: usize,
+    /// Ticks where the proxy held (beyond the saturation depth).
+    pub held_ticks: usize,
+    /// Checked ticks with a force along the strike above [`STRIKE_FORCE_TOLERANCE_N`].
+    pub pushes_on: usize,
+    /// Of those, ticks before the proxy first held: the god-object's own ticks, in the
+    /// physical range (a grazing strike sliding over a curved surface) or on the tick that
+    /// first goes beyond the saturation depth.
+    pub pushes_on_shallow: usize,
+    /// Checked ticks where the proxy's contact plane faces along the strike (the far
+    /// side).
+    pub far_side: usize,
+    /// Of those, ticks before the proxy first held.
+    pub far_side_shallow: usize,
+    /// Largest force along the strike, newtons.
+    pub max_push_n: f64,
+    /// Strikes (index, angle in degrees, speed m/s, depth m) with a failing tick after
+    /// the proxy first held, a few.
+    pub failures: Vec<(usize, f64, f64, f64)>,
+    /// Strikes (the same) with a failing tick before that, a few.
+    pub shallow_failures: Vec<(usize, f64, f64, f64)>,
+}
+
+/// Runs `count` deep strikes drawn with `seed` on object 0 of `scene` (a solid at rest):
+/// each enters at a random point of the surface at an angle up to
+/// [`MAX_STRIKE_ANGLE_DEG`] from the inward normal, at a speed in [`STRIKE_SPEEDS`], at
+/// `rate_hz`, and goes on in a straight line to a depth drawn up to `max_depth` metres past
+/// the entry (beyond the far side for a depth above the object's size).
+pub fn check_strikes(
+    scene: &Scene,
+    options: ProxyOptions,
+    count: usize,
+    max_depth: f64,
+    rate_hz: f64,
+    seed: u64,
+) -> StrikeCheck {
+    let mut random = SplitMix64::new(seed);
+    let mut check = StrikeCheck {
+        strikes: 0,
+        skipped: 0,
+        deep_strikes: 0,
+        ticks: 0,
+        checked_ticks: 0,
+        held_ticks: 0,
+        pushes_on: 0,
+        pushes_on_shallow: 0,
+        far_side: 0,
+        far_side_shallow: 0,
+        max_push_n: 0.0,
+        failures: Vec::new(),
+        shallow_failures: Vec::new(),
+    };
+    let Some(o) = scene.objects().first() else {
+        return check;
+    };
+    let surface = o.shape.surface();
+    let saturation = saturation_depth(&o.material, options.max_force);
+    for index in 0..count {
+        let t = crate::mesh::TriId(random.index(surface.triangle_count()) as u32);
+        let [a, b, c] = surface.corners(t);
+        let (u, v) = (random.range(0.05, 0.9), random.range(0.05, 0.9));
+        let (u, v) = if u + v > 0.95 {
+            (0.95 - u, 0.95 - v)
+        } else {
+            (u, v)
+        };
+        let entry = o.pose.to_world(a + u * (b - a) + v * (c - a));
+        let n = o.pose.vector_to_world(surface.frame(t).normal);
+        let angle = random.range(0.0, MAX_STRIKE_ANGLE_DEG);
+        let side = random.unit_vector();
+        let tangent = (side - side.dot(n) * n).normalize_or_zero();
+        let (s, co) = angle.to_radians().sin_cos();
+        let dir = (-co * n + s * tangent).normalize();
+        let speed = (STRIKE_SPEEDS.0.ln()
+            + random.next_unit() * (STRIKE_SPEEDS.1 / STRIKE_SPEEDS.0).ln())
+        .exp();
+        let depth = random.range(0.0, max_depth);
+        let start = entry - RUN_UP_M * dir;
+        let enters_here = scene
+            .first_hit(0, start, entry + 1e-4 * dir, 0.0)
+            .is_some_and(|h| h.point.distance(entry) < 1e-7);
+        let outside =
+            classify_point(surface, o.shape.map(), o.pose.to_object(start)).0 == Side::Outside;
+        if !(enters_here && outside && tangent != DVec3::ZERO) {
+            check.skipped += 1;
+            continue;
+        }
+        check.strikes += 1;
+        let (path, last_moving) = strike_path(start, dir, speed, RUN_UP_M + depth, rate_hz);
+        let mut proxy = Proxy::new(start, options);
+        let mut touched = false;
+        let mut held = false;
+        let mut deep = false;
+        let mut failed = false;
+        let mut failed_shallow = false;
+        let mut previous = start;
+        for (k, &hip) in path.iter().enumerate() {
+            let out = proxy.tick(scene, hip, (hip - previous) * rate_hz);
+            previous = hip;
+            check.ticks += 1;
+            check.held_ticks += usize::from(out.status.deep_hold);
+            held |= out.status.deep_hold;
+            deep |= out
+                .contact
+                .is_some_and(|c| saturation.is_some_and(|d| c.penetration > d));
+            touched |= out.contact.is_some();
+            if !touched || k > last_moving {
+                continue;
+            }
+            check.checked_ticks += 1;
+            let push = out.force.dot(dir);
+            check.max_push_n = check.max_push_n.max(push);
+            if push > STRIKE_FORCE_TOLERANCE_N {
+                check.pushes_on += 1;
+                check.pushes_on_shallow += usize::from(!held);
+                failed |= held;
+                failed_shallow |= !held;
+            }
+            if out.contact.is_some_and(|c| c.normal.dot(dir) > 0.0) {
+                check.far_side += 1;
+                check.far_side_shallow += usize::from(!held);
+                failed |= held;
+                failed_shallow |= !held;
+            }
+        }
+        check.deep_strikes += usize::from(deep);
+        if failed && check.failures.len() < super::KEPT_FAILURES {
+            check.failures.push((index, angle, speed, depth));
+        }
+        if failed_shallow && check.shallow_failures.len() < super::KEPT_FAILURES {
+            check.shallow_failures.push((index, angle, speed, depth));
+        }
+    }
+    check
+}
