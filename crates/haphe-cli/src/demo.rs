@@ -140,8 +140,20 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         plot: Some(args.plot.clone()),
     };
     session.run(&mut std::io::stdout().lock())?;
+    let haphe = command_prefix();
     println!(
-        "\nNext: `haphe simulate --shape torus --path slide --plot slide.png`, or your own mesh with `--mesh FILE` (see `haphe simulate --help`)."
+        "\nNext: `{haphe} simulate --shape torus --path slide --plot slide.png`, or your own mesh with `--mesh FILE` (see `{haphe} simulate --help`)."
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// How to run `haphe` from where the user is: after `cargo run` (which tells the program it
+/// runs its package's name in `CARGO_PKG_NAME`) the binary is not on the `PATH`; an
+/// installed `haphe` (`cargo install --path crates/haphe-cli`) is.
+fn command_prefix() -> &'static str {
+    if std::env::var_os("CARGO_PKG_NAME").is_some_and(|name| name == "haphe-cli") {
+        "cargo run --release -p haphe-cli --"
+    } else {
+        "haphe"
+    }
 }

@@ -76,19 +76,24 @@ fn fast_proxy_equals_brute_force_on_procedural_shapes() {
     }
 }
 
-/// The same on the closed shared models.
+/// The same on real models: those in the repository's `meshes/`...
 #[test]
+fn fast_proxy_equals_brute_force_on_real_models() {
+    check_models(&["20mm-xyz-cube.stl", "cylinder.stl", "spot.obj"]);
+}
+
+/// ... and larger ones of the shared collection.
+#[test]
+#[cfg_attr(not(shared_meshes), ignore = "needs ../shared/meshes")]
 fn fast_proxy_equals_brute_force_on_shared_models() {
-    let Some(dir) = support::shared_meshes() else {
-        return;
-    };
-    for name in [
-        "20mm-xyz-cube.stl",
-        "cylinder.stl",
-        "fandisk.obj",
-        "bunny.ply",
-    ] {
-        let path = dir.join("models").join(name);
+    check_models(&["fandisk.obj", "bunny.ply"]);
+}
+
+/// The fast proxy against the brute-force one on a haptic path over each model, scaled to
+/// hand size.
+fn check_models(names: &[&str]) {
+    for &name in names {
+        let path = support::meshes().join("models").join(name);
         let bytes = std::fs::read(&path).expect("readable");
         let mut mesh = haphe::mesh::read_mesh(&path.to_string_lossy(), &bytes, &Default::default())
             .expect("loads");

@@ -90,10 +90,8 @@ fn inside_agrees_with_parry_on_solids() {
 }
 
 #[test]
-fn shared_models_agree_with_brute_force() {
-    let Some(dir) = support::shared_meshes() else {
-        return;
-    };
+fn real_models_agree_with_brute_force() {
+    let dir = support::meshes();
     let mut names: Vec<_> = std::fs::read_dir(dir.join("models"))
         .expect("models")
         .map(|e| e.expect("entry").path())
@@ -120,10 +118,8 @@ fn shared_models_agree_with_brute_force() {
 /// alike); on the cylinder the brute force reported a spurious hit on the face the segment
 /// lies in, at a parameter far from that face, which the map walk did not find.
 #[test]
-fn in_face_plane_segments_leaked_or_mismatched_on_shared_models() {
-    let Some(dir) = support::shared_meshes() else {
-        return;
-    };
+fn in_face_plane_segments_leaked_or_mismatched_on_real_models() {
+    let dir = support::meshes();
     let cases = [
         (
             "20mm-xyz-cube.stl",

@@ -37,28 +37,27 @@ fn samples() -> Vec<(String, Vec<u8>)> {
         ),
         ("inline_be.ply".to_owned(), big_endian_ply()),
     ];
-    if let Some(dir) = support::shared_meshes() {
-        for name in [
-            "odd/comments.off",
-            "odd/whitespace.off",
-            "odd/negative_indices.obj",
-            "odd/notenoughindices.obj",
-            "odd/joined_tetrahedra.obj",
-            "odd/ply_points_bin.ply",
-            "odd/points_ascii.ply",
-            "odd/empty.stl",
-            "odd/stl_empty_bin.stl",
-            "models/tet.ply",
-        ] {
-            let bytes = std::fs::read(dir.join(name)).expect("shared mesh is readable");
-            samples.push((name.to_owned(), bytes));
-        }
-        // The first 20 triangles of a binary STL (a valid file of 1084 bytes).
-        let mut stl = std::fs::read(dir.join("odd/soup.stl")).expect("soup.stl");
-        stl.truncate(84 + 20 * 50);
-        stl[80..84].copy_from_slice(&20u32.to_le_bytes());
-        samples.push(("soup20.stl".to_owned(), stl));
+    let dir = support::meshes();
+    for name in [
+        "odd/comments.off",
+        "odd/whitespace.off",
+        "odd/negative_indices.obj",
+        "odd/notenoughindices.obj",
+        "odd/joined_tetrahedra.obj",
+        "odd/ply_points_bin.ply",
+        "odd/points_ascii.ply",
+        "odd/empty.stl",
+        "odd/stl_empty_bin.stl",
+        "models/tet.ply",
+    ] {
+        let bytes = std::fs::read(dir.join(name)).expect("real mesh is readable");
+        samples.push((name.to_owned(), bytes));
     }
+    // The first 20 triangles of a binary STL (a valid file of 1084 bytes).
+    let mut stl = std::fs::read(dir.join("odd/soup.stl")).expect("soup.stl");
+    stl.truncate(84 + 20 * 50);
+    stl[80..84].copy_from_slice(&20u32.to_le_bytes());
+    samples.push(("soup20.stl".to_owned(), stl));
     samples
 }
 

@@ -108,37 +108,50 @@ fn a_t_junction_only_touches() {
     assert_eq!(found.count, all_pairs(&surface));
 }
 
+/// (file, intersecting pairs, crossing pairs) of the models in the repository's `meshes/`.
+const IN_TREE: &[(&str, usize, usize)] = &[
+    ("20mm-xyz-cube.stl", 0, 0),
+    ("cylinder.stl", 0, 0),
+    ("fuze.ply", 0, 0),
+    ("plate_holes.STL", 0, 0),
+    ("sphere.ply", 0, 0),
+    ("spot.obj", 0, 0),
+    ("tet.ply", 0, 0),
+];
+
+/// The same for the other models of the shared collection.
+const SHARED_ONLY: &[(&str, usize, usize)] = &[
+    ("box.STL", 4665, 2454),
+    ("bunny.ply", 4, 4),
+    ("cow.obj", 81, 81),
+    ("fandisk.obj", 0, 0),
+    ("featuretype.STL", 1216, 0),
+    ("fuze_ascii.ply", 0, 0),
+    ("nefertiti.obj", 0, 0),
+    ("octagonal_pocket.stl", 114, 0),
+    ("rocker-arm.obj", 0, 0),
+    ("stanford-bunny.obj", 0, 0),
+    ("suzanne.obj", 90, 90),
+    ("teapot.obj", 161, 161),
+    ("torus.STL", 0, 0),
+    ("unit_sphere.STL", 0, 0),
+];
+
 #[test]
+fn real_models_match_all_pairs() {
+    match_all_pairs(IN_TREE);
+}
+
+#[test]
+#[cfg_attr(not(shared_meshes), ignore = "needs ../shared/meshes")]
 fn shared_models_match_all_pairs() {
-    let Some(dir) = support::shared_meshes() else {
-        return;
-    };
-    // (file, intersecting pairs, crossing pairs), checked against all pairs below for the
-    // smaller models.
-    let expected = [
-        ("20mm-xyz-cube.stl", 0, 0),
-        ("box.STL", 4665, 2454),
-        ("bunny.ply", 4, 4),
-        ("cow.obj", 81, 81),
-        ("cylinder.stl", 0, 0),
-        ("fandisk.obj", 0, 0),
-        ("featuretype.STL", 1216, 0),
-        ("fuze.ply", 0, 0),
-        ("fuze_ascii.ply", 0, 0),
-        ("nefertiti.obj", 0, 0),
-        ("octagonal_pocket.stl", 114, 0),
-        ("plate_holes.STL", 0, 0),
-        ("rocker-arm.obj", 0, 0),
-        ("sphere.ply", 0, 0),
-        ("spot.obj", 0, 0),
-        ("stanford-bunny.obj", 0, 0),
-        ("suzanne.obj", 90, 90),
-        ("teapot.obj", 161, 161),
-        ("tet.ply", 0, 0),
-        ("torus.STL", 0, 0),
-        ("unit_sphere.STL", 0, 0),
-    ];
-    for (name, count, crossing) in expected {
+    match_all_pairs(SHARED_ONLY);
+}
+
+/// Each model's pairs as expected, and checked against all pairs for the smaller models.
+fn match_all_pairs(expected: &[(&str, usize, usize)]) {
+    let dir = support::meshes();
+    for &(name, count, crossing) in expected {
         let bytes = std::fs::read(dir.join("models").join(name)).expect("readable");
         let mesh = read_mesh(name, &bytes, &ReadOptions::default()).expect("loads");
         let small = mesh.triangles.len() <= 10_000;

@@ -40,7 +40,7 @@ pub struct Args {
     /// origin.
     #[arg(long, value_name = "FILE")]
     mesh: Option<PathBuf>,
-    /// A scene file (TOML): objects, poses, materials, motions (see the README).
+    /// A scene file (TOML): objects, poses, materials, motions (see docs/guide.md).
     #[arg(long, value_name = "FILE.toml")]
     scene: Option<PathBuf>,
     /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.

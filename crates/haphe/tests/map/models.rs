@@ -1,15 +1,14 @@
-//! Maps of the shared real meshes (closed and open, CAD and scanned).
+//! Maps of the real meshes (closed and open, CAD and scanned).
 
 use super::*;
 
-/// Every shared model (real meshes, closed and open, CAD and scanned): triangles listed
-/// exactly where they overlap, sampled free cells classified as the winding number says
-/// (solids) or all outside (open surfaces), and the file round trip.
+/// Every real model (the repository's `meshes/`, or the shared collection when present;
+/// closed and open, CAD and scanned): triangles listed exactly where they overlap, sampled
+/// free cells classified as the winding number says (solids) or all outside (open
+/// surfaces), and the file round trip.
 #[test]
-fn every_shared_model_gets_a_consistent_map() {
-    let Some(dir) = support::shared_meshes() else {
-        return;
-    };
+fn every_real_model_gets_a_consistent_map() {
+    let dir = support::meshes();
     let mut files: Vec<_> = std::fs::read_dir(dir.join("models"))
         .expect("models folder")
         .map(|e| e.expect("entry").path())
