@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use haphe::mesh::{ReadOptions, Units};
-use haphe::query::Validation;
+use haphe::query::{SELF_INTERSECTION_BUDGET_PER_TRIANGLE, Validation, self_intersection_budget};
 
 use crate::load::{load, weld_mode};
 

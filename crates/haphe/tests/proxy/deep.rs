@@ -128,7 +128,8 @@ fn deep_strikes_on_every_closed_model() {
     ] {
         scenes.push((which.to_string(), which.with_triangles(20_000)));
     }
-    if let Some(dir) = support::shared_meshes() {
+    {
+        let dir = support::meshes();
         let mut names: Vec<_> = std::fs::read_dir(dir.join("models"))
             .expect("listable")
             .map(|e| e.expect("entry").path())
