@@ -6,9 +6,14 @@ use glam::DVec3;
 use super::constraints::{Constraints, Plane, advance_to_plane};
 use super::force::{contact_force, friction_target};
 use super::output::{Contact, TickOutput, TickStatus};
-use super::rest::Rest;
+use super::rest::{Rest, rest_hit};
 use crate::mesh::TriId;
 use crate::scene::{Hit, Material, Scene};
+
+/// How far a probe reaches beyond the ends of a move, as a fraction of the skin: far
+/// above the rounding of coordinates (about 1e-16 m per metre), well inside the skin, so a
+/// stop at the skin never lands within the reach of the next probe.
+pub const PROBE_REACH_OF_SKIN: f64 = 0.25;
 
 /// Most constraint steps in one tick (each is one segment crossing query). Three planes
 /// need at most four; the rest is headroom for re-targeting.
@@ -50,10 +55,10 @@ impl ProxyOptions {
         self.skin * 1e-3
     }
 
-    /// How far crossing tests reach beyond a move, metres ([`PROBE_REACH_OF_SKIN`](super::PROBE_REACH_OF_SKIN) of
-    /// the skin; see [`Probe`](super::Probe)).
+    /// How far crossing tests reach beyond a move, metres ([`PROBE_REACH_OF_SKIN`] of
+    /// the skin; see [`Probe`](crate::query::Probe)).
     pub fn probe_reach(&self) -> f64 {
-        self.skin * super::PROBE_REACH_OF_SKIN
+        self.skin * PROBE_REACH_OF_SKIN
     }
 }
 
@@ -383,7 +388,7 @@ fn constrain(
         // point is still behind it (no search along that leg: the proxy does not move).
         let resting = match rest {
             Some(r) if planes.is_empty() => {
-                scene.rests_on(r.object, r.triangle, p, target, options.skin)
+                rest_hit(scene, r.object, r.triangle, p, target, options.skin)
             }
             _ => None,
         };

@@ -1,4 +1,4 @@
-//! Stage 4 — the haptic proxy: the god-object of Zilles & Salisbury, moved each tick
+//! Stage 5 — the haptic proxy: the god-object of Zilles & Salisbury, moved each tick
 //! toward the device point and held outside every object of a [`Scene`](crate::scene::Scene),
 //! with the force that pulls the device toward it.
 //!
@@ -70,7 +70,6 @@ mod constraints;
 mod force;
 mod godobject;
 mod output;
-mod probe;
 mod rest;
 
 pub use constraints::{
@@ -79,8 +78,8 @@ pub use constraints::{
 };
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
 pub use godobject::{
-    DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions, clamp_to_radius,
+    DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, PROBE_REACH_OF_SKIN, Proxy, ProxyOptions,
+    clamp_to_radius,
 };
 pub use output::{Contact, TickOutput, TickStatus};
-pub use probe::{PROBE_REACH_OF_SKIN, Probe};
 pub(crate) use rest::{Rest, rests_on};

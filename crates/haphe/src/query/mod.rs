@@ -14,6 +14,7 @@ pub(crate) use crossing::{crossing_from_hit, triangle_hit};
 mod exact;
 mod inside;
 mod near;
+mod probe;
 mod segment_triangle;
 mod self_intersect;
 mod triangle_triangle;
@@ -41,6 +42,7 @@ pub use crossing::{
     first_crossing_brute_force_where, first_crossing_where,
 };
 pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
+pub use probe::Probe;
 pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within, nearest_within_brute_force};
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};

@@ -6,8 +6,7 @@ use glam::DVec3;
 
 use super::{BOUND_SLACK, Hit, Scene, SceneObject, Sides, segment_point_distance};
 use crate::mesh::TriId;
-use crate::proxy::Probe;
-use crate::query::{ClearZone, Segment, crossing_from_hit, triangle_hit};
+use crate::query::{ClearZone, Probe, Segment, crossing_from_hit, triangle_hit};
 
 /// Smallest barycentric weight of a crossing that [`Scene::first_hit_shown`] takes as
 /// strictly inside its triangle: far above the rounding of the weights, so that no

@@ -1,4 +1,4 @@
-//! Stage 5 — scenes: many objects, each a shared immutable [`Shape`] placed by a rigid
+//! Stage 4 — scenes: many objects, each a shared immutable [`Shape`] placed by a rigid
 //! [`Pose`] and given a [`Material`], changed from other threads without locking the
 //! servo thread.
 //!
@@ -27,9 +27,8 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::mesh::TriId;
-use crate::proxy::Probe;
 use crate::query::{
-    Crossing, SurfacePoint, WalkStatus, first_crossing_where, nearest_within, walk_to_nearest,
+    Crossing, Probe, SurfacePoint, WalkStatus, first_crossing_where, nearest_within, walk_to_nearest,
 };
 
 /// A stable name for an object of a scene, chosen by the caller.
@@ -256,38 +255,6 @@ impl Scene {
             h.entering || !probe.entering_only
         })
         .map(|c| Hit::of_crossing(i, &o.pose, &probe, &c))
-    }
-
-    /// Triangle `triangle` of object `i` as the surface the proxy at `from` still rests on
-    /// with the device point at `to` (see the proxy's resting rule), as a [`Hit`] at the
-    /// start of the move (`t = 0`). `None` when it is not, or when `i` is out of range.
-    pub(crate) fn rests_on(
-        &self,
-        i: usize,
-        triangle: TriId,
-        from: DVec3,
-        to: DVec3,
-        skin: f64,
-    ) -> Option<Hit> {
-        let o = self.objects.get(i)?;
-        let one_sided = o.sides == Sides::Front;
-        let (point, normal) = crate::proxy::rests_on(
-            o.shape.surface(),
-            &o.pose,
-            one_sided,
-            triangle,
-            from,
-            to,
-            skin,
-        )?;
-        Some(Hit {
-            t: 0.0,
-            object: i,
-            triangle,
-            point,
-            normal,
-            one_sided,
-        })
     }
 
     /// The triangle of object `i` nearest to the world point `p` among those within

@@ -14,10 +14,10 @@ use super::oracle::TriangleBoxes;
 use super::{KEPT_FAILURES, bounds, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, Rest, advance_to_plane,
+    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
     clamp_to_radius, friction_target, rests_on,
 };
-use crate::query::{Side, classify_point, nearest_within_brute_force, walk_to_nearest};
+use crate::query::{Probe, Side, classify_point, nearest_within_brute_force, walk_to_nearest};
 use crate::rng::SplitMix64;
 use crate::scene::{Material, Pose, Scene, Shape, Sides};
 
