@@ -68,8 +68,8 @@ fn no_stage_names_a_later_stage_or_the_oracles() {
             files_read += 1;
             let text = std::fs::read_to_string(file).unwrap();
             for name in named_modules(&text) {
-                let allowed = SUPPORT.contains(&name.as_str())
-                    || STAGES[..=level].contains(&name.as_str());
+                let allowed =
+                    SUPPORT.contains(&name.as_str()) || STAGES[..=level].contains(&name.as_str());
                 if !allowed {
                     upward.push(format!("{} names crate::{name}", file.display()));
                 }
@@ -77,7 +77,11 @@ fn no_stage_names_a_later_stage_or_the_oracles() {
         }
     }
     assert!(files_read > 50, "read only {files_read} source files");
-    assert!(upward.is_empty(), "arrows pointing up:\n{}", upward.join("\n"));
+    assert!(
+        upward.is_empty(),
+        "arrows pointing up:\n{}",
+        upward.join("\n")
+    );
 }
 
 #[test]

@@ -92,8 +92,7 @@ impl VoxelMap {
                     }
                     RegionLook::Surface(region) => {
                         let window = || self.region_window(region, step.cell, p0, p1);
-                        if !regions.admits(&mut walk, &step, region, REGION_SIDE, margin, window)
-                        {
+                        if !regions.admits(&mut walk, &step, region, REGION_SIDE, margin, window) {
                             continue;
                         }
                     }
