@@ -7,13 +7,13 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::Context;
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 
 /// Arguments of `haphe generate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The shape: sphere, torus, box, thin-plate, concave-corner or blob (about 0.2 m across).
-    shape: Shape,
+    shape: Catalog,
     /// Target triangle count (the closest the shape's resolution allows).
     #[arg(long, default_value_t = 10_000)]
     triangles: usize,

@@ -23,7 +23,8 @@
 //! 1. [`mesh`] — read OBJ/STL/PLY/OFF bytes into a [`mesh::Mesh`], weld duplicate
 //!    vertices, validate into a [`mesh::MeshReport`], and build the topology of a
 //!    [`mesh::Surface`] (neighbours, vertex fans, barycentric frames, shading normals).
-//!    Procedural test shapes live in [`mesh::shapes`].
+//!    Procedural shapes (to try haphe without a mesh file, and for tests) live in
+//!    [`mesh::shapes`].
 //! 2. [`map`] — the voxel map of one object: cells outside, inside or on the surface, the
 //!    triangles of each surface cell, clearance for free-space early-outs.
 //! 3. [`query`] — segment crossing, inside/outside, the barycentric surface walk and the
@@ -57,9 +58,13 @@ pub mod map;
 pub mod mesh;
 pub mod proxy;
 pub mod query;
+#[cfg(feature = "testing")]
 pub mod rng;
+#[cfg(not(feature = "testing"))]
+mod rng;
 pub mod scene;
 pub mod servo;
+#[cfg(any(test, feature = "testing"))]
 pub mod verify;
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ pub const MAX_CELLS_PER_AXIS: u32 = 1 << 20;
 /// cell size. Far above [`OVERLAP_TOLERANCE_REL`] and coordinate rounding, so that no
 /// triangle is ever listed in a padding cell and every point outside the grid is outside
 /// the object.
-pub const PADDING_SLACK_REL: f64 = 1e-3;
+pub(crate) const PADDING_SLACK_REL: f64 = 1e-3;
 
 /// How much every cell box is enlarged, as a fraction of the cell size on every side,
 /// before a triangle is tested against it (so boxes are closed, and slightly more).
@@ -66,7 +66,7 @@ impl Grid {
 
     /// The grid of a voxel map for a surface with bounding box `[min, max]` (metres,
     /// object frame): cells of `cell_size_m` metres over the box, centred on it, with at
-    /// least [`PADDING_SLACK_REL`] of a cell to spare on every side, and one more layer of
+    /// least a thousandth of a cell to spare on every side, and one more layer of
     /// *padding* cells all around. The surface then lies strictly inside the cells
     /// `1..dims − 1` along each axis, and every point outside the grid box is outside the
     /// object.

@@ -57,11 +57,11 @@ mod walk;
 pub use crate::array::MapBytes;
 use bricks::BRICK_SIDE;
 pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
-pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode};
 pub(crate) use cast::{CellPart, Found};
+pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode};
 use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
 pub(crate) use grid::floor_to_int;
-pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL, PADDING_SLACK_REL};
+pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL};
 pub use overlap::overlap_triangle_box;
 pub use walk::{CellStep, CellWalk};
 

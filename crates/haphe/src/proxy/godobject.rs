@@ -13,7 +13,7 @@ use crate::scene::{Hit, Material, Scene};
 /// How far a probe reaches beyond the ends of a move, as a fraction of the skin: far
 /// above the rounding of coordinates (about 1e-16 m per metre), well inside the skin, so a
 /// stop at the skin never lands within the reach of the next probe.
-pub const PROBE_REACH_OF_SKIN: f64 = 0.25;
+pub(crate) const PROBE_REACH_OF_SKIN: f64 = 0.25;
 
 /// Most constraint steps in one tick (each is one segment crossing query). Three planes
 /// need at most four; the rest is headroom for re-targeting.
@@ -55,7 +55,7 @@ impl ProxyOptions {
         self.skin * 1e-3
     }
 
-    /// How far crossing tests reach beyond a move, metres ([`PROBE_REACH_OF_SKIN`] of
+    /// How far crossing tests reach beyond a move, metres (a quarter of
     /// the skin; see [`Probe`](crate::query::Probe)).
     pub fn probe_reach(&self) -> f64 {
         self.skin * PROBE_REACH_OF_SKIN
@@ -120,7 +120,8 @@ impl Proxy {
     }
 
     /// The last constraint of the previous tick, which the next tick keeps while the
-    /// device point stays behind it.
+    /// device point stays behind it (for the oracles).
+    #[cfg(any(test, feature = "testing"))]
     pub(crate) fn rest(&self) -> Option<Rest> {
         self.rest
     }

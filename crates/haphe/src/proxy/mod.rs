@@ -72,14 +72,11 @@ mod godobject;
 mod output;
 mod rest;
 
-pub use constraints::{
-    Constraints, MAX_CONSTRAINTS, MIN_PAIR_SINE_SQUARED, MIN_TRIPLE_DETERMINANT, Plane,
-    advance_to_plane,
-};
+pub use constraints::{Constraints, MAX_CONSTRAINTS, Plane, advance_to_plane};
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
 pub use godobject::{
-    DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, PROBE_REACH_OF_SKIN, Proxy, ProxyOptions,
-    clamp_to_radius,
+    DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions, clamp_to_radius,
 };
 pub use output::{Contact, TickOutput, TickStatus};
+#[cfg(any(test, feature = "testing"))]
 pub(crate) use rest::{Rest, rests_on};

@@ -42,18 +42,16 @@ pub use crossing::{
     first_crossing_brute_force_where, first_crossing_where,
 };
 pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
-pub use probe::Probe;
 pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within, nearest_within_brute_force};
+pub use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
-pub use self_intersect::{
-    LISTED_SELF_INTERSECTIONS, SelfIntersections, TOUCH_TOLERANCE_REL, self_intersections,
-};
+pub use self_intersect::{SelfIntersections, self_intersections};
 pub use triangle_triangle::intersect_triangle_triangle;
 pub use validation::{Validation, ValidationError, ValidationRecord, WeldRecord};
 pub use walk::{
     MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, nearest_point_brute_force,
     walk_to_nearest,
 };
-pub use zone::{ClearZone, MAX_ZONE_CELLS, ZONE_HEIGHT_OF_CELL, ZONE_SPREAD};
+pub use zone::{ClearZone, MAX_ZONE_CELLS, ZONE_SPREAD};
 pub(crate) use zone::{zone_from_bits, zone_height};

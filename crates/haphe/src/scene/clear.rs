@@ -121,7 +121,7 @@ mod tests {
 
     use super::*;
     use crate::map::MapOptions;
-    use crate::mesh::shapes::Shape as Catalog;
+    use crate::mesh::shapes::Catalog;
     use crate::mesh::{Surface, SurfaceOptions};
     use crate::rng::SplitMix64;
     use crate::scene::{Material, ObjectId, Pose, SceneObject, Shape};

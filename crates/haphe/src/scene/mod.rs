@@ -28,7 +28,8 @@ use glam::DVec3;
 
 use crate::mesh::TriId;
 use crate::query::{
-    Crossing, Probe, SurfacePoint, WalkStatus, first_crossing_where, nearest_within, walk_to_nearest,
+    Crossing, Probe, SurfacePoint, WalkStatus, first_crossing_where, nearest_within,
+    walk_to_nearest,
 };
 
 /// A stable name for an object of a scene, chosen by the caller.

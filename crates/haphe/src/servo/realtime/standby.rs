@@ -170,12 +170,12 @@ mod tests {
 
     use super::*;
     use crate::scene::Scene;
-    use crate::servo::{Path, ScriptedDevice, Servo, ServoOptions, StopReason, TickRecord};
+    use crate::servo::{ScriptedDevice, Servo, ServoOptions, StopReason, TickRecord, Trajectory};
 
     /// A run of a device held still in an empty scene at 1 kHz, its deadlines far in the
     /// future so that no tick is late and none is skipped.
     fn new_run(max_ticks: u64) -> (Shared<ScriptedDevice>, Schedule, Consumer<TickRecord>) {
-        let device = ScriptedDevice::new(Path::still(DVec3::new(0.0, 0.0, 1.0)));
+        let device = ScriptedDevice::new(Trajectory::still(DVec3::new(0.0, 0.0, 1.0)));
         let servo = Servo::new(device, Scene::local(1), ServoOptions::default()).expect("a servo");
         let (producer, consumer) = RingBuffer::new(1024);
         let run = Run {

@@ -4,16 +4,16 @@
 
 use glam::DVec3;
 
-use super::path::Path;
 use super::scripted::simulated_spec;
+use super::trajectory::Trajectory;
 use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
 
 /// Longest integration step of the hand, seconds: the arm is integrated in sub-steps of
 /// at most this between two reads, so its motion does not depend on the servo rate.
-pub const HAND_MAX_STEP_S: f64 = 5e-5;
+pub(crate) const HAND_MAX_STEP_S: f64 = 5e-5;
 /// Most sub-steps in one read: a read after a long pause (more than
 /// `HAND_MAX_SUBSTEPS · HAND_MAX_STEP_S` = 0.1 s) integrates with longer steps.
-pub const HAND_MAX_SUBSTEPS: usize = 2000;
+pub(crate) const HAND_MAX_SUBSTEPS: usize = 2000;
 
 /// The arm's mechanical impedance and a constant push.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,11 +55,11 @@ impl Default for HandOptions {
 ///
 /// `m a = k (target − x) + b (v_target − v) − c v + push + F_rendered`
 ///
-/// integrated with semi-implicit Euler in steps of at most [`HAND_MAX_STEP_S`]. Reads give
+/// integrated with semi-implicit Euler in steps of at most 50 µs. Reads give
 /// the state at the requested time, so a run on the virtual clock is exactly repeatable.
 #[derive(Debug, Clone)]
 pub struct SimulatedHand {
-    path: Path,
+    path: Trajectory,
     options: HandOptions,
     spec: DeviceSpec,
     position: DVec3,
@@ -71,7 +71,7 @@ pub struct SimulatedHand {
 
 impl SimulatedHand {
     /// A hand at rest at the path's start (device frame), which then tries to follow it.
-    pub fn new(path: Path, options: HandOptions) -> SimulatedHand {
+    pub fn new(path: Trajectory, options: HandOptions) -> SimulatedHand {
         let (position, _) = path.sample(0.0);
         SimulatedHand {
             path,
@@ -169,7 +169,7 @@ mod tests {
 
     #[test]
     fn follows_a_still_target_and_settles_against_a_constant_force() {
-        let mut hand = SimulatedHand::new(Path::still(DVec3::ZERO), HandOptions::default());
+        let mut hand = SimulatedHand::new(Trajectory::still(DVec3::ZERO), HandOptions::default());
         hand.open().expect("opens");
         hand.write_force(DVec3::new(0.0, 0.0, 3.0)).expect("open");
         let s = hand.read(2.0).expect("open");

@@ -6,7 +6,7 @@ use std::str::FromStr;
 
 use glam::DVec3;
 
-use super::path::{Path, PathError};
+use super::trajectory::{Trajectory, TrajectoryError};
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
 use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
@@ -140,19 +140,19 @@ fn highest_point(scene: &Scene, c: DVec3, r: f64) -> Option<DVec3> {
 /// the world frame. `seed` drives [`PathKind::Explore`].
 ///
 /// # Errors
-/// [`PathError::EmptyScene`] when the scene has no object.
+/// [`TrajectoryError::EmptyScene`] when the scene has no object.
 pub fn scripted_path(
     kind: PathKind,
     scene: &Scene,
     seconds: f64,
     seed: u64,
-) -> Result<Path, PathError> {
+) -> Result<Trajectory, TrajectoryError> {
     let seconds = if seconds.is_finite() {
         seconds.max(1.0)
     } else {
         1.0
     };
-    let (_, hi) = scene_bounds(scene).ok_or(PathError::EmptyScene)?;
+    let (_, hi) = scene_bounds(scene).ok_or(TrajectoryError::EmptyScene)?;
     let first = &scene.objects()[0];
     let c = first.pose.to_world(first.shape.bound_centre());
     let r = first.shape.bound_radius();
@@ -265,7 +265,7 @@ pub fn scripted_path(
             keys
         }
     };
-    Path::from_keys(&keys)
+    Trajectory::from_keys(&keys)
 }
 
 /// A device whose end point follows a path exactly, whatever force it is given: a
@@ -274,7 +274,7 @@ pub fn scripted_path(
 /// It never faults; after the path ends it rests at the last point.
 #[derive(Debug, Clone)]
 pub struct ScriptedDevice {
-    path: Path,
+    path: Trajectory,
     spec: DeviceSpec,
     open: bool,
     last_force: DVec3,
@@ -283,7 +283,7 @@ pub struct ScriptedDevice {
 impl ScriptedDevice {
     /// A device following `path` (device frame), with the simulated device specification
     /// ([`simulated_spec`]).
-    pub fn new(path: Path) -> ScriptedDevice {
+    pub fn new(path: Trajectory) -> ScriptedDevice {
         ScriptedDevice {
             path,
             spec: simulated_spec(),
