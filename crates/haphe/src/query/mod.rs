@@ -36,6 +36,7 @@ pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64
     (above | below).any()
 }
 
+pub(crate) use closest::distance_to_segment;
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use crossing::{
     Crossing, all_crossings_brute_force, first_crossing, first_crossing_brute_force,

@@ -28,8 +28,8 @@ use glam::DVec3;
 
 use crate::mesh::TriId;
 use crate::query::{
-    Crossing, Probe, SurfacePoint, WalkStatus, first_crossing_where, nearest_within,
-    walk_to_nearest,
+    Crossing, Probe, SurfacePoint, WalkStatus, distance_to_segment, first_crossing_where,
+    nearest_within, walk_to_nearest,
 };
 
 /// A stable name for an object of a scene, chosen by the caller.
@@ -247,7 +247,7 @@ impl Scene {
         let one_sided = o.sides == Sides::Front;
         let probe = Probe::new(from, to, reach, one_sided);
         let centre = o.pose.to_world(shape.bound_centre());
-        if segment_point_distance(probe.p0, probe.p1, centre) > shape.bound_radius() * BOUND_SLACK {
+        if distance_to_segment(centre, [probe.p0, probe.p1]) > shape.bound_radius() * BOUND_SLACK {
             return None;
         }
         let a = o.pose.to_object(probe.p0);
@@ -319,15 +319,3 @@ const BOUND_SLACK: f64 = 1.0 + 1e-7;
 
 /// Most edits applied in one [`Scene::begin_tick`]; the rest wait for the next tick.
 pub const MAX_EDITS_PER_TICK: usize = 16;
-
-/// Distance from `q` to the segment `p0 → p1`, metres.
-fn segment_point_distance(p0: DVec3, p1: DVec3, q: DVec3) -> f64 {
-    let d = p1 - p0;
-    let len2 = d.length_squared();
-    let s = if len2 > 0.0 {
-        ((q - p0).dot(d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p0 + s * d).distance(q)
-}

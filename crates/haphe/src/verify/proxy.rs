@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use std::sync::Arc;
 
-use super::oracle::TriangleBoxes;
+use super::oracle::TriangleBounds;
 use super::{KEPT_FAILURES, bounds, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
@@ -28,7 +28,7 @@ pub const PROXY_TOLERANCE_M: f64 = 1e-9;
 struct BruteObject {
     shape: Arc<Shape>,
     /// Every triangle's box, to skip most triangles of each crossing query.
-    boxes: TriangleBoxes,
+    boxes: TriangleBounds,
     pose: Pose,
     previous_pose: Pose,
     material: Material,
@@ -67,7 +67,7 @@ impl BruteProxy {
             .objects()
             .iter()
             .map(|o| BruteObject {
-                boxes: TriangleBoxes::new(o.shape.surface()),
+                boxes: TriangleBounds::new(o.shape.surface()),
                 shape: o.shape.clone(),
                 pose: o.pose,
                 previous_pose: o.previous_pose,

@@ -4,9 +4,10 @@
 
 use glam::DVec3;
 
+use super::device::Simulated;
 use super::scripted::simulated_spec;
 use super::trajectory::Trajectory;
-use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
+use crate::servo::device::{DeviceFault, DeviceSpec};
 
 /// Longest integration step of the hand, seconds: the arm is integrated in sub-steps of
 /// at most this between two reads, so its motion does not depend on the servo rate.
@@ -123,49 +124,34 @@ impl SimulatedHand {
     }
 }
 
-impl Device for SimulatedHand {
+impl Simulated for SimulatedHand {
     fn spec(&self) -> DeviceSpec {
         self.spec
     }
 
-    fn open(&mut self) -> Result<(), DeviceError> {
-        self.open = true;
-        Ok(())
+    fn open_flag(&mut self) -> &mut bool {
+        &mut self.open
     }
 
-    fn read(&mut self, t: f64) -> Result<DeviceState, DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
+    fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
         self.advance(t);
-        Ok(DeviceState {
-            position: self.position,
-            velocity: self.velocity,
-            buttons: Default::default(),
-        })
+        Ok((self.position, self.velocity))
     }
 
-    fn write_force(&mut self, force: DVec3) -> Result<(), DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
+    /// A non-finite force pushes nothing.
+    fn feel(&mut self, force: DVec3) {
         self.force = if force.is_finite() {
             force
         } else {
             DVec3::ZERO
         };
-        Ok(())
-    }
-
-    fn close(&mut self) {
-        self.force = DVec3::ZERO;
-        self.open = false;
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::servo::Device;
 
     #[test]
     fn follows_a_still_target_and_settles_against_a_constant_force() {

@@ -3,6 +3,7 @@
 //! [`ScriptedDevice`] (follows a path exactly), the [`ReplayDevice`] (a recorded
 //! [`HipTrace`]), and the scripted paths built over a scene.
 
+mod device;
 mod hand;
 mod replay;
 mod scripted;

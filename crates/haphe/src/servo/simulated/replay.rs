@@ -4,8 +4,9 @@ use std::io::BufRead;
 
 use glam::DVec3;
 
+use super::device::Simulated;
 use super::scripted::simulated_spec;
-use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
+use crate::servo::device::{DeviceFault, DeviceSpec};
 
 /// Why a HIP trace could not be read. Every variant names the file and the line (1-based).
 #[derive(Debug, thiserror::Error)]
@@ -198,42 +199,23 @@ impl ReplayDevice {
     }
 }
 
-impl Device for ReplayDevice {
+impl Simulated for ReplayDevice {
     fn spec(&self) -> DeviceSpec {
         self.spec
     }
 
-    fn open(&mut self) -> Result<(), DeviceError> {
-        self.open = true;
-        Ok(())
+    fn open_flag(&mut self) -> &mut bool {
+        &mut self.open
     }
 
-    fn read(&mut self, t: f64) -> Result<DeviceState, DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
-        let (position, velocity) = self
-            .trace
+    fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
+        self.trace
             .sample(self.trace.start_time() + t)
-            .ok_or(DeviceFault::Ended)?;
-        Ok(DeviceState {
-            position,
-            velocity,
-            buttons: Default::default(),
-        })
+            .ok_or(DeviceFault::Ended)
     }
 
-    fn write_force(&mut self, _force: DVec3) -> Result<(), DeviceFault> {
-        if self.open {
-            Ok(())
-        } else {
-            Err(DeviceFault::NotOpen)
-        }
-    }
-
-    fn close(&mut self) {
-        self.open = false;
-    }
+    /// A recorded hand does not feel the force.
+    fn feel(&mut self, _force: DVec3) {}
 }
 
 #[cfg(test)]

@@ -6,10 +6,11 @@ use std::str::FromStr;
 
 use glam::DVec3;
 
+use super::device::Simulated;
 use super::trajectory::{Trajectory, TrajectoryError};
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
-use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
+use crate::servo::device::{DeviceFault, DeviceSpec};
 
 /// How far below the surface a pressing target goes, metres: with the simulated hand's
 /// default spring (300 N/m) against a 500 N/m surface it settles about 2.3 mm deep, a
@@ -310,38 +311,20 @@ pub fn simulated_spec() -> DeviceSpec {
     }
 }
 
-impl Device for ScriptedDevice {
+impl Simulated for ScriptedDevice {
     fn spec(&self) -> DeviceSpec {
         self.spec
     }
 
-    fn open(&mut self) -> Result<(), DeviceError> {
-        self.open = true;
-        Ok(())
+    fn open_flag(&mut self) -> &mut bool {
+        &mut self.open
     }
 
-    fn read(&mut self, t: f64) -> Result<DeviceState, DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
-        let (position, velocity) = self.path.sample(t);
-        Ok(DeviceState {
-            position,
-            velocity,
-            buttons: Default::default(),
-        })
+    fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
+        Ok(self.path.sample(t))
     }
 
-    fn write_force(&mut self, force: DVec3) -> Result<(), DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
+    fn feel(&mut self, force: DVec3) {
         self.last_force = force;
-        Ok(())
-    }
-
-    fn close(&mut self) {
-        self.last_force = DVec3::ZERO;
-        self.open = false;
     }
 }

@@ -1,0 +1,63 @@
+//! The [`Device`] side of the simulated devices, written once: each says where its hand
+//! point is at a time and what it does with the force written ([`Simulated`]); opening,
+//! closing and refusing reads and writes while closed are the same for all of them.
+
+use glam::DVec3;
+
+use super::{ReplayDevice, ScriptedDevice, SimulatedHand};
+use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
+
+/// What differs between the simulated devices.
+pub(super) trait Simulated {
+    /// The device's description.
+    fn spec(&self) -> DeviceSpec;
+    /// Whether the device is open (written by `open` and `close`).
+    fn open_flag(&mut self) -> &mut bool;
+    /// Position and velocity of the hand point at `t` seconds after the start.
+    fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault>;
+    /// Takes the force written (zero when the device closes).
+    fn feel(&mut self, force: DVec3);
+}
+
+/// `impl Device` for simulated devices, by way of their [`Simulated`] parts.
+macro_rules! simulated_device {
+    ($($device:ty),*) => {$(
+        impl Device for $device {
+            fn spec(&self) -> DeviceSpec {
+                Simulated::spec(self)
+            }
+
+            fn open(&mut self) -> Result<(), DeviceError> {
+                *self.open_flag() = true;
+                Ok(())
+            }
+
+            fn read(&mut self, t: f64) -> Result<DeviceState, DeviceFault> {
+                if !*self.open_flag() {
+                    return Err(DeviceFault::NotOpen);
+                }
+                let (position, velocity) = self.sample(t)?;
+                Ok(DeviceState {
+                    position,
+                    velocity,
+                    buttons: Default::default(),
+                })
+            }
+
+            fn write_force(&mut self, force: DVec3) -> Result<(), DeviceFault> {
+                if !*self.open_flag() {
+                    return Err(DeviceFault::NotOpen);
+                }
+                self.feel(force);
+                Ok(())
+            }
+
+            fn close(&mut self) {
+                self.feel(DVec3::ZERO);
+                *self.open_flag() = false;
+            }
+        }
+    )*};
+}
+
+simulated_device!(SimulatedHand, ScriptedDevice, ReplayDevice);
