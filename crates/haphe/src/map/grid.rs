@@ -168,7 +168,7 @@ impl Grid {
     /// The box `(min, max)` of cell `c`, metres, object frame: `min = origin + c·h`,
     /// `max = origin + (c + 1)·h`. The cell itself is half-open, `[min, max)`. Cells
     /// outside the grid get the box their index would have.
-    #[inline]
+    #[inline(always)]
     pub fn cell_bounds(&self, c: [u32; 3]) -> (DVec3, DVec3) {
         let lo = DVec3::from_array(c.map(f64::from));
         (
