@@ -60,8 +60,10 @@ pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
 pub(crate) use cast::{CellPart, Found};
 pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode};
 use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
+#[cfg(any(test, feature = "testing"))]
+pub(crate) use grid::clip_to_box;
+pub(crate) use grid::floor_to_int;
 pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL};
-pub(crate) use grid::{clip_to_box, floor_to_int};
 pub use overlap::overlap_triangle_box;
 pub use walk::{CellStep, CellWalk};
 

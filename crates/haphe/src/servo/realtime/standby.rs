@@ -104,9 +104,7 @@ pub(super) fn with_standby<D: Device>(
             .spawn_scoped(scope, || {
                 // Not looked up among the cores this thread may use: it starts with the
                 // servo thread's affinity, that one core.
-                let pinned_core =
-                    core_affinity::set_for_current(core_affinity::CoreId { id: core })
-                        .then_some(core);
+                let pinned_core = pin_to(core);
                 let counters = Counters::read(pinned_core);
                 let mut ticks = 0u64;
                 // Nothing below allocates.
@@ -161,6 +159,18 @@ pub(super) fn with_standby<D: Device>(
         .unwrap_or_else(std::sync::PoisonError::into_inner);
     run.servo.stats_mut().wall_seconds += schedule.start.elapsed().as_secs_f64();
     (run, report)
+}
+
+/// Pins the current thread to `core`; its index when that worked.
+#[cfg(feature = "realtime")]
+fn pin_to(core: usize) -> Option<usize> {
+    core_affinity::set_for_current(core_affinity::CoreId { id: core }).then_some(core)
+}
+
+/// Without the `realtime` feature threads are not pinned.
+#[cfg(not(feature = "realtime"))]
+fn pin_to(_core: usize) -> Option<usize> {
+    None
 }
 
 #[cfg(test)]
