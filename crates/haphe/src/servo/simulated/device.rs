@@ -1,6 +1,7 @@
 //! The [`Device`] side of the simulated devices, written once: each says where its hand
-//! point is at a time and what it does with the force written ([`Simulated`]); opening,
-//! closing and refusing reads and writes while closed are the same for all of them.
+//! point is at a time and what it does with the force written ([`Simulated`]); its `spec`
+//! and `open` fields, opening, closing and refusing reads and writes while closed are the
+//! same for all of them.
 
 use glam::DVec3;
 
@@ -9,31 +10,28 @@ use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceS
 
 /// What differs between the simulated devices.
 pub(super) trait Simulated {
-    /// The device's description.
-    fn spec(&self) -> DeviceSpec;
-    /// Whether the device is open (written by `open` and `close`).
-    fn open_flag(&mut self) -> &mut bool;
     /// Position and velocity of the hand point at `t` seconds after the start.
     fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault>;
     /// Takes the force written (zero when the device closes).
     fn feel(&mut self, force: DVec3);
 }
 
-/// `impl Device` for simulated devices, by way of their [`Simulated`] parts.
+/// `impl Device` for simulated devices, by way of their [`Simulated`] parts and their
+/// fields `spec: DeviceSpec` and `open: bool`.
 macro_rules! simulated_device {
     ($($device:ty),*) => {$(
         impl Device for $device {
             fn spec(&self) -> DeviceSpec {
-                Simulated::spec(self)
+                self.spec
             }
 
             fn open(&mut self) -> Result<(), DeviceError> {
-                *self.open_flag() = true;
+                self.open = true;
                 Ok(())
             }
 
             fn read(&mut self, t: f64) -> Result<DeviceState, DeviceFault> {
-                if !*self.open_flag() {
+                if !self.open {
                     return Err(DeviceFault::NotOpen);
                 }
                 let (position, velocity) = self.sample(t)?;
@@ -45,7 +43,7 @@ macro_rules! simulated_device {
             }
 
             fn write_force(&mut self, force: DVec3) -> Result<(), DeviceFault> {
-                if !*self.open_flag() {
+                if !self.open {
                     return Err(DeviceFault::NotOpen);
                 }
                 self.feel(force);
@@ -54,7 +52,7 @@ macro_rules! simulated_device {
 
             fn close(&mut self) {
                 self.feel(DVec3::ZERO);
-                *self.open_flag() = false;
+                self.open = false;
             }
         }
     )*};

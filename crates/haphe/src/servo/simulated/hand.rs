@@ -62,12 +62,12 @@ impl Default for HandOptions {
 pub struct SimulatedHand {
     path: Trajectory,
     options: HandOptions,
-    spec: DeviceSpec,
+    pub(super) spec: DeviceSpec,
     position: DVec3,
     velocity: DVec3,
     force: DVec3,
     time: f64,
-    open: bool,
+    pub(super) open: bool,
 }
 
 impl SimulatedHand {
@@ -125,14 +125,6 @@ impl SimulatedHand {
 }
 
 impl Simulated for SimulatedHand {
-    fn spec(&self) -> DeviceSpec {
-        self.spec
-    }
-
-    fn open_flag(&mut self) -> &mut bool {
-        &mut self.open
-    }
-
     fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
         self.advance(t);
         Ok((self.position, self.velocity))

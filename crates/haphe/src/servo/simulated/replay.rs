@@ -179,8 +179,8 @@ impl HipTrace {
 #[derive(Debug, Clone)]
 pub struct ReplayDevice {
     trace: HipTrace,
-    spec: DeviceSpec,
-    open: bool,
+    pub(super) spec: DeviceSpec,
+    pub(super) open: bool,
 }
 
 impl ReplayDevice {
@@ -200,14 +200,6 @@ impl ReplayDevice {
 }
 
 impl Simulated for ReplayDevice {
-    fn spec(&self) -> DeviceSpec {
-        self.spec
-    }
-
-    fn open_flag(&mut self) -> &mut bool {
-        &mut self.open
-    }
-
     fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
         self.trace
             .sample(self.trace.start_time() + t)

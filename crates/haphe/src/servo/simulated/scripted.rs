@@ -276,8 +276,8 @@ pub fn scripted_path(
 #[derive(Debug, Clone)]
 pub struct ScriptedDevice {
     path: Trajectory,
-    spec: DeviceSpec,
-    open: bool,
+    pub(super) spec: DeviceSpec,
+    pub(super) open: bool,
     last_force: DVec3,
 }
 
@@ -312,14 +312,6 @@ pub fn simulated_spec() -> DeviceSpec {
 }
 
 impl Simulated for ScriptedDevice {
-    fn spec(&self) -> DeviceSpec {
-        self.spec
-    }
-
-    fn open_flag(&mut self) -> &mut bool {
-        &mut self.open
-    }
-
     fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
         Ok(self.path.sample(t))
     }
