@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use haphe::DVec3;
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::query::{Side, classify_point};

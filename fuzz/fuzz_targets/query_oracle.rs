@@ -7,7 +7,7 @@
 
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::query::{Side, classify_point, first_crossing, first_crossing_brute_force};
 use haphe::verify::WindingOracle;
@@ -29,7 +29,7 @@ fuzz_target!(|bytes: &[u8]| {
     if bytes.len() < 4 {
         return;
     }
-    let shape = Shape::ALL[bytes[0] as usize % Shape::ALL.len()];
+    let shape = Catalog::ALL[bytes[0] as usize % Catalog::ALL.len()];
     let triangles = 20 + 40 * usize::from(bytes[1] % 16);
     let mut mesh = shape.with_triangles(triangles);
     // A radial jitter of at most 2% keeps star-shaped and box-like shapes embedded.

@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use haphe::DVec3;
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe::servo::{HandOptions, PathKind};
 

@@ -5,13 +5,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 
 /// Arguments of `haphe generate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// The shape: sphere, torus, box, thin-plate, concave-corner or blob (about 0.2 m across).
-    shape: Shape,
+    shape: Catalog,
     /// Target triangle count (the closest the shape's resolution allows).
     #[arg(long, default_value_t = 10_000)]
     triangles: usize,
@@ -27,7 +27,7 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
-    Shape::check_triangles(args.triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
+    Catalog::check_triangles(args.triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
     crate::files::output::check_outputs(&[&args.output], &[])?;
     let start = Instant::now();
     let mut mesh = args.shape.with_triangles(args.triangles);

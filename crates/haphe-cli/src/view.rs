@@ -11,7 +11,7 @@ use anyhow::{Context, anyhow, bail};
 use haphe::DVec3;
 use haphe::map::MapOptions;
 use haphe::mesh::Units;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
 use haphe::servo::{

@@ -140,7 +140,7 @@ mod tests {
     use std::sync::Arc;
 
     use haphe::map::MapOptions;
-    use haphe::mesh::shapes::Shape as Catalog;
+    use haphe::mesh::shapes::Catalog;
     use haphe::mesh::{Surface, SurfaceOptions};
     use haphe::scene::{Material, ObjectId, Pose, SceneObject, Shape};
 

@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use haphe::DVec3;
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
 use haphe::servo::{Device, Servo, ServoOptions};

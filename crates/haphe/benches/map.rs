@@ -7,7 +7,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use haphe::map::{MapOptions, VoxelMap, decode, encode};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 
 /// Triangles of the benchmark mesh.
@@ -15,7 +15,7 @@ const TRIANGLES: usize = 10_000;
 
 fn map_stage(c: &mut Criterion) {
     let surface = Surface::new(
-        Shape::Blob.with_triangles(TRIANGLES),
+        Catalog::Blob.with_triangles(TRIANGLES),
         &SurfaceOptions::default(),
     )
     .expect("the blob is a valid surface");

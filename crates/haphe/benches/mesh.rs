@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{
     Format, Mesh, MeshReport, ReadOptions, Surface, SurfaceOptions, Weld, read_unwelded, weld,
 };
@@ -48,7 +48,7 @@ fn obj(mesh: &Mesh) -> String {
 }
 
 fn mesh_stage(c: &mut Criterion) {
-    let mesh = Shape::Blob.with_triangles(TRIANGLES);
+    let mesh = Catalog::Blob.with_triangles(TRIANGLES);
     let stl = binary_stl(&mesh);
     let obj = obj(&mesh);
     let stl_options = ReadOptions {

@@ -14,7 +14,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use haphe::DVec3;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::Scene;
 use haphe::verify::{haptic_path, haptic_path_in_contact};

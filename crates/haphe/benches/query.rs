@@ -17,7 +17,7 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_group, criterion_main};
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions, TriId};
 use haphe::proxy::ProxyOptions;
 use haphe::query::{
@@ -76,7 +76,7 @@ fn cycle<'a, T, R>(items: &'a [T], mut f: impl FnMut(&'a T) -> R) -> impl FnMut(
 
 fn query_stage(c: &mut Criterion) {
     let surface = Surface::new(
-        Shape::Blob.with_triangles(TRIANGLES),
+        Catalog::Blob.with_triangles(TRIANGLES),
         &SurfaceOptions::default(),
     )
     .expect("the blob is a valid surface");

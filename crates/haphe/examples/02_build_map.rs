@@ -10,12 +10,12 @@ use std::time::{Duration, Instant};
 
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap, decode, encode};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let shape: Shape = args.first().map_or(Ok(Shape::Sphere), |s| s.parse())?;
+    let shape: Catalog = args.first().map_or(Ok(Catalog::Sphere), |s| s.parse())?;
     let target: usize = args.get(1).map_or(Ok(100_000), |s| s.parse())?;
     let tries: u32 = args.get(2).map_or(Ok(1), |s| s.parse())?;
 

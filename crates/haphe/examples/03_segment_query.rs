@@ -8,14 +8,14 @@
 
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::query::{Side, WalkStatus, classify_point, first_crossing, walk_to_nearest};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // A 0.2 m square plate, 0.1 mm thick, centred on the origin, normal along z.
     let surface = Surface::new(
-        Shape::ThinPlate.with_triangles(2_000),
+        Catalog::ThinPlate.with_triangles(2_000),
         &SurfaceOptions::default(),
     )?;
     let map = VoxelMap::build(&surface, &MapOptions::default())?;

@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use haphe::DVec3;
 use haphe::map::{MapBytes, MapOptions, decode_in_place, encode};
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions, TickOutput};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};

@@ -26,7 +26,7 @@ use std::time::Instant;
 
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::query::{Crossing, first_crossing};
 use haphe::verify::{SegmentKind, segments};

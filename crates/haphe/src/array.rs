@@ -25,6 +25,7 @@ enum Backing {
     /// `len` bytes in 8-byte words.
     Heap { words: Vec<u64>, len: usize },
     /// A file mapped into memory by the caller.
+    #[cfg(feature = "mmap")]
     Mapped(memmap2::Mmap),
 }
 
@@ -35,6 +36,7 @@ impl Backing {
                 let bytes: &[u8] = bytemuck::cast_slice(words);
                 bytes.get(..*len).unwrap_or(&[])
             }
+            #[cfg(feature = "mmap")]
             Backing::Mapped(map) => map,
         }
     }
@@ -79,7 +81,8 @@ impl MapBytes {
 
     /// Holds a memory-mapped map file (the mapping is page-aligned, so every array of the
     /// file is used in place). Mapping the file is the caller's `unsafe` step: the file
-    /// must not be changed while it is mapped.
+    /// must not be changed while it is mapped. With the `mmap` feature (on by default).
+    #[cfg(feature = "mmap")]
     pub fn from_mmap(map: memmap2::Mmap) -> MapBytes {
         if !(map.as_ptr() as usize).is_multiple_of(8) {
             return MapBytes::copy_from_slice(&map);
@@ -108,6 +111,7 @@ impl fmt::Debug for MapBytes {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let kind = match &*self.0 {
             Backing::Heap { .. } => "heap",
+            #[cfg(feature = "mmap")]
             Backing::Mapped(_) => "mapped",
         };
         write!(f, "MapBytes({} bytes, {kind})", self.len())

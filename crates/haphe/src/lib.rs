@@ -57,25 +57,30 @@
 //!
 //! ## The pipeline
 //!
-//! Data flows one way; each stage hands the next a validated type.
+//! Data flows one way; each stage hands the next a validated type. The stages are numbered
+//! in the order they depend on each other: a stage uses only the stages numbered before it
+//! (a test, `stage_order`, reads the sources and fails on a `crate::` path that points to a
+//! later stage).
 //!
 //! 1. [`mesh`] — read OBJ/STL/PLY/OFF bytes into a [`mesh::Mesh`], weld duplicate
 //!    vertices, validate into a [`mesh::MeshReport`], and build the topology of a
 //!    [`mesh::Surface`] (neighbours, vertex fans, barycentric frames, shading normals).
-//!    Procedural test shapes live in [`mesh::shapes`].
+//!    Procedural shapes (to try haphe without a mesh file, and for tests) live in
+//!    [`mesh::shapes`].
 //! 2. [`map`] — the voxel map of one object: cells outside, inside or on the surface, the
 //!    triangles of each surface cell, clearance for free-space early-outs.
 //! 3. [`query`] — segment crossing, inside/outside, the barycentric surface walk and the
 //!    geometric kernels under them.
-//! 4. [`proxy`] — the god-object proxy that never enters an object, with friction, force
+//! 4. [`scene`] — many objects, each a shared [`scene::Shape`] at a rigid pose with a
+//!    material, edited from other threads without locking the servo thread, and the first
+//!    surface a move meets among them.
+//! 5. [`proxy`] — the god-object proxy that never enters an object, with friction, force
 //!    shading and the rendered force, ticked against a scene.
-//! 5. [`scene`] — many objects, each a shared [`scene::Shape`] at a rigid pose with a
-//!    material, edited from other threads without locking the servo thread.
 //! 6. [`servo`] — the fixed-rate loop: a [`servo::Device`] read and written every tick,
 //!    simulated devices (a hand, scripted paths, replayed traces), safe start, traces and
 //!    tick statistics.
 //!
-//! Stages up to the scene touch no files, threads, clocks or globals: readers take bytes,
+//! Stages up to the proxy touch no files, threads, clocks or globals: readers take bytes,
 //! so they can be fuzzed, and only the command-line tool opens paths. The servo stage owns
 //! the clock and the servo thread.
 //!
@@ -95,10 +100,17 @@ pub mod map;
 pub mod mesh;
 pub mod proxy;
 pub mod query;
+#[cfg(feature = "testing")]
 pub mod rng;
+#[cfg(not(feature = "testing"))]
+mod rng;
 pub mod scene;
 pub mod servo;
+#[cfg(any(test, feature = "testing"))]
 pub mod verify;
+
+#[cfg(test)]
+mod stage_order;
 
 pub use glam;
 pub use glam::DVec3;

@@ -1,6 +1,7 @@
 //! A small deterministic random generator for reproducible samples in tests, benchmarks,
 //! verification and procedural shapes: the same seed gives the same numbers on every
-//! machine and in every version of haphe.
+//! machine and in every version of haphe. Public with the `testing` feature.
+#![cfg_attr(not(feature = "testing"), allow(dead_code))]
 
 use glam::DVec3;
 

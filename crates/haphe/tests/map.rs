@@ -10,7 +10,7 @@ use haphe::map::{
     MapOptions, OVERLAP_TOLERANCE_REL, VoxelMap, decode, decode_in_place, encode,
     overlap_triangle_box,
 };
-use haphe::mesh::shapes::{self, Shape};
+use haphe::mesh::shapes::{self, Catalog};
 use haphe::mesh::{Mesh, Surface, SurfaceOptions, TriId};
 use proptest::prelude::*;
 
@@ -452,7 +452,7 @@ fn padding_is_outside_and_points_beyond_the_grid_belong_to_no_cell() {
 
 #[test]
 fn builds_are_deterministic_across_runs_and_thread_counts() {
-    let surface = surface(Shape::Blob.with_triangles(20_000));
+    let surface = surface(Catalog::Blob.with_triangles(20_000));
     let options = MapOptions::default();
     let reference = encode(&surface, &build(&surface, &options));
     assert_eq!(encode(&surface, &build(&surface, &options)), reference);
@@ -468,7 +468,7 @@ fn builds_are_deterministic_across_runs_and_thread_counts() {
 
 #[test]
 fn the_memory_budget_is_respected() {
-    let surface = surface(Shape::Sphere.with_triangles(20_000));
+    let surface = surface(Catalog::Sphere.with_triangles(20_000));
     let free = build(&surface, &MapOptions::default());
     let budget = free.heap_bytes() / 3;
     let options = MapOptions {
@@ -543,7 +543,7 @@ fn bad_options_are_refused() {
 
 #[test]
 fn progress_rises_to_one() {
-    let surface = surface(Shape::Torus.with_triangles(30_000));
+    let surface = surface(Catalog::Torus.with_triangles(30_000));
     let seen = std::sync::Mutex::new(Vec::new());
     let map = VoxelMap::build_with_progress(&surface, &MapOptions::default(), &|f| {
         seen.lock().expect("not poisoned").push(f);

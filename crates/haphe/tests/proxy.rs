@@ -15,7 +15,7 @@ use std::sync::Arc;
 use haphe::DVec3;
 use haphe::glam::DQuat;
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::{self, Shape as Catalog};
+use haphe::mesh::shapes::{self, Catalog};
 use haphe::mesh::{Mesh, Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::query::{Side, classify_point};

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use haphe::DVec3;
 use haphe::glam::DQuat;
 use haphe::map::{MapBytes, MapOptions, decode_in_place, encode};
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::{Edit, Material, ObjectId, Pose, Scene, SceneObject, Shape};

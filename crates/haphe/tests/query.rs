@@ -6,7 +6,7 @@ mod support;
 
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::{self, Shape};
+use haphe::mesh::shapes::{self, Catalog};
 use haphe::mesh::{Mesh, ReadOptions, Surface, SurfaceOptions, TriId, read_mesh, relative_height};
 use haphe::verify::{SegmentKind, check_crossings, check_inside, check_walk, points};
 use parry3d_f64::query::PointQuery;
@@ -41,7 +41,7 @@ fn assert_verified(name: &str, surface: &Surface, map: &VoxelMap, n: usize) {
 
 #[test]
 fn procedural_shapes_agree_with_brute_force() {
-    for shape in Shape::ALL {
+    for shape in Catalog::ALL {
         let (surface, map) = object(shape.with_triangles(3_000));
         assert_verified(&shape.to_string(), &surface, &map, 300);
     }
@@ -70,7 +70,7 @@ fn convex_shapes_walk_to_the_nearest_point() {
 
 #[test]
 fn inside_agrees_with_parry_on_solids() {
-    for shape in Shape::ALL {
+    for shape in Catalog::ALL {
         let (surface, map) = object(shape.with_triangles(2_000));
         let parry = TriMesh::with_flags(
             surface.vertices().to_vec(),
@@ -160,7 +160,7 @@ fn in_face_plane_segments_leaked_or_mismatched_on_real_models() {
 #[test]
 fn in_face_plane_segments_on_procedural_shapes_agree_with_brute_force() {
     // More in-plane segments than the general check, on the shapes with flat faces.
-    for shape in [Shape::Box, Shape::ThinPlate, Shape::ConcaveCorner] {
+    for shape in [Catalog::Box, Catalog::ThinPlate, Catalog::ConcaveCorner] {
         let (surface, map) = object(shape.with_triangles(2_000));
         let c = check_crossings(&surface, &map, SegmentKind::InFacePlane, 5_000, 17);
         assert_eq!((c.mismatches, c.leaks), (0, 0), "{shape}: {c:?}");
@@ -172,7 +172,7 @@ fn the_binned_winding_oracle_equals_the_generalised_winding_number() {
     // The verification oracle (ray parity over binned triangles) against the plain
     // generalised winding number over every triangle, on points all around each shape
     // and far away; points near the surface, where the solid angles round, are skipped.
-    for shape in Shape::ALL {
+    for shape in Catalog::ALL {
         let (surface, _) = object(shape.with_triangles(3_000));
         let oracle = haphe::verify::WindingOracle::new(&surface);
         let mut far = points(&surface, 200, 23);
@@ -281,9 +281,9 @@ fn long_segments_across_free_space_agree_with_brute_force() {
 
     let mut far_segments = 0;
     for (name, mesh, n) in [
-        ("sphere-20k", Shape::Sphere.with_triangles(20_000), 1_500),
-        ("blob-50k", Shape::Blob.with_triangles(50_000), 1_500),
-        ("blob-200k", Shape::Blob.with_triangles(200_000), 600),
+        ("sphere-20k", Catalog::Sphere.with_triangles(20_000), 1_500),
+        ("blob-50k", Catalog::Blob.with_triangles(50_000), 1_500),
+        ("blob-200k", Catalog::Blob.with_triangles(200_000), 600),
     ] {
         let (surface, map) = object(mesh);
         let grid = map.grid();
@@ -373,7 +373,7 @@ fn the_spatial_order_changes_no_answer() {
     // A blob with its faces shuffled, as a mesh from a tool that reorders them comes: the
     // surface in spatial order and the one in the file's order give the same crossings
     // (the same face of the file, the same parameter and point) and the same sides.
-    let mut mesh = Shape::Blob.with_triangles(5_000);
+    let mut mesh = Catalog::Blob.with_triangles(5_000);
     shapes::shuffle_faces(&mut mesh, 3);
     let (sorted, sorted_map) = object(mesh.clone());
     let options = SurfaceOptions {

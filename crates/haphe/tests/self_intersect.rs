@@ -5,7 +5,7 @@ mod support;
 
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::{self, Shape};
+use haphe::mesh::shapes::{self, Catalog};
 use haphe::mesh::{Mesh, ReadOptions, Surface, SurfaceOptions, TriId, read_mesh};
 use haphe::query::{SelfIntersections, intersect_triangle_triangle, self_intersections};
 
@@ -53,7 +53,7 @@ fn append(a: &Mesh, b: &Mesh) -> Mesh {
 
 #[test]
 fn procedural_shapes_do_not_intersect_themselves() {
-    for shape in Shape::ALL {
+    for shape in Catalog::ALL {
         let (_, found) = find(shape.with_triangles(5_000));
         assert_eq!(found.count, 0, "{shape}: {found:?}");
         assert!(found.candidates > 0);

@@ -7,13 +7,13 @@ use std::sync::Arc;
 
 use haphe::DVec3;
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
 use haphe::servo::{
     Device, DeviceError, DeviceFault, DeviceSpec, DeviceState, HandOptions, HipTrace, Motion,
-    ObjectMotion, Path, PathKind, Phase, RealtimeOptions, ReplayDevice, ScriptedDevice, Servo,
-    ServoLoop, ServoOptions, SimulatedHand, StopReason, TickRecord, scripted_path, simulated_spec,
+    ObjectMotion, PathKind, Phase, RealtimeOptions, ReplayDevice, ScriptedDevice, Servo, ServoLoop,
+    ServoOptions, SimulatedHand, StopReason, TickRecord, Trajectory, scripted_path, simulated_spec,
     write_csv_header,
 };
 
@@ -66,7 +66,7 @@ fn constant_push_settles_at_force_over_stiffness() {
         };
         let scene = scene_of(shape(Catalog::Box, 2_000), material);
         let hand = SimulatedHand::new(
-            Path::still(DVec3::new(0.01, -0.02, BOX_TOP + 0.03)),
+            Trajectory::still(DVec3::new(0.01, -0.02, BOX_TOP + 0.03)),
             HandOptions {
                 stiffness: 0.0,
                 damping: 0.0,
@@ -108,7 +108,7 @@ fn sliding_with_friction_sticks_and_slips() {
     let scene = scene_of(shape(Catalog::Box, 2_000), material);
     let a = DVec3::new(-0.02, 0.0, BOX_TOP);
     let b = DVec3::new(0.02, 0.0, BOX_TOP);
-    let path = Path::from_keys(&[
+    let path = Trajectory::from_keys(&[
         (0.0, a + DVec3::Z * 0.01),
         (0.5, a),
         (1.5, a),
@@ -210,7 +210,7 @@ fn a_fast_strike_never_goes_through_the_thin_plate() {
         assert_never_through(&records, &format!("hand at {rate} Hz"));
     }
     let scene = scene_of(shape(Catalog::ThinPlate, 5_000), Material::default());
-    let path = Path::from_keys(&[
+    let path = Trajectory::from_keys(&[
         (0.0, DVec3::new(0.01, 0.02, 0.05)),
         (0.1, DVec3::new(0.01, 0.02, 0.04)),
         (0.11, DVec3::new(0.01, 0.02, -0.01)),
@@ -282,7 +282,7 @@ fn replay_is_bit_for_bit_repeatable() {
 fn safe_start_holds_until_the_device_is_outside() {
     let scene = scene_of(shape(Catalog::Sphere, 2_000), Material::default());
     // From the centre of the sphere straight up and out, then back down onto it.
-    let path = Path::from_keys(&[
+    let path = Trajectory::from_keys(&[
         (0.0, DVec3::ZERO),
         (1.0, DVec3::new(0.0, 0.0, 0.13)),
         (1.5, DVec3::new(0.0, 0.0, 0.13)),

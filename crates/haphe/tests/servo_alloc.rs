@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use haphe::DVec3;
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::scene::{Edit, Material, ObjectId, Pose, Returned, Scene, SceneObject, Shape};
 use haphe::servo::{

@@ -9,7 +9,7 @@ use std::f64::consts::PI;
 use haphe::DVec3;
 use haphe::mesh::Mesh;
 use haphe::mesh::shapes::{
-    MAX_BLOB_AMPLITUDE_FRACTION, Shape, blob, concave_corner, cuboid, geodesic_blob,
+    Catalog, MAX_BLOB_AMPLITUDE_FRACTION, blob, concave_corner, cuboid, geodesic_blob,
     geodesic_sphere, sphere, thin_plate, torus,
 };
 use proptest::prelude::*;
@@ -413,12 +413,12 @@ fn resolutions_below_the_coarsest_are_clamped_up() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Shape: names, sizes, triangle budgets, determinism
+// Catalog: names, sizes, triangle budgets, determinism
 // ---------------------------------------------------------------------------------------
 
 #[test]
 fn shape_names_round_trip() {
-    let names: Vec<String> = Shape::ALL.iter().map(Shape::to_string).collect();
+    let names: Vec<String> = Catalog::ALL.iter().map(Catalog::to_string).collect();
     assert_eq!(
         names,
         [
@@ -430,41 +430,41 @@ fn shape_names_round_trip() {
             "blob"
         ]
     );
-    for shape in Shape::ALL {
-        assert_eq!(shape.to_string().parse::<Shape>(), Ok(shape));
+    for shape in Catalog::ALL {
+        assert_eq!(shape.to_string().parse::<Catalog>(), Ok(shape));
     }
-    let error = "cube".parse::<Shape>().expect_err("not a shape name");
+    let error = "cube".parse::<Catalog>().expect_err("not a shape name");
     assert_eq!(error.name, "cube");
     assert!(error.to_string().contains("thin-plate"), "{error}");
     assert!(
-        "Sphere".parse::<Shape>().is_err(),
+        "Sphere".parse::<Catalog>().is_err(),
         "names are case-sensitive"
     );
 }
 
 #[test]
 fn shapes_are_closed_manifolds_of_the_documented_size_at_every_budget() {
-    for shape in Shape::ALL {
+    for shape in Catalog::ALL {
         for target in [0, 20, 100, 1_000, 10_000, 100_000] {
             let context = format!("{shape} with {target} triangles");
             let mesh = shape.with_triangles(target);
             let topology = assert_closed_manifold(&mesh, &context);
-            let expected_euler = if shape == Shape::Torus { 0 } else { 2 };
+            let expected_euler = if shape == Catalog::Torus { 0 } else { 2 };
             assert_eq!(topology.euler_characteristic(), expected_euler, "{context}");
             assert!(signed_volume(&mesh) > 0.0, "{context}");
             assert_eq!(mesh.triangles.len(), shape.closest_triangle_count(target));
 
             let size = extent(&mesh);
             let expected = match shape {
-                Shape::Box => DVec3::new(0.2, 0.15, 0.1),
-                Shape::ThinPlate => DVec3::new(0.2, 0.2, 0.0001),
-                Shape::ConcaveCorner => DVec3::splat(0.2),
+                Catalog::Box => DVec3::new(0.2, 0.15, 0.1),
+                Catalog::ThinPlate => DVec3::new(0.2, 0.2, 0.0001),
+                Catalog::ConcaveCorner => DVec3::splat(0.2),
                 _ => DVec3::ZERO,
             };
             match shape {
-                Shape::Sphere | Shape::Blob | Shape::Torus => {
+                Catalog::Sphere | Catalog::Blob | Catalog::Torus => {
                     let across = size.x.max(size.y);
-                    let (low, high) = if shape == Shape::Blob {
+                    let (low, high) = if shape == Catalog::Blob {
                         (0.12, 0.24)
                     } else {
                         (0.15, 0.2)
@@ -485,7 +485,7 @@ fn shapes_are_closed_manifolds_of_the_documented_size_at_every_budget() {
 
 #[test]
 fn shapes_hit_their_triangle_budget() {
-    for shape in Shape::ALL {
+    for shape in Catalog::ALL {
         for target in [100, 1_000, 10_000, 100_000, 1_000_000, 4_000_000] {
             let count = shape.closest_triangle_count(target);
             let ratio = count as f64 / target as f64;
@@ -507,23 +507,23 @@ fn shapes_hit_their_triangle_budget() {
 
 #[test]
 fn shapes_are_deterministic() {
-    for shape in Shape::ALL {
+    for shape in Catalog::ALL {
         let first = shape.with_triangles(20_000);
         let again = shape.with_triangles(20_000);
         assert!(first == again, "{shape} differs between runs");
     }
     // From another thread, whose rayon scheduling differs.
-    let from_thread = std::thread::spawn(|| Shape::Blob.with_triangles(20_000))
+    let from_thread = std::thread::spawn(|| Catalog::Blob.with_triangles(20_000))
         .join()
         .expect("the thread finishes");
-    assert_eq!(from_thread, Shape::Blob.with_triangles(20_000));
+    assert_eq!(from_thread, Catalog::Blob.with_triangles(20_000));
 }
 
 /// Run with `cargo test --release -p haphe --test shapes -- --ignored`.
 #[test]
 #[ignore = "builds and checks about 24 million triangles; slow without --release"]
 fn four_million_triangle_shapes_are_closed_manifolds() {
-    for shape in Shape::ALL {
+    for shape in Catalog::ALL {
         let mesh = shape.with_triangles(4_000_000);
         let topology = assert_closed_manifold(&mesh, &format!("{shape} at 4M"));
         assert!(

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use haphe::DVec3;
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions, TriId};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::query::{

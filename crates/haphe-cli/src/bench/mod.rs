@@ -3,7 +3,7 @@
 //!
 //! # What runs
 //!
-//! For each mesh — procedural shapes at several triangle counts ([`Shape::with_triangles`],
+//! For each mesh — procedural shapes at several triangle counts ([`Catalog::with_triangles`],
 //! by default a noisy blob and a 0.1 mm thin plate, about 0.2 m across) and any files
 //! given — the structures of both libraries are built and weighed
 //! ([`structures`]), the query streams generated with fixed seeds ([`streams`]), and
@@ -43,7 +43,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::{Context as _, anyhow, bail};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Mesh, ReadOptions, Units, Weld};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
 use haphe::verify::WindingOracle;
@@ -91,7 +91,7 @@ pub struct Args {
         default_value = "blob,thin-plate",
         value_name = "SHAPE,..."
     )]
-    shapes: Vec<Shape>,
+    shapes: Vec<Catalog>,
     /// Queries per query kind and mesh [default: 50000; with --quick: 5000].
     #[arg(long, value_name = "N")]
     samples: Option<usize>,
@@ -112,7 +112,7 @@ pub struct Args {
 /// A mesh to measure.
 enum Source {
     /// A procedural shape with about this many triangles.
-    Shape(Shape, usize),
+    Catalog(Catalog, usize),
     /// A mesh file.
     File(PathBuf),
 }
@@ -151,12 +151,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         bail!("--samples must be at least 1");
     }
     for &n in &sizes {
-        Shape::check_triangles(n).map_err(|e| anyhow!("--sizes: {e}"))?;
+        Catalog::check_triangles(n).map_err(|e| anyhow!("--sizes: {e}"))?;
     }
     let sources: Vec<Source> = args
         .shapes
         .iter()
-        .flat_map(|&shape| sizes.iter().map(move |&n| Source::Shape(shape, n)))
+        .flat_map(|&shape| sizes.iter().map(move |&n| Source::Catalog(shape, n)))
         .chain(args.meshes.iter().cloned().map(Source::File))
         .collect();
     if sources.is_empty() {
@@ -183,7 +183,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut results = Vec::new();
     for source in &sources {
         let (name, family, mesh) = match source {
-            Source::Shape(shape, n) => (
+            Source::Catalog(shape, n) => (
                 format!("{shape}-{}", short_count(*n)),
                 shape.to_string(),
                 shape.with_triangles(*n),

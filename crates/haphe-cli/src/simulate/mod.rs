@@ -16,7 +16,7 @@ use std::time::Instant;
 use anyhow::{Context, anyhow, bail};
 use haphe::map::MapOptions;
 use haphe::mesh::Units;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, check_max_force};
 use haphe::servo::{

@@ -26,7 +26,7 @@ use anyhow::{Context, anyhow, bail};
 use haphe::DVec3;
 use haphe::glam::{DQuat, EulerRot};
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{ReadOptions, Surface, SurfaceOptions, Units};
 use haphe::scene::{Material, ObjectId, Pose, SceneObject, Shape};
 use haphe::servo::{Motion, ObjectMotion};

@@ -7,7 +7,7 @@
 use std::sync::Arc;
 
 use haphe::map::MapOptions;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
 

@@ -217,7 +217,7 @@ mod tests {
     use super::*;
     use crate::map::build::build_on_grid;
     use crate::mesh::SurfaceOptions;
-    use crate::mesh::shapes::Shape;
+    use crate::mesh::shapes::Catalog;
 
     #[test]
     fn cell_size_factor_inverts_the_fit() {
@@ -231,7 +231,7 @@ mod tests {
 
     #[test]
     fn memory_estimate_is_close_to_the_built_map() {
-        for shape in Shape::ALL {
+        for shape in Catalog::ALL {
             for n in [300, 5_000, 40_000] {
                 let surface = Surface::new(shape.with_triangles(n), &SurfaceOptions::default())
                     .expect("a procedural shape is a surface");

@@ -242,16 +242,16 @@ impl VoxelMap {
 mod tests {
     use super::*;
     use crate::map::{MapOptions, VoxelMap, decode, encode};
-    use crate::mesh::shapes::Shape;
+    use crate::mesh::shapes::Catalog;
     use crate::mesh::{Surface, SurfaceOptions};
 
     /// Maps of three shapes fine enough for strides of several bricks and regions, each
     /// as built and as loaded from its file.
-    fn built_and_loaded() -> Vec<(Shape, [VoxelMap; 2])> {
+    fn built_and_loaded() -> Vec<(Catalog, [VoxelMap; 2])> {
         [
-            (Shape::Blob, 20_000, 0.0005),
-            (Shape::Sphere, 2_000, 0.001),
-            (Shape::ThinPlate, 2_000, 0.0005),
+            (Catalog::Blob, 20_000, 0.0005),
+            (Catalog::Sphere, 2_000, 0.001),
+            (Catalog::ThinPlate, 2_000, 0.0005),
         ]
         .into_iter()
         .map(|(shape, triangles, cell)| {

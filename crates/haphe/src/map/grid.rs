@@ -13,7 +13,7 @@ pub const MAX_CELLS_PER_AXIS: u32 = 1 << 20;
 /// cell size. Far above [`OVERLAP_TOLERANCE_REL`] and coordinate rounding, so that no
 /// triangle is ever listed in a padding cell and every point outside the grid is outside
 /// the object.
-pub const PADDING_SLACK_REL: f64 = 1e-3;
+pub(crate) const PADDING_SLACK_REL: f64 = 1e-3;
 
 /// How much every cell box is enlarged, as a fraction of the cell size on every side,
 /// before a triangle is tested against it (so boxes are closed, and slightly more).
@@ -66,7 +66,7 @@ impl Grid {
 
     /// The grid of a voxel map for a surface with bounding box `[min, max]` (metres,
     /// object frame): cells of `cell_size_m` metres over the box, centred on it, with at
-    /// least [`PADDING_SLACK_REL`] of a cell to spare on every side, and one more layer of
+    /// least a thousandth of a cell to spare on every side, and one more layer of
     /// *padding* cells all around. The surface then lies strictly inside the cells
     /// `1..dims − 1` along each axis, and every point outside the grid box is outside the
     /// object.
@@ -168,7 +168,7 @@ impl Grid {
     /// The box `(min, max)` of cell `c`, metres, object frame: `min = origin + c·h`,
     /// `max = origin + (c + 1)·h`. The cell itself is half-open, `[min, max)`. Cells
     /// outside the grid get the box their index would have.
-    #[inline]
+    #[inline(always)]
     pub fn cell_bounds(&self, c: [u32; 3]) -> (DVec3, DVec3) {
         let lo = DVec3::from_array(c.map(f64::from));
         (
@@ -200,20 +200,8 @@ impl Grid {
         if !(a.is_finite() && d.is_finite()) {
             return None;
         }
-        let (mut t0, mut t1) = (0.0f64, 1.0f64);
-        for axis in 0..3 {
-            let hi = f64::from(self.dims[axis]);
-            if d[axis] == 0.0 {
-                if a[axis] < 0.0 || a[axis] > hi {
-                    return None;
-                }
-                continue;
-            }
-            let (s0, s1) = ((0.0 - a[axis]) * inv[axis], (hi - a[axis]) * inv[axis]);
-            t0 = t0.max(s0.min(s1));
-            t1 = t1.min(s0.max(s1));
-        }
-        (t0 <= t1).then_some((t0, t1))
+        let hi = DVec3::from_array(self.dims.map(f64::from));
+        clip_to_box(a, d, inv, DVec3::ZERO, hi)
     }
 
     /// Whether triangle `corners_object` (metres, object frame) overlaps cell `c` enlarged
@@ -227,6 +215,36 @@ impl Grid {
         let corners = corners_object.map(|p| self.to_grid(p));
         overlap_cell_units(corners, c)
     }
+}
+
+/// The parameter interval `[t0, t1] ⊆ [0, 1]` over which the segment `a + t·d` lies in the
+/// closed box `[lo, hi]`, given `inv = 1 / d` per axis (a slab test; an axis along which
+/// the segment does not move tests its coordinate), or `None` when it misses the box.
+/// Finite input.
+#[inline]
+pub(crate) fn clip_to_box(
+    a: DVec3,
+    d: DVec3,
+    inv: DVec3,
+    lo: DVec3,
+    hi: DVec3,
+) -> Option<(f64, f64)> {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for axis in 0..3 {
+        if d[axis] == 0.0 {
+            if a[axis] < lo[axis] || a[axis] > hi[axis] {
+                return None;
+            }
+            continue;
+        }
+        let (s0, s1) = (
+            (lo[axis] - a[axis]) * inv[axis],
+            (hi[axis] - a[axis]) * inv[axis],
+        );
+        t0 = t0.max(s0.min(s1));
+        t1 = t1.min(s0.max(s1));
+    }
+    (t0 <= t1).then_some((t0, t1))
 }
 
 /// The listing predicate in cell units: triangle `corners` (cell units) against cell `c`

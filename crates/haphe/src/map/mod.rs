@@ -41,6 +41,7 @@
 mod bin;
 mod bricks;
 mod build;
+mod cast;
 mod cell_size;
 mod cells;
 mod clearance;
@@ -54,14 +55,16 @@ mod validate;
 mod walk;
 
 pub use crate::array::MapBytes;
-pub(crate) use bricks::BRICK_SIDE;
+use bricks::BRICK_SIDE;
 pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
+pub(crate) use cast::{CellPart, Found};
 pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode};
-pub(crate) use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
+use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
+#[cfg(any(test, feature = "testing"))]
+pub(crate) use grid::clip_to_box;
 pub(crate) use grid::floor_to_int;
-pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL, PADDING_SLACK_REL};
+pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL};
 pub use overlap::overlap_triangle_box;
-pub(crate) use slabs::interval_toward as slab_interval;
 pub use walk::{CellStep, CellWalk};
 
 /// Largest clearance a cell stores, in cells. Cells within 15 cells of the surface store

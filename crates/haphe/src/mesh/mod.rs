@@ -34,9 +34,7 @@ pub use normals::DEFAULT_CREASE_ANGLE_RAD;
 pub use read::{
     Format, ReadMesh, ReadOptions, Units, read_mesh, read_mesh_with_stats, read_unwelded,
 };
-pub use report::{
-    ComponentReport, Defects, EdgeUse, MAX_NESTING_WORK, MeshReport, ReportText, Usability,
-};
+pub use report::{ComponentReport, Defects, EdgeUse, MeshReport, ReportText, Usability};
 pub(crate) use topology::{OwnedSurfaceParts, SurfaceParts};
 pub use topology::{Surface, SurfaceError, SurfaceOptions};
 pub use weld::{Weld, WeldStats, weld};

@@ -102,7 +102,7 @@ const SMOOTH_MIN_CREASE_RAD: f64 = 1e-3;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::shapes::Shape as Catalog;
+    use crate::mesh::shapes::Catalog;
     use crate::mesh::{Surface, SurfaceOptions};
 
     /// The rule as documented, corner by corner, with no shortcut.

@@ -180,10 +180,10 @@ impl Constraints {
 
 /// Smallest `1 − (n_i · n_j)²` for two planes to count as crossing in a line: planes closer
 /// to parallel than about 0.06° have no usable line (the pair's other candidates remain).
-pub const MIN_PAIR_SINE_SQUARED: f64 = 1e-6;
+pub(crate) const MIN_PAIR_SINE_SQUARED: f64 = 1e-6;
 
 /// Smallest `|det(n_0, n_1, n_2)|` for three planes to meet in a usable point.
-pub const MIN_TRIPLE_DETERMINANT: f64 = 1e-6;
+pub(crate) const MIN_TRIPLE_DETERMINANT: f64 = 1e-6;
 
 fn project_on_plane(goal: DVec3, plane: &Plane) -> DVec3 {
     goal - plane.height(goal) * plane.normal

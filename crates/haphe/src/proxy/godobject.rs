@@ -7,9 +7,14 @@ use super::constraints::{Constraints, Plane, advance_to_plane};
 use super::deep::{Hold, is_deep, saturation_depth};
 use super::force::{contact_force, friction_target};
 use super::output::{Contact, TickOutput, TickStatus};
-use super::rest::Rest;
+use super::rest::{Rest, rest_hit};
 use crate::mesh::TriId;
 use crate::scene::{Hit, Material, Scene};
+
+/// How far a probe reaches beyond the ends of a move, as a fraction of the skin: far
+/// above the rounding of coordinates (about 1e-16 m per metre), well inside the skin, so a
+/// stop at the skin never lands within the reach of the next probe.
+pub(crate) const PROBE_REACH_OF_SKIN: f64 = 0.25;
 
 /// Most constraint steps in one tick (each is one segment crossing query). Three planes
 /// need at most four; the rest is headroom for re-targeting.
@@ -51,10 +56,10 @@ impl ProxyOptions {
         self.skin * 1e-3
     }
 
-    /// How far crossing tests reach beyond a move, metres ([`PROBE_REACH_OF_SKIN`](super::PROBE_REACH_OF_SKIN) of
-    /// the skin; see [`Probe`](super::Probe)).
+    /// How far crossing tests reach beyond a move, metres (a quarter of
+    /// the skin; see [`Probe`](crate::query::Probe)).
     pub fn probe_reach(&self) -> f64 {
-        self.skin * super::PROBE_REACH_OF_SKIN
+        self.skin * PROBE_REACH_OF_SKIN
     }
 }
 
@@ -119,7 +124,8 @@ impl Proxy {
     }
 
     /// The last constraint of the previous tick, which the next tick keeps while the
-    /// device point stays behind it.
+    /// device point stays behind it (for the oracles).
+    #[cfg(any(test, feature = "testing"))]
     pub(crate) fn rest(&self) -> Option<Rest> {
         self.rest
     }
@@ -497,7 +503,7 @@ fn constrain(
         // point is still behind it (no search along that leg: the proxy does not move).
         let resting = match rest {
             Some(r) if planes.is_empty() => {
-                scene.rests_on(r.object, r.triangle, p, target, options.skin)
+                rest_hit(scene, r.object, r.triangle, p, target, options.skin)
             }
             _ => None,
         };

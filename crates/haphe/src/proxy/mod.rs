@@ -1,4 +1,4 @@
-//! Stage 4 — the haptic proxy: the god-object of Zilles & Salisbury, moved each tick
+//! Stage 5 — the haptic proxy: the god-object of Zilles & Salisbury, moved each tick
 //! toward the device point and held outside every object of a [`Scene`](crate::scene::Scene),
 //! with the force that pulls the device toward it.
 //!
@@ -92,13 +92,9 @@ mod deep;
 mod force;
 mod godobject;
 mod output;
-mod probe;
 mod rest;
 
-pub use constraints::{
-    Constraints, MAX_CONSTRAINTS, MIN_PAIR_SINE_SQUARED, MIN_TRIPLE_DETERMINANT, Plane,
-    advance_to_plane,
-};
+pub use constraints::{Constraints, MAX_CONSTRAINTS, Plane, advance_to_plane};
 pub(crate) use deep::Hold;
 pub use deep::{is_deep, saturation_depth};
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
@@ -106,5 +102,5 @@ pub use godobject::{
     DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions, clamp_to_radius,
 };
 pub use output::{Contact, TickOutput, TickStatus};
-pub use probe::{PROBE_REACH_OF_SKIN, Probe};
+#[cfg(any(test, feature = "testing"))]
 pub(crate) use rest::{Rest, rests_on};

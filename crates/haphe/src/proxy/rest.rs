@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::constraints::Plane;
 use crate::mesh::{Surface, TriId};
-use crate::scene::Pose;
+use crate::scene::{Hit, Pose, Scene, Sides};
 
 /// How far beyond its constraint plane (as a fraction of the skin) a resting proxy may
 /// lie: the rounding of the projection that put it there, which can land a hair in front.
@@ -68,6 +68,39 @@ pub(crate) fn rests_on(
     let (point, normal) = (pose.to_world(x), pose.vector_to_world(frame.normal));
     let plane = Plane::of_hit(normal, point, one_sided, from, to, skin);
     (plane.height(from) <= skin * REST_TOLERANCE_OF_SKIN).then_some((point, normal))
+}
+
+/// Triangle `triangle` of object `i` of `scene` as the surface the proxy at `from` still
+/// rests on with the device point at `to` ([`rests_on`] in that object's frame), as a
+/// [`Hit`] at the start of the move (`t = 0`). `None` when it is not, or when `i` is out of
+/// range.
+pub(crate) fn rest_hit(
+    scene: &Scene,
+    i: usize,
+    triangle: TriId,
+    from: DVec3,
+    to: DVec3,
+    skin: f64,
+) -> Option<Hit> {
+    let o = scene.objects().get(i)?;
+    let one_sided = o.sides == Sides::Front;
+    let (point, normal) = rests_on(
+        o.shape.surface(),
+        &o.pose,
+        one_sided,
+        triangle,
+        from,
+        to,
+        skin,
+    )?;
+    Some(Hit {
+        t: 0.0,
+        object: i,
+        triangle,
+        point,
+        normal,
+        one_sided,
+    })
 }
 
 #[cfg(test)]

@@ -163,6 +163,21 @@ fn fraction(numerator: f64, denominator: f64) -> f64 {
     }
 }
 
+/// How far along the segment from `from` to `to` (a fraction in `[0, 1]`) its point
+/// closest to `p` lies; 0 for a segment of zero length.
+#[inline]
+fn segment_fraction(p: DVec3, [from, to]: [DVec3; 2]) -> f64 {
+    let e = to - from;
+    fraction(e.dot(p - from), e.length_squared()).clamp(0.0, 1.0)
+}
+
+/// Distance from `p` to the segment from `from` to `to`, metres.
+#[inline]
+pub(crate) fn distance_to_segment(p: DVec3, [from, to]: [DVec3; 2]) -> f64 {
+    let s = segment_fraction(p, [from, to]);
+    (from + s * (to - from)).distance(p)
+}
+
 /// Corner `i` at `x`.
 #[inline]
 fn vertex(i: u8, x: DVec3) -> ClosestPoint {
@@ -218,9 +233,7 @@ fn closest_point_edges(p: DVec3, [a, b, c]: [DVec3; 3]) -> ClosestPoint {
 /// and its squared distance, m².
 #[inline]
 fn on_segment(p: DVec3, opposite: u8, [from, to]: [DVec3; 2]) -> (ClosestPoint, f64) {
-    let e = to - from;
-    let ee = e.length_squared();
-    let s = fraction(e.dot(p - from), ee).clamp(0.0, 1.0);
+    let s = segment_fraction(p, [from, to]);
     let found = on_edge(opposite, [from, to], s);
     (found, (p - found.point).length_squared())
 }

@@ -3,10 +3,7 @@
 use glam::DVec3;
 
 use super::{Segment, SegmentHit, intersect_segment_framed};
-use crate::map::{
-    BLOCK_SIDE, BRICK_SIDE, CellStep, CellWalk, InBrick, Look, REGION_SIDE, RegionLook, VoxelMap,
-    slab_interval,
-};
+use crate::map::{CellPart, Found, VoxelMap};
 use crate::mesh::{Surface, TriId};
 
 /// Where a segment first meets the surface.
@@ -220,7 +217,7 @@ pub fn first_crossing_where(
         // boundaries. No walk, no table of tested triangles.
         if map.grid().cell_of(p1) == Some(cell)
             || best.is_some_and(|(hit, _)| {
-                hit.t < exit_parameter(map, cell, p0, p1) - crossing_margin(map, p0, p1)
+                hit.t < exit_parameter(map, cell, p0, p1) - map.boundary_margin(p0, p1)
             })
         {
             return best.map(|(hit, t)| crossing_from_hit(surface, hit, t));
@@ -228,101 +225,26 @@ pub fn first_crossing_where(
     }
     let mut tested = Tested::new();
     let mut best: Option<(SegmentHit, u32)> = None;
-    // A hit found in a cell may lie a little past the cell's exit (the triangle reaches
-    // into later cells); the walk stops once the best hit is before the current cell's
-    // exit, with a margin for the rounding of the cell boundaries' parameters.
-    let margin = crossing_margin(map, p0, p1);
     let plane_margin = plane_margin(map);
-    let mut walk = map.grid().walk(p0, p1);
-    let mut until = 1.0;
-    // The parts of the segment in the slabs of the region and of the brick it is in.
-    let (mut regions, mut bricks) = (Window::new(), Window::new());
     let fetch = surface.triangle_count() >= FETCH_AHEAD_MIN_TRIANGLES;
-    while let Some(visit) = walk.next() {
-        if best.is_some_and(|(hit, _)| hit.t < visit.t_enter - margin) {
-            break;
-        }
-        let mut slab = None;
-        let triangles = if skips {
-            match map.look_region(visit.cell) {
-                RegionLook::Outside => continue,
-                RegionLook::Free { around } => {
-                    let (lo, hi) = block_box(visit.cell, REGION_SIDE, around);
-                    walk.skip_box(lo, hi);
-                    continue;
-                }
-                RegionLook::Surface(region) => {
-                    let window = || map.region_window(region, visit.cell, p0, p1);
-                    if !regions.admits(&mut walk, &visit, region, REGION_SIDE, margin, window) {
-                        continue;
-                    }
-                }
-            }
-            match map.look(visit.cell) {
-                Look::Outside => continue,
-                Look::FreeBricks { around } => {
-                    let (lo, hi) = block_box(visit.cell, BRICK_SIDE, around);
-                    walk.skip_box(lo, hi);
-                    continue;
-                }
-                Look::Detailed { brick, cell } => {
-                    let window = || map.brick_window(brick, visit.cell, p0, p1);
-                    if !bricks.admits(&mut walk, &visit, brick, BRICK_SIDE, margin, window) {
-                        continue;
-                    }
-                    match cell {
-                        InBrick::Triangles(triangles, s) => {
-                            slab = Some(s);
-                            triangles
-                        }
-                        InBrick::FreeBlock => {
-                            let (lo, hi) = block_box(visit.cell, BLOCK_SIDE, 1);
-                            walk.skip_box(lo, hi);
-                            continue;
-                        }
-                        InBrick::Free => continue,
-                    }
-                }
-            }
-        } else {
-            map.triangles_in(visit.cell)
-        };
-        if triangles.is_empty() {
-            continue;
-        }
-        // The part of the segment in this cell (with the margin of its boundaries'
-        // rounding), up to where a crossing can still improve on the best. A triangle
-        // crossed at a point in this cell is crossed on that part, so the filter never
-        // skips it here; one it skips may be crossed in a later cell, which lists it too,
-        // so it is not yet tested. Long segments that graze a surface (along a thin
-        // plate, say) thus test exactly only the triangles near where they pass.
-        let (mut from, mut to) = (
-            (visit.t_enter - margin).max(0.0),
-            (visit.t_exit + margin).min(until),
-        );
-        // The slab of the cell: where in it its triangles lie. A part of the segment
-        // wholly on one side crosses none of them in this cell; one that passes through
-        // it can cross them only where it is in the slab: the part the filter tests
-        // (the segment's parameters in the slab, found as for a brick's or a region's).
-        // The list is ordered along the slab's direction: a segment moving against it
-        // takes it from the end, so that it meets the triangle it crosses first (the
-        // near face of a plate) early, and the rest are filtered on the part before it.
-        let mut forward = true;
-        if let Some(slab) = slab {
-            let (lo, hi) = map.grid().cell_bounds(visit.cell);
-            let Some((a, b, along)) = slab_interval(slab, 0.5 * (lo + hi), h, p0, p1) else {
-                continue;
-            };
-            (from, to) = (from.max(a), to.min(b));
-            if from > to {
-                continue;
-            }
-            forward = along;
-        }
+    // Each cell's triangles are filtered on the part of the segment in the cell (and in
+    // its slab), up to where a crossing can still improve on the best: a triangle crossed
+    // at a point in this cell is crossed on that part, so the filter never skips it here;
+    // one it skips may be crossed in a later cell, which lists it too, so it is not yet
+    // tested. Long segments that graze a surface (along a thin plate, say) thus test
+    // exactly only the triangles near where they pass.
+    map.cast_segment(p0, p1, skips, |part| {
+        let CellPart {
+            triangles,
+            forward,
+            from,
+            mut to,
+        } = part;
         let (q0, mut q1) = (point_at(p0, p1, from), point_at(p0, p1, to));
         if fetch {
             fetch_ahead(surface, triangles);
         }
+        let mut found = None;
         let n = triangles.len();
         for i in 0..n {
             let t = triangles[if forward { i } else { n - 1 - i }];
@@ -331,7 +253,8 @@ pub fn first_crossing_where(
             }
             if let Some(hit) = better_hit(surface, t, (p0, p1), &mut segment, &accept, best) {
                 best = Some((hit, t));
-                until = filter_end(hit.t);
+                let until = filter_end(hit.t);
+                found = Some(Found { t: hit.t, until });
                 // The cell's remaining triangles too are filtered on the part before it
                 // (a thin wall's far face, listed in the same cell as its near one).
                 if until < to {
@@ -339,7 +262,8 @@ pub fn first_crossing_where(
                 }
             }
         }
-    }
+        found
+    });
     best.map(|(hit, t)| crossing_from_hit(surface, hit, t))
 }
 
@@ -372,76 +296,6 @@ pub(crate) fn triangle_hit(
     segment: impl FnOnce() -> Segment,
 ) -> Option<SegmentHit> {
     intersect_segment_framed(p0, p1, surface.corners(t), surface.frame(t), segment)
-}
-
-/// The box of cells of the cube of blocks around `cell`, a cell of a block of `side`
-/// cells along each side (a brick, a region of bricks or a free block of a brick,
-/// aligned on multiples of `side`), within Chebyshev distance `around − 1` (in blocks)
-/// of its block: the cube that [`VoxelMap::look`]'s `around` says holds no surface cell.
-#[inline]
-fn block_box(cell: [u32; 3], side: u32, around: u8) -> ([i64; 3], [i64; 3]) {
-    let side = i64::from(side);
-    let around = i64::from(around.max(1) - 1) * side;
-    let lo = cell.map(|c| i64::from(c) / side * side - around);
-    (lo, lo.map(|c| c + 2 * around + side - 1))
-}
-
-/// The part of a long segment that lies in the slab of the block its walk is in (a
-/// region of bricks or a detailed brick, see `map/slabs.rs`): the walk skips the block's
-/// cells before and after it.
-struct Window {
-    /// The block of the window (its index; `u32::MAX` before the first).
-    block: u32,
-    /// The parameter where the segment enters the block's slab, less the margin of the
-    /// cells' boundaries (`+∞` when it never does).
-    from: f64,
-    /// Where it leaves the slab, plus the margin (`−∞` when it never enters).
-    to: f64,
-}
-
-impl Window {
-    fn new() -> Window {
-        Window {
-            block: u32::MAX,
-            from: f64::NEG_INFINITY,
-            to: f64::INFINITY,
-        }
-    }
-
-    /// Whether the walk must look further at the cell of `visit`, a cell of block `block`
-    /// of `side` cells whose slab `window` gives the parameters of: not when the part of
-    /// the segment in the cell lies before the slab or after it, and then the walk is
-    /// moved on, to where the segment enters the slab or out of the block. A straight
-    /// segment never comes back to a block it left, so the window of a block is found
-    /// once, on entering it.
-    #[inline]
-    fn admits(
-        &mut self,
-        walk: &mut CellWalk,
-        visit: &CellStep,
-        block: u32,
-        side: u32,
-        margin: f64,
-        window: impl FnOnce() -> Option<(f64, f64)>,
-    ) -> bool {
-        if block != self.block {
-            self.block = block;
-            (self.from, self.to) = match window() {
-                Some((from, to)) => (from - margin, to + margin),
-                None => (f64::INFINITY, f64::NEG_INFINITY),
-            };
-        }
-        if visit.t_enter > self.to {
-            let (lo, hi) = block_box(visit.cell, side, 1);
-            walk.skip_box(lo, hi);
-            false
-        } else if visit.t_exit < self.from {
-            walk.skip_box_until(block_box(visit.cell, side, 1), self.from);
-            false
-        } else {
-            true
-        }
-    }
 }
 
 /// The fewest triangles for which [`first_crossing`] fetches a cell's frames and corners
@@ -570,17 +424,6 @@ pub(crate) const FRAME_DIRECTION_ERROR: f64 = 1e-5;
 /// orders of magnitude above the rounding of heights at the coordinates a map covers.
 pub(crate) fn plane_margin(map: &VoxelMap) -> f64 {
     1e-9 * map.grid().cell_size()
-}
-
-/// Parameter margin covering the rounding of cell-boundary parameters: a millionth of a
-/// cell, in units of `t`.
-fn crossing_margin(map: &VoxelMap, p0: DVec3, p1: DVec3) -> f64 {
-    let length = p0.distance(p1);
-    if length > 0.0 {
-        1e-6 * map.grid().cell_size() / length
-    } else {
-        0.0
-    }
 }
 
 /// The first crossing by testing every triangle: the oracle for [`first_crossing`].

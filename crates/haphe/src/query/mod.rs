@@ -14,6 +14,7 @@ pub(crate) use crossing::{crossing_from_hit, triangle_hit};
 mod exact;
 mod inside;
 mod near;
+mod probe;
 mod segment_triangle;
 mod self_intersect;
 mod triangle_triangle;
@@ -35,6 +36,7 @@ pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64
     (above | below).any()
 }
 
+pub(crate) use closest::distance_to_segment;
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use crossing::{
     Crossing, LONG_SEGMENT_FACTOR, all_crossings_brute_force, first_crossing,
@@ -42,11 +44,12 @@ pub use crossing::{
 };
 pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
 pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within, nearest_within_brute_force};
+pub use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use self_intersect::{
-    LISTED_SELF_INTERSECTIONS, SELF_INTERSECTION_BUDGET_MIN, SELF_INTERSECTION_BUDGET_PER_TRIANGLE,
-    SelfIntersections, TOUCH_TOLERANCE_REL, self_intersection_budget, self_intersections,
+    SELF_INTERSECTION_BUDGET_PER_TRIANGLE, SelfIntersections, self_intersection_budget,
+    self_intersections,
 };
 pub use triangle_triangle::intersect_triangle_triangle;
 pub use validation::{Validation, ValidationError, ValidationRecord, WeldRecord};
@@ -54,5 +57,5 @@ pub use walk::{
     MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, nearest_point_brute_force,
     walk_to_nearest,
 };
-pub use zone::{ClearZone, MAX_ZONE_CELLS, ZONE_HEIGHT_OF_CELL, ZONE_SPREAD};
+pub use zone::{ClearZone, MAX_ZONE_CELLS, ZONE_SPREAD};
 pub(crate) use zone::{zone_from_bits, zone_height};

@@ -10,7 +10,7 @@ use crate::map::VoxelMap;
 use crate::mesh::{Surface, TriId};
 
 /// How many intersecting pairs a [`SelfIntersections`] lists (all are counted).
-pub const LISTED_SELF_INTERSECTIONS: usize = 100;
+pub(crate) const LISTED_SELF_INTERSECTIONS: usize = 100;
 
 /// The self-intersections of a surface.
 #[derive(Debug, Clone, PartialEq, Eq, Default, serde::Serialize)]
@@ -25,7 +25,7 @@ pub struct SelfIntersections {
     /// a T-junction of a CAD mesh), with no crossing.
     pub touching: usize,
     /// The first pairs `[a, b]` (`a < b`, in increasing order), at most
-    /// [`LISTED_SELF_INTERSECTIONS`], as triangle indices of the mesh the surface was
+    /// 100, as triangle indices of the mesh the surface was
     /// built from ([`Surface::source_triangle`]), like its report.
     pub pairs: Vec<[u32; 2]>,
     /// How many candidate pairs (sharing a cell) were tested exactly.
@@ -221,7 +221,7 @@ fn clearly_apart(ta: [DVec3; 3], tb: [DVec3; 3]) -> bool {
 /// store coordinates as `f32` (STL, most PLY) round a corner that was designed to lie on a
 /// plane (a T-junction) by up to about 6e-8 of the coordinates' size, which exact tests
 /// would read as a crossing.
-pub const TOUCH_TOLERANCE_REL: f64 = 1e-6;
+pub(crate) const TOUCH_TOLERANCE_REL: f64 = 1e-6;
 
 /// For two intersecting triangles: whether they cross (each has corners clearly on both
 /// sides of the other's plane) or overlap in one plane, rather than only touch.

@@ -22,7 +22,7 @@ pub const ZONE_SPREAD: f64 = 0.5;
 
 /// Height of a zone over its triangle's plane (and depth behind it) as a fraction of the
 /// map's cell size; also the distance the gathered cells reach beyond the zone.
-pub const ZONE_HEIGHT_OF_CELL: f64 = 0.0625;
+pub(crate) const ZONE_HEIGHT_OF_CELL: f64 = 0.0625;
 
 /// Most map cells read to build one zone; a triangle whose zone would read more (a large
 /// triangle over fine cells) gets [`ClearZone::NONE`].

@@ -4,10 +4,11 @@
 
 use glam::DVec3;
 
-use super::{BOUND_SLACK, Hit, Scene, SceneObject, Sides, segment_point_distance};
+use super::{BOUND_SLACK, Hit, Scene, SceneObject, Sides};
 use crate::mesh::TriId;
-use crate::proxy::Probe;
-use crate::query::{ClearZone, Segment, crossing_from_hit, triangle_hit};
+use crate::query::{
+    ClearZone, Probe, Segment, crossing_from_hit, distance_to_segment, triangle_hit,
+};
 
 /// Smallest barycentric weight of a crossing that [`Scene::first_hit_shown`] takes as
 /// strictly inside its triangle: far above the rounding of the weights, so that no
@@ -109,8 +110,7 @@ impl Scene {
                 let centre = other.pose.to_world(shape.bound_centre());
                 // Twice the reach, and the rounding of coordinates far from the origin.
                 let slack = 2.0 * reach + 1e-12 * centre.abs().max_element().max(1.0);
-                segment_point_distance(from, to, centre)
-                    > shape.bound_radius() * BOUND_SLACK + slack
+                distance_to_segment(centre, [from, to]) > shape.bound_radius() * BOUND_SLACK + slack
             }
         })
     }
@@ -122,7 +122,7 @@ mod tests {
 
     use super::*;
     use crate::map::MapOptions;
-    use crate::mesh::shapes::Shape as Catalog;
+    use crate::mesh::shapes::Catalog;
     use crate::mesh::{Surface, SurfaceOptions};
     use crate::rng::SplitMix64;
     use crate::scene::{Material, ObjectId, Pose, SceneObject, Shape};

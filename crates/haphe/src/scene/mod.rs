@@ -1,4 +1,4 @@
-//! Stage 5 — scenes: many objects, each a shared immutable [`Shape`] placed by a rigid
+//! Stage 4 — scenes: many objects, each a shared immutable [`Shape`] placed by a rigid
 //! [`Pose`] and given a [`Material`], changed from other threads without locking the
 //! servo thread.
 //!
@@ -29,9 +29,9 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::mesh::TriId;
-use crate::proxy::Probe;
 use crate::query::{
-    Crossing, SurfacePoint, WalkStatus, first_crossing_where, nearest_within, walk_to_nearest,
+    Crossing, Probe, SurfacePoint, WalkStatus, distance_to_segment, first_crossing_where,
+    nearest_within, walk_to_nearest,
 };
 
 /// A stable name for an object of a scene, chosen by the caller.
@@ -249,7 +249,7 @@ impl Scene {
         let one_sided = o.sides == Sides::Front;
         let probe = Probe::new(from, to, reach, one_sided);
         let centre = o.pose.to_world(shape.bound_centre());
-        if segment_point_distance(probe.p0, probe.p1, centre) > shape.bound_radius() * BOUND_SLACK {
+        if distance_to_segment(centre, [probe.p0, probe.p1]) > shape.bound_radius() * BOUND_SLACK {
             return None;
         }
         let a = o.pose.to_object(probe.p0);
@@ -258,38 +258,6 @@ impl Scene {
             h.entering || !probe.entering_only
         })
         .map(|c| Hit::of_crossing(i, &o.pose, &probe, &c))
-    }
-
-    /// Triangle `triangle` of object `i` as the surface the proxy at `from` still rests on
-    /// with the device point at `to` (see the proxy's resting rule), as a [`Hit`] at the
-    /// start of the move (`t = 0`). `None` when it is not, or when `i` is out of range.
-    pub(crate) fn rests_on(
-        &self,
-        i: usize,
-        triangle: TriId,
-        from: DVec3,
-        to: DVec3,
-        skin: f64,
-    ) -> Option<Hit> {
-        let o = self.objects.get(i)?;
-        let one_sided = o.sides == Sides::Front;
-        let (point, normal) = crate::proxy::rests_on(
-            o.shape.surface(),
-            &o.pose,
-            one_sided,
-            triangle,
-            from,
-            to,
-            skin,
-        )?;
-        Some(Hit {
-            t: 0.0,
-            object: i,
-            triangle,
-            point,
-            normal,
-            one_sided,
-        })
     }
 
     /// The triangle of object `i` nearest to the world point `p` among those within
@@ -353,15 +321,3 @@ const BOUND_SLACK: f64 = 1.0 + 1e-7;
 
 /// Most edits applied in one [`Scene::begin_tick`]; the rest wait for the next tick.
 pub const MAX_EDITS_PER_TICK: usize = 16;
-
-/// Distance from `q` to the segment `p0 → p1`, metres.
-fn segment_point_distance(p0: DVec3, p1: DVec3, q: DVec3) -> f64 {
-    let d = p1 - p0;
-    let len2 = d.length_squared();
-    let s = if len2 > 0.0 {
-        ((q - p0).dot(d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p0 + s * d).distance(q)
-}

@@ -10,7 +10,7 @@
 //!   workspace), in SI units and the device frame; a [`DeviceMapping`] places the device
 //!   workspace in the world (`world_from_device`, with workspace scaling).
 //! - Simulated devices: the [`SimulatedHand`] (a mass–spring–damper arm that follows a
-//!   [`Path`] and is pushed back by the rendered force), the [`ScriptedDevice`] (follows a
+//!   [`Trajectory`] and is pushed back by the rendered force), the [`ScriptedDevice`] (follows a
 //!   path exactly) and the [`ReplayDevice`] (replays a [`HipTrace`] read from CSV
 //!   `t,x,y,z`). [`scripted_path`] builds press, slide, circle, explore and strike paths
 //!   over a scene.
@@ -52,7 +52,7 @@
 //! use std::sync::Arc;
 //! use haphe::DVec3;
 //! use haphe::map::MapOptions;
-//! use haphe::mesh::{Surface, SurfaceOptions, shapes::Shape as Catalog};
+//! use haphe::mesh::{Surface, SurfaceOptions, shapes::Catalog};
 //! use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
 //! use haphe::servo::{HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, scripted_path};
 //!
@@ -85,9 +85,9 @@ pub use realtime::{
     check_core,
 };
 pub use simulated::{
-    HAND_MAX_STEP_S, HAND_MAX_SUBSTEPS, HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, Path,
-    PathError, PathKind, ReplayDevice, SLIDE_SPEED, STRIKE_SPEED, ScriptedDevice, SimulatedHand,
-    TraceError, scene_bounds, scripted_path, simulated_spec, surface_below,
+    HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, PathKind, ReplayDevice, SLIDE_SPEED,
+    STRIKE_SPEED, ScriptedDevice, SimulatedHand, TraceError, Trajectory, TrajectoryError,
+    scene_bounds, scripted_path, simulated_spec, surface_below,
 };
 pub use tick::{
     Histogram, MAX_MOTION_AMPLITUDE, MAX_MOTION_FREQUENCY, MAX_MOTION_RATE, MAX_MOTION_SPEED,

@@ -6,6 +6,9 @@
 //! to inside that report no crossing); inside/outside against winding numbers; the surface
 //! walk against the definition of a local minimum and, on convex meshes, against the
 //! brute-force nearest point.
+//!
+//! With the `testing` feature (the command line, the tests, benches and fuzz targets turn
+//! it on); an application that only renders does not compile it.
 
 mod oracle;
 mod proxy;

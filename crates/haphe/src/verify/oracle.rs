@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 
+use crate::map::clip_to_box;
 use crate::mesh::{Surface, TriId};
 use crate::query::{Segment, intersect_segment_triangle, triangle_hit};
 
@@ -197,7 +198,7 @@ pub fn distance_to_surface(surface: &Surface, p: DVec3) -> f64 {
 /// [`first_crossing_brute_force`]: crate::query::first_crossing_brute_force
 pub struct BruteCrossing<'a> {
     surface: &'a Surface,
-    boxes: TriangleBoxes,
+    boxes: TriangleBounds,
 }
 
 impl<'a> BruteCrossing<'a> {
@@ -205,7 +206,7 @@ impl<'a> BruteCrossing<'a> {
     pub fn new(surface: &'a Surface) -> BruteCrossing<'a> {
         BruteCrossing {
             surface,
-            boxes: TriangleBoxes::new(surface),
+            boxes: TriangleBounds::new(surface),
         }
     }
 
@@ -220,14 +221,14 @@ impl<'a> BruteCrossing<'a> {
 /// The bounding box of every triangle of a surface, grown by a relative hair: a slab test
 /// against them skips most triangles of a brute-force crossing query without changing its
 /// answer.
-pub(crate) struct TriangleBoxes {
+pub(crate) struct TriangleBounds {
     /// Per triangle: min corner, max corner.
     boxes: Vec<[DVec3; 2]>,
 }
 
-impl TriangleBoxes {
+impl TriangleBounds {
     /// The boxes of `surface`'s triangles.
-    pub(crate) fn new(surface: &Surface) -> TriangleBoxes {
+    pub(crate) fn new(surface: &Surface) -> TriangleBounds {
         let boxes = (0..surface.triangle_count() as u32)
             .map(|t| {
                 let [a, b, c] = surface.corners(TriId(t));
@@ -240,7 +241,7 @@ impl TriangleBoxes {
                 [lo - DVec3::splat(pad), hi + DVec3::splat(pad)]
             })
             .collect();
-        TriangleBoxes { boxes }
+        TriangleBounds { boxes }
     }
 
     /// The first crossing of the segment from `p0` to `p1` with `surface` (whose boxes
@@ -261,28 +262,10 @@ impl TriangleBoxes {
         let inv = DVec3::ONE / d;
         let mut best: Option<(crate::query::SegmentHit, u32)> = None;
         for (t, [lo, hi]) in self.boxes.iter().enumerate() {
-            // Slab test on [0, 1] (infinities from zero components compare correctly;
-            // NaN from 0 · ∞ is avoided by testing the degenerate axes separately).
-            let mut t0 = 0.0f64;
-            let mut t1 = 1.0f64;
-            let mut hit = true;
-            for k in 0..3 {
-                if d[k] == 0.0 {
-                    if p0[k] < lo[k] || p0[k] > hi[k] {
-                        hit = false;
-                        break;
-                    }
-                } else {
-                    let (a, b) = ((lo[k] - p0[k]) * inv[k], (hi[k] - p0[k]) * inv[k]);
-                    t0 = t0.max(a.min(b));
-                    t1 = t1.min(a.max(b));
-                    if t0 > t1 {
-                        hit = false;
-                        break;
-                    }
-                }
-            }
-            if !hit || best.is_some_and(|(b, _)| t0 > b.t) {
+            let Some((t0, _)) = clip_to_box(p0, d, inv, *lo, *hi) else {
+                continue;
+            };
+            if best.is_some_and(|(b, _)| t0 > b.t) {
                 continue;
             }
             let tri = TriId(t as u32);

@@ -10,14 +10,14 @@ use serde::Serialize;
 
 use std::sync::Arc;
 
-use super::oracle::TriangleBoxes;
+use super::oracle::TriangleBounds;
 use super::{KEPT_FAILURES, bounds, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, Hold, MAX_PROXY_STEPS, Plane, Probe, Proxy, ProxyOptions, Rest, advance_to_plane,
+    Constraints, Hold, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
     clamp_to_radius, friction_target, is_deep, rests_on, saturation_depth,
 };
-use crate::query::{Side, classify_point, nearest_within_brute_force, walk_to_nearest};
+use crate::query::{Probe, Side, classify_point, nearest_within_brute_force, walk_to_nearest};
 use crate::rng::SplitMix64;
 use crate::scene::{Material, Pose, Scene, Shape, Sides};
 
@@ -28,7 +28,7 @@ pub const PROXY_TOLERANCE_M: f64 = 1e-9;
 struct BruteObject {
     shape: Arc<Shape>,
     /// Every triangle's box, to skip most triangles of each crossing query.
-    boxes: TriangleBoxes,
+    boxes: TriangleBounds,
     pose: Pose,
     previous_pose: Pose,
     material: Material,
@@ -69,7 +69,7 @@ impl BruteProxy {
             .objects()
             .iter()
             .map(|o| BruteObject {
-                boxes: TriangleBoxes::new(o.shape.surface()),
+                boxes: TriangleBounds::new(o.shape.surface()),
                 shape: o.shape.clone(),
                 pose: o.pose,
                 previous_pose: o.previous_pose,

@@ -3,7 +3,7 @@
 //! from 3e12 m).
 
 use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::query::{first_crossing, first_crossing_brute_force};
 use haphe::rng::SplitMix64;
@@ -11,7 +11,7 @@ use haphe::rng::SplitMix64;
 #[test]
 fn far_segments_agree_with_the_brute_force() {
     let surface = Surface::new(
-        Shape::Blob.with_triangles(2_000),
+        Catalog::Blob.with_triangles(2_000),
         &SurfaceOptions::default(),
     )
     .expect("surface");

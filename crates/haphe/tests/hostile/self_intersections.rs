@@ -3,7 +3,7 @@
 
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
-use haphe::mesh::shapes::Shape;
+use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Mesh, Surface, SurfaceOptions, TriId};
 use haphe::query::{intersect_triangle_triangle, self_intersection_budget, self_intersections};
 
@@ -33,7 +33,7 @@ fn all_pairs(surface: &Surface) -> (usize, usize) {
 /// counts equal testing every pair (each copy's crossings with the other box count).
 #[test]
 fn repeated_faces_are_counted_as_testing_every_pair_does() {
-    let a = Shape::Box.with_triangles(100);
+    let a = Catalog::Box.with_triangles(100);
     let mut mesh = Mesh {
         vertices: a.vertices.clone(),
         triangles: a.triangles.clone(),

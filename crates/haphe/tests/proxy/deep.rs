@@ -2,7 +2,7 @@
 //! force never pulls the hand on through a thick object.
 
 use haphe::DVec3;
-use haphe::mesh::shapes::Shape as Catalog;
+use haphe::mesh::shapes::Catalog;
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::Material;
 use haphe::verify::{

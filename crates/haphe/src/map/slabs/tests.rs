@@ -5,7 +5,7 @@ use super::*;
 use crate::map::MapOptions;
 use crate::map::{InBrick, Look, RegionLook};
 use crate::mesh::SurfaceOptions;
-use crate::mesh::shapes::Shape;
+use crate::mesh::shapes::Catalog;
 use crate::rng::SplitMix64;
 
 /// Every direction code decodes to a direction of L1 norm 1, and encoding a direction
@@ -54,7 +54,7 @@ fn slabs_hold_the_triangles_in_their_cells() {
             let (a, b) = bounds(slab);
             cells += 1;
             thin += usize::from(b - a < 1.0 / 3.0);
-            if shape == Shape::ThinPlate {
+            if shape == Catalog::ThinPlate {
                 assert!(b - a < 0.05, "{shape:?} {c:?}: a slab {} thick", b - a);
             }
             let block = map.grid().cell_bounds(c);
@@ -63,7 +63,7 @@ fn slabs_hold_the_triangles_in_their_cells() {
             points += check_in_slab(&mut random, &surface, listed, block, layer, 20, &what);
         }
         assert!(points > 1000, "{shape:?}: {points}");
-        if shape != Shape::Sphere {
+        if shape != Catalog::Sphere {
             assert!(2 * thin > cells, "{shape:?}: {thin} thin slabs of {cells}");
         }
     }
@@ -90,7 +90,7 @@ fn cell_lists_are_ordered_along_their_slabs() {
                     "{shape:?} {c:?}: {k0:?} before {k1:?}"
                 );
             }
-            if shape == Shape::ThinPlate {
+            if shape == Catalog::ThinPlate {
                 // The faces' triangles in list order, by the side they face.
                 let faces: Vec<bool> = listed
                     .iter()
@@ -104,7 +104,7 @@ fn cell_lists_are_ordered_along_their_slabs() {
             }
         }
         assert!(cells > 100, "{shape:?}: {cells} surface cells");
-        if shape == Shape::ThinPlate {
+        if shape == Catalog::ThinPlate {
             assert!(
                 2 * both_faces > cells,
                 "{both_faces} of {cells} with both faces"
@@ -115,11 +115,11 @@ fn cell_lists_are_ordered_along_their_slabs() {
 
 /// The blob, the sphere and the thin plate with their maps: shapes whose cells hold a
 /// smooth patch, a curved one and both faces of a plate.
-fn three_shapes() -> Vec<(Shape, Surface, VoxelMap)> {
+fn three_shapes() -> Vec<(Catalog, Surface, VoxelMap)> {
     [
-        (Shape::Blob, 5_000),
-        (Shape::Sphere, 2_000),
-        (Shape::ThinPlate, 2_000),
+        (Catalog::Blob, 5_000),
+        (Catalog::Sphere, 2_000),
+        (Catalog::ThinPlate, 2_000),
     ]
     .into_iter()
     .map(|(shape, triangles)| {
@@ -200,9 +200,9 @@ fn surface_slab(map: &VoxelMap, c: [u32; 3]) -> Option<u32> {
 fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
     let mut random = SplitMix64::new(13);
     for (shape, triangles) in [
-        (Shape::Blob, 40_000),
-        (Shape::Sphere, 20_000),
-        (Shape::ThinPlate, 20_000),
+        (Catalog::Blob, 40_000),
+        (Catalog::Sphere, 20_000),
+        (Catalog::ThinPlate, 20_000),
     ] {
         let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
             .expect("a surface");
@@ -233,13 +233,13 @@ fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
                         let corner = c.map(|v| v & !(side - 1));
                         let (a, b) = layer.1;
                         blocks += 1;
-                        if shape == Shape::ThinPlate {
+                        if shape == Catalog::ThinPlate {
                             assert!(b - a < 0.05, "{shape:?} {side} {c:?}: {} thick", b - a);
                         }
                         // The plate's regions away from its rim: as thin as the plate and
                         // two steps of 16 bits (a tilt, or bounds of a byte, would give
                         // more than a hundredth of the region).
-                        if shape == Shape::ThinPlate && side == REGION_SIDE {
+                        if shape == Catalog::ThinPlate && side == REGION_SIDE {
                             assert!(b - a < 0.002, "{shape:?} region {c:?}: {} thick", b - a);
                         }
                         // Under two cells for a brick, eight (a quarter) for a region.
@@ -263,7 +263,7 @@ fn brick_and_region_slabs_hold_the_triangles_in_their_blocks() {
                 }
             }
             assert!(points > 10_000, "{shape:?} {side}: {points}");
-            if shape != Shape::ThinPlate {
+            if shape != Catalog::ThinPlate {
                 assert!(
                     2 * thin > blocks,
                     "{shape:?} {side}: {thin} thin of {blocks}"
@@ -326,7 +326,7 @@ fn a_window_holds_the_parameters_in_the_slab() {
 #[test]
 fn a_file_without_a_slab_per_surface_cell_is_refused() {
     let surface = Surface::new(
-        Shape::Blob.with_triangles(1_000),
+        Catalog::Blob.with_triangles(1_000),
         &SurfaceOptions::default(),
     )
     .expect("a surface");

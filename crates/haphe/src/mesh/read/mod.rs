@@ -9,6 +9,7 @@ mod off;
 mod ply;
 pub(crate) mod polygon;
 mod stl;
+mod text;
 
 use std::str::FromStr;
 

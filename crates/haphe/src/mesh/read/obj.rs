@@ -17,6 +17,7 @@
 use glam::DVec3;
 
 use super::polygon::Triangulator;
+use super::text::{Lines, show, tokens};
 use crate::mesh::{Mesh, Place, ReadErrorKind};
 
 /// Statements `looks_like_obj` accepts, besides comments and blank lines.
@@ -89,11 +90,7 @@ pub(super) fn read_obj(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
     let mut faces = Faces::default();
     let mut statements = 0usize;
     let mut joined: Vec<u8> = Vec::new();
-    let mut lines = Lines {
-        bytes,
-        pos: 0,
-        line: 0,
-    };
+    let mut lines = Lines::new(bytes, 1);
     while let Some((first_line, mut physical)) = lines.next_line() {
         let logical: &[u8] = if continues(physical) {
             // Join the continued lines (rare) into scratch space.
@@ -143,11 +140,7 @@ pub(super) fn read_obj(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
 /// OBJ keywords, and at least one `v` or `f` statement.
 pub(super) fn looks_like_obj(bytes: &[u8]) -> bool {
     let head = &bytes[..bytes.len().min(SNIFF_BYTES)];
-    let mut lines = Lines {
-        bytes: head,
-        pos: 0,
-        line: 0,
-    };
+    let mut lines = Lines::new(head, 1);
     let mut geometry = false;
     while let Some((_, line)) = lines.next_line() {
         let line = match line.iter().position(|&b| b == b'#') {
@@ -159,32 +152,11 @@ pub(super) fn looks_like_obj(bytes: &[u8]) -> bool {
         };
         if !OBJ_KEYWORDS.contains(&keyword) {
             // The last line may be cut by the sniff limit.
-            return geometry && lines.pos >= head.len() && head.len() < bytes.len();
+            return geometry && lines.at_end() && head.len() < bytes.len();
         }
         geometry |= keyword == b"v" || keyword == b"f";
     }
     geometry
-}
-
-/// Physical lines of a byte slice with their 1-based numbers (`\n` ends a line; a `\r`
-/// before it is left in place and treated as white space).
-struct Lines<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    line: usize,
-}
-
-impl<'a> Lines<'a> {
-    fn next_line(&mut self) -> Option<(usize, &'a [u8])> {
-        if self.pos >= self.bytes.len() {
-            return None;
-        }
-        let rest = &self.bytes[self.pos..];
-        let len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-        self.pos += len + 1;
-        self.line += 1;
-        Some((self.line, &rest[..len]))
-    }
 }
 
 /// True when a physical line ends with a backslash (before trailing white space).
@@ -196,17 +168,6 @@ fn continues(line: &[u8]) -> bool {
 fn without_continuation(line: &[u8]) -> &[u8] {
     let trimmed = line.trim_ascii_end();
     &trimmed[..trimmed.len().saturating_sub(1)]
-}
-
-/// White-space separated tokens of a line.
-fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
-    line.split(|b| b.is_ascii_whitespace())
-        .filter(|t| !t.is_empty())
-}
-
-/// Lossy text of a token, for error messages.
-fn show(token: &[u8]) -> String {
-    String::from_utf8_lossy(token).into_owned()
 }
 
 /// Parses a decimal floating-point token (Rust syntax: also `inf` and `nan`).

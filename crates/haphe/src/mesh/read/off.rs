@@ -19,39 +19,31 @@
 use glam::DVec3;
 
 use super::polygon::Triangulator;
+use super::text::{self, tokens};
 use crate::mesh::{Mesh, Place, ReadErrorKind};
 
 /// The meaningful lines of an OFF file: comments stripped, blank lines skipped, with their
 /// 1-based numbers.
 struct Lines<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-    line: usize,
+    physical: text::Lines<'a>,
 }
 
 impl<'a> Lines<'a> {
     fn new(bytes: &'a [u8]) -> Self {
         Lines {
-            bytes,
-            pos: 0,
-            line: 0,
+            physical: text::Lines::new(bytes, 1),
         }
     }
 
     /// The next line with content, as (line number, content without comment).
     fn next_content(&mut self) -> Option<(usize, &'a [u8])> {
-        while self.pos < self.bytes.len() {
-            let rest = &self.bytes[self.pos..];
-            let len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-            self.pos += len + 1;
-            self.line += 1;
-            let line = &rest[..len];
+        while let Some((number, line)) = self.physical.next_line() {
             let line = match line.iter().position(|&b| b == b'#') {
                 Some(hash) => &line[..hash],
                 None => line,
             };
             if !line.trim_ascii().is_empty() {
-                return Some((self.line, line));
+                return Some((number, line));
             }
         }
         None
@@ -59,14 +51,8 @@ impl<'a> Lines<'a> {
 
     /// The line just after the last one, for errors at the end of the file.
     fn end_line(&self) -> usize {
-        self.line + 1
+        self.physical.line() + 1
     }
-}
-
-/// White-space separated tokens of a line.
-fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
-    line.split(|b| b.is_ascii_whitespace())
-        .filter(|t| !t.is_empty())
 }
 
 /// The parsed header: what each vertex line holds and the counts.

@@ -7,20 +7,18 @@
 //! is ASCII; anything else is a binary file of the wrong size, reported with the expected
 //! and actual size.
 //!
-//! Binary files are parsed here (a straight pass over 50-byte records; `stl_io`'s binary
-//! reader does not check the size, and its detection takes every file starting with
-//! `solid ` for ASCII). ASCII files go through `stl_io`'s reader; its errors carry no place,
-//! so the facets are counted and the error names the facet and the line it starts on.
-//! Several solids in one ASCII file are all read.
+//! Both are parsed here: binary files in a straight pass over 50-byte records, ASCII files
+//! word by word with the tokenizer of the other text formats (`text.rs`), so that an error
+//! names the line of the word at fault and the facet (counted from 0 over the whole
+//! file). Several solids in one ASCII file are all read.
 //!
 //! STL has no shared vertices: each triangle gets three new vertices, in file units, and
 //! `read_mesh` welds them. The facet normals are ignored (haphe computes its own from the
 //! winding).
 
-use std::io::{Cursor, ErrorKind};
-
 use glam::DVec3;
 
+use super::text::{Words, show};
 use super::{skip_ascii_whitespace, starts_with_word};
 use crate::mesh::{Mesh, Place, ReadErrorKind};
 
@@ -28,9 +26,6 @@ use crate::mesh::{Mesh, Place, ReadErrorKind};
 const HEADER_BYTES: usize = 84;
 /// Size of one binary triangle record.
 const RECORD_BYTES: usize = 50;
-/// Non-blank lines per ASCII facet: `facet normal`, `outer loop`, 3 × `vertex`, `endloop`,
-/// `endfacet` (the layout `stl_io` requires).
-const LINES_PER_FACET: usize = 7;
 /// Most triangles whose corners fit 32-bit vertex indices.
 const MAX_TRIANGLES: usize = u32::MAX as usize / 3;
 
@@ -185,166 +180,144 @@ fn soup(vertices: Vec<DVec3>) -> Mesh {
 }
 
 /// Reads an ASCII STL (`text` starts with `solid`; `line_offset` lines precede it), one
-/// solid after the other.
+/// solid after the other:
+///
+/// ```text
+/// solid [name]
+///   facet normal nx ny nz
+///     outer loop
+///       vertex x y z        (three times)
+///     endloop
+///   endfacet                (any number of facets)
+/// endsolid [name]
+/// ```
+///
+/// Coordinates are single-precision numbers, as in a binary STL (read as `f32`, then
+/// widened). What follows the last `endsolid`, other than another solid, is ignored.
 fn read_ascii(text: &[u8], line_offset: usize) -> Result<Mesh, ReadErrorKind> {
+    let mut words = Words::new(text, line_offset + 1);
     let mut vertices = Vec::new();
-    let mut rest = text;
-    let mut first_line = line_offset + 1;
-    let mut facets_before = 0;
-    loop {
-        // stl_io gets exactly one solid, so the work stays linear in the file size however
-        // many solids there are.
-        let end = solid_end(rest);
-        let solid = &rest[..end];
-        // stl_io wants "solid " with a space; give it that when the name is missing.
-        let patched;
-        let input: &[u8] = if solid.get(5) == Some(&b' ') {
-            solid
-        } else {
-            patched = [b"solid ", &solid[5..]].concat();
-            &patched
-        };
-        // stl_io's detection reads the first line as UTF-8 and, if that fails, silently
-        // reads the bytes as a binary STL; never let it.
-        let solid_line = input.split(|&b| b == b'\n').next().unwrap_or(input);
-        if std::str::from_utf8(solid_line).is_err() {
+    let mut facets = 0usize;
+    while let Some((line, _solid)) = words.next_word() {
+        // The name: any text, but text (a binary header that starts with "solid" is not).
+        if std::str::from_utf8(words.rest_of_line()).is_err() {
             return Err(ReadErrorKind::Syntax {
-                at: Place::Line(first_line),
+                at: Place::Line(line),
                 message: "the 'solid' line of an ASCII STL is not text".to_owned(),
             });
         }
-        let facets =
-            read_ascii_solid(input, &mut vertices).map_err(|(facet, error)| match facet {
-                Some(facet) => ascii_error(solid, first_line, facets_before, facet, &error),
-                None => ReadErrorKind::Syntax {
-                    at: Place::Line(first_line),
-                    message: error.to_string(),
-                },
-            })?;
-        facets_before += facets;
-        if 3 * facets_before > u32::MAX as usize {
-            return Err(ReadErrorKind::TooLarge {
-                at: Place::Line(first_line),
-                message: format!("{facets_before} facets need more than 32-bit vertex indices"),
-            });
+        loop {
+            let (line, word) = next_or_truncated(&mut words, "'facet' or 'endsolid'", facets)?;
+            match word {
+                b"endsolid" => {
+                    words.rest_of_line();
+                    break;
+                }
+                b"facet" => {
+                    if 3 * (facets + 1) > u32::MAX as usize {
+                        return Err(ReadErrorKind::TooLarge {
+                            at: Place::Line(line),
+                            message: format!(
+                                "{} facets need more than 32-bit vertex indices",
+                                facets + 1
+                            ),
+                        });
+                    }
+                    read_facet(&mut words, facets, &mut vertices)?;
+                    facets += 1;
+                }
+                other => return Err(unexpected(line, facets, "'facet' or 'endsolid'", other)),
+            }
         }
         // Another solid may follow.
-        let next = &rest[end..];
-        let after = skip_ascii_whitespace(next);
-        if !starts_with_word(after, b"solid") {
+        if !words.peek_is(b"solid") {
             break;
         }
-        first_line += count_newlines(&rest[..end + (next.len() - after.len())]);
-        rest = after;
     }
     Ok(soup(vertices))
 }
 
-/// The length of the solid at the start of `text`: through its first line whose first word
-/// is `endsolid`, or all of `text`.
-fn solid_end(text: &[u8]) -> usize {
-    lines_with_ends(text)
-        .find(|(_, line, _)| {
-            line.split(|b| b.is_ascii_whitespace())
-                .find(|w| !w.is_empty())
-                .is_some_and(|w| w == b"endsolid")
-        })
-        .map_or(text.len(), |(_, _, end)| end)
-}
-
-/// Reads one solid through `stl_io`, appending its corners. Returns the facet count, or
-/// the index of the facet that failed (within this solid; `None` for the `solid` line) and
-/// the error.
-fn read_ascii_solid(
-    input: &[u8],
-    vertices: &mut Vec<DVec3>,
-) -> Result<usize, (Option<usize>, std::io::Error)> {
-    let mut cursor = Cursor::new(input);
-    let reader = stl_io::create_stl_reader(&mut cursor).map_err(|e| (None, e))?;
-    let mut facets = 0;
-    for triangle in reader {
-        let triangle = triangle.map_err(|e| (Some(facets), e))?;
-        vertices.extend(
-            triangle
-                .vertices
-                .iter()
-                .map(|v| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]))),
-        );
-        facets += 1;
-    }
-    Ok(facets)
-}
-
-/// Maps an `stl_io` error at `facet` (within the solid starting at `solid`, on line
-/// `first_line`) to an error naming the facet and the line it starts on.
-fn ascii_error(
-    solid: &[u8],
-    first_line: usize,
-    facets_before: usize,
+/// Reads facet number `facet` after its `facet` keyword, appending its three corners.
+fn read_facet(
+    words: &mut Words<'_>,
     facet: usize,
-    error: &std::io::Error,
-) -> ReadErrorKind {
-    // Facet k starts on the (2 + 7k)-th non-blank line of the solid; past the end, the
-    // file ended early.
-    let start = nonblank_line_number(solid, 2 + LINES_PER_FACET * facet);
-    let line = first_line - 1 + start.unwrap_or_else(|| count_lines(solid) + 1);
-    let facet = facets_before + facet;
-    let message = error.to_string();
-    if start.is_none() || error.kind() == ErrorKind::UnexpectedEof {
-        ReadErrorKind::Truncated {
-            at: Place::Line(line),
-            message: format!("facet {facet}: {message}"),
-        }
-    } else if message.starts_with("expected finite") {
-        ReadErrorKind::NonFinite {
-            at: Place::Line(line),
-        }
-    } else {
-        ReadErrorKind::Syntax {
-            at: Place::Line(line),
-            message: format!("facet {facet} (starting here): {message}"),
-        }
+    vertices: &mut Vec<DVec3>,
+) -> Result<(), ReadErrorKind> {
+    expect(words, b"normal", facet)?;
+    for _ in 0..3 {
+        // The facet normal is read as a number and ignored: haphe takes the winding.
+        number(words, facet)?;
     }
+    expect(words, b"outer", facet)?;
+    expect(words, b"loop", facet)?;
+    for _ in 0..3 {
+        let line = expect(words, b"vertex", facet)?;
+        let corner = [
+            number(words, facet)?,
+            number(words, facet)?,
+            number(words, facet)?,
+        ];
+        if !corner.iter().all(|v| v.is_finite()) {
+            return Err(ReadErrorKind::NonFinite {
+                at: Place::Line(line),
+            });
+        }
+        vertices.push(DVec3::from_array(corner.map(f64::from)));
+    }
+    expect(words, b"endloop", facet)?;
+    expect(words, b"endfacet", facet)?;
+    Ok(())
 }
 
-/// True for a line `stl_io` skips (only white space).
-fn is_blank(line: &[u8]) -> bool {
-    match std::str::from_utf8(line) {
-        Ok(s) => s.trim().is_empty(),
-        Err(_) => false,
-    }
-}
-
-/// Lines of `text` with their 1-based numbers and the offset just past each (after `\n`).
-fn lines_with_ends(text: &[u8]) -> impl Iterator<Item = (usize, &[u8], usize)> {
-    let mut pos = 0;
-    let mut number = 0;
-    std::iter::from_fn(move || {
-        if pos >= text.len() {
-            return None;
-        }
-        let rest = &text[pos..];
-        let len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-        pos += (len + 1).min(rest.len());
-        number += 1;
-        Some((number, &rest[..len], pos))
+/// The next word, or the error of a file that ends in or after facet `facet` where `what`
+/// should follow.
+fn next_or_truncated<'a>(
+    words: &mut Words<'a>,
+    what: &str,
+    facet: usize,
+) -> Result<(usize, &'a [u8]), ReadErrorKind> {
+    words.next_word().ok_or_else(|| ReadErrorKind::Truncated {
+        at: Place::Line(words.end_line()),
+        message: format!("facet {facet}: the file ends where {what} should follow"),
     })
 }
 
-/// The 1-based line number of the `k`-th (1-based) non-blank line.
-fn nonblank_line_number(text: &[u8], k: usize) -> Option<usize> {
-    lines_with_ends(text)
-        .filter(|(_, line, _)| !is_blank(line))
-        .nth(k.checked_sub(1)?)
-        .map(|(number, _, _)| number)
+/// Reads the keyword `keyword` of facet `facet`; returns its line.
+fn expect(words: &mut Words<'_>, keyword: &[u8], facet: usize) -> Result<usize, ReadErrorKind> {
+    let (line, word) = words.next_word().ok_or_else(|| ReadErrorKind::Truncated {
+        at: Place::Line(words.end_line()),
+        message: format!(
+            "facet {facet}: the file ends where '{}' should follow",
+            show(keyword)
+        ),
+    })?;
+    if word == keyword {
+        Ok(line)
+    } else {
+        Err(unexpected(
+            line,
+            facet,
+            &format!("'{}'", show(keyword)),
+            word,
+        ))
+    }
 }
 
-fn count_newlines(text: &[u8]) -> usize {
-    text.iter().filter(|&&b| b == b'\n').count()
+/// Reads a number of facet `facet`.
+fn number(words: &mut Words<'_>, facet: usize) -> Result<f32, ReadErrorKind> {
+    let (line, word) = next_or_truncated(words, "a number", facet)?;
+    std::str::from_utf8(word)
+        .ok()
+        .and_then(|w| w.parse::<f32>().ok())
+        .ok_or_else(|| unexpected(line, facet, "a number", word))
 }
 
-fn count_lines(text: &[u8]) -> usize {
-    lines_with_ends(text).count()
+/// The error for `found` on `line` in facet `facet` where `what` was expected.
+fn unexpected(line: usize, facet: usize, what: &str, found: &[u8]) -> ReadErrorKind {
+    ReadErrorKind::Syntax {
+        at: Place::Line(line),
+        message: format!("facet {facet}: expected {what}, found '{}'", show(found)),
+    }
 }
 
 #[cfg(test)]
@@ -489,31 +462,36 @@ mod tests {
         let bad = ASCII.replacen("vertex 1 1 0", "vertex 1 x 0", 1);
         let err = read_stl(bad.as_bytes()).unwrap_err();
         assert!(
-            matches!(&err, ReadErrorKind::Syntax { at: Place::Line(9), message } if message.starts_with("facet 1 ")),
+            matches!(&err, ReadErrorKind::Syntax { at: Place::Line(12), message } if message.starts_with("facet 1: expected a number, found 'x'")),
             "{err:?}"
         );
         let bad = ASCII.replacen("outer loop", "outer lop", 1);
-        assert!(matches!(
-            read_stl(bad.as_bytes()),
-            Err(ReadErrorKind::Syntax {
-                at: Place::Line(2),
-                ..
-            })
-        ));
+        let err = read_stl(bad.as_bytes()).unwrap_err();
+        assert!(
+            matches!(&err, ReadErrorKind::Syntax { at: Place::Line(3), message } if message.starts_with("facet 0: expected 'loop', found 'lop'")),
+            "{err:?}"
+        );
         let non_finite = ASCII.replacen("vertex 1 1 0", "vertex 1 1e39 0", 1);
         assert_eq!(
             read_stl(non_finite.as_bytes()),
-            Err(ReadErrorKind::NonFinite { at: Place::Line(9) })
-        );
-        // In the second solid, lines count from the start of the file.
-        let twice = format!("{ASCII}{}", bad);
-        assert!(matches!(
-            read_stl(twice.as_bytes()),
-            Err(ReadErrorKind::Syntax {
-                at: Place::Line(18),
-                ..
+            Err(ReadErrorKind::NonFinite {
+                at: Place::Line(12)
             })
-        ));
+        );
+        // In the second solid, lines and facets count from the start of the file.
+        let twice = format!("{ASCII}{}", bad);
+        let err = read_stl(twice.as_bytes()).unwrap_err();
+        assert!(
+            matches!(&err, ReadErrorKind::Syntax { at: Place::Line(19), message } if message.starts_with("facet 2: expected 'loop', found 'lop'")),
+            "{err:?}"
+        );
+        // A word where a facet or the end of the solid should be.
+        let stray = ASCII.replacen("endsolid", "endsolidx", 1);
+        let err = read_stl(stray.as_bytes()).unwrap_err();
+        assert!(
+            matches!(&err, ReadErrorKind::Syntax { at: Place::Line(16), message } if message.starts_with("facet 2: expected 'facet' or 'endsolid', found 'endsolidx'")),
+            "{err:?}"
+        );
     }
 
     #[test]
@@ -524,7 +502,7 @@ mod tests {
             matches!(
                 err,
                 ReadErrorKind::Truncated {
-                    at: Place::Line(9),
+                    at: Place::Line(15),
                     ..
                 }
             ),

@@ -6,7 +6,6 @@
 
 mod analyse;
 pub(crate) use analyse::analyse_with_edges;
-pub use nesting::MAX_NESTING_WORK;
 mod nesting;
 mod text;
 pub use text::ReportText;
@@ -150,7 +149,7 @@ impl MeshReport {
     /// `O(n log n)` in the number of triangles, parallel where it pays; about a tenth of a
     /// second per million triangles. Nesting of closed components (which decides whether
     /// a negative-volume component is a cavity or inside out) is computed when
-    /// components × triangles stays below [`MAX_NESTING_WORK`].
+    /// components × triangles stays below 2·10⁸.
     pub fn of(mesh: &Mesh) -> MeshReport {
         analyse::analyse(mesh)
     }

@@ -13,7 +13,7 @@ use crate::mesh::frame::solid_angle;
 /// Upper bound on (closed components) × (triangles) for which nesting is computed exactly
 /// with winding numbers; past it, a closed component is taken as inside out when its
 /// volume is negative (the usual case of one solid).
-pub const MAX_NESTING_WORK: usize = 200_000_000;
+pub(crate) const MAX_NESTING_WORK: usize = 200_000_000;
 
 /// Sets `depth` and `inverted` of every closed, oriented component.
 /// `component_of[t]` is the index in `list` of triangle `t`'s component, or `usize::MAX`.

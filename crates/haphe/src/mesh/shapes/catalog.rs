@@ -1,4 +1,4 @@
-//! [`Shape`]: the generator families at a typical haptic size, sized by a triangle budget.
+//! [`Catalog`]: the generator families at a typical haptic size, sized by a triangle budget.
 
 use std::fmt;
 use std::str::FromStr;
@@ -36,8 +36,8 @@ const BLOB_SEED: u64 = 0x005E_ED0F_B10B;
 ///
 /// # Examples
 /// ```
-/// use haphe::mesh::shapes::Shape;
-/// let shape: Shape = "concave-corner".parse().expect("a known name");
+/// use haphe::mesh::shapes::Catalog;
+/// let shape: Catalog = "concave-corner".parse().expect("a known name");
 /// let mesh = shape.with_triangles(10_000);
 /// assert_eq!(mesh.triangles.len(), shape.closest_triangle_count(10_000));
 /// assert_eq!(mesh.triangles.len(), 9408); // 48·14²
@@ -45,7 +45,7 @@ const BLOB_SEED: u64 = 0x005E_ED0F_B10B;
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
-pub enum Shape {
+pub enum Catalog {
     /// A [`geodesic_sphere`] of radius 0.1 m: `20·f²` triangles.
     Sphere,
     /// A [`torus`] around the z axis, ring radius 0.07 m and tube radius 0.03 m (0.2 m
@@ -67,33 +67,33 @@ pub enum Shape {
 }
 
 /// The most triangles a built-in shape may be asked for in a front end (a binary STL of
-/// 500 MB); [`Shape::check_triangles`].
+/// 500 MB); [`Catalog::check_triangles`].
 pub const MAX_SHAPE_TRIANGLES: usize = 10_000_000;
 
-impl Shape {
+impl Catalog {
     /// Every shape, in the order of the enum.
-    pub const ALL: [Shape; 6] = [
-        Shape::Sphere,
-        Shape::Torus,
-        Shape::Box,
-        Shape::ThinPlate,
-        Shape::ConcaveCorner,
-        Shape::Blob,
+    pub const ALL: [Catalog; 6] = [
+        Catalog::Sphere,
+        Catalog::Torus,
+        Catalog::Box,
+        Catalog::ThinPlate,
+        Catalog::ConcaveCorner,
+        Catalog::Blob,
     ];
 
-    /// Triangle budgets above this are clamped to it by [`Shape::with_triangles`]: about
+    /// Triangle budgets above this are clamped to it by [`Catalog::with_triangles`]: about
     /// 1.6 GB of mesh.
     pub const MAX_TRIANGLES: usize = 1 << 26;
 
     /// The name of the shape, as used on the command line.
     pub fn name(self) -> &'static str {
         match self {
-            Shape::Sphere => "sphere",
-            Shape::Torus => "torus",
-            Shape::Box => "box",
-            Shape::ThinPlate => "thin-plate",
-            Shape::ConcaveCorner => "concave-corner",
-            Shape::Blob => "blob",
+            Catalog::Sphere => "sphere",
+            Catalog::Torus => "torus",
+            Catalog::Box => "box",
+            Catalog::ThinPlate => "thin-plate",
+            Catalog::ConcaveCorner => "concave-corner",
+            Catalog::Blob => "blob",
         }
     }
 
@@ -102,7 +102,7 @@ impl Shape {
     /// resolution has several parameters, only resolutions with roughly square cells are
     /// considered (segment or division ratios within a factor of about two of the
     /// proportional ones), which still leaves the count within a fraction of a percent of
-    /// any target above a few thousand. `target` is clamped to [`Shape::MAX_TRIANGLES`];
+    /// any target above a few thousand. `target` is clamped to [`Catalog::MAX_TRIANGLES`];
     /// below the coarsest mesh of the family (12 to 48 triangles) the coarsest is returned.
     ///
     /// Deterministic: the same shape and target give the same mesh.
@@ -149,24 +149,24 @@ impl Shape {
         }
     }
 
-    /// The number of triangles [`Shape::with_triangles`] gives for `target`, without
+    /// The number of triangles [`Catalog::with_triangles`] gives for `target`, without
     /// building the mesh.
     pub fn closest_triangle_count(self, target: usize) -> usize {
         self.resolution_for(target).triangle_count()
     }
 
     fn resolution_for(self, target: usize) -> Resolution {
-        let target = target.min(Shape::MAX_TRIANGLES);
+        let target = target.min(Catalog::MAX_TRIANGLES);
         match self {
-            Shape::Sphere => Resolution::Sphere {
+            Catalog::Sphere => Resolution::Sphere {
                 frequency: sphere_frequency_for(target),
             },
-            Shape::Blob => Resolution::Blob {
+            Catalog::Blob => Resolution::Blob {
                 frequency: sphere_frequency_for(target),
             },
-            Shape::Torus => torus_resolution_for(target),
-            Shape::Box => box_resolution_for(target),
-            Shape::ThinPlate => {
+            Catalog::Torus => torus_resolution_for(target),
+            Catalog::Box => box_resolution_for(target),
+            Catalog::ThinPlate => {
                 // 4n² + 8n = target  ⇔  n = √(1 + target/4) − 1
                 let estimate = (1.0 + target as f64 / 4.0).sqrt() - 1.0;
                 let divisions = closest_single(
@@ -177,7 +177,7 @@ impl Shape {
                 );
                 Resolution::ThinPlate { divisions }
             }
-            Shape::ConcaveCorner => {
+            Catalog::ConcaveCorner => {
                 let estimate = (target as f64 / 48.0).sqrt();
                 let divisions =
                     closest_single(target, estimate, MAX_CONCAVE_CORNER_DIVISIONS, |d| {
@@ -189,19 +189,19 @@ impl Shape {
     }
 }
 
-impl fmt::Display for Shape {
+impl fmt::Display for Catalog {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
 }
 
-impl FromStr for Shape {
+impl FromStr for Catalog {
     type Err = ParseShapeError;
 
     /// Reads a shape name (`sphere`, `torus`, `box`, `thin-plate`, `concave-corner`,
-    /// `blob`), exactly as [`Shape::name`] writes it.
-    fn from_str(name: &str) -> Result<Shape, ParseShapeError> {
-        Shape::ALL
+    /// `blob`), exactly as [`Catalog::name`] writes it.
+    fn from_str(name: &str) -> Result<Catalog, ParseShapeError> {
+        Catalog::ALL
             .into_iter()
             .find(|shape| shape.name() == name)
             .ok_or_else(|| ParseShapeError {
@@ -210,7 +210,7 @@ impl FromStr for Shape {
     }
 }
 
-/// A shape name that [`Shape::from_str`] does not know.
+/// A shape name that [`Catalog::from_str`] does not know.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
     "unknown shape '{name}' (expected one of: sphere, torus, box, thin-plate, concave-corner, blob)"
@@ -366,7 +366,7 @@ mod tests {
 
     #[test]
     fn predicted_counts_match_the_meshes() {
-        for shape in Shape::ALL {
+        for shape in Catalog::ALL {
             for target in [0, 1, 13, 50, 100, 777, 2_000, 12_345] {
                 assert_eq!(
                     shape.with_triangles(target).triangles.len(),
@@ -396,9 +396,12 @@ mod tests {
 
     #[test]
     fn huge_targets_are_clamped() {
-        for shape in Shape::ALL {
+        for shape in Catalog::ALL {
             let count = shape.closest_triangle_count(usize::MAX);
-            assert!(count <= Shape::MAX_TRIANGLES * 11 / 10, "{shape}: {count}");
+            assert!(
+                count <= Catalog::MAX_TRIANGLES * 11 / 10,
+                "{shape}: {count}"
+            );
         }
     }
 }

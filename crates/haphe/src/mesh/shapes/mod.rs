@@ -13,8 +13,8 @@
 //! | [`concave_corner`] | a cube with one octant removed | 48·d² |
 //! | [`blob`] / [`geodesic_blob`] | a sphere displaced by smooth noise | 20·4^s / 20·f² |
 //!
-//! [`Shape`] names these families at a typical haptic size (about 0.2 m across) and picks
-//! the resolution that comes closest to a triangle budget ([`Shape::with_triangles`]), for
+//! [`Catalog`] names these families at a typical haptic size (about 0.2 m across) and picks
+//! the resolution that comes closest to a triangle budget ([`Catalog::with_triangles`]), for
 //! benchmarks and the command-line tool.
 //!
 //! # Conventions
@@ -39,7 +39,7 @@
 //!   every vertex index within `u32` and every count within `usize` on 32-bit targets.
 //!   Memory grows with the resolution, about 24 bytes per triangle (12 for the indices,
 //!   12 for half a vertex), so these limits are far beyond what fits in memory: callers
-//!   choose sensible resolutions, as [`Shape::with_triangles`] does.
+//!   choose sensible resolutions, as [`Catalog::with_triangles`] does.
 
 mod blob;
 mod boxes;
@@ -52,7 +52,7 @@ pub use blob::{MAX_BLOB_AMPLITUDE_FRACTION, blob, geodesic_blob};
 pub use boxes::{
     MAX_CONCAVE_CORNER_DIVISIONS, MAX_CUBOID_DIVISIONS, concave_corner, cuboid, thin_plate,
 };
-pub use catalog::{MAX_SHAPE_TRIANGLES, ParseShapeError, Shape};
+pub use catalog::{Catalog, MAX_SHAPE_TRIANGLES, ParseShapeError};
 pub use sphere::{MAX_SPHERE_FREQUENCY, MAX_SPHERE_SUBDIVISIONS, geodesic_sphere, sphere};
 pub use torus::{MAX_TORUS_SEGMENTS, MIN_TORUS_SEGMENTS, torus};
 

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::mesh::SurfaceOptions;
-use crate::mesh::shapes::Shape;
+use crate::mesh::shapes::Catalog;
 use crate::query::intersect_segment_triangle;
 use crate::rng::SplitMix64;
 use crate::verify::{SegmentKind, segments};
@@ -43,10 +43,10 @@ fn check_filter_keeps_hits(surface: &Surface, queries: &[(DVec3, DVec3)], seed: 
 #[test]
 fn the_filter_keeps_every_hit_triangle() {
     for (shape, triangles) in [
-        (Shape::ThinPlate, 1000),
-        (Shape::Sphere, 500),
-        (Shape::ConcaveCorner, 500),
-        (Shape::Blob, 1000),
+        (Catalog::ThinPlate, 1000),
+        (Catalog::Sphere, 500),
+        (Catalog::ConcaveCorner, 500),
+        (Catalog::Blob, 1000),
     ] {
         let surface = Surface::new(shape.with_triangles(triangles), &SurfaceOptions::default())
             .expect("a procedural shape");
@@ -64,7 +64,7 @@ fn the_filter_skips_triangles_whose_plane_the_line_meets_elsewhere() {
     // A flat fan of triangles: a steep segment through one of them meets every plane (the
     // same plane), and only the triangle it crosses is kept.
     let surface = Surface::new(
-        Shape::ThinPlate.with_triangles(1000),
+        Catalog::ThinPlate.with_triangles(1000),
         &SurfaceOptions::default(),
     )
     .expect("a procedural shape");

@@ -229,6 +229,7 @@ impl<D: Device + 'static> ServoLoop<D> {
 }
 
 /// Asks for FIFO priority and pins the thread, as permitted.
+#[cfg(feature = "realtime")]
 fn set_up_thread(options: &RealtimeOptions) -> RealtimeSetup {
     let mut setup = RealtimeSetup::default();
     if options.realtime_priority {
@@ -258,7 +259,19 @@ fn set_up_thread(options: &RealtimeOptions) -> RealtimeSetup {
     setup
 }
 
-#[cfg(unix)]
+/// Without the `realtime` feature: normal priority, not pinned, as the notes say.
+#[cfg(not(feature = "realtime"))]
+fn set_up_thread(options: &RealtimeOptions) -> RealtimeSetup {
+    let mut setup = RealtimeSetup::default();
+    if options.realtime_priority || options.core.is_some() {
+        setup
+            .notes
+            .push("real-time priority and core pinning not built (feature 'realtime')".into());
+    }
+    setup
+}
+
+#[cfg(all(unix, feature = "realtime"))]
 fn fifo_priority() -> Result<(), String> {
     use thread_priority::{
         RealtimeThreadSchedulePolicy, ThreadPriority, ThreadPriorityValue, ThreadSchedulePolicy,
@@ -273,7 +286,7 @@ fn fifo_priority() -> Result<(), String> {
     .map_err(|e| format!("{e:?}"))
 }
 
-#[cfg(not(unix))]
+#[cfg(all(not(unix), feature = "realtime"))]
 fn fifo_priority() -> Result<(), String> {
     thread_priority::set_current_thread_priority(thread_priority::ThreadPriority::Max)
         .map_err(|e| format!("{e:?}"))

@@ -104,9 +104,7 @@ pub(super) fn with_standby<D: Device>(
             .spawn_scoped(scope, || {
                 // Not looked up among the cores this thread may use: it starts with the
                 // servo thread's affinity, that one core.
-                let pinned_core =
-                    core_affinity::set_for_current(core_affinity::CoreId { id: core })
-                        .then_some(core);
+                let pinned_core = pin_to(core);
                 let counters = Counters::read(pinned_core);
                 let mut ticks = 0u64;
                 // Nothing below allocates.
@@ -163,6 +161,18 @@ pub(super) fn with_standby<D: Device>(
     (run, report)
 }
 
+/// Pins the current thread to `core`; its index when that worked.
+#[cfg(feature = "realtime")]
+fn pin_to(core: usize) -> Option<usize> {
+    core_affinity::set_for_current(core_affinity::CoreId { id: core }).then_some(core)
+}
+
+/// Without the `realtime` feature threads are not pinned.
+#[cfg(not(feature = "realtime"))]
+fn pin_to(_core: usize) -> Option<usize> {
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use glam::DVec3;
@@ -170,12 +180,12 @@ mod tests {
 
     use super::*;
     use crate::scene::Scene;
-    use crate::servo::{Path, ScriptedDevice, Servo, ServoOptions, StopReason, TickRecord};
+    use crate::servo::{ScriptedDevice, Servo, ServoOptions, StopReason, TickRecord, Trajectory};
 
     /// A run of a device held still in an empty scene at 1 kHz, its deadlines far in the
     /// future so that no tick is late and none is skipped.
     fn new_run(max_ticks: u64) -> (Shared<ScriptedDevice>, Schedule, Consumer<TickRecord>) {
-        let device = ScriptedDevice::new(Path::still(DVec3::new(0.0, 0.0, 1.0)));
+        let device = ScriptedDevice::new(Trajectory::still(DVec3::new(0.0, 0.0, 1.0)));
         let servo = Servo::new(device, Scene::local(1), ServoOptions::default()).expect("a servo");
         let (producer, consumer) = RingBuffer::new(1024);
         let run = Run {

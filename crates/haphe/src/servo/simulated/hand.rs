@@ -4,16 +4,17 @@
 
 use glam::DVec3;
 
-use super::path::Path;
+use super::device::Simulated;
 use super::scripted::simulated_spec;
-use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
+use super::trajectory::Trajectory;
+use crate::servo::device::{DeviceFault, DeviceSpec};
 
 /// Longest integration step of the hand, seconds: the arm is integrated in sub-steps of
 /// at most this between two reads, so its motion does not depend on the servo rate.
-pub const HAND_MAX_STEP_S: f64 = 5e-5;
+pub(crate) const HAND_MAX_STEP_S: f64 = 5e-5;
 /// Most sub-steps in one read: a read after a long pause (more than
 /// `HAND_MAX_SUBSTEPS · HAND_MAX_STEP_S` = 0.1 s) integrates with longer steps.
-pub const HAND_MAX_SUBSTEPS: usize = 2000;
+pub(crate) const HAND_MAX_SUBSTEPS: usize = 2000;
 
 /// The arm's mechanical impedance and a constant push.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,23 +56,23 @@ impl Default for HandOptions {
 ///
 /// `m a = k (target − x) + b (v_target − v) − c v + push + F_rendered`
 ///
-/// integrated with semi-implicit Euler in steps of at most [`HAND_MAX_STEP_S`]. Reads give
+/// integrated with semi-implicit Euler in steps of at most 50 µs. Reads give
 /// the state at the requested time, so a run on the virtual clock is exactly repeatable.
 #[derive(Debug, Clone)]
 pub struct SimulatedHand {
-    path: Path,
+    path: Trajectory,
     options: HandOptions,
-    spec: DeviceSpec,
+    pub(super) spec: DeviceSpec,
     position: DVec3,
     velocity: DVec3,
     force: DVec3,
     time: f64,
-    open: bool,
+    pub(super) open: bool,
 }
 
 impl SimulatedHand {
     /// A hand at rest at the path's start (device frame), which then tries to follow it.
-    pub fn new(path: Path, options: HandOptions) -> SimulatedHand {
+    pub fn new(path: Trajectory, options: HandOptions) -> SimulatedHand {
         let (position, _) = path.sample(0.0);
         SimulatedHand {
             path,
@@ -123,53 +124,30 @@ impl SimulatedHand {
     }
 }
 
-impl Device for SimulatedHand {
-    fn spec(&self) -> DeviceSpec {
-        self.spec
-    }
-
-    fn open(&mut self) -> Result<(), DeviceError> {
-        self.open = true;
-        Ok(())
-    }
-
-    fn read(&mut self, t: f64) -> Result<DeviceState, DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
+impl Simulated for SimulatedHand {
+    fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
         self.advance(t);
-        Ok(DeviceState {
-            position: self.position,
-            velocity: self.velocity,
-            buttons: Default::default(),
-        })
+        Ok((self.position, self.velocity))
     }
 
-    fn write_force(&mut self, force: DVec3) -> Result<(), DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
+    /// A non-finite force pushes nothing.
+    fn feel(&mut self, force: DVec3) {
         self.force = if force.is_finite() {
             force
         } else {
             DVec3::ZERO
         };
-        Ok(())
-    }
-
-    fn close(&mut self) {
-        self.force = DVec3::ZERO;
-        self.open = false;
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::servo::Device;
 
     #[test]
     fn follows_a_still_target_and_settles_against_a_constant_force() {
-        let mut hand = SimulatedHand::new(Path::still(DVec3::ZERO), HandOptions::default());
+        let mut hand = SimulatedHand::new(Trajectory::still(DVec3::ZERO), HandOptions::default());
         hand.open().expect("opens");
         hand.write_force(DVec3::new(0.0, 0.0, 3.0)).expect("open");
         let s = hand.read(2.0).expect("open");

@@ -4,8 +4,9 @@ use std::io::BufRead;
 
 use glam::DVec3;
 
+use super::device::Simulated;
 use super::scripted::simulated_spec;
-use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
+use crate::servo::device::{DeviceFault, DeviceSpec};
 
 /// Why a HIP trace could not be read. Every variant names the file and the line (1-based).
 #[derive(Debug, thiserror::Error)]
@@ -183,8 +184,8 @@ impl HipTrace {
 #[derive(Debug, Clone)]
 pub struct ReplayDevice {
     trace: HipTrace,
-    spec: DeviceSpec,
-    open: bool,
+    pub(super) spec: DeviceSpec,
+    pub(super) open: bool,
 }
 
 impl ReplayDevice {
@@ -203,42 +204,15 @@ impl ReplayDevice {
     }
 }
 
-impl Device for ReplayDevice {
-    fn spec(&self) -> DeviceSpec {
-        self.spec
-    }
-
-    fn open(&mut self) -> Result<(), DeviceError> {
-        self.open = true;
-        Ok(())
-    }
-
-    fn read(&mut self, t: f64) -> Result<DeviceState, DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
-        let (position, velocity) = self
-            .trace
+impl Simulated for ReplayDevice {
+    fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
+        self.trace
             .sample(self.trace.start_time() + t)
-            .ok_or(DeviceFault::Ended)?;
-        Ok(DeviceState {
-            position,
-            velocity,
-            buttons: Default::default(),
-        })
+            .ok_or(DeviceFault::Ended)
     }
 
-    fn write_force(&mut self, _force: DVec3) -> Result<(), DeviceFault> {
-        if self.open {
-            Ok(())
-        } else {
-            Err(DeviceFault::NotOpen)
-        }
-    }
-
-    fn close(&mut self) {
-        self.open = false;
-    }
+    /// A recorded hand does not feel the force.
+    fn feel(&mut self, _force: DVec3) {}
 }
 
 #[cfg(test)]

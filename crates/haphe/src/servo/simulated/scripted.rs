@@ -6,10 +6,11 @@ use std::str::FromStr;
 
 use glam::DVec3;
 
-use super::path::{Path, PathError};
+use super::device::Simulated;
+use super::trajectory::{Trajectory, TrajectoryError};
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
-use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
+use crate::servo::device::{DeviceFault, DeviceSpec};
 
 /// How far below the surface a pressing target goes, metres: with the simulated hand's
 /// default spring (300 N/m) against a 500 N/m surface it settles about 2.3 mm deep, a
@@ -140,19 +141,19 @@ fn highest_point(scene: &Scene, c: DVec3, r: f64) -> Option<DVec3> {
 /// the world frame. `seed` drives [`PathKind::Explore`].
 ///
 /// # Errors
-/// [`PathError::EmptyScene`] when the scene has no object.
+/// [`TrajectoryError::EmptyScene`] when the scene has no object.
 pub fn scripted_path(
     kind: PathKind,
     scene: &Scene,
     seconds: f64,
     seed: u64,
-) -> Result<Path, PathError> {
+) -> Result<Trajectory, TrajectoryError> {
     let seconds = if seconds.is_finite() {
         seconds.max(1.0)
     } else {
         1.0
     };
-    let (_, hi) = scene_bounds(scene).ok_or(PathError::EmptyScene)?;
+    let (_, hi) = scene_bounds(scene).ok_or(TrajectoryError::EmptyScene)?;
     let first = &scene.objects()[0];
     let c = first.pose.to_world(first.shape.bound_centre());
     let r = first.shape.bound_radius();
@@ -265,7 +266,7 @@ pub fn scripted_path(
             keys
         }
     };
-    Path::from_keys(&keys)
+    Trajectory::from_keys(&keys)
 }
 
 /// A device whose end point follows a path exactly, whatever force it is given: a
@@ -274,16 +275,16 @@ pub fn scripted_path(
 /// It never faults; after the path ends it rests at the last point.
 #[derive(Debug, Clone)]
 pub struct ScriptedDevice {
-    path: Path,
-    spec: DeviceSpec,
-    open: bool,
+    path: Trajectory,
+    pub(super) spec: DeviceSpec,
+    pub(super) open: bool,
     last_force: DVec3,
 }
 
 impl ScriptedDevice {
     /// A device following `path` (device frame), with the simulated device specification
     /// ([`simulated_spec`]).
-    pub fn new(path: Path) -> ScriptedDevice {
+    pub fn new(path: Trajectory) -> ScriptedDevice {
         ScriptedDevice {
             path,
             spec: simulated_spec(),
@@ -310,38 +311,12 @@ pub fn simulated_spec() -> DeviceSpec {
     }
 }
 
-impl Device for ScriptedDevice {
-    fn spec(&self) -> DeviceSpec {
-        self.spec
+impl Simulated for ScriptedDevice {
+    fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault> {
+        Ok(self.path.sample(t))
     }
 
-    fn open(&mut self) -> Result<(), DeviceError> {
-        self.open = true;
-        Ok(())
-    }
-
-    fn read(&mut self, t: f64) -> Result<DeviceState, DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
-        let (position, velocity) = self.path.sample(t);
-        Ok(DeviceState {
-            position,
-            velocity,
-            buttons: Default::default(),
-        })
-    }
-
-    fn write_force(&mut self, force: DVec3) -> Result<(), DeviceFault> {
-        if !self.open {
-            return Err(DeviceFault::NotOpen);
-        }
+    fn feel(&mut self, force: DVec3) {
         self.last_force = force;
-        Ok(())
-    }
-
-    fn close(&mut self) {
-        self.last_force = DVec3::ZERO;
-        self.open = false;
     }
 }

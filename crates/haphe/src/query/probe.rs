@@ -3,11 +3,6 @@
 
 use glam::DVec3;
 
-/// How far a probe reaches beyond the ends of a move, as a fraction of the skin: far
-/// above the rounding of coordinates (about 1e-16 m per metre), well inside the skin, so a
-/// stop at the skin never lands within the reach of the next probe.
-pub const PROBE_REACH_OF_SKIN: f64 = 0.25;
-
 /// The segment tested for a proxy move `from → to` (metres, any one frame).
 ///
 /// The watertight segment test decides crossings exactly, except where an end point lies

@@ -6,7 +6,7 @@ use glam::DVec3;
 /// Why a path could not be made.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
-pub enum PathError {
+pub enum TrajectoryError {
     /// A path needs at least one key.
     #[error("a path needs at least one key point")]
     Empty,
@@ -37,27 +37,27 @@ pub enum PathError {
 /// and after the last key. Keys equally spaced on a line in equal times give a constant
 /// velocity between them.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Path {
+pub struct Trajectory {
     times: Vec<f64>,
     points: Vec<DVec3>,
     tangents: Vec<DVec3>,
 }
 
-impl Path {
+impl Trajectory {
     /// A path through `keys` (time in seconds, position in metres).
     ///
     /// # Errors
-    /// [`PathError`] when there is no key, a value is not finite, or times do not increase.
-    pub fn from_keys(keys: &[(f64, DVec3)]) -> Result<Path, PathError> {
+    /// [`TrajectoryError`] when there is no key, a value is not finite, or times do not increase.
+    pub fn from_keys(keys: &[(f64, DVec3)]) -> Result<Trajectory, TrajectoryError> {
         if keys.is_empty() {
-            return Err(PathError::Empty);
+            return Err(TrajectoryError::Empty);
         }
         for (index, &(t, p)) in keys.iter().enumerate() {
             if !t.is_finite() || !p.is_finite() {
-                return Err(PathError::NonFinite { index });
+                return Err(TrajectoryError::NonFinite { index });
             }
             if index > 0 && t <= keys[index - 1].0 {
-                return Err(PathError::NotIncreasing { index });
+                return Err(TrajectoryError::NotIncreasing { index });
             }
         }
         let times: Vec<f64> = keys.iter().map(|k| k.0).collect();
@@ -77,7 +77,7 @@ impl Path {
                 }
             })
             .collect();
-        Ok(Path {
+        Ok(Trajectory {
             times,
             points,
             tangents,
@@ -85,8 +85,8 @@ impl Path {
     }
 
     /// A path that stays at `p` (metres).
-    pub fn still(p: DVec3) -> Path {
-        Path {
+    pub fn still(p: DVec3) -> Trajectory {
+        Trajectory {
             times: vec![0.0],
             points: vec![if p.is_finite() { p } else { DVec3::ZERO }],
             tangents: vec![DVec3::ZERO],
@@ -153,7 +153,7 @@ mod tests {
             (2.0, DVec3::new(1.0, 1.0, 0.0)),
             (3.0, DVec3::new(1.0, 1.0, 0.0)),
         ];
-        let path = Path::from_keys(&keys).expect("valid");
+        let path = Trajectory::from_keys(&keys).expect("valid");
         for &(t, p) in &keys {
             assert!(path.sample(t).0.distance(p) < 1e-12);
         }
@@ -170,7 +170,7 @@ mod tests {
         let keys: Vec<(f64, DVec3)> = (0..6)
             .map(|i| (f64::from(i), DVec3::Z * -f64::from(i)))
             .collect();
-        let path = Path::from_keys(&keys).expect("valid");
+        let path = Trajectory::from_keys(&keys).expect("valid");
         for t in [1.0, 1.5, 2.25, 3.9] {
             assert!((path.sample(t).1.z + 1.0).abs() < 1e-12, "{t}");
         }
@@ -178,14 +178,14 @@ mod tests {
 
     #[test]
     fn bad_keys_are_refused() {
-        assert_eq!(Path::from_keys(&[]), Err(PathError::Empty));
+        assert_eq!(Trajectory::from_keys(&[]), Err(TrajectoryError::Empty));
         assert_eq!(
-            Path::from_keys(&[(0.0, DVec3::ZERO), (0.0, DVec3::X)]),
-            Err(PathError::NotIncreasing { index: 1 })
+            Trajectory::from_keys(&[(0.0, DVec3::ZERO), (0.0, DVec3::X)]),
+            Err(TrajectoryError::NotIncreasing { index: 1 })
         );
         assert_eq!(
-            Path::from_keys(&[(0.0, DVec3::NAN)]),
-            Err(PathError::NonFinite { index: 0 })
+            Trajectory::from_keys(&[(0.0, DVec3::NAN)]),
+            Err(TrajectoryError::NonFinite { index: 0 })
         );
     }
 }
