@@ -45,9 +45,9 @@ impl InvalidValue {
     /// Naming `field`, when it is not.
     pub fn check_vector(
         field: &'static str,
-        v: crate::DVec3,
+        v: glam::DVec3,
         max: f64,
-    ) -> Result<crate::DVec3, InvalidValue> {
+    ) -> Result<glam::DVec3, InvalidValue> {
         if let Some(&bad) = v.to_array().iter().find(|x| !x.is_finite()) {
             return Err(InvalidValue {
                 field,
