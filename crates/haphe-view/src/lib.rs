@@ -110,7 +110,7 @@ struct Info<'a> {
     rate_hz: Option<f64>,
     device: Option<&'static str>,
     mouse: bool,
-    statuses: [&'static str; 11],
+    statuses: [&'static str; STATUS_NAMES.len()],
     trace_rows: usize,
     row_values: usize,
 }

@@ -7,10 +7,7 @@ use std::io::BufRead;
 use haphe::servo::CSV_HEADER;
 
 /// The status names of a trace, in the order of their codes in [`Trace::encode`].
-pub const STATUS_NAMES: [&str; 11] = [
-    "free", "contact", "sticking", "ramping", "clamped", "capped", "wedged", "rejected", "holding",
-    "faulted", "fault",
-];
+pub use haphe::servo::STATUS_NAMES;
 
 /// Values per row in [`Trace::encode`].
 pub const ROW_VALUES: usize = 15;

@@ -131,6 +131,7 @@ impl Proxy {
     }
 
     /// The contact held beyond the saturation depth, if any.
+    #[cfg(any(test, feature = "testing"))]
     pub(crate) fn hold(&self) -> Option<Hold> {
         self.hold
     }

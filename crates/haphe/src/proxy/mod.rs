@@ -95,6 +95,7 @@ mod output;
 mod rest;
 
 pub use constraints::{Constraints, MAX_CONSTRAINTS, Plane, advance_to_plane};
+#[cfg(any(test, feature = "testing"))]
 pub(crate) use deep::Hold;
 pub use deep::{is_deep, saturation_depth};
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};

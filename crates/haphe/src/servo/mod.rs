@@ -94,4 +94,4 @@ pub use tick::{
     MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions, StopReason,
     TickStats,
 };
-pub use trace::{CSV_HEADER, Phase, TickRecord, write_csv_header};
+pub use trace::{CSV_HEADER, Phase, STATUS_NAMES, TickRecord, write_csv_header};

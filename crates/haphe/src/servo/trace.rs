@@ -8,6 +8,13 @@ use super::device::DeviceFault;
 use crate::proxy::TickStatus;
 use crate::scene::ObjectId;
 
+/// Every name the status column can hold ([`TickRecord::status_name`]), so that a reader
+/// of traces can refuse what no run writes.
+pub const STATUS_NAMES: [&str; 12] = [
+    "free", "contact", "sticking", "ramping", "clamped", "capped", "wedged", "rejected", "holding",
+    "faulted", "fault", "held",
+];
+
 /// Where the loop is in its start-up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Phase {
@@ -146,4 +153,62 @@ pub const CSV_HEADER: &str = "t,hip_x,hip_y,hip_z,proxy_x,proxy_y,proxy_z,force_
 /// Those of the writer.
 pub fn write_csv_header(w: &mut impl Write) -> io::Result<()> {
     writeln!(w, "{CSV_HEADER}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_status_a_record_can_have_is_listed() {
+        let base = TickRecord {
+            tick: 0,
+            t: 0.0,
+            hip: DVec3::ZERO,
+            velocity: DVec3::ZERO,
+            proxy: DVec3::ZERO,
+            force: DVec3::ZERO,
+            object: None,
+            triangle: None,
+            penetration: 0.0,
+            status: TickStatus::default(),
+            phase: Phase::Running,
+            fault: None,
+        };
+        let flags: [fn(&mut TickStatus); 9] = [
+            |_| {},
+            |s| s.in_contact = true,
+            |s| s.sticking = true,
+            |s| s.force_clamped = true,
+            |s| s.deep_hold = true,
+            |s| s.step_cap_hit = true,
+            |s| s.wedged = true,
+            |s| s.input_rejected = true,
+            |s| s.walk_cap_hit = true,
+        ];
+        let mut seen = Vec::new();
+        for phase in [
+            Phase::Holding,
+            Phase::Ramping,
+            Phase::Running,
+            Phase::Faulted,
+        ] {
+            for set in flags {
+                for fault in [None, Some(DeviceFault::Disconnected)] {
+                    let mut r = TickRecord {
+                        phase,
+                        fault,
+                        ..base
+                    };
+                    set(&mut r.status);
+                    let name = r.status_name();
+                    assert!(STATUS_NAMES.contains(&name), "{name} is not listed");
+                    seen.push(name);
+                }
+            }
+        }
+        for name in STATUS_NAMES {
+            assert!(seen.contains(&name), "{name} is listed but never written");
+        }
+    }
 }

@@ -139,11 +139,16 @@ pub struct ServoLoop<D: Device + 'static> {
 /// # Errors
 /// [`ServoError::NoSuchCore`], with the cores it may run on.
 pub fn check_core(core: usize) -> Result<(), ServoError> {
+    #[cfg(feature = "realtime")]
     let cores: Vec<usize> = core_affinity::get_core_ids()
         .unwrap_or_default()
         .iter()
         .map(|c| c.id)
         .collect();
+    // Without the OS calls, the cores the standard library counts.
+    #[cfg(not(feature = "realtime"))]
+    let cores: Vec<usize> =
+        (0..std::thread::available_parallelism().map_or(1, |n| n.get())).collect();
     if cores.contains(&core) {
         Ok(())
     } else {
