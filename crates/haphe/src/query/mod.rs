@@ -48,8 +48,8 @@ pub use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use self_intersect::{
-    SELF_INTERSECTION_BUDGET_PER_TRIANGLE, SelfIntersections, self_intersection_budget,
-    self_intersections,
+    SELF_INTERSECTION_BUDGET_MIN, SELF_INTERSECTION_BUDGET_PER_TRIANGLE, SelfIntersections,
+    self_intersection_budget, self_intersections,
 };
 pub use triangle_triangle::intersect_triangle_triangle;
 pub use validation::{Validation, ValidationError, ValidationRecord, WeldRecord};
