@@ -310,7 +310,7 @@ const FETCH_AHEAD_MIN_TRIANGLES: usize = 2048;
 /// them one after another behind its branches; read here, in loops without branches,
 /// they are fetched from memory together (the frames and indices at once, the corners
 /// once their indices arrive), so the cell costs about two memory latencies instead of
-/// two per triangle. Measured: see the README's Performance section.
+/// two per triangle. Measured: see docs/performance.md.
 #[inline]
 fn fetch_ahead(surface: &Surface, triangles: &[u32]) {
     let mut sink = 0u64;
