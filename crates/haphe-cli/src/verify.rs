@@ -308,12 +308,12 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
     let i = &r.inside.check;
     writeln!(
         out,
-        "\ninside/outside: {} points, {} inside, {} mismatches vs winding numbers ({} excused within 1 nm of the surface, {} where parts overlap: winding number not 0 or 1), parry disagreements: {}",
+        "\ninside/outside: {} points, {} inside, {} mismatches vs winding numbers ({} excused within 1 nm of the surface, {} where parts overlap: winding number not 0 or 1, inside by the non-zero rule), parry disagreements: {}",
         i.samples,
         i.inside,
         i.mismatches,
         i.on_surface,
-        i.undefined,
+        i.overlap,
         opt(r.inside.parry_disagreements)
     )?;
     let w = &r.walk;

@@ -186,3 +186,65 @@ fn every_odd_file_gets_a_verdict_not_a_crash() {
         }
     }
 }
+
+/// A cube of side `2·h` centred on `c`, as OBJ lines (vertices numbered from `first`),
+/// faces counter-clockwise seen from outside.
+fn obj_cube(c: [f64; 3], h: f64, first: usize) -> String {
+    let mut text = String::new();
+    for k in 0..8 {
+        let s = |bit: usize| if k >> bit & 1 == 1 { h } else { -h };
+        text += &format!("v {} {} {}\n", c[0] + s(0), c[1] + s(1), c[2] + s(2));
+    }
+    for [a, b, cc, d] in [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ] {
+        let v = |i: usize| i + first;
+        text += &format!(
+            "f {} {} {}\nf {} {} {}\n",
+            v(a),
+            v(b),
+            v(cc),
+            v(a),
+            v(cc),
+            v(d)
+        );
+    }
+    text
+}
+
+/// `haphe query --inside` decides by the non-zero rule: where two closed parts of one mesh
+/// overlap the point is inside (crossing parity would say outside), also next to the faces
+/// of one part that lie inside the other.
+#[test]
+fn query_inside_says_inside_where_parts_overlap() {
+    let dir = scratch("overlap");
+    let obj = obj_cube([0.0, 0.0, 0.0], 0.05, 1) + &obj_cube([0.06, 0.03, 0.02], 0.05, 9);
+    let mesh = write(&dir, "boxes.obj", &obj);
+    let points = write(
+        &dir,
+        "points.csv",
+        "x,y,z\n0.03,0.015,0.01\n0.0101,0.0,0.0\n0.0099,0.0,0.0\n0.03,0.015,-0.0299\n\
+         -0.03,-0.03,-0.03\n0.1,0.07,0.06\n0.2,0.0,0.0\n0.03,-0.04,0.06\n",
+    );
+    let out = haphe(&["query", &mesh, "--inside", &points]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<String> = stdout(&out).lines().map(str::to_owned).collect();
+    assert_eq!(
+        lines,
+        [
+            "inside", "inside", "inside", "inside", "inside", "inside", "outside", "outside"
+        ],
+        "{}",
+        stdout(&out)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

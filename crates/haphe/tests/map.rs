@@ -334,7 +334,7 @@ fn flood_fill_agrees_with_the_winding_number() {
                     }
                     let p = grid.cell_centre(c);
                     let w = winding_number(&surface, p);
-                    let expected = if w > 0.5 {
+                    let expected = if w.abs() > 0.5 {
                         CellState::Inside
                     } else {
                         CellState::Outside

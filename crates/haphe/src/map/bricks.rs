@@ -174,6 +174,12 @@ pub struct VoxelMap {
     pub(crate) surface_bits: Array<BrickBits>,
     /// Per detailed brick: its inside cells (never surface cells).
     pub(crate) inside_bits: Array<BrickBits>,
+    /// The bricks (top-level indices, increasing) holding inside cells whose winding
+    /// number is not 1: where closed parts overlap (2 or more), or inside an inside-out
+    /// part (−1). Empty for an ordinary solid.
+    pub(crate) overlap_bricks: Array<u32>,
+    /// Per brick of `overlap_bricks`: those cells (a subset of its inside cells).
+    pub(crate) overlap_bits: Array<BrickBits>,
     /// Per detailed brick: surface cells in the mask words before each word.
     pub(crate) surface_before: Array<[u16; MASK_WORDS]>,
     /// Per detailed brick (plus one): the index of its first surface cell.
@@ -269,6 +275,26 @@ impl VoxelMap {
                 }
             }
         }
+    }
+
+    /// Whether cell `c` is an inside cell whose winding number is not 1 (where closed parts
+    /// overlap, or inside an inside-out part): inside under the non-zero rule like every
+    /// inside cell, but not a reference of known winding for counting crossings.
+    ///
+    /// # Real-time
+    /// Constant time for an ordinary solid (no such cell); otherwise a binary search over
+    /// the bricks that hold such cells. No allocation, never panics.
+    #[inline]
+    pub fn is_overlap(&self, c: [u32; 3]) -> bool {
+        if self.overlap_bricks.is_empty() || !self.grid.contains(c) {
+            return false;
+        }
+        let b = brick_of(c, self.brick_dims) as u32;
+        self.overlap_bricks
+            .binary_search(&b)
+            .ok()
+            .and_then(|i| self.overlap_bits.get(i))
+            .is_some_and(|bits| has(bits, local_of(c)))
     }
 
     /// The clearance of cell `c`, in cells: 0 for a surface cell and for any index outside
@@ -396,6 +422,8 @@ impl VoxelMap {
             + self.free_regions.heap_bytes()
             + self.surface_bits.heap_bytes()
             + self.inside_bits.heap_bytes()
+            + self.overlap_bricks.heap_bytes()
+            + self.overlap_bits.heap_bytes()
             + self.surface_before.heap_bytes()
             + self.surface_first.heap_bytes()
             + self.clearances.heap_bytes()

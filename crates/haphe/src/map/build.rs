@@ -234,6 +234,8 @@ fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
         brick_slabs: Default::default(),
         region_slabs: Default::default(),
         inside_bits: vec![[0; MASK_WORDS]; surface_bits.len()].into(),
+        overlap_bricks: Default::default(),
+        overlap_bits: Default::default(),
         surface_bits: surface_bits.into(),
         surface_before: surface_before.into(),
         surface_first: surface_first.into(),

@@ -1,6 +1,6 @@
 //! Saving and loading a surface with its voxel map: one checked, sectioned file.
 //!
-//! # Layout (format version 10, all numbers little-endian)
+//! # Layout (format version 11, all numbers little-endian)
 //!
 //! | bytes | content |
 //! |---|---|
@@ -18,7 +18,9 @@
 //! normals (`9 × f32`), fan starts and fan triangles (`u32`), each triangle's index in the
 //! mesh the surface was built from (`u32`, [`Surface::source_triangle`]), the map parameters
 //! (grid, counts, how the cell size was chosen), the brick entries (`u32`), the surface and
-//! inside masks of the detailed bricks (`8 × u64` each), their surface counts per mask
+//! inside masks of the detailed bricks (`8 × u64` each), the bricks holding inside cells
+//! whose winding number is not 1 (`u32`, increasing) and those cells' masks (`8 × u64`
+//! each; both empty for an ordinary solid), the detailed bricks' surface counts per mask
 //! word (`8 × u16`) and first surface cells (`u32`), the clearance nibbles of detailed then
 //! graded bricks (256 bytes each), the triangle start of each surface cell (`u32`), the
 //! triangle references (`u32`; each cell's list ordered along its slab's direction), the
@@ -48,7 +50,11 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
-pub const FORMAT_VERSION: u32 = 10;
+///
+/// Version 11 decides inside by the non-zero winding rule (an inside-out part is inside)
+/// and lists the cells where closed parts overlap; maps of version 10 and before, filled
+/// by the winding number's sign, are refused.
+pub const FORMAT_VERSION: u32 = 11;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;
@@ -130,7 +136,7 @@ pub(crate) fn invalid(section: &'static str, reason: impl Into<String>) -> MapFi
 }
 
 /// The sections in file order: name and element size in bytes.
-const SECTIONS: [(&str, usize); 21] = [
+const SECTIONS: [(&str, usize); 23] = [
     ("report", 1),
     ("vertices", 24),
     ("triangles", 12),
@@ -144,6 +150,8 @@ const SECTIONS: [(&str, usize); 21] = [
     ("bricks", 4),
     ("surface masks", 64),
     ("inside masks", 64),
+    ("overlap bricks", 4),
+    ("overlap masks", 64),
     ("surface counts", 16),
     ("surface firsts", 4),
     ("clearances", 1),
@@ -249,6 +257,8 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
         map.bricks.len() * 4,
         map.surface_bits.len() * 64,
         map.inside_bits.len() * 64,
+        map.overlap_bricks.len() * 4,
+        map.overlap_bits.len() * 64,
         map.surface_before.len() * 16,
         map.surface_first.len() * 4,
         map.clearances.len(),
@@ -315,6 +325,10 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     put::<BrickBits, u64>(&mut out, &map.surface_bits);
     start(&mut out);
     put::<BrickBits, u64>(&mut out, &map.inside_bits);
+    start(&mut out);
+    put::<u32, u32>(&mut out, &map.overlap_bricks);
+    start(&mut out);
+    put::<BrickBits, u64>(&mut out, &map.overlap_bits);
     start(&mut out);
     put::<[u16; MASK_WORDS], u16>(&mut out, &map.surface_before);
     start(&mut out);
@@ -460,6 +474,8 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         bricks,
         surface_bits,
         inside_bits,
+        overlap_bricks,
+        overlap_bits,
         surface_before,
         surface_first,
         clearances,
@@ -495,6 +511,8 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         free_regions: Default::default(),
         surface_bits: array::<BrickBits, u64>(file, surface_bits),
         inside_bits: array::<BrickBits, u64>(file, inside_bits),
+        overlap_bricks: array::<u32, u32>(file, overlap_bricks),
+        overlap_bits: array::<BrickBits, u64>(file, overlap_bits),
         surface_before: array::<[u16; MASK_WORDS], u16>(file, surface_before),
         surface_first: array::<u32, u32>(file, surface_first),
         clearances: array::<u8, u8>(file, clearances),

@@ -7,25 +7,20 @@
 //! face neighbours. A brick whose mask grows sends its neighbours back to the work list,
 //! until nothing changes.
 
-use glam::DVec3;
-use rayon::prelude::*;
+use std::collections::BTreeMap;
 
 use super::CellState;
 use super::bricks::{
     BRICK_BITS, BrickBits, MASK_WORDS, UNIFORM, UNIFORM_STATE_SHIFT, VoxelMap, brick_coords,
     brick_of, cell_in_brick, entry_state, in_grid_bits, uniform_entry,
 };
-use crate::mesh::Surface;
+use crate::mesh::{Surface, winding_number};
 
 /// Largest total work, in triangles × enclosed regions, spent on winding numbers when
 /// checking the regions the flood fill leaves inside: about a second on one core (a solid
 /// angle costs about 30 ns). A mesh needing more (many separate parts, each its own
 /// region, times many triangles) keeps its remaining regions inside unchecked.
 pub(crate) const MAX_ENCLOSED_WINDING_WORK: u64 = 1 << 25;
-
-/// Triangles per parallel task in a winding number (fixed, so that the sum does not depend
-/// on the number of threads).
-const WINDING_CHUNK: usize = 4096;
 
 /// A uniform entry reached by the current region (a state no finished map holds).
 const VISITED: u32 = UNIFORM | (2 << UNIFORM_STATE_SHIFT);
@@ -36,10 +31,12 @@ const VISITED: u32 = UNIFORM | (2 << UNIFORM_STATE_SHIFT);
 ///
 /// 1. Cells connected to the padding through face-adjacent non-surface cells are outside.
 /// 2. Every other connected region of non-surface cells is checked once: the generalised
-///    winding number at the centre of its first cell (in brick order) decides whether it
-///    is inside (above ½) or outside — a cavity, or a pocket of outside space closed off
-///    at the resolution of the grid. At most [`MAX_ENCLOSED_WINDING_WORK`] triangle
-///    evaluations are spent; regions beyond stay inside.
+///    winding number at the centre of its first cell (in brick order), rounded, decides
+///    by the non-zero rule whether it is inside (not 0) or outside — a cavity, or a pocket
+///    of outside space closed off at the resolution of the grid. An inside region whose
+///    winding number is not 1 (where closed parts overlap, or an inside-out part) is also
+///    listed in the map's overlap cells. At most [`MAX_ENCLOSED_WINDING_WORK`] triangle
+///    evaluations are spent; regions beyond stay inside (taken as winding 1).
 ///
 /// Deterministic. `O(uniform bricks + detailed bricks × passes + regions × triangles)`.
 pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
@@ -63,6 +60,17 @@ pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
     // The entries and inside masks change all through the flood: taken out as vectors
     // and put back at the end.
     let mut bricks = map.bricks.take_vec();
+    // The top-level index of each detailed brick (those entries never change here).
+    let mut top_of_detailed = vec![0usize; map.detailed_count()];
+    for (b, &entry) in bricks.iter().enumerate() {
+        if entry & UNIFORM == 0
+            && let Some(top) = top_of_detailed.get_mut(entry as usize)
+        {
+            *top = b;
+        }
+    }
+    // Inside cells whose winding number is not 1, by top-level brick.
+    let mut overlap: BTreeMap<usize, BrickBits> = BTreeMap::new();
     let mut inside_bits = map.inside_bits.take_vec();
     let mut flood = Flood {
         reached: vec![[0; MASK_WORDS]; available.len()],
@@ -106,8 +114,22 @@ pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
         let centre = map
             .grid
             .cell_centre(cell_in_brick(brick_coords(b, bdims), local));
-        let inside = winding_number(surface, centre) > 0.5;
+        let winding = winding_number(surface, centre).round();
+        let inside = winding != 0.0;
         let (touched, uniform) = flood.take_region();
+        if inside && winding != 1.0 {
+            for (d, reached) in &touched {
+                let bits = overlap
+                    .entry(top_of_detailed[*d])
+                    .or_insert([0; MASK_WORDS]);
+                for (o, r) in bits.iter_mut().zip(reached) {
+                    *o |= r;
+                }
+            }
+            for &u in &uniform {
+                overlap.insert(u, in_grid_bits(brick_coords(u, bdims), dims));
+            }
+        }
         if !inside {
             for (d, reached) in touched {
                 for (inside, reached) in inside_bits[d].iter_mut().zip(reached) {
@@ -126,36 +148,18 @@ pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
     }
     map.bricks = bricks.into();
     map.inside_bits = inside_bits.into();
+    map.overlap_bricks = overlap
+        .keys()
+        .map(|&b| b as u32)
+        .collect::<Vec<u32>>()
+        .into();
+    map.overlap_bits = overlap.into_values().collect::<Vec<BrickBits>>().into();
 }
 
 /// The first set cell of `bits`.
 fn first_cell(bits: &BrickBits) -> Option<usize> {
     let z = bits.iter().position(|&w| w != 0)?;
     Some(z * 64 + bits[z].trailing_zeros() as usize)
-}
-
-/// The generalised winding number of the surface around `p`: the sum of the triangles'
-/// signed solid angles (Van Oosterom & Strackee) over 4π; about 1 inside a solid, 0
-/// outside (and in a cavity). Summed in fixed chunks, then in order: deterministic.
-pub(crate) fn winding_number(surface: &Surface, p: DVec3) -> f64 {
-    let vertices = surface.vertices();
-    let partial: Vec<f64> = surface
-        .triangles()
-        .par_chunks(WINDING_CHUNK)
-        .map(|chunk| {
-            chunk
-                .iter()
-                .map(|tri| {
-                    let [a, b, c] = tri.map(|v| vertices[v as usize] - p);
-                    let (la, lb, lc) = (a.length(), b.length(), c.length());
-                    let numerator = a.dot(b.cross(c));
-                    let denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-                    2.0 * numerator.atan2(denominator)
-                })
-                .sum::<f64>()
-        })
-        .collect();
-    partial.iter().sum::<f64>() / (4.0 * std::f64::consts::PI)
 }
 
 /// The state of one flood: the cells still available, those reached by the current

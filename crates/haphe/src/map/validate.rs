@@ -6,11 +6,11 @@ use glam::DVec3;
 use super::bricks::{
     BRICK_CELLS, BRICK_SIDE, BrickBits, GRADED, MASK_WORDS, MAX_BRICKS, MAX_REACH, NIBBLE_BYTES,
     UNIFORM, UNIFORM_PAYLOAD, UNIFORM_STATE_SHIFT, VoxelMap, brick_coords, brick_dims,
-    cell_in_brick, in_grid_bits,
+    cell_in_brick, entry_state, in_grid_bits,
 };
 use super::file::{invalid, u64_at};
 use super::grid::Grid;
-use super::{CellSizeRule, MAX_CLEARANCE, MapFileError};
+use super::{CellSizeRule, CellState, MAX_CLEARANCE, MapFileError};
 use crate::mesh::{NONE, OwnedSurfaceParts, Surface, Usability};
 
 /// The map's scalar parameters, as stored in the "map parameters" section.
@@ -300,7 +300,62 @@ pub(crate) fn check_map(map: &VoxelMap, surface: &Surface) -> Result<(), MapFile
     }
     check_bricks(map)?;
     check_detailed(map)?;
+    check_overlap(map)?;
     check_triangle_lists(map, t)
+}
+
+/// Overlap cells: one mask per listed brick, bricks in increasing order, each mask
+/// non-empty and within the brick's inside cells (a uniform inside brick's in-grid cells,
+/// or a detailed brick's inside mask); none unless the surface is a solid.
+fn check_overlap(map: &VoxelMap) -> Result<(), MapFileError> {
+    let section = "overlap bricks";
+    if map.overlap_bricks.len() != map.overlap_bits.len() {
+        return Err(invalid(
+            section,
+            format!(
+                "{} bricks for {} masks",
+                map.overlap_bricks.len(),
+                map.overlap_bits.len()
+            ),
+        ));
+    }
+    if !map.solid && !map.overlap_bricks.is_empty() {
+        return Err(invalid(section, "overlap cells in a map that is not solid"));
+    }
+    let mut previous: Option<u32> = None;
+    for (&b, bits) in map.overlap_bricks.iter().zip(map.overlap_bits.iter()) {
+        if previous.is_some_and(|p| p >= b) {
+            return Err(invalid(
+                section,
+                format!("brick {b} after brick {previous:?}: not increasing"),
+            ));
+        }
+        previous = Some(b);
+        let Some(&entry) = map.bricks.get(b as usize) else {
+            return Err(invalid(
+                section,
+                format!("brick {b} beyond the {} bricks", map.bricks.len()),
+            ));
+        };
+        let allowed = if entry & UNIFORM == 0 {
+            map.inside_bits
+                .get(entry as usize)
+                .copied()
+                .unwrap_or([0; MASK_WORDS])
+        } else if entry_state(entry) == CellState::Inside {
+            in_grid_bits(brick_coords(b as usize, map.brick_dims), map.grid.dims())
+        } else {
+            [0; MASK_WORDS]
+        };
+        let empty = bits.iter().all(|&w| w == 0);
+        if empty || bits.iter().zip(&allowed).any(|(w, a)| w & !a != 0) {
+            return Err(invalid(
+                "overlap masks",
+                format!("brick {b}: the mask is empty or not within the brick's inside cells"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Brick entries: uniform ones with a valid state and reach (inside only for a solid,

@@ -23,11 +23,12 @@ mod report;
 pub mod shapes;
 mod topology;
 mod weld;
+mod winding;
 
 pub use error::{Place, ReadError, ReadErrorKind};
 pub use frame::{
     DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT, TriFrame, is_degenerate_triangle,
-    relative_height, solid_angle,
+    relative_height,
 };
 pub use ids::{NONE, TriId, VertId};
 pub use normals::DEFAULT_CREASE_ANGLE_RAD;
@@ -38,6 +39,7 @@ pub use report::{ComponentReport, Defects, EdgeUse, MeshReport, ReportText, Usab
 pub(crate) use topology::{OwnedSurfaceParts, SurfaceParts};
 pub use topology::{Surface, SurfaceError, SurfaceOptions};
 pub use weld::{Weld, WeldStats, weld};
+pub use winding::{solid_angle, winding_number};
 
 use glam::DVec3;
 

@@ -68,6 +68,13 @@
 //! point (as a very sticky surface would) until the hand eases back within the saturation
 //! depth; with no stiffness or no maximum force there is no saturation and no hold.
 //!
+//! Inside a solid means a winding number other than 0 (the non-zero rule, as in
+//! [`classify_point`](crate::query::classify_point)): where closed parts of one mesh
+//! overlap, the union is solid. The proxy, which never crosses a triangle, stops on the
+//! first surface it meets from outside and so never reaches the faces of one part that lie
+//! inside another; the servo loop's safe start and the checks of
+//! `verify::check_proxy` (feature `testing`) ask `classify_point`.
+//!
 //! # Real-time
 //!
 //! A tick allocates nothing, takes no lock and never panics, whatever the input (a

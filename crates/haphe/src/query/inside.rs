@@ -1,5 +1,5 @@
-//! Inside or outside: from the cell state, or by counting crossings to a cell whose state
-//! is known.
+//! Inside or outside by the non-zero winding rule: from the cell state, or by counting
+//! signed crossings to a cell whose winding number is known.
 
 use glam::DVec3;
 
@@ -13,7 +13,8 @@ use crate::mesh::{Surface, TriId};
 pub enum Side {
     /// Outside the object (or anywhere off an open surface, which has no inside).
     Outside,
-    /// Inside a closed solid.
+    /// Inside a closed solid: the winding number is not 0 (inside any of its closed parts,
+    /// the non-zero rule).
     Inside,
 }
 
@@ -22,10 +23,11 @@ pub enum Side {
 pub enum SideStatus {
     /// From the cell's state: no triangle tested.
     Cell,
-    /// By counting crossings to a nearby cell of known state.
+    /// By counting signed crossings to a nearby cell of known winding number.
     Counted,
-    /// No known cell within [`MAX_SEARCH_RING`] or too many triangles on the way: the
-    /// answer is the best guess (the nearest known cell's state).
+    /// No cell of known winding number within [`MAX_SEARCH_RING`] or too many triangles on
+    /// the way: the answer is the best guess (the nearest known cell's state; with none,
+    /// inside when the cell borders an [overlap cell](VoxelMap::is_overlap)).
     BoundHit,
 }
 
@@ -42,11 +44,19 @@ const TARGET_JITTER: [f64; 3] = [0.123_456_7, -0.176_543_2, 0.211_111_3];
 
 /// Classifies `p` (metres, object frame) as inside or outside the surface.
 ///
+/// Inside means a winding number other than 0 (the non-zero rule): a point inside any of
+/// a mesh's closed parts is inside, also where parts overlap; a point inside an
+/// inside-out part (winding −1) is inside too; a cavity (a part inside another, facing
+/// inwards) is outside.
+///
 /// Beyond the surface's bounding box ([`Surface::bounds`]) the point is outside; outside
-/// the grid and in outside/inside cells the cell answers. In a surface cell of a
-/// solid, crossings of the segment from `p` to a point in the nearest non-surface cell are
-/// counted with the watertight test: an odd count flips that cell's state. Points exactly
-/// on the surface may go either way. An open (non-solid) surface has no inside.
+/// the grid and in outside/inside cells the cell answers. In a surface cell of a solid,
+/// the segment from `p` to a point in the nearest cell of known winding number (an outside
+/// cell, 0, or an inside cell that is not an [overlap cell](VoxelMap::is_overlap), 1) is
+/// tested against the cell's triangles with the watertight test, and each crossing adds
+/// one (leaving a part) or subtracts one (entering it) to that cell's winding number to
+/// give `p`'s. Points exactly on the surface may go either way. An open (non-solid)
+/// surface has no inside.
 ///
 /// # Real-time
 /// No allocation, no lock, no panic; at most `(2·MAX_SEARCH_RING + 1)³` cell lookups and
@@ -67,41 +77,85 @@ pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, Sid
         return (Side::Outside, SideStatus::Cell);
     }
     let Some((known, state)) = nearest_known_cell(map, cell) else {
-        return (Side::Outside, SideStatus::BoundHit);
+        // No cell of known winding near: inside if the cell borders where parts overlap.
+        let guess = if next_to_overlap(map, cell) {
+            Side::Inside
+        } else {
+            Side::Outside
+        };
+        return (guess, SideStatus::BoundHit);
     };
-    let known_side = if state == CellState::Inside {
-        Side::Inside
+    let (known_side, known_winding) = if state == CellState::Inside {
+        (Side::Inside, 1i64)
     } else {
-        Side::Outside
+        (Side::Outside, 0)
     };
     let h = map.grid().cell_size();
     let target = map.grid().cell_centre(known) + DVec3::from_array(TARGET_JITTER) * h;
     let segment = Segment::new(p, target);
     let mut tested = Tested::new();
-    let mut crossings = 0usize;
+    // The winding number of `p`: the target's, plus one per part the segment leaves, minus
+    // one per part it enters.
+    let mut winding = known_winding;
     let margin = super::crossing::plane_margin(map);
     for visit in map.grid().walk(p, target) {
         for &t in map.triangles_in(visit.cell) {
             if tested.insert(t)
                 && !super::crossing::cannot_cross(surface, t, p, target, margin)
-                && intersect_segment_triangle(&segment, surface.corners(TriId(t))).is_some()
+                && let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
             {
-                crossings += 1;
+                winding += if hit.entering { -1 } else { 1 };
             }
         }
     }
     if tested.overflowed() {
         return (known_side, SideStatus::BoundHit);
     }
-    let side = match (known_side, crossings % 2 == 1) {
-        (s, false) => s,
-        (Side::Inside, true) => Side::Outside,
-        (Side::Outside, true) => Side::Inside,
+    let side = if winding != 0 {
+        Side::Inside
+    } else {
+        Side::Outside
     };
     (side, SideStatus::Counted)
 }
 
-/// The nearest cell (by Chebyshev ring, then by index order) that is not a surface cell.
+/// Whether cell `n` has a known winding number: not a surface cell, nor an overlap cell.
+#[inline]
+fn known(map: &VoxelMap, n: [u32; 3]) -> Option<CellState> {
+    match map.state(n) {
+        CellState::Surface => None,
+        CellState::Inside if map.is_overlap(n) => None,
+        state => Some(state),
+    }
+}
+
+/// Whether a face neighbour of `cell` is an [overlap cell](VoxelMap::is_overlap).
+fn next_to_overlap(map: &VoxelMap, cell: [u32; 3]) -> bool {
+    let dims = map.grid().dims();
+    [
+        (0, false),
+        (1, false),
+        (2, false),
+        (0, true),
+        (1, true),
+        (2, true),
+    ]
+    .into_iter()
+    .any(|(axis, up)| {
+        let mut n = cell;
+        n[axis] = if up {
+            cell[axis]
+                .saturating_add(1)
+                .min(dims[axis].saturating_sub(1))
+        } else {
+            cell[axis].saturating_sub(1)
+        };
+        map.is_overlap(n)
+    })
+}
+
+/// The nearest cell (by Chebyshev ring, then by index order) of known winding number: not
+/// a surface cell nor an [overlap cell](VoxelMap::is_overlap).
 fn nearest_known_cell(map: &VoxelMap, cell: [u32; 3]) -> Option<([u32; 3], CellState)> {
     let dims = map.grid().dims().map(i64::from);
     let c = cell.map(i64::from);
@@ -112,8 +166,7 @@ fn nearest_known_cell(map: &VoxelMap, cell: [u32; 3]) -> Option<([u32; 3], CellS
         n[axis] += step;
         if (0..dims[axis]).contains(&n[axis]) {
             let n = n.map(|x| x as u32);
-            let state = map.state(n);
-            if state != CellState::Surface {
+            if let Some(state) = known(map, n) {
                 return Some((n, state));
             }
         }
@@ -131,9 +184,10 @@ fn nearest_known_cell(map: &VoxelMap, cell: [u32; 3]) -> Option<([u32; 3], CellS
                         continue;
                     }
                     let n = n.map(|x| x as u32);
-                    let state = map.state(n);
                     let distance2 = dx * dx + dy * dy + dz * dz;
-                    if state != CellState::Surface && best.is_none_or(|(_, _, d)| distance2 < d) {
+                    if best.is_none_or(|(_, _, d)| distance2 < d)
+                        && let Some(state) = known(map, n)
+                    {
                         best = Some((n, state, distance2));
                     }
                 }
@@ -144,17 +198,4 @@ fn nearest_known_cell(map: &VoxelMap, cell: [u32; 3]) -> Option<([u32; 3], CellS
         }
     }
     None
-}
-
-/// Generalised winding number of `p` with respect to the surface (1 inside a closed
-/// outward-oriented solid, 0 outside; fractional near holes): the oracle for
-/// [`classify_point`].
-///
-/// # Performance
-/// `O(n)`: for tests and verification, never for a tick.
-pub fn winding_number(surface: &Surface, p: DVec3) -> f64 {
-    let total: f64 = (0..surface.triangle_count() as u32)
-        .map(|t| crate::mesh::solid_angle(surface.corners(TriId(t)), p))
-        .sum();
-    total / (4.0 * std::f64::consts::PI)
 }

@@ -36,13 +36,14 @@ pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64
     (above | below).any()
 }
 
+pub use crate::mesh::winding_number;
 pub(crate) use closest::distance_to_segment;
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use crossing::{
     Crossing, LONG_SEGMENT_FACTOR, all_crossings_brute_force, first_crossing,
     first_crossing_brute_force, first_crossing_brute_force_where, first_crossing_where,
 };
-pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point, winding_number};
+pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point};
 pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within, nearest_within_brute_force};
 pub use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;

@@ -76,10 +76,10 @@ pub struct InsideCheck {
     pub mismatches: usize,
     /// Points classified differently but within [`ON_SURFACE_M`] of the surface (excused).
     pub on_surface: usize,
-    /// Points whose winding number is neither 0 nor 1 (where parts of the surface overlap
-    /// or it passes through itself, so inside and outside are not defined; the oracle
-    /// calls them inside): excused from the comparisons, with haphe's and the peer's.
-    pub undefined: usize,
+    /// Points whose winding number is neither 0 nor 1 (where closed parts overlap, or
+    /// inside an inside-out part): inside by the non-zero rule and compared like the
+    /// others; excused from the peer's comparison only (the peer may use another rule).
+    pub overlap: usize,
     /// Some failing points.
     pub failures: Vec<[f64; 3]>,
 }
@@ -246,17 +246,15 @@ pub fn check_inside_with_peer(
     let oracle = WindingOracle::new(surface);
     let solid = surface.is_solid();
     let peer = peer.filter(|_| solid);
-    let results: Vec<(bool, u8, bool, [f64; 3])> = points(surface, n, seed)
+    let results: Vec<(bool, u8, bool, [f64; 3], bool)> = points(surface, n, seed)
         .par_iter()
         .map(|&p| {
             let (side, _) = classify_point(surface, map, p);
             let winding = if solid { oracle.winding(p) } else { 0 };
             let inside = winding != 0;
-            if !(0..=1).contains(&winding) {
-                return (inside, 3, false, p.to_array());
-            }
+            let overlap = !(0..=1).contains(&winding);
             let agrees = (side == Side::Inside) == inside;
-            let peer_agrees = peer.is_none_or(|peer| peer(p) == inside);
+            let peer_agrees = overlap || peer.is_none_or(|peer| peer(p) == inside);
             let mut near = None;
             let mut on_surface =
                 || *near.get_or_insert_with(|| distance_to_surface(surface, p) <= ON_SURFACE_M);
@@ -268,7 +266,7 @@ pub fn check_inside_with_peer(
                 2
             };
             let peer_disagrees = !peer_agrees && !on_surface();
-            (inside, verdict, peer_disagrees, p.to_array())
+            (inside, verdict, peer_disagrees, p.to_array(), overlap)
         })
         .collect();
     let check = InsideCheck {
@@ -276,7 +274,7 @@ pub fn check_inside_with_peer(
         inside: results.iter().filter(|r| r.0).count(),
         mismatches: results.iter().filter(|r| r.1 == 2).count(),
         on_surface: results.iter().filter(|r| r.1 == 1).count(),
-        undefined: results.iter().filter(|r| r.1 == 3).count(),
+        overlap: results.iter().filter(|r| r.4).count(),
         failures: results
             .iter()
             .filter(|r| r.1 == 2)

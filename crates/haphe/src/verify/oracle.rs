@@ -10,10 +10,12 @@ use crate::query::{Segment, intersect_segment_triangle, triangle_hit};
 /// faces and edges of CAD meshes.
 const RAY_DIRECTION: [f64; 3] = [0.573_462_1, 0.623_182_7, 0.531_740_9];
 
-/// Winding numbers by signed crossing counts: for a closed, outward-oriented surface the
-/// number of crossings of a ray from `p` going out minus those going in is the winding
-/// number of `p` (1 inside, 0 outside), exactly, with the same exact segment test the
-/// queries use.
+/// Winding numbers by signed crossing counts: for a closed surface the number of crossings
+/// of a ray from `p` going out minus those going in is the winding number of `p` (1 inside
+/// an outward-oriented part, 2 where two overlap, −1 inside an inside-out part, 0
+/// outside), exactly, with the same exact segment test the queries use. Inside is a
+/// winding number other than 0 (the non-zero rule), as for
+/// [`classify_point`](crate::query::classify_point).
 ///
 /// # Performance
 /// Written apart from the voxel map: the triangles are binned once on a 2D grid over the

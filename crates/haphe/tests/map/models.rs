@@ -61,7 +61,7 @@ fn every_real_model_gets_a_consistent_map() {
             let stride = (free.len() / 150).max(1);
             for &c in free.iter().step_by(stride) {
                 let w = winding_number(&surface, grid.cell_centre(c));
-                let expected = if w > 0.5 {
+                let expected = if w.abs() > 0.5 {
                     CellState::Inside
                 } else {
                     CellState::Outside

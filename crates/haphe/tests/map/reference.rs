@@ -97,7 +97,7 @@ pub fn dense_reference(surface: &Surface, grid: &Grid, solid: bool) -> Dense {
             if dense.states[i] != CellState::Inside || checked[i] {
                 continue;
             }
-            let cavity = winding_number(surface, grid.cell_centre(c)) <= 0.5;
+            let cavity = winding_number(surface, grid.cell_centre(c)).abs() <= 0.5;
             for n in region(&dense, c) {
                 let j = dense.index(n);
                 checked[j] = true;

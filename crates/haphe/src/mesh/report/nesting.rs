@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::ComponentReport;
 use crate::mesh::Mesh;
-use crate::mesh::frame::solid_angle;
+use crate::mesh::winding::solid_angle;
 
 /// Upper bound on (closed components) × (triangles) for which nesting is computed exactly
 /// with winding numbers; past it, a closed component is taken as inside out when its
