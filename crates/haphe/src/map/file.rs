@@ -51,9 +51,9 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 /// The format version this build writes and reads. Files of any other version are refused
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
 ///
-/// Version 11 decides inside by the non-zero winding rule (an inside-out part is inside)
-/// and lists the cells where closed parts overlap; maps of version 10 and before, filled
-/// by the winding number's sign, are refused.
+/// Version 11 lists the inside cells where closed parts overlap, which the inside query
+/// needs for the non-zero winding rule near the surfaces between them; maps of version 10
+/// and before lack them and are refused.
 pub const FORMAT_VERSION: u32 = 11;
 
 /// Bytes of the fixed header.

@@ -45,9 +45,9 @@ const TARGET_JITTER: [f64; 3] = [0.123_456_7, -0.176_543_2, 0.211_111_3];
 /// Classifies `p` (metres, object frame) as inside or outside the surface.
 ///
 /// Inside means a winding number other than 0 (the non-zero rule): a point inside any of
-/// a mesh's closed parts is inside, also where parts overlap; a point inside an
-/// inside-out part (winding −1) is inside too; a cavity (a part inside another, facing
-/// inwards) is outside.
+/// a mesh's closed parts is inside, also where parts overlap; a cavity (a part inside
+/// another, facing inwards) is outside. (A mesh with an inside-out part on its own is not
+/// a solid, [`Surface::is_solid`], and has no inside.)
 ///
 /// Beyond the surface's bounding box ([`Surface::bounds`]) the point is outside; outside
 /// the grid and in outside/inside cells the cell answers. In a surface cell of a solid,
