@@ -168,7 +168,9 @@ fn strike_family(meshes: Vec<(String, haphe::mesh::Mesh)>, count: usize) -> usiz
             check.max_push_n,
             started.elapsed().as_secs_f64() * 1e6 / check.ticks.max(1) as f64,
         );
-        assert!(check.strikes >= count / 2, "{name}: {check:?}");
+        // Strikes drawn onto a face that lies inside another part (box.STL's overlapping
+        // parts: about half) are skipped, since the line meets the outer part first.
+        assert!(check.strikes >= count / 3, "{name}: {check:?}");
         assert_eq!(
             check.pushes_on - check.pushes_on_shallow,
             0,
