@@ -308,7 +308,7 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
     let i = &r.inside.check;
     writeln!(
         out,
-        "\ninside/outside: {} points, {} inside, {} mismatches vs winding numbers ({} excused within 1 nm of the surface, {} where parts overlap: winding number not 0 or 1, inside by the non-zero rule), parry disagreements: {}",
+        "\ninside/outside: {} points, {} inside, {} mismatches vs winding numbers (non-zero rule; {} excused within 1 nm of the surface), {} where parts overlap (winding number not 0 or 1), parry disagreements: {}",
         i.samples,
         i.inside,
         i.mismatches,
