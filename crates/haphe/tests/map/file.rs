@@ -286,3 +286,44 @@ proptest! {
         }
     }
 }
+
+/// The overlap cells of a saved map are checked: a brick index out of range, or a mask
+/// reaching beyond the brick's inside cells, is refused naming its section.
+#[test]
+fn crafted_overlap_cells_are_refused() {
+    let part = || shapes::cuboid(DVec3::splat(0.05), [5, 5, 5]);
+    let (a, b) = (part(), part());
+    let n = a.vertices.len() as u32;
+    let mut mesh = a;
+    mesh.vertices
+        .extend(b.vertices.iter().map(|&v| v + DVec3::new(0.06, 0.03, 0.02)));
+    mesh.triangles
+        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    let surface = surface(mesh);
+    let map = build(&surface, &MapOptions::default());
+    let bytes = encode(&surface, &map);
+    let refused_in = |at: usize, value: &[u8]| {
+        let mut crafted = bytes.clone();
+        crafted[at..at + value.len()].copy_from_slice(value);
+        reseal(&mut crafted);
+        match decode(&crafted) {
+            Err(MapFileError::Invalid { section, .. }) => section,
+            other => panic!("expected an invalid file, got {other:?}"),
+        }
+    };
+    // Sections 13 and 14: the overlap bricks and their masks.
+    let (bricks, masks) = (
+        find_section_start(&bytes, 13),
+        find_section_start(&bytes, 14),
+    );
+    assert!(
+        find_section_end(&bytes, 13) > bricks,
+        "the two boxes overlap"
+    );
+    assert_eq!(
+        refused_in(bricks, &u32::MAX.to_le_bytes()),
+        "overlap bricks"
+    );
+    assert_eq!(refused_in(masks, &[0xff; 64]), "overlap masks");
+    assert_eq!(decode(&bytes).expect("the file as written").1, map);
+}
