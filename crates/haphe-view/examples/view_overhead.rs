@@ -9,36 +9,15 @@
 #[path = "../tests/support/cdp.rs"]
 mod cdp;
 
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use haphe::DVec3;
-use haphe::map::MapOptions;
-use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{Surface, SurfaceOptions};
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::scene::{Material, Scene};
 use haphe::servo::{Device, RealtimeOptions, Servo, ServoLoop, ServoOptions, TickStats};
 use haphe_view::{LiveSource, Model, MouseDevice, Source, ViewOptions, ViewServer};
 
 fn scene() -> Scene {
-    let surface = Surface::new(
-        Catalog::Sphere.with_triangles(20_000),
-        &SurfaceOptions::default(),
-    )
-    .expect("surface");
-    let shape = Arc::new(Shape::build(surface, &MapOptions::default()).expect("map"));
-    shape.prepare_clear_zones();
-    let mut scene = Scene::local(2);
-    scene
-        .insert(SceneObject::new(
-            ObjectId(0),
-            shape,
-            Pose::IDENTITY,
-            Material::default(),
-        ))
-        .map_err(|(e, _)| e)
-        .expect("room");
-    scene
+    haphe::verify::sphere_scene(20_000, Material::default()).expect("the sphere scene")
 }
 
 const START: DVec3 = DVec3::new(0.0, 0.0, 0.12);
@@ -100,6 +79,7 @@ fn with_view(rate: f64, seconds: f64, browser: &mut cdp::Browser) -> TickStats {
         motions: Vec::new(),
         seconds: Some(seconds),
         realtime: RealtimeOptions::default(),
+        clock: None,
     };
     let view = ViewServer::start(
         model,

@@ -20,22 +20,7 @@ use haphe::servo::{
 };
 
 fn scene() -> Scene {
-    let surface = Surface::new(
-        Catalog::Sphere.with_triangles(2_000),
-        &SurfaceOptions::default(),
-    )
-    .expect("a usable surface");
-    let shape = Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"));
-    let mut scene = Scene::local(2);
-    scene
-        .insert(SceneObject::new(
-            ObjectId(0),
-            shape,
-            Pose::IDENTITY,
-            Material::default(),
-        ))
-        .expect("room");
-    scene
+    haphe::verify::sphere_scene(2_000, Material::default()).expect("the sphere scene")
 }
 
 fn servo(seconds: f64) -> Servo<ScriptedDevice> {

@@ -6,13 +6,10 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
+use std::sync::{Mutex, MutexGuard, OnceLock};
 
 use haphe::DVec3;
-use haphe::map::MapOptions;
-use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{Surface, SurfaceOptions};
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::scene::{Material, Scene};
 use haphe::servo::{PathKind, ScriptedDevice, Servo, ServoOptions, TickRecord, scripted_path};
 use libloading::Library;
 
@@ -39,7 +36,7 @@ pub fn standin(name: &str) -> PathBuf {
         .args(["-shared", "-fPIC", "-O2", "-Wall", "-Werror", "-o"])
         .arg(&out)
         .arg(&source)
-        .arg("-lpthread")
+        .args(["-lpthread", "-lm"])
         .status()
         .unwrap_or_else(|e| panic!("cannot run the C compiler {cc}: {e}"));
     assert!(status.success(), "{cc} failed on {}", source.display());
@@ -116,22 +113,7 @@ impl Standin {
 }
 
 pub fn scene() -> Scene {
-    let surface = Surface::new(
-        Catalog::Sphere.with_triangles(2_000),
-        &SurfaceOptions::default(),
-    )
-    .expect("a usable surface");
-    let shape = Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"));
-    let mut scene = Scene::local(2);
-    scene
-        .insert(SceneObject::new(
-            ObjectId(0),
-            shape,
-            Pose::IDENTITY,
-            Material::default(),
-        ))
-        .expect("room");
-    scene
+    haphe::verify::sphere_scene(2_000, Material::default()).expect("the sphere scene")
 }
 
 /// The scripted device pressing into the sphere and releasing, `ticks` ticks at 1 kHz:

@@ -10,11 +10,13 @@
 //! With the `testing` feature (the command line, the tests, benches and fuzz targets turn
 //! it on); an application that only renders does not compile it.
 
+mod fixtures;
 mod oracle;
 mod proxy;
 mod samples;
 mod strikes;
 
+pub use fixtures::sphere_scene;
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
 pub use proxy::{
     BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy, haptic_path, haptic_path_in_contact,

@@ -1,0 +1,37 @@
+//! The scene the servo, device and view tests and examples share: one sphere of the
+//! shape catalog at the origin.
+
+use std::sync::Arc;
+
+use crate::map::MapOptions;
+use crate::mesh::shapes::Catalog;
+use crate::mesh::{Surface, SurfaceOptions};
+use crate::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+
+/// A scene of one object, [`ObjectId`] 0: the catalog's sphere of about `triangles`
+/// triangles at the origin with `material`, its map and clear zones built (so that no
+/// tick builds them), room for one more object.
+///
+/// # Errors
+/// What building the surface or the map says (not expected of the catalog's sphere).
+pub fn sphere_scene(
+    triangles: usize,
+    material: Material,
+) -> Result<Scene, Box<dyn std::error::Error + Send + Sync>> {
+    let surface = Surface::new(
+        Catalog::Sphere.with_triangles(triangles),
+        &SurfaceOptions::default(),
+    )?;
+    let shape = Arc::new(Shape::build(surface, &MapOptions::default())?);
+    shape.prepare_clear_zones();
+    let mut scene = Scene::local(2);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            shape,
+            Pose::IDENTITY,
+            material,
+        ))
+        .map_err(|(e, _)| e)?;
+    Ok(scene)
+}
