@@ -11,7 +11,7 @@ const $ = (id) => document.getElementById(id);
 // What the page shows now; tests read it.
 const state = {
   ready: false, info: null, frame: null, frames: 0, sent: 0, connected: false,
-  replay: null,
+  replay: null, drawn: {},
 };
 window.haphe = state;
 
@@ -91,8 +91,22 @@ for (const o of [hipMark, proxyMark, link, forceArrow, normalArrow, contactTri])
 }
 const maxForce = 3.3;
 
+// The objects moved by script, where the frame's tick had them: poses [{ id, rotation
+// [x, y, z, w], translation [x, y, z] }]. state.drawn[id] is where each mesh is drawn.
+function place(poses) {
+  for (const p of poses ?? []) {
+    const o = objects.get(p.id);
+    if (!o) continue;
+    o.mesh.quaternion.set(p.rotation[0], p.rotation[1], p.rotation[2], p.rotation[3]);
+    o.mesh.position.set(p.translation[0], p.translation[1], p.translation[2]);
+    o.mesh.updateMatrixWorld();
+    state.drawn[p.id] = { rotation: [...p.rotation], translation: [...p.translation] };
+  }
+}
+
 function show(f) {
-  // f: { hip, proxy, force, object, triangle, penetration, sticking, status, max_force }
+  // f: { hip, proxy, force, object, triangle, penetration, sticking, status, max_force, poses }
+  place(f.poses);
   const hip = new THREE.Vector3(...f.hip), proxy = new THREE.Vector3(...f.proxy);
   hipMark.position.copy(hip);
   proxyMark.position.copy(proxy);
@@ -224,7 +238,10 @@ let replay = null;
 if (info.mode === 'replay') {
   const rows = new Float32Array(await (await fetch('/trace.bin')).arrayBuffer());
   const n = info.trace_rows, k = info.row_values;
-  replay = { rows, n, k, index: 0, time: rows[0], playing: true };
+  // The moving objects' poses per row (see `encode_poses`), when the scene has motions.
+  const poses = info.moving.length
+    ? new Float32Array(await (await fetch('/poses.bin')).arrayBuffer()) : null;
+  replay = { rows, n, k, poses, index: 0, time: rows[0], playing: true };
   state.replay = { index: 0, last: n - 1, atEnd: false };
   $('replay').hidden = false;
   $('device').textContent = `replay of ${n} ticks`;
@@ -239,9 +256,18 @@ if (info.mode === 'replay') {
     replay.time = rows[replay.index * k];
   };
 }
+function posesAt(i) {
+  const { poses } = replay, m = info.pose_values;
+  if (!poses) return [];
+  return info.moving.map((id, j) => {
+    const o = (i * info.moving.length + j) * m;
+    return { id, rotation: Array.from(poses.subarray(o, o + 4)), translation: Array.from(poses.subarray(o + 4, o + 7)) };
+  });
+}
 function rowAt(i) {
   const { rows, k } = replay, o = i * k;
   return {
+    poses: posesAt(i),
     t: rows[o], hip: [rows[o + 1], rows[o + 2], rows[o + 3]],
     proxy: [rows[o + 4], rows[o + 5], rows[o + 6]], force: [rows[o + 7], rows[o + 8], rows[o + 9]],
     object: rows[o + 10] < 0 ? null : rows[o + 10], triangle: rows[o + 11] < 0 ? null : rows[o + 11],

@@ -3,6 +3,7 @@
 
 use glam::{DQuat, DVec3};
 use haphe::scene::Scene;
+use haphe::servo::ObjectMotion;
 use serde::Serialize;
 
 /// One object as the page draws it.
@@ -29,6 +30,9 @@ pub struct ObjectMesh {
 pub struct Model {
     /// The objects.
     pub objects: Vec<ObjectMesh>,
+    /// The objects' scripted motions (a replay draws them moved; a live view takes the
+    /// servo's own, [`LiveSource::motions`](crate::LiveSource::motions)).
+    pub motions: Vec<ObjectMotion>,
 }
 
 /// What the page learns at connect besides the meshes (JSON).
@@ -73,7 +77,16 @@ impl Model {
                 }
             })
             .collect();
-        Model { objects }
+        Model {
+            objects,
+            motions: Vec::new(),
+        }
+    }
+
+    /// The model with the scripted motions of its objects.
+    pub fn with_motions(mut self, motions: Vec<ObjectMotion>) -> Model {
+        self.motions = motions;
+        self
     }
 
     /// The world box of all vertices, metres; `None` without vertices.

@@ -9,16 +9,13 @@
 
 mod support;
 
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use haphe::DVec3;
-use haphe::map::MapOptions;
-use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{Surface, SurfaceOptions};
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::scene::{Material, ObjectId, Pose, Scene};
 use haphe::servo::{
-    PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions, scene_bounds, scripted_path,
+    Motion, ObjectMotion, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions,
+    scene_bounds, scripted_path,
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
 use serde_json::Value;
@@ -28,28 +25,13 @@ const WIDTH: u32 = 1280;
 const HEIGHT: u32 = 800;
 
 fn sphere_scene() -> Scene {
-    let surface = Surface::new(
-        Catalog::Sphere.with_triangles(2_000),
-        &SurfaceOptions::default(),
-    )
-    .expect("surface");
-    let shape = Arc::new(Shape::build(surface, &MapOptions::default()).expect("map"));
-    let mut scene = Scene::local(2);
-    scene
-        .insert(SceneObject::new(
-            ObjectId(0),
-            shape,
-            Pose::IDENTITY,
-            Material {
-                stiffness: 600.0,
-                damping: 1.0,
-                static_friction: 0.3,
-                dynamic_friction: 0.2,
-            },
-        ))
-        .map_err(|(e, _)| e)
-        .expect("room");
-    scene
+    let material = Material {
+        stiffness: 600.0,
+        damping: 1.0,
+        static_friction: 0.3,
+        dynamic_friction: 0.2,
+    };
+    haphe::verify::sphere_scene(2_000, material).expect("the sphere scene")
 }
 
 fn options(title: &str) -> ViewOptions {
@@ -86,6 +68,7 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
             realtime_priority: false,
             ..RealtimeOptions::default()
         },
+        clock: None,
     };
     let view = ViewServer::start(
         model.clone(),
@@ -212,4 +195,121 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
     let errors = std::mem::take(&mut browser.errors);
     assert!(errors.is_empty(), "console errors: {errors:#?}");
     println!("browser test took {:.1} s", started.elapsed().as_secs_f64());
+}
+
+/// Whether the pixel at page point `p` is the object's grey-blue (not the background).
+fn is_object(pixels: &[[u8; 4]], w: u32, p: (f64, f64)) -> bool {
+    let px = pixels[(p.1 as u32 * w + p.0 as u32) as usize];
+    let lum = (u32::from(px[0]) + u32::from(px[1]) + u32::from(px[2])) / 3;
+    lum > 70 && px[2] > px[0]
+}
+
+#[test]
+fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
+    let scene = sphere_scene();
+    let (lo, hi) = scene_bounds(&scene).expect("bounds");
+    let centre = 0.5 * (lo + hi);
+    let radius = 0.5 * (hi.z - lo.z);
+    let model = Model::from_scene(&scene, &["sphere".to_string()]);
+    // The sphere slides 2 radii along x in one second, then the run ends; the device
+    // point waits far above it.
+    let seconds = 1.0;
+    let motions = vec![ObjectMotion {
+        id: ObjectId(0),
+        base: Pose::IDENTITY,
+        motion: Motion::Linear {
+            velocity: DVec3::new(2.0 * radius / seconds, 0.0, 0.0),
+        },
+    }];
+    let start = DVec3::new(centre.x, centre.y, hi.z + 1.5 * radius);
+    let (device, _mouse) = MouseDevice::new(start, lo - (hi - lo), hi + (hi - lo));
+    let source = LiveSource {
+        device: Box::new(device),
+        scene,
+        options: ServoOptions::default(),
+        motions: motions.clone(),
+        seconds: Some(seconds),
+        realtime: RealtimeOptions {
+            realtime_priority: false,
+            ..RealtimeOptions::default()
+        },
+        clock: None,
+    };
+    let view = ViewServer::start(
+        model.clone(),
+        Source::Live {
+            source: Box::new(source),
+            mouse: None,
+        },
+        &options("a sliding sphere"),
+    )
+    .expect("the view starts");
+    let mut browser = Browser::start(WIDTH, HEIGHT);
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.ready && window.haphe.frame && window.haphe.frame.ended)",
+        Duration::from_secs(40),
+        "the run to end on the page",
+    );
+    // Drawn where the last frame's tick had it: the servo's pose at that time.
+    let frame = browser.eval("window.haphe.frame");
+    let drawn = browser.eval("window.haphe.drawn[0]");
+    let t = frame["t"].as_f64().expect("t");
+    let expected = motions[0].pose_at(t).translation();
+    let x = drawn["translation"][0].as_f64().expect("drawn x");
+    println!("live: t = {t} s, drawn at x = {x}, expected {}", expected.x);
+    assert!(t > 0.9 * seconds, "{frame}");
+    assert!((x - expected.x).abs() < 1e-9, "{drawn} against {expected}");
+    // And on the page: the sphere's colour where it is now, the background where it was.
+    let project = |browser: &mut Browser, p: DVec3| {
+        xy(&browser.eval(&format!("window.haphe.project({}, {}, {})", p.x, p.y, p.z)))
+    };
+    let now = project(&mut browser, centre + expected);
+    let before = project(&mut browser, centre);
+    let (w, _, pixels) = decode_png(&browser.screenshot());
+    assert!(
+        is_object(&pixels, w, now),
+        "no sphere where it is now, {now:?}"
+    );
+    assert!(
+        !is_object(&pixels, w, before),
+        "the sphere is still drawn where it started, {before:?}"
+    );
+    view.stop().expect("stops");
+
+    // Replay: a simulated run of the same motion, scrubbed to its end.
+    let scene = sphere_scene();
+    let path = scripted_path(PathKind::Press, &scene, 0.5, 1).expect("path");
+    let mut servo =
+        Servo::new(ScriptedDevice::new(path), scene, ServoOptions::default()).expect("servo");
+    servo.set_motions(motions.clone());
+    let mut csv = Vec::new();
+    haphe::servo::write_csv_header(&mut csv).expect("header");
+    servo.run_simulated(500, |r| r.write_csv(&mut csv).expect("row"));
+    let trace = Trace::read("slide.csv", csv.as_slice()).expect("reads back");
+    let last_t = trace.rows.last().expect("rows").t;
+    let view = ViewServer::start(
+        model.with_motions(motions.clone()),
+        Source::Replay(trace),
+        &options("replay of a sliding sphere"),
+    )
+    .expect("the replay view starts");
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.replay && window.haphe.replay.atEnd)",
+        Duration::from_secs(30),
+        "the replay to reach its last tick",
+    );
+    let drawn = browser.eval("window.haphe.drawn[0]");
+    let x = drawn["translation"][0].as_f64().expect("drawn x");
+    let expected = motions[0].pose_at(last_t).translation();
+    println!(
+        "replay: t = {last_t} s, drawn at x = {x}, expected {}",
+        expected.x
+    );
+    // The replay's poses travel as f32.
+    assert!((x - expected.x).abs() < 1e-6, "{drawn} against {expected}");
+    view.stop().expect("stops");
+    let errors = std::mem::take(&mut browser.errors);
+    assert!(errors.is_empty(), "console errors: {errors:#?}");
 }

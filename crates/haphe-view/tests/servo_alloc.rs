@@ -1,43 +1,34 @@
 //! The servo path with the view's hand-offs allocates nothing: the mouse device (read
 //! through the triple buffer while another thread writes points into it) inside the timing
-//! wrapper (a wait-free push per tick), ticked under a counting allocator.
+//! wrapper (a wait-free push per tick), ticked under a counting allocator, with the sphere
+//! moved by a script (the view draws moving objects from the same motions, on its pump
+//! thread: the servo hands nothing more over for them).
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use haphe::DVec3;
-use haphe::map::MapOptions;
-use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{Surface, SurfaceOptions};
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
-use haphe::servo::{Device, Servo, ServoOptions};
+use haphe::scene::{Material, ObjectId, Pose};
+use haphe::servo::{Device, Motion, ObjectMotion, Servo, ServoOptions};
 use haphe_view::{MouseDevice, Timed};
 
 #[test]
 fn mouse_ticks_with_the_view_hand_offs_allocate_nothing() {
-    let surface = Surface::new(
-        Catalog::Sphere.with_triangles(2_000),
-        &SurfaceOptions::default(),
-    )
-    .expect("surface");
-    let shape = Arc::new(Shape::build(surface, &MapOptions::default()).expect("map"));
-    shape.prepare_clear_zones();
-    let mut scene = Scene::local(2);
-    scene
-        .insert(SceneObject::new(
-            ObjectId(0),
-            shape,
-            Pose::IDENTITY,
-            Material::default(),
-        ))
-        .map_err(|(e, _)| e)
-        .expect("room");
+    let scene = haphe::verify::sphere_scene(2_000, Material::default()).expect("the sphere scene");
     let (mouse, mut handle) =
         MouseDevice::new(DVec3::new(0.0, 0.0, 0.15), DVec3::splat(-1.0), DVec3::ONE);
     let device: Box<dyn Device> = Box::new(mouse);
     let (timed, mut timings) = Timed::new(device);
     let mut servo = Servo::new(timed, scene, ServoOptions::default()).expect("servo");
+    servo.set_motions(vec![ObjectMotion {
+        id: ObjectId(0),
+        base: Pose::IDENTITY,
+        motion: Motion::Oscillating {
+            amplitude: DVec3::new(0.0, 0.0, 0.005),
+            frequency: 1.0,
+        },
+    }]);
 
     // "The page": another thread moves the point down into the sphere and out again.
     let done = Arc::new(AtomicBool::new(false));
