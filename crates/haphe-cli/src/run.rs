@@ -13,19 +13,16 @@ use anyhow::{Context, bail};
 use haphe::DVec3;
 use haphe::mesh::Units;
 use haphe::scene::{Material, Scene};
-use haphe::servo::{
-    Device, DeviceMapping, DeviceSpec, RealtimeRun, ServoLoop, TickRecord, scene_bounds,
-};
-use haphe_devices::{OpenedDevice, UdpOptions, list_devices, open_device};
+use haphe::servo::{Device, DeviceMapping, DeviceSpec, RealtimeRun, ServoLoop, TickRecord};
+use haphe_devices::{OpenedDevice, UdpOptions, list_devices, open_device, workspace_mapping};
 
 use crate::simulate::{DeviceChoice, Model, Session, load_model};
 
 /// Length of a run until Ctrl-C, for sizing the plot's sampling only, seconds.
 pub const PLOT_SECONDS: f64 = 60.0;
 
-/// Default overrun budget: deadlines a run may miss before it stops with zero force
-/// (0.1 s of deadlines at 1 kHz, over the whole run).
-pub const DEFAULT_OVERRUN_BUDGET: u64 = 100;
+/// Default overrun budget: deadlines a run may miss before it stops with zero force.
+pub const DEFAULT_OVERRUN_BUDGET: u64 = haphe_devices::DEFAULT_OVERRUN_BUDGET;
 
 /// Arguments of `haphe run`.
 #[derive(clap::Args, Debug)]
@@ -148,6 +145,32 @@ pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::Relaxed)
 }
 
+/// Installs the handler of Ctrl-C (SIGINT) and SIGTERM: before [`servo_starting`] they
+/// end the process at once (exit code 130); after, they set [`interrupted`], and the
+/// caller stops the servo, which writes zero force before the process exits.
+pub fn catch_interrupts() -> anyhow::Result<()> {
+    ctrlc::set_handler(|| {
+        if SERVO_RUNNING.load(Ordering::SeqCst) {
+            INTERRUPTED.store(true, Ordering::Relaxed);
+        } else {
+            std::process::exit(130);
+        }
+    })
+    .context("cannot install the Ctrl-C handler")
+}
+
+/// The device choice of a front end that has no options of its own for it (`haphe
+/// view`): the default network settings, mapping and overrun budget of `haphe run`.
+pub fn default_choice(spec: &str) -> VendorChoice {
+    VendorChoice {
+        spec: spec.to_string(),
+        udp: UdpOptions::default(),
+        scale: None,
+        centre: None,
+        overrun_budget: Some(DEFAULT_OVERRUN_BUDGET),
+    }
+}
+
 /// Runs `haphe run`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // Parsed first: a wrong specification is reported before the scene is built.
@@ -166,14 +189,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             args.udp_workspace
         );
     }
-    ctrlc::set_handler(|| {
-        if SERVO_RUNNING.load(Ordering::SeqCst) {
-            INTERRUPTED.store(true, Ordering::Relaxed);
-        } else {
-            std::process::exit(130);
-        }
-    })
-    .context("cannot install the Ctrl-C handler")?;
+    catch_interrupts()?;
     let material = Material {
         stiffness: args.stiffness,
         damping: args.damping,
@@ -237,15 +253,7 @@ pub fn mapping(choice: &VendorChoice, spec: &DeviceSpec, scene: &Scene) -> Devic
     if choice.spec == "hand" {
         return DeviceMapping::IDENTITY;
     }
-    let (lo, hi) = scene_bounds(scene).unwrap_or((DVec3::splat(-0.05), DVec3::splat(0.05)));
-    let fit = DeviceMapping::fit(spec, lo, hi);
-    let scale = choice.scale.unwrap_or(fit.scale());
-    let centre = choice.centre.unwrap_or(0.5 * (lo + hi));
-    DeviceMapping::new(
-        Default::default(),
-        scale,
-        centre - scale * spec.workspace_centre(),
-    )
+    workspace_mapping(spec, scene, choice.scale, choice.centre)
 }
 
 /// Prints the mapping and what it does to stiffness.

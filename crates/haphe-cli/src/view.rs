@@ -15,8 +15,8 @@ use haphe::mesh::shapes::Catalog;
 use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
 use haphe::servo::{
-    Device, HandOptions, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind, RealtimeOptions,
-    ServoOptions, SimulatedHand, scene_bounds, scripted_path,
+    Device, DeviceMapping, HandOptions, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind,
+    RealtimeOptions, ServoOptions, SimulatedHand, scene_bounds, scripted_path,
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
 
@@ -51,14 +51,16 @@ pub struct Args {
     /// Length unit of the mesh file: m, mm, cm, in, or metres per unit.
     #[arg(long, default_value = "m", value_parser = crate::validate::parse_units)]
     units: Units,
-    /// The device: `mouse` (the pointer moves the device point) or `hand` (the simulated
-    /// hand explores the scene).
+    /// The device: `mouse` (the pointer moves the device point), `hand` (the simulated
+    /// hand explores the scene), dhd (Force Dimension), openhaptics (3D Systems Touch) or
+    /// udp:HOST:PORT (listen there for a network device), mapped as `haphe run` maps it.
     #[arg(long, default_value = "mouse", value_name = "SPEC")]
     device: String,
     /// Servo rate, Hz.
     #[arg(long, default_value_t = 1000.0)]
     rate: f64,
-    /// Length of a `--device hand` run, seconds (default 60).
+    /// Length of the run, seconds (default: 60 for `--device hand`, until Ctrl-C for a
+    /// real device).
     #[arg(long)]
     seconds: Option<f64>,
     /// Stiffness of a --mesh or --shape object, N/m.
@@ -91,6 +93,9 @@ pub enum ViewDevice {
     Mouse,
     /// The simulated hand explores the scene for this many seconds.
     Hand(f64),
+    /// A real device (`dhd`, `openhaptics`, `udp:HOST:PORT`), opened and mapped as `haphe
+    /// run` does, for this many seconds or until Ctrl-C.
+    Vendor(crate::run::VendorChoice, Option<f64>),
 }
 
 /// Runs `haphe view`.
@@ -129,15 +134,20 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         let reader =
             BufReader::new(File::open(file).with_context(|| format!("cannot read {name}"))?);
         let trace = Trace::read(&name, reader)?;
-        let (scene, names, _) = scene_of(objects)?;
-        let model = Model::from_scene(&scene, &names);
+        let (scene, names, motions) = scene_of(objects)?;
+        let model = Model::from_scene(&scene, &names).with_motions(motions);
         let title = format!("haphe view: replay of {name} ({} ticks)", trace.rows.len());
         return serve(model, Source::Replay(trace), &title, &args.serve);
     }
     let device = match args.device.as_str() {
         "mouse" => ViewDevice::Mouse,
         "hand" => ViewDevice::Hand(args.seconds.unwrap_or(HAND_SECONDS)),
-        other => bail!("--device {other:?}: this build knows `mouse` and `hand`"),
+        other => {
+            other.parse::<haphe_devices::DeviceKind>().map_err(|e| {
+                anyhow!("--device {other:?}: {e} (or mouse, the default, for the view)")
+            })?;
+            ViewDevice::Vendor(crate::run::default_choice(other), args.seconds)
+        }
     };
     let what = args
         .scene
@@ -178,6 +188,10 @@ pub fn live(
     let (scene, names, motions) = scene_of(objects)?;
     let model = Model::from_scene(&scene, &names);
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
+    let mut mapping = DeviceMapping::IDENTITY;
+    let mut realtime = RealtimeOptions::default();
+    let mut clock = None;
+    let mut report = None;
     let (device, mouse, seconds, title): (Box<dyn Device>, _, _, _) = match device {
         ViewDevice::Mouse => {
             let size = (hi - lo).max_element();
@@ -202,6 +216,26 @@ pub fn live(
                 format!("haphe view: the simulated hand explores {what} for {seconds} s"),
             )
         }
+        ViewDevice::Vendor(choice, seconds) => {
+            let opened = crate::run::open(&choice, &scene, seconds.unwrap_or(HAND_SECONDS))?;
+            mapping = crate::run::mapping(&choice, &opened.device.spec(), &scene);
+            println!("device: {}", opened.description);
+            let stiffness = scene
+                .objects()
+                .iter()
+                .map(|o| o.material.stiffness)
+                .fold(0.0, f64::max);
+            crate::run::print_mapping(&mut std::io::stdout(), &choice, &mapping, stiffness)?;
+            realtime.overrun_budget = choice.overrun_budget;
+            clock = opened.clock;
+            report = Some(opened.report);
+            (
+                opened.device,
+                None,
+                seconds,
+                format!("haphe view: device {} on {what}", choice.spec),
+            )
+        }
     };
     let source = LiveSource {
         device,
@@ -209,13 +243,15 @@ pub fn live(
         options: ServoOptions {
             rate_hz,
             proxy: ProxyOptions::default(),
+            mapping,
             ..ServoOptions::default()
         },
         motions,
         seconds,
-        realtime: RealtimeOptions::default(),
+        realtime,
+        clock,
     };
-    serve(
+    let code = serve(
         model,
         Source::Live {
             source: Box::new(source),
@@ -223,7 +259,11 @@ pub fn live(
         },
         &title,
         serve_options,
-    )
+    )?;
+    if let Some(line) = report.and_then(|r| r()) {
+        println!("device: {line}");
+    }
+    Ok(code)
 }
 
 /// Starts the view, opens the browser, serves until Ctrl-C, and prints how the servo ran.
@@ -233,6 +273,8 @@ fn serve(
     title: &str,
     serve_options: &Serve,
 ) -> anyhow::Result<ExitCode> {
+    crate::run::catch_interrupts()?;
+    crate::run::servo_starting();
     let view = ViewServer::start(
         model,
         source,
@@ -248,7 +290,10 @@ fn serve(
     } else {
         println!("view: {url} (open it in a browser; Ctrl-C stops)");
     }
-    view.wait_for_interrupt();
+    // Ctrl-C or SIGTERM: the servo is stopped below, and writes zero force first.
+    while !crate::run::interrupted() {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
     if let Some(run) = view.stop()? {
         let s = run.servo.stats();
         println!(

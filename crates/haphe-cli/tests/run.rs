@@ -3,35 +3,20 @@
 //! mapped onto the scene and run; Ctrl-C stops a run that has no end; a missing library
 //! is an error that says what to install and which variable to set.
 
+mod support;
+
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::sync::OnceLock;
+
+use support::Standin;
 
 fn haphe() -> Command {
     Command::new(env!("CARGO_BIN_EXE_haphe"))
 }
 
 fn standin() -> PathBuf {
-    // Built once per test process: the tests run in parallel, and one must not load the
-    // library while another is still writing it.
-    static BUILT: OnceLock<PathBuf> = OnceLock::new();
-    BUILT
-        .get_or_init(|| {
-            let source =
-                Path::new(env!("CARGO_MANIFEST_DIR")).join("../haphe-devices/tests/standin/dhd.c");
-            let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("libdhd_cli_standin.so");
-            let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
-            let status = Command::new(&cc)
-                .args(["-shared", "-fPIC", "-O2", "-o"])
-                .arg(&out)
-                .arg(&source)
-                .status()
-                .expect("a C compiler");
-            assert!(status.success());
-            out
-        })
-        .clone()
+    support::standin(Standin::Dhd)
 }
 
 #[test]

@@ -34,10 +34,31 @@ fn bad_input_is_refused_with_where_it_is() {
     assert!(err.contains("bad.csv: line 1: not a haphe trace"), "{err}");
     let _ = std::fs::remove_file(&bad);
 
-    let out = haphe(&["view", "--shape", "sphere", "--device", "dhd", "--no-open"]);
+    let out = haphe(&[
+        "view",
+        "--shape",
+        "sphere",
+        "--device",
+        "phantom",
+        "--no-open",
+    ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("--device \"dhd\""), "{err}");
+    assert!(
+        err.contains("--device \"phantom\": unknown device"),
+        "{err}"
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_haphe"))
+        .env("HAPHE_DHD_LIBRARY", "/nonexistent/libdhd.so")
+        .args(["view", "--shape", "sphere", "--device", "dhd", "--no-open"])
+        .output()
+        .expect("haphe runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("/nonexistent/libdhd.so") && err.contains("HAPHE_DHD_LIBRARY"),
+        "{err}"
+    );
 
     let out = haphe(&["view", "--no-open"]);
     let err = String::from_utf8_lossy(&out.stderr);

@@ -29,6 +29,7 @@
 mod dhd;
 mod library;
 mod list;
+mod mapping;
 mod openhaptics;
 mod spec;
 pub mod udp;
@@ -36,6 +37,7 @@ pub mod udp;
 pub use dhd::{DHD_WORKSPACE_HALF_M, DhdDevice, DhdInfo};
 pub use library::{DHD_LIBRARY, HD_LIBRARY, LoadError, VendorLibrary};
 pub use list::{Found, list_devices};
+pub use mapping::workspace_mapping;
 pub use openhaptics::{HD_STALL_TIMEOUT_S, HdClock, HdDevice, HdInfo};
-pub use spec::{DeviceKind, OpenedDevice, SpecError, open_device};
+pub use spec::{DEFAULT_OVERRUN_BUDGET, DeviceKind, OpenedDevice, SpecError, open_device};
 pub use udp::{UDP_FIRST_TIMEOUT_S, UDP_TIMEOUT_S, UdpCounters, UdpDevice, UdpOptions};

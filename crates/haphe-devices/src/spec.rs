@@ -12,6 +12,11 @@ use crate::library::LoadError;
 use crate::udp::{UdpDevice, UdpOptions};
 use crate::{DhdDevice, HdDevice};
 
+/// Default overrun budget of a run with a real device: deadlines it may miss before it
+/// stops with zero force (0.1 s of deadlines at 1 kHz, over the whole run; a policy, not a
+/// measured value).
+pub const DEFAULT_OVERRUN_BUDGET: u64 = 100;
+
 /// Which device a specification names.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum DeviceKind {

@@ -27,6 +27,7 @@
 mod live;
 mod model;
 mod mouse;
+mod poses;
 mod replay;
 mod server;
 mod timing;
@@ -34,6 +35,7 @@ mod timing;
 pub use live::{FRAME_RATE_HZ, Frame, LiveRun, LiveSource, Published, STATS_WINDOW_S};
 pub use model::{MESH_MAGIC, Model, ObjectInfo, ObjectMesh};
 pub use mouse::{MOUSE_MAX_FORCE_N, MOUSE_VELOCITY_TAU_S, MouseDevice, MouseHandle};
+pub use poses::{ObjectPose, POSE_VALUES, encode_poses, poses_at};
 pub use replay::{ROW_VALUES, STATUS_NAMES, Trace, TraceError, TraceRow};
 pub use timing::{TIMING_CAPACITY, Timed};
 
@@ -113,6 +115,9 @@ struct Info<'a> {
     statuses: [&'static str; STATUS_NAMES.len()],
     trace_rows: usize,
     row_values: usize,
+    /// Ids of the objects moved by script, in the order of a replay's poses.
+    moving: Vec<u32>,
+    pose_values: usize,
 }
 
 impl ViewServer {
@@ -142,14 +147,18 @@ impl ViewServer {
                 Source::Live { .. } => None,
             })
             .map(|(lo, hi)| [lo.to_array(), hi.to_array()]);
-        let (live, mouse, trace, rate_hz, device) = match source {
+        let (live, mouse, trace, rate_hz, device, moving) = match source {
             Source::Live { source, mouse } => {
                 let rate = source.options.rate_hz;
                 let device = source.device.spec().name;
+                let moving = source.motions.iter().map(|m| m.id.0).collect();
                 let live = Live::start(*source, frames_in)?;
-                (Some(live), mouse, None, Some(rate), Some(device))
+                (Some(live), mouse, None, Some(rate), Some(device), moving)
             }
-            Source::Replay(trace) => (None, None, Some(trace), None, None),
+            Source::Replay(trace) => {
+                let moving = model.motions.iter().map(|m| m.id.0).collect();
+                (None, None, Some(trace), None, None, moving)
+            }
         };
         let info = Info {
             title: &options.title,
@@ -162,10 +171,15 @@ impl ViewServer {
             statuses: STATUS_NAMES,
             trace_rows: trace.as_ref().map_or(0, |t| t.rows.len()),
             row_values: ROW_VALUES,
+            moving,
+            pose_values: POSE_VALUES,
         };
         let shared = Arc::new(Shared {
             info: serde_json::to_string(&info).unwrap_or_else(|_| "{}".into()),
             mesh: model.encode(),
+            poses: trace
+                .as_ref()
+                .map(|t| encode_poses(&model.motions, t.rows.iter().map(|r| r.t))),
             trace: trace.map(|t| t.encode()),
             frames: frames.clone(),
             mouse: mouse.map(Mutex::new),
@@ -221,16 +235,30 @@ impl ViewServer {
         self.latest().is_some_and(|f| f.ended)
     }
 
-    /// Blocks until the process is interrupted (Ctrl-C, SIGINT), so that the caller can
-    /// then [`stop`](Self::stop) the servo loop cleanly (zero force written). Returns at
-    /// once when the signal cannot be watched.
+    /// Blocks until the process is interrupted (Ctrl-C, SIGINT, or SIGTERM on Unix), so
+    /// that the caller can then [`stop`](Self::stop) the servo loop cleanly (zero force
+    /// written). Returns at once when the signals cannot be watched.
     pub fn wait_for_interrupt(&self) {
-        if let Ok(runtime) = tokio::runtime::Builder::new_current_thread()
+        let Ok(runtime) = tokio::runtime::Builder::new_current_thread()
             .enable_all()
             .build()
-        {
-            let _ = runtime.block_on(tokio::signal::ctrl_c());
-        }
+        else {
+            return;
+        };
+        runtime.block_on(async {
+            #[cfg(unix)]
+            {
+                use tokio::signal::unix::{SignalKind, signal};
+                if let Ok(mut term) = signal(SignalKind::terminate()) {
+                    tokio::select! {
+                        _ = tokio::signal::ctrl_c() => {}
+                        _ = term.recv() => {}
+                    }
+                    return;
+                }
+            }
+            let _ = tokio::signal::ctrl_c().await;
+        });
     }
 
     /// Stops the servo loop (zero force, device closed) and the server; hands back the

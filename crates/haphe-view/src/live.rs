@@ -10,12 +10,13 @@ use std::time::{Duration, Instant};
 use glam::DVec3;
 use haphe::scene::Scene;
 use haphe::servo::{
-    Device, Histogram, ObjectMotion, RealtimeOptions, RealtimeRun, Servo, ServoError, ServoLoop,
-    ServoOptions, TickRecord,
+    Device, DeviceClock, Histogram, ObjectMotion, RealtimeOptions, RealtimeRun, Servo, ServoError,
+    ServoLoop, ServoOptions, TickRecord,
 };
 use serde::Serialize;
 use tokio::sync::watch;
 
+use crate::poses::{ObjectPose, poses_at};
 use crate::timing::Timed;
 
 /// Display rate of the stream, frames per second.
@@ -62,6 +63,9 @@ pub struct Frame {
     pub compute_us: [f64; 4],
     /// The servo loop has ended (its device ended or faulted).
     pub ended: bool,
+    /// The poses of the objects moved by script at the last tick's time (empty without
+    /// motions).
+    pub poses: Vec<ObjectPose>,
 }
 
 impl Frame {
@@ -83,6 +87,7 @@ impl Frame {
             rate_hz: 0.0,
             compute_us: [0.0; 4],
             ended: false,
+            poses: Vec::new(),
         }
     }
 
@@ -110,12 +115,16 @@ pub struct LiveSource {
     pub scene: Scene,
     /// Rate, proxy and mapping.
     pub options: ServoOptions,
-    /// Objects moved by script (drawn where they start).
+    /// Objects moved by script (each frame carries their poses at its tick's time).
     pub motions: Vec<ObjectMotion>,
     /// Length of the run, seconds (`None`: until the view stops).
     pub seconds: Option<f64>,
     /// How the servo thread is scheduled.
     pub realtime: RealtimeOptions,
+    /// The device's own servo clock, when it has one (OpenHaptics' scheduler): the tick
+    /// then runs on the vendor's thread
+    /// ([`ServoLoop::spawn_clocked`](haphe::servo::ServoLoop::spawn_clocked)).
+    pub clock: Option<Box<dyn DeviceClock>>,
 }
 
 /// How a live view's servo ran: its device is the view's timed wrapper around the one
@@ -137,15 +146,21 @@ impl Live {
     ) -> Result<Live, ServoError> {
         let (device, timings) = Timed::new(source.device);
         let mut servo = Servo::new(device, source.scene, source.options)?;
+        // The pump computes the poses each frame from the same motions: nothing more
+        // leaves the servo thread.
+        let motions = source.motions.clone();
         servo.set_motions(source.motions);
-        let mut running = ServoLoop::spawn(servo, source.seconds, source.realtime)?;
+        let mut running = match source.clock {
+            Some(clock) => ServoLoop::spawn_clocked(servo, clock, source.seconds, source.realtime)?,
+            None => ServoLoop::spawn(servo, source.seconds, source.realtime)?,
+        };
         let stop = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&stop);
         let pump = std::thread::Builder::new()
             .name("haphe-view-pump".into())
             .spawn(move || {
                 let mut timings = timings;
-                let mut pump = Pump::new();
+                let mut pump = Pump::new(motions);
                 let frame = Duration::from_secs_f64(1.0 / FRAME_RATE_HZ);
                 let mut next = Instant::now() + frame;
                 while !flag.load(Ordering::Relaxed) {
@@ -189,11 +204,13 @@ struct Pump {
     window_ticks: u64,
     rate_hz: f64,
     compute_us: [f64; 4],
+    motions: Vec<ObjectMotion>,
 }
 
 impl Pump {
-    fn new() -> Pump {
+    fn new(motions: Vec<ObjectMotion>) -> Pump {
         Pump {
+            motions,
             last: None,
             ticks: 0,
             max_force: 0.0,
@@ -237,6 +254,7 @@ impl Pump {
         frame.rate_hz = self.rate_hz;
         frame.compute_us = self.compute_us;
         frame.ended = ended;
+        frame.poses = poses_at(&self.motions, last.t);
         self.ticks = 0;
         self.max_force = 0.0;
         self.max_penetration = 0.0;

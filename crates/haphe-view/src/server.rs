@@ -22,6 +22,8 @@ pub(crate) struct Shared {
     pub(crate) info: String,
     pub(crate) mesh: Vec<u8>,
     pub(crate) trace: Option<Vec<u8>>,
+    /// The replay's poses of the moving objects, per row (see `encode_poses`).
+    pub(crate) poses: Option<Vec<u8>>,
     pub(crate) frames: watch::Receiver<Option<Published>>,
     pub(crate) mouse: Option<Mutex<MouseHandle>>,
     pub(crate) closing: watch::Receiver<bool>,
@@ -67,6 +69,7 @@ pub(crate) fn router(shared: Arc<Shared>) -> Router {
     app.route("/info", get(info))
         .route("/mesh.bin", get(mesh))
         .route("/trace.bin", get(trace))
+        .route("/poses.bin", get(poses))
         .route("/ws", get(ws))
         .with_state(shared)
 }
@@ -84,7 +87,16 @@ async fn mesh(State(s): State<Arc<Shared>>) -> Response {
 }
 
 async fn trace(State(s): State<Arc<Shared>>) -> Response {
-    match &s.trace {
+    replay_part(s.trace.as_ref())
+}
+
+async fn poses(State(s): State<Arc<Shared>>) -> Response {
+    replay_part(s.poses.as_ref())
+}
+
+/// A binary part of a replay, or 404 for a live view.
+fn replay_part(part: Option<&Vec<u8>>) -> Response {
+    match part {
         Some(t) => (
             [(header::CONTENT_TYPE, "application/octet-stream")],
             t.clone(),
@@ -105,12 +117,17 @@ async fn stream(mut socket: WebSocket, s: Arc<Shared>) {
     let mut closing = s.closing.clone();
     let mut every = tokio::time::interval(Duration::from_secs_f64(1.0 / FRAME_RATE_HZ));
     every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    // The pump drops its sender when the servo loop ends, right after publishing the last
+    // frame: that frame is still sent, once.
+    let mut last_sent = false;
     loop {
         tokio::select! {
             _ = every.tick() => {
-                if !frames.has_changed().unwrap_or(false) {
+                let closed = frames.has_changed().is_err();
+                if !(frames.has_changed().unwrap_or(false) || (closed && !last_sent)) {
                     continue;
                 }
+                last_sent |= closed;
                 let json = frames.borrow_and_update().as_ref().map(|p| Arc::clone(&p.json));
                 if let Some(json) = json
                     && socket.send(Message::Text(json.as_ref().into())).await.is_err()

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "env.h"
+
 #define STANDIN_MAX 400000
 #define DHD_ERROR_COM 5
 
@@ -43,9 +45,16 @@ int dhdGetDeviceCount(void) { return devices; }
 int dhdOpen(void) {
   if (devices < 1) { last_error = DHD_ERROR_COM; return -1; }
   opened = 1;
+  int n = standin_env_path(samples, STANDIN_MAX);
+  if (n >= 0) { n_samples = n; current = -1; n_forces = 0; calls = 0; }
   return 0;
 }
-int dhdClose(char id) { (void)id; opened = 0; return 0; }
+int dhdClose(char id) {
+  (void)id;
+  standin_env_report(forces, n_forces, STANDIN_MAX, force_enabled);
+  opened = 0;
+  return 0;
+}
 const char *dhdGetSystemName(char id) { (void)id; return opened ? "stand-in omega.3" : NULL; }
 int dhdEnableForce(unsigned char val, char id) { (void)id; force_enabled = val; return 0; }
 int dhdGetPosition(double *px, double *py, double *pz, char id) {

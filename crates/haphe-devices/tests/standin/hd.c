@@ -9,6 +9,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "env.h"
+
 typedef unsigned int HHD;
 typedef unsigned int HDenum;
 typedef unsigned int HDerror;
@@ -80,9 +82,15 @@ HHD hdInitDevice(const char *name) {
   (void)name;
   if (!present) { error(HD_COMM_ERROR); return HD_INVALID_HANDLE; }
   initialised = 1;
+  int n = standin_env_path(samples, STANDIN_MAX);
+  if (n >= 0) { n_samples = n; current = -1; n_forces = 0; frames = 0; }
   return 1;
 }
-void hdDisableDevice(HHD h) { (void)h; initialised = 0; }
+void hdDisableDevice(HHD h) {
+  (void)h;
+  standin_env_report(forces, n_forces, STANDIN_MAX, force_output);
+  initialised = 0;
+}
 void hdMakeCurrentDevice(HHD h) { (void)h; }
 void hdBeginFrame(HHD h) {
   (void)h;

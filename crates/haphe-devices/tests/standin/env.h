@@ -1,0 +1,39 @@
+/* Scripting a stand-in from the environment, for tests that run haphe as another process
+ * (the in-process tests use the standin_* functions instead):
+ * - HAPHE_STANDIN_PATH names a text file of samples, six numbers each (position and
+ *   velocity, in the library's units and frame), read each time the device is opened
+ *   (the path then starts again; standin_env_path returns -1 without the variable);
+ * - HAPHE_STANDIN_FORCES names a file that receives, when the device is closed, one line:
+ *   the number of forces written, the last force (three numbers), whether force output
+ *   was still enabled (1 or 0) and the largest force magnitude written. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static int standin_env_path(double (*samples)[6], int max) {
+  const char *name = getenv("HAPHE_STANDIN_PATH");
+  FILE *f = name ? fopen(name, "r") : NULL;
+  int n = 0;
+  if (!name) return -1;
+  if (!f) return 0;
+  while (n < max && fscanf(f, "%lf %lf %lf %lf %lf %lf", &samples[n][0], &samples[n][1],
+                           &samples[n][2], &samples[n][3], &samples[n][4], &samples[n][5]) == 6)
+    n++;
+  fclose(f);
+  return n;
+}
+
+static void standin_env_report(double (*forces)[3], int n, int max, int enabled) {
+  const char *name = getenv("HAPHE_STANDIN_FORCES");
+  FILE *f = name ? fopen(name, "w") : NULL;
+  int last = (n < max ? n : max) - 1;
+  double largest = 0.0;
+  if (!f) return;
+  for (int i = 0; i <= last; i++) {
+    double m = sqrt(forces[i][0] * forces[i][0] + forces[i][1] * forces[i][1] + forces[i][2] * forces[i][2]);
+    if (m > largest) largest = m;
+  }
+  if (last < 0) fprintf(f, "0 nan nan nan %d 0\n", enabled);
+  else fprintf(f, "%d %.17g %.17g %.17g %d %.17g\n", n, forces[last][0], forces[last][1], forces[last][2], enabled, largest);
+  fclose(f);
+}
