@@ -5,6 +5,7 @@
 //! and loop in Rust; errors become Python exceptions carrying the library's messages, which
 //! name the file and the place.
 
+mod device;
 mod errors;
 mod files;
 mod run;
@@ -21,6 +22,7 @@ use pyo3::prelude::*;
 #[pyo3(name = "_haphe")]
 fn haphe_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("HapheError", m.py().get_type::<errors::HapheError>())?;
+    m.add("DeviceError", m.py().get_type::<device::DeviceError>())?;
     m.add_function(wrap_pyfunction!(files::validate, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
     m.add_function(wrap_pyfunction!(allocations, m)?)?;

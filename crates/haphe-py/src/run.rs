@@ -1,5 +1,7 @@
-//! `haphe.run`: the servo loop with a device, on the simulated clock.
+//! `haphe.run`: the servo loop with a device: the simulated hand on the simulated clock,
+//! or a real device (src/device.rs) on the wall clock.
 
+use haphe::DVec3;
 use haphe::servo::{
     Device, HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, TickRecord, scripted_path,
 };
@@ -8,47 +10,63 @@ use numpy::ndarray::{Array1, Array2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use haphe_devices::{UDP_TIMEOUT_S, UdpOptions};
+
+use crate::device::{DeviceOutcome, DeviceRun, run_device};
 use crate::errors::haphe_error;
 use crate::scene::Scene;
 
-/// Opens the device named `device` for `scene` and a run of `seconds`.
-///
-/// `hand` is the simulated hand following the scripted path `path`. Hardware devices
-/// (`dhd`, `udp:...`) are opened here once the device crate provides them.
-fn open_device(
-    device: &str,
+/// The simulated hand following the scripted path `path` over `scene` for `seconds`.
+fn simulated_hand(
     path: &str,
     scene: &haphe::scene::Scene,
     seconds: f64,
     seed: u64,
 ) -> Result<Box<dyn Device + Send>, String> {
-    match device {
-        "hand" => {
-            let kind: PathKind = path.parse()?;
-            let path = scripted_path(kind, scene, seconds, seed).map_err(|e| e.to_string())?;
-            Ok(Box::new(SimulatedHand::new(path, HandOptions::default())))
-        }
-        other => Err(format!(
-            "device {other:?} is not available in this build: the devices are \"hand\" (the simulated hand)"
-        )),
-    }
+    let kind: PathKind = path.parse()?;
+    let path = scripted_path(kind, scene, seconds, seed).map_err(|e| e.to_string())?;
+    Ok(Box::new(SimulatedHand::new(path, HandOptions::default())))
 }
 
-/// run(scene, device="hand", seconds=2.0, path="explore", rate_hz=1000.0, seed=1)
+/// run(scene, device="hand", seconds=2.0, path="explore", rate_hz=1000.0, seed=1, scale=None, centre=None, udp_timeout=0.05, udp_workspace=0.1)
 /// --
 ///
 /// Runs the servo loop over ``scene`` with a device for ``seconds``: each tick reads the
 /// device, ticks the proxy (after the safe start: no force until the device point is
-/// outside every solid, then a 50 ms ramp) and writes the force. ``device="hand"`` is the
-/// simulated hand (a mass–spring–damper arm pushed back by the force) following the
-/// scripted ``path`` (``press``, ``slide``, ``circle``, ``explore`` or ``strike``) on a
-/// simulated clock, as fast as the machine goes. Runs without the GIL.
+/// outside every solid, then a 50 ms ramp) and writes the force. Runs without the GIL.
+///
+/// ``device`` is one of
+///
+/// - ``"hand"``: the simulated hand (a mass–spring–damper arm pushed back by the force)
+///   following the scripted ``path`` (``press``, ``slide``, ``circle``, ``explore`` or
+///   ``strike``) on a simulated clock, as fast as the machine goes;
+/// - ``"dhd"``: a Force Dimension device (``libdhd.so``, or the file named by
+///   ``HAPHE_DHD_LIBRARY``);
+/// - ``"openhaptics"``: a 3D Systems Touch through OpenHaptics (``libHD.so``, or
+///   ``HAPHE_HD_LIBRARY``), ticked by its scheduler (``rate_hz`` must be its rate);
+/// - ``"udp:HOST:PORT"``: a device driven by another process over UDP (haphe listens
+///   there; the datagrams are in docs/devices.md); ``udp_timeout`` seconds without a
+///   position stop the run with zero force, ``udp_workspace`` is the half size of the
+///   peer's workspace cube, metres.
+///
+/// A real device runs on the wall clock on a real-time thread. Its workspace is mapped
+/// onto the scene as ``haphe run`` maps it: ``scale`` world metres per device metre
+/// (default: the workspace covers the scene's bounds) and its centre at the world point
+/// ``centre`` (default: the centre of the scene's bounds). Ctrl-C stops it: zero force is
+/// written, then ``KeyboardInterrupt`` is raised.
 ///
 /// Returns a dict of arrays, one row per tick: ``t`` (s), ``hip``, ``proxy`` (N, 3) m,
 /// ``force`` (N, 3) N, ``contact`` bool, ``object`` (id, -1 when free), ``triangle``
-/// (the file's face index, -1 when free), ``penetration`` m.
+/// (the file's face index, -1 when free), ``penetration`` m; and the strings ``device``
+/// (what was opened), ``stop`` (``finished``, ``overruns`` or ``fault: ...``) and
+/// ``report`` (the device's fault or traffic, or None).
+///
+/// Raises ``HapheError`` for an unknown device or a bad argument, and ``DeviceError`` (an
+/// ``OSError``) when the device or its library cannot be opened: the message names the
+/// library, the variable that selects it and the SDK.
 #[pyfunction]
-#[pyo3(signature = (scene, device = "hand", seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1))]
+#[pyo3(signature = (scene, device = "hand", seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1))]
+#[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
     scene: PyRef<'py, Scene>,
@@ -57,6 +75,10 @@ pub fn run<'py>(
     path: &str,
     rate_hz: f64,
     seed: u64,
+    scale: Option<f64>,
+    centre: Option<[f64; 3]>,
+    udp_timeout: f64,
+    udp_workspace: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     if !(seconds.is_finite() && seconds > 0.0 && seconds * rate_hz <= 1e8) {
         return Err(haphe_error(
@@ -64,23 +86,59 @@ pub fn run<'py>(
             format!("must be positive and give at most 1e8 ticks, not {seconds}"),
         ));
     }
+    for (name, value) in [
+        ("scale", scale.unwrap_or(1.0)),
+        ("udp_timeout", udp_timeout),
+        ("udp_workspace", udp_workspace),
+    ] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(haphe_error(name, format!("must be positive, not {value}")));
+        }
+    }
+    if let Some(c) = centre
+        && !c.iter().all(|x| x.is_finite())
+    {
+        return Err(haphe_error("centre", format!("must be finite, not {c:?}")));
+    }
     let world = scene.snapshot();
     drop(scene);
-    let records = py
-        .detach(|| -> Result<Vec<TickRecord>, String> {
-            let device = open_device(device, path, &world, seconds, seed)?;
+    let outcome = if device == "hand" {
+        py.detach(|| -> Result<DeviceOutcome, String> {
+            let hand = simulated_hand(path, &world, seconds, seed)?;
             let options = ServoOptions {
                 rate_hz,
                 ..ServoOptions::default()
             };
-            let mut servo = Servo::new(device, world, options).map_err(|e| e.to_string())?;
+            let mut servo = Servo::new(hand, world, options).map_err(|e| e.to_string())?;
             let ticks = (seconds * rate_hz).round() as u64;
             let mut records = Vec::with_capacity(ticks as usize);
             servo.run_simulated(ticks, |r| records.push(*r));
             servo.close();
-            Ok(records)
+            Ok(DeviceOutcome {
+                records,
+                description: format!("the simulated hand ({path})"),
+                stop: "finished".into(),
+                report: None,
+            })
         })
-        .map_err(|e| haphe_error(device, e))?;
+        .map_err(|e| haphe_error(device, e))?
+    } else {
+        let h = udp_workspace;
+        let request = DeviceRun {
+            spec: device.to_string(),
+            seconds,
+            rate_hz,
+            scale,
+            centre: centre.map(DVec3::from_array),
+            udp: UdpOptions {
+                timeout_s: udp_timeout,
+                workspace: (DVec3::splat(-h), DVec3::splat(h)),
+                ..UdpOptions::default()
+            },
+        };
+        py.detach(|| run_device(request, world))?
+    };
+    let records = outcome.records;
     let n = records.len();
     let mut t = Array1::zeros(n);
     let mut hip = Array2::zeros((n, 3));
@@ -111,5 +169,8 @@ pub fn run<'py>(
     d.set_item("object", object.into_pyarray(py))?;
     d.set_item("triangle", triangle.into_pyarray(py))?;
     d.set_item("penetration", penetration.into_pyarray(py))?;
+    d.set_item("device", outcome.description)?;
+    d.set_item("stop", outcome.stop)?;
+    d.set_item("report", outcome.report)?;
     Ok(d)
 }

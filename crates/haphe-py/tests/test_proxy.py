@@ -61,5 +61,6 @@ def test_run_with_the_simulated_hand():
     assert np.isfinite(out["force"]).all()
     assert (np.linalg.norm(out["force"], axis=1) <= 3.3 + 1e-9).all()
     assert out["force"][out["contact"], 2].max() > 0.1
-    with pytest.raises(haphe.HapheError, match="not available"):
-        haphe.run(scene, device="dhd", seconds=0.1)
+    assert out["device"] == "the simulated hand (press)" and out["stop"] == "finished"
+    with pytest.raises(haphe.HapheError, match="unknown device"):
+        haphe.run(scene, device="phantom", seconds=0.1)

@@ -11,6 +11,7 @@ outside. Triangle indices are always the face indices of the mesh as given.
 
 from ._haphe import (
     Contact,
+    DeviceError,
     HapheError,
     Proxy,
     Scene,
@@ -23,6 +24,7 @@ from ._haphe import (
 
 __all__ = [
     "Contact",
+    "DeviceError",
     "HapheError",
     "Proxy",
     "Scene",

@@ -15,6 +15,10 @@ _Rotation = Union[Sequence[float], Sequence[Sequence[float]], npt.NDArray[np.flo
 class HapheError(ValueError):
     """A file or an input haphe cannot use: the message names the file and the place."""
 
+class DeviceError(OSError):
+    """A device or its vendor library could not be opened, or the device failed: the
+    message names the library, the variable that selects it and the SDK."""
+
 def validate(
     path: _Path,
     units: str = "m",
@@ -33,9 +37,16 @@ def run(
     path: str = "explore",
     rate_hz: float = 1000.0,
     seed: int = 1,
-) -> Dict[str, npt.NDArray[Any]]:
-    """Runs the servo loop with a device; arrays t, hip, proxy, force, contact, object,
-    triangle, penetration, one row per tick."""
+    scale: Optional[float] = None,
+    centre: Optional[_Vec3] = None,
+    udp_timeout: float = 0.05,
+    udp_workspace: float = 0.1,
+) -> Dict[str, Any]:
+    """Runs the servo loop with a device: "hand" (simulated, simulated clock), "dhd",
+    "openhaptics" or "udp:HOST:PORT" (real, wall clock, mapped onto the scene). Arrays t,
+    hip, proxy, force, contact, object, triangle, penetration, one row per tick; strings
+    device, stop and report (or None). Raises DeviceError when the device or its library
+    cannot be opened; Ctrl-C writes zero force, then raises KeyboardInterrupt."""
 
 class Shape:
     """A surface with its voxel map (object frame, metres)."""
