@@ -53,14 +53,8 @@ pub struct Args {
     /// Servo rate, Hz (OpenHaptics: its scheduler's rate, 1000 on a Touch).
     #[arg(long, default_value_t = 1000.0)]
     rate: f64,
-    /// World metres per device metre (default: the device's workspace covers the scene's
-    /// bounds).
-    #[arg(long)]
-    scale: Option<f64>,
-    /// The world point the centre of the device's workspace maps to, metres, "x,y,z"
-    /// (default: the centre of the scene's bounds).
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point)]
-    centre: Option<DVec3>,
+    #[command(flatten)]
+    mapping: MappingArgs,
     /// Stop with zero force once the servo has missed this many deadlines.
     #[arg(long, default_value_t = DEFAULT_OVERRUN_BUDGET)]
     overrun_budget: u64,
@@ -95,6 +89,35 @@ pub struct Args {
     /// Largest force rendered, N (lowered to the device's maximum).
     #[arg(long, default_value_t = 3.3)]
     max_force: f64,
+}
+
+/// How a real device's workspace is mapped onto the scene; shared by `haphe run` and
+/// `haphe view`.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct MappingArgs {
+    /// World metres per device metre (default: the device's workspace covers the scene's
+    /// bounds).
+    #[arg(long)]
+    pub scale: Option<f64>,
+    /// The world point the centre of the device's workspace maps to, metres, "x,y,z"
+    /// (default: the centre of the scene's bounds).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point)]
+    pub centre: Option<DVec3>,
+}
+
+impl MappingArgs {
+    /// Checks `--scale`.
+    ///
+    /// # Errors
+    /// A scale that is not positive.
+    pub fn check(&self) -> anyhow::Result<()> {
+        if let Some(s) = self.scale
+            && !(s.is_finite() && s > 0.0)
+        {
+            bail!("--scale must be positive, not {s}");
+        }
+        Ok(())
+    }
 }
 
 /// Arguments of `haphe devices`.
@@ -159,14 +182,14 @@ pub fn catch_interrupts() -> anyhow::Result<()> {
     .context("cannot install the Ctrl-C handler")
 }
 
-/// The device choice of a front end that has no options of its own for it (`haphe
-/// view`): the default network settings, mapping and overrun budget of `haphe run`.
-pub fn default_choice(spec: &str) -> VendorChoice {
+/// The device choice of `haphe view`: `mapping`, and `haphe run`'s default network
+/// settings and overrun budget.
+pub fn view_choice(spec: &str, mapping: MappingArgs) -> VendorChoice {
     VendorChoice {
         spec: spec.to_string(),
         udp: UdpOptions::default(),
-        scale: None,
-        centre: None,
+        scale: mapping.scale,
+        centre: mapping.centre,
         overrun_budget: Some(DEFAULT_OVERRUN_BUDGET),
     }
 }
@@ -175,11 +198,7 @@ pub fn default_choice(spec: &str) -> VendorChoice {
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // Parsed first: a wrong specification is reported before the scene is built.
     args.device.parse::<haphe_devices::DeviceKind>()?;
-    if let Some(s) = args.scale
-        && !(s.is_finite() && s > 0.0)
-    {
-        bail!("--scale must be positive, not {s}");
-    }
+    args.mapping.check()?;
     if !(args.udp_timeout.is_finite() && args.udp_timeout > 0.0) {
         bail!("--udp-timeout must be positive, not {}", args.udp_timeout);
     }
@@ -217,8 +236,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             max_force: args.max_force,
             ..UdpOptions::default()
         },
-        scale: args.scale,
-        centre: args.centre,
+        scale: args.mapping.scale,
+        centre: args.mapping.centre,
         overrun_budget: Some(args.overrun_budget),
     };
     let session = Session {

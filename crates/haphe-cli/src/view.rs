@@ -63,6 +63,8 @@ pub struct Args {
     /// real device).
     #[arg(long)]
     seconds: Option<f64>,
+    #[command(flatten)]
+    mapping: crate::run::MappingArgs,
     /// Stiffness of a --mesh or --shape object, N/m.
     #[arg(long, default_value_t = 600.0)]
     stiffness: f64,
@@ -146,7 +148,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             other.parse::<haphe_devices::DeviceKind>().map_err(|e| {
                 anyhow!("--device {other:?}: {e} (or mouse, the default, for the view)")
             })?;
-            ViewDevice::Vendor(crate::run::default_choice(other), args.seconds)
+            args.mapping.check()?;
+            ViewDevice::Vendor(crate::run::view_choice(other, args.mapping), args.seconds)
         }
     };
     let what = args

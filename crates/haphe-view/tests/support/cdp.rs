@@ -54,7 +54,11 @@ impl Browser {
         let binary = chromium().expect(
             "no Chromium: install it (Debian: apt-get install chromium) or set HAPHE_CHROMIUM",
         );
-        let profile = std::env::temp_dir().join(format!("haphe-view-test-{}", std::process::id()));
+        // One profile per browser: the tests of one process run browsers side by side.
+        static STARTED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let n = STARTED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let profile =
+            std::env::temp_dir().join(format!("haphe-view-test-{}-{n}", std::process::id()));
         let child = Command::new(binary)
             .args([
                 "--headless=new",
