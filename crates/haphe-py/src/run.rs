@@ -3,7 +3,7 @@
 
 use haphe::DVec3;
 use haphe::servo::{
-    Device, HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, TickRecord, scripted_path,
+    Device, HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, scripted_path,
 };
 use numpy::IntoPyArray;
 use numpy::ndarray::{Array1, Array2};

@@ -10,10 +10,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 use haphe::DVec3;
-use haphe::map::MapOptions;
-use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{Surface, SurfaceOptions};
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::scene::{Material, Scene};
 use haphe::servo::{
     DeviceClock, DeviceFault, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoLoop,
     ServoOptions, StopReason, TickRecord, scripted_path,
