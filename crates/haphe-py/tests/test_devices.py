@@ -132,6 +132,15 @@ def test_run_with_a_udp_peer():
     done = threading.Event()
     forces = []
 
+    def receive():
+        try:
+            while True:
+                data = peer.recv(64)
+                if len(data) == FORCE.size and data[:4] == b"HPHF":
+                    forces.append(FORCE.unpack(data))
+        except (BlockingIOError, ConnectionRefusedError):
+            pass
+
     def drive():
         # A press from above the workspace (±0.1 m) to its centre, one position a
         # millisecond, until the run is over; every force datagram is kept.
@@ -145,23 +154,12 @@ def test_run_with_a_udp_peer():
                 POSITION.pack(b"HPHP", 1, 0, sequence, stamp, 0.0, 0.0, 0.12 * (1 - s), 0, 0),
                 ("127.0.0.1", port),
             )
-            try:
-                while True:
-                    data = peer.recv(64)
-                    if len(data) == FORCE.size and data[:4] == b"HPHF":
-                        forces.append(FORCE.unpack(data))
-            except (BlockingIOError, ConnectionRefusedError):
-                pass
+            receive()
             time.sleep(0.001)
         # What haphe sent as it stopped.
         until = time.monotonic() + 0.2
         while time.monotonic() < until:
-            try:
-                data = peer.recv(64)
-                if len(data) == FORCE.size and data[:4] == b"HPHF":
-                    forces.append(FORCE.unpack(data))
-            except (BlockingIOError, ConnectionRefusedError):
-                pass
+            receive()
             time.sleep(0.001)
 
     thread = threading.Thread(target=drive)

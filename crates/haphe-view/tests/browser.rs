@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 use haphe::DVec3;
 use haphe::scene::{Material, ObjectId, Pose, Scene};
 use haphe::servo::{
-    Motion, ObjectMotion, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions,
+    Device, Motion, ObjectMotion, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions,
     scene_bounds, scripted_path,
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
@@ -32,6 +32,27 @@ fn sphere_scene() -> Scene {
         dynamic_friction: 0.2,
     };
     haphe::verify::sphere_scene(2_000, material).expect("the sphere scene")
+}
+
+/// A live source at 1 kHz at normal priority (the test machine is shared).
+fn live(
+    device: Box<dyn Device>,
+    scene: Scene,
+    motions: Vec<ObjectMotion>,
+    seconds: Option<f64>,
+) -> LiveSource {
+    LiveSource {
+        device,
+        scene,
+        options: ServoOptions::default(),
+        motions,
+        seconds,
+        realtime: RealtimeOptions {
+            realtime_priority: false,
+            ..RealtimeOptions::default()
+        },
+        clock: None,
+    }
 }
 
 fn options(title: &str) -> ViewOptions {
@@ -58,18 +79,7 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
     let model = Model::from_scene(&scene, &["sphere".to_string()]);
     let start = DVec3::new(centre.x, centre.y, hi.z + 0.2 * radius);
     let (device, mouse) = MouseDevice::new(start, lo - (hi - lo), hi + (hi - lo));
-    let source = LiveSource {
-        device: Box::new(device),
-        scene,
-        options: ServoOptions::default(),
-        motions: Vec::new(),
-        seconds: None,
-        realtime: RealtimeOptions {
-            realtime_priority: false,
-            ..RealtimeOptions::default()
-        },
-        clock: None,
-    };
+    let source = live(Box::new(device), scene, Vec::new(), None);
     let view = ViewServer::start(
         model.clone(),
         Source::Live {
@@ -223,18 +233,7 @@ fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
     }];
     let start = DVec3::new(centre.x, centre.y, hi.z + 1.5 * radius);
     let (device, _mouse) = MouseDevice::new(start, lo - (hi - lo), hi + (hi - lo));
-    let source = LiveSource {
-        device: Box::new(device),
-        scene,
-        options: ServoOptions::default(),
-        motions: motions.clone(),
-        seconds: Some(seconds),
-        realtime: RealtimeOptions {
-            realtime_priority: false,
-            ..RealtimeOptions::default()
-        },
-        clock: None,
-    };
+    let source = live(Box::new(device), scene, motions.clone(), Some(seconds));
     let view = ViewServer::start(
         model.clone(),
         Source::Live {
