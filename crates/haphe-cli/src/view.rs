@@ -20,7 +20,7 @@ use haphe::servo::{
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
 
-use crate::simulate::scene_file::{LoadedObject, load_scene, mesh_shape, shape_of};
+use crate::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
 
 /// Port the view serves on by default.
 pub const DEFAULT_PORT: u16 = 8417;
