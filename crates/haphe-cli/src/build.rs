@@ -6,11 +6,12 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, anyhow};
-use haphe::map::{MapOptions, VoxelMap, encode};
+use haphe::map::{MapOptions, Provenance, VoxelMap, encode};
 use haphe::mesh::{ReadOptions, Surface, SurfaceOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::load::{load, weld_mode};
+use crate::files::input::{self, read_input};
+use crate::load::{load_bytes, weld_mode};
 use crate::validate::parse_units;
 
 /// Arguments of `haphe build`.
@@ -56,7 +57,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         format: None,
     };
     crate::files::output::check_outputs(&[&args.output], &[&args.file])?;
-    let loaded = load(&args.file, &read).map_err(|e| anyhow!("{e}"))?;
+    let source = read_input(&args.file, input::MESH)?;
+    let provenance = Provenance::of(&args.file.display().to_string(), &source);
+    let loaded = load_bytes(&args.file, &source, &read).map_err(|e| anyhow!("{e}"))?;
+    drop(source);
     let triangles = loaded.mesh.triangles.len();
     let start = Instant::now();
     let surface = Surface::new(loaded.mesh, &SurfaceOptions::default())
@@ -81,7 +85,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         }
     };
     let map = VoxelMap::build_with_progress(&surface, &options, &progress)
-        .with_context(|| format!("{}", args.file.display()))?;
+        .with_context(|| format!("{}", args.file.display()))?
+        .with_provenance(provenance);
     let t_map = start.elapsed();
     if let Some(bar) = bar {
         bar.finish_and_clear();
@@ -94,6 +99,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
 
     let stats = map.stats();
     writeln!(out, "{} -> {}", args.file.display(), args.output.display())?;
+    if let Some(p) = map.provenance() {
+        writeln!(out, "  source: {p}")?;
+    }
     writeln!(
         out,
         "  surface: {} triangles, {} vertices, {} ({:.1} ms)",

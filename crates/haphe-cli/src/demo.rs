@@ -14,7 +14,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe::servo::{HandOptions, PathKind};
 
-use crate::simulate::scene_file::{LoadedObject, shape_of};
+use crate::scene::{LoadedObject, shape_of};
 use crate::simulate::{DeviceChoice, Session};
 
 /// Arguments of `haphe demo`.

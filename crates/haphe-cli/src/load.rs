@@ -44,11 +44,18 @@ pub fn load(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
 /// Parses and welds the bytes of the mesh file at `path`.
 pub fn load_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<Loaded, LoadFailure> {
     let name = path.display().to_string();
-    // Whatever its extension, a map file is recognised by its header in every command.
-    if bytes.starts_with(&haphe::map::MAGIC) {
-        return Err(LoadFailure::Io(anyhow::anyhow!(
-            "{name}: a map file written by `haphe build`, not a mesh file (query and verify read map files)"
-        )));
+    // Whatever its extension, a map file is recognised by its header in every command
+    // (even a damaged one, which is reported as such: the same answer as `query`'s).
+    if haphe::map::looks_like_map(bytes, bytes.len() as u64) {
+        let map = haphe::map::MapBytes::copy_from_slice(bytes);
+        return Err(LoadFailure::Io(
+            match crate::object::decode_map(path, &map) {
+                Ok(_) => anyhow::anyhow!(
+                    "{name}: a map file written by `haphe build`, not a mesh file (query and verify read map files)"
+                ),
+                Err(e) => e,
+            },
+        ));
     }
     let start = Instant::now();
     let format = match options.format {

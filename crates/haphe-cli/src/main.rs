@@ -11,6 +11,7 @@ mod mapped;
 mod object;
 mod query;
 mod run;
+mod scene;
 mod simulate;
 mod validate;
 mod verify;

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow};
-use haphe::map::{MAGIC, MapBytes, MapOptions, VoxelMap, decode_in_place};
+use haphe::map::{MapBytes, MapFileError, MapOptions, VoxelMap, decode_in_place, looks_like_map};
 use haphe::mesh::{ReadOptions, Surface, SurfaceOptions};
 
 use crate::files::input::{self, open_input};
@@ -22,17 +22,66 @@ pub struct Object {
     pub from_map_file: bool,
 }
 
-/// Opens `path` once: a map file written by `haphe build` (recognised by its header), or a
-/// mesh file, whose surface and map are built now.
+/// Bytes of a map file's header: what [`looks_like_map`] reads to tell a map from a mesh.
+const MAP_HEADER_BYTES: u64 = 64;
+
+/// Why the map file `path` cannot be used, in words a user can act on: an older or newer
+/// format names the version and how to rebuild; anything else is a damaged map, with the
+/// byte offset and field (or the section) where the damage was found.
+pub fn map_failure(path: &Path, e: &MapFileError) -> anyhow::Error {
+    let file = path.display();
+    match e {
+        MapFileError::UnsupportedVersion { found, supported }
+            if (1..*supported).contains(found) =>
+        {
+            anyhow!(
+                "{file}: a map of format version {found}, written by an older haphe; this one \
+                 reads version {supported} (which records the source mesh): rebuild it with \
+                 `haphe build MESH -o {file}`"
+            )
+        }
+        MapFileError::UnsupportedVersion { found, supported }
+            if (*supported + 1..*supported + 100).contains(found) =>
+        {
+            anyhow!(
+                "{file}: a map of format version {found}, written by a newer haphe; this one \
+                 reads version {supported}: use that haphe, or rebuild the map with this one \
+                 (`haphe build MESH -o {file}`)"
+            )
+        }
+        MapFileError::WrongMagic { found } => anyhow!(
+            "damaged map: {file}: byte 0 (magic): {:?} where \"HAPHEMAP\" should be",
+            String::from_utf8_lossy(found)
+        ),
+        _ => match e.place() {
+            (Some(at), field) => anyhow!("damaged map: {file}: byte {at} ({field}): {e}"),
+            (None, _) => anyhow!("damaged map: {file}: {e}"),
+        },
+    }
+}
+
+/// Decodes the map file `path` whose bytes are `bytes`, its errors in [`map_failure`]'s words.
+pub fn decode_map(path: &Path, bytes: &MapBytes) -> anyhow::Result<(Surface, VoxelMap)> {
+    decode_in_place(bytes).map_err(|e| map_failure(path, &e))
+}
+
+/// Opens `path` once: a map file written by `haphe build` (recognised by its header, even a
+/// damaged one: [`looks_like_map`]), or a mesh file, whose surface and map are built now.
 pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow::Result<Object> {
     let start = Instant::now();
     let mut input = open_input(path, input::OBJECT)?;
-    let mut head = Vec::with_capacity(MAGIC.len());
+    let mut head = Vec::with_capacity(MAP_HEADER_BYTES as usize);
     (&mut input.file)
-        .take(MAGIC.len() as u64)
+        .take(MAP_HEADER_BYTES)
         .read_to_end(&mut head)
         .with_context(|| format!("cannot read {}", path.display()))?;
-    if head == MAGIC {
+    let len = if input.regular {
+        input.file.metadata().map_or(0, |m| m.len())
+    } else {
+        // A pipe's length is unknown: the magic alone decides.
+        u64::MAX
+    };
+    if looks_like_map(&head, len) {
         let bytes = if input.regular {
             map_file(&input.file).with_context(|| format!("cannot map {}", path.display()))?
         } else {
@@ -40,8 +89,7 @@ pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow
             input.read_rest(input::MAP, &mut head)?;
             MapBytes::copy_from_slice(&head)
         };
-        let (surface, map) =
-            decode_in_place(&bytes).with_context(|| format!("{}", path.display()))?;
+        let (surface, map) = decode_map(path, &bytes)?;
         return Ok(Object {
             surface,
             map,
@@ -49,7 +97,7 @@ pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow
             from_map_file: true,
         });
     }
-    if input.regular && input.file.metadata().map_or(0, |m| m.len()) > input::MESH.bytes {
+    if input.regular && len > input::MESH.bytes {
         // Not a map: the mesh limit applies.
         return Err(anyhow!(
             "cannot read {}: larger than the limit for a {} ({} bytes)",
@@ -70,4 +118,37 @@ pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow
         elapsed: start.elapsed(),
         from_map_file: false,
     })
+}
+
+/// With `mesh` given, checks that `object` is a map file built from that mesh file: the
+/// map's recorded source must have the mesh's size and content hash (its name may differ).
+///
+/// # Errors
+/// Naming both files: the map records another source or none, the object is a mesh file
+/// rather than a map, or the mesh cannot be read.
+pub fn check_source(path: &Path, object: &Object, mesh: Option<&Path>) -> anyhow::Result<()> {
+    let Some(mesh) = mesh else {
+        return Ok(());
+    };
+    let (map_name, mesh_name) = (path.display(), mesh.display());
+    if !object.from_map_file {
+        return Err(anyhow!(
+            "--mesh {mesh_name}: {map_name} is a mesh file, not a map; --mesh checks a map \
+             file's source"
+        ));
+    }
+    let bytes = input::read_input(mesh, input::MESH)?;
+    match object.map.provenance() {
+        None => Err(anyhow!(
+            "{map_name} records no source mesh, so it cannot be checked against {mesh_name}: \
+             rebuild it with `haphe build {mesh_name} -o {map_name}`"
+        )),
+        Some(p) if !p.matches(&bytes) => Err(anyhow!(
+            "{map_name} was built from {p}, not from {mesh_name} ({} bytes, xxh3-128 {}): \
+             rebuild it with `haphe build {mesh_name} -o {map_name}`",
+            bytes.len(),
+            haphe::map::Provenance::of(&mesh_name.to_string(), &bytes).hash_hex()
+        )),
+        Some(_) => Ok(()),
+    }
 }

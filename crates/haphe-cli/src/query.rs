@@ -11,7 +11,7 @@ use haphe::query::{Side, classify_point, first_crossing};
 
 use crate::build::map_options;
 use crate::load::weld_mode;
-use crate::object::open;
+use crate::object::{check_source, open};
 use crate::validate::parse_units;
 
 /// Arguments of `haphe query`.
@@ -36,6 +36,10 @@ pub struct Args {
     /// Merge vertices closer than this (metres) when building from a mesh file.
     #[arg(long, value_name = "METRES")]
     weld_tolerance: Option<f64>,
+    /// The mesh file the map was built from: the query is refused unless the map records
+    /// this file's size and content hash (`haphe build` records them).
+    #[arg(long, value_name = "MESH")]
+    mesh: Option<PathBuf>,
 }
 
 /// The names a header row may use, in order: `x,y,z` for points and
@@ -115,6 +119,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         format: None,
     };
     let object = open(&args.object, &read, &map_options(None, None))?;
+    check_source(&args.object, &object, args.mesh.as_deref())?;
+    if let Some(p) = object.map.provenance() {
+        // On stderr (stdout holds one answer per input line); a closed stderr is no error.
+        let _ = writeln!(std::io::stderr(), "{}: a map of {p}", args.object.display());
+    }
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     if let Some(path) = &args.inside {
         for row in read_rows(path, 3)? {

@@ -1,13 +1,11 @@
 //! `haphe view`: the live 3D view in the browser — a mesh, a built-in shape or a scene
 //! file touched with the mouse (or the simulated hand), or a recorded trace replayed.
 
-use std::fs::File;
-use std::io::BufReader;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 
-use anyhow::{Context, anyhow, bail};
+use anyhow::{anyhow, bail};
 use haphe::DVec3;
 use haphe::map::MapOptions;
 use haphe::mesh::Units;
@@ -20,7 +18,7 @@ use haphe::servo::{
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
 
-use crate::simulate::scene_file::{LoadedObject, load_scene, mesh_shape, shape_of};
+use crate::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
 
 /// Port the view serves on by default.
 pub const DEFAULT_PORT: u16 = 8417;
@@ -133,9 +131,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     if let Some(file) = &args.replay {
         let name = file.display().to_string();
-        let reader =
-            BufReader::new(File::open(file).with_context(|| format!("cannot read {name}"))?);
-        let trace = Trace::read(&name, reader)?;
+        // Through the input module, like every command: a size limit, devices refused.
+        let bytes = crate::files::input::read_input(file, crate::files::input::TRACE)?;
+        let trace = Trace::read(&name, bytes.as_slice())?;
         let (scene, names, motions) = scene_of(objects)?;
         let model = Model::from_scene(&scene, &names).with_motions(motions);
         let title = format!("haphe view: replay of {name} ({} ticks)", trace.rows.len());

@@ -6,9 +6,9 @@ use std::sync::OnceLock;
 
 use haphe::DVec3;
 use haphe::map::{
-    CellSizeRule, CellState, FORMAT_VERSION, Grid, MAX_CLEARANCE, MapBytes, MapError, MapFileError,
-    MapOptions, OVERLAP_TOLERANCE_REL, VoxelMap, decode, decode_in_place, encode,
-    overlap_triangle_box,
+    CellSizeRule, CellState, FORMAT_VERSION, Grid, MAX_CLEARANCE, MAX_SOURCE_NAME_BYTES, MapBytes,
+    MapError, MapFileError, MapOptions, OVERLAP_TOLERANCE_REL, Provenance, VoxelMap, decode,
+    decode_in_place, encode, overlap_triangle_box,
 };
 use haphe::mesh::shapes::{self, Catalog};
 use haphe::mesh::{Mesh, Surface, SurfaceOptions, TriId};

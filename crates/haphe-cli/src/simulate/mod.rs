@@ -4,7 +4,6 @@
 //! a plot.
 
 pub mod plot;
-pub mod scene_file;
 pub mod summary;
 
 use std::io::Write;
@@ -28,8 +27,8 @@ use haphe::servo::{
 use crate::files::input::{self, read_input};
 use crate::files::output::{Staged, check_outputs};
 
-use self::scene_file::{LoadedObject, load_scene, mesh_shape, shape_of};
 use self::summary::{RunInfo, Summary};
+use crate::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
 
 /// Arguments of `haphe simulate`.
 #[derive(clap::Args, Debug)]

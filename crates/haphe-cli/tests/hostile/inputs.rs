@@ -10,8 +10,22 @@ fn an_endless_device_is_refused_as_every_kind_of_input() {
     let dir = scratch("endless");
     let mesh = write(&dir, "t.obj", tetrahedron(0.0));
     let quick = Duration::from_secs(30);
-    let cases: [&[&str]; 6] = [
+    let cases: [&[&str]; 11] = [
         &["validate", "/dev/zero"],
+        &["view", "--mesh", "/dev/zero", "--no-open"],
+        &["view", "--scene", "/dev/zero", "--no-open"],
+        &[
+            "view",
+            "--shape",
+            "box",
+            "--triangles",
+            "100",
+            "--replay",
+            "/dev/zero",
+            "--no-open",
+        ],
+        &["run", "--device", "hand", "--mesh", "/dev/zero"],
+        &["run", "--device", "hand", "--scene", "/dev/zero"],
         &["build", "/dev/zero", "-o", "x.map"],
         &["query", "/dev/zero", "--inside", &mesh],
         &["query", &mesh, "--inside", "/dev/zero"],

@@ -5,6 +5,7 @@
 mod common;
 mod disk_full;
 mod inputs;
+mod maps;
 mod messages;
 mod outputs;
 mod queries;

@@ -3,6 +3,7 @@
 
 use super::free_space::FreeRegions;
 use super::grid::Grid;
+use super::provenance::Provenance;
 use super::{CellSizeRule, CellState};
 use crate::array::Array;
 
@@ -218,6 +219,9 @@ pub struct VoxelMap {
     pub(crate) solid: bool,
     /// How the cell size was chosen.
     pub(crate) cell_size_rule: CellSizeRule,
+    /// The mesh file the map was built from, when its builder said
+    /// ([`VoxelMap::with_provenance`]); saved and loaded with the map.
+    pub(crate) provenance: Option<Box<Provenance>>,
 }
 
 /// A cell's brick, looked up once.
@@ -227,6 +231,18 @@ enum Slot {
 }
 
 impl VoxelMap {
+    /// The map with `provenance` recorded: the mesh file it was built from, saved by
+    /// [`encode`](super::encode) and read back by [`decode`](super::decode).
+    pub fn with_provenance(mut self, provenance: Provenance) -> VoxelMap {
+        self.provenance = Some(Box::new(provenance));
+        self
+    }
+
+    /// The mesh file the map was built from, if recorded ([`VoxelMap::with_provenance`]).
+    pub fn provenance(&self) -> Option<&Provenance> {
+        self.provenance.as_deref()
+    }
+
     /// The grid of the map (metres, object frame).
     #[inline]
     pub fn grid(&self) -> &Grid {

@@ -245,5 +245,6 @@ fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
         triangle_count: 0,
         solid,
         cell_size_rule: CellSizeRule::Given,
+        provenance: None,
     }
 }

@@ -1,6 +1,6 @@
 //! Saving and loading a surface with its voxel map: one checked, sectioned file.
 //!
-//! # Layout (format version 11, all numbers little-endian)
+//! # Layout (format version 12, all numbers little-endian)
 //!
 //! | bytes | content |
 //! |---|---|
@@ -25,7 +25,8 @@
 //! graded bricks (256 bytes each), the triangle start of each surface cell (`u32`), the
 //! triangle references (`u32`; each cell's list ordered along its slab's direction), the
 //! slab of each surface cell (`u32`), of each detailed brick (`u32`) and of each region of
-//! 4×4×4 bricks (`u64`).
+//! 4×4×4 bricks (`u64`), and the provenance: the source mesh file's name, size and
+//! XXH3-128 hash (JSON, [`Provenance`]; empty when the map records none).
 //!
 //! Every section starts at a multiple of 64 bytes, so on a little-endian machine a loaded
 //! surface and map use their arrays in place, as views of the one buffer the file was read
@@ -41,6 +42,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::bricks::{BrickBits, MASK_WORDS, VoxelMap};
+use super::provenance::Provenance;
 use super::validate::{MapParams, check_map, check_surface, map_params_bytes, parse_map_params};
 use crate::array::{Array, MapBytes};
 use crate::mesh::{MeshReport, OwnedSurfaceParts, Surface, SurfaceParts, TriFrame};
@@ -52,9 +54,9 @@ pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
 /// ([`MapFileError::UnsupportedVersion`]): rebuild the map from the mesh.
 ///
 /// Version 11 lists the inside cells where closed parts overlap, which the inside query
-/// needs for the non-zero winding rule near the surfaces between them; maps of version 10
-/// and before lack them and are refused.
-pub const FORMAT_VERSION: u32 = 11;
+/// needs for the non-zero winding rule near the surfaces between them; version 12 records
+/// the source mesh file ([`Provenance`]). Maps of earlier versions are refused.
+pub const FORMAT_VERSION: u32 = 12;
 
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;
@@ -81,7 +83,7 @@ pub enum MapFileError {
     /// A map file of another format version.
     #[error(
         "map file format version {found} is not supported (this build reads version \
-         {supported}); rebuild the map from the mesh"
+         {supported}); rebuild the map from its mesh"
     )]
     UnsupportedVersion {
         /// The version in the file.
@@ -127,6 +129,39 @@ pub enum MapFileError {
     },
 }
 
+impl MapFileError {
+    /// Where in the file the error was found: a byte offset of the header and the field's
+    /// name, or (for [`MapFileError::Invalid`]) the section's name alone.
+    pub fn place(&self) -> (Option<u64>, &'static str) {
+        match self {
+            MapFileError::WrongMagic { .. } => (Some(0), "magic"),
+            MapFileError::UnsupportedVersion { .. } => (Some(8), "format version"),
+            MapFileError::Truncated { .. } | MapFileError::TrailingBytes { .. } => {
+                (Some(16), "file length")
+            }
+            MapFileError::ChecksumMismatch { .. } => (Some(CHECKSUM_AT as u64), "checksum"),
+            MapFileError::Invalid { section, .. } => (None, section),
+        }
+    }
+}
+
+/// Whether `head`, the first bytes of a file of `len` bytes (at least the first 64 when the
+/// file has them), is the header of a map file, even a damaged one: at least five of the
+/// eight bytes of [`MAGIC`] in place, or the rest of a map header intact (the section
+/// count, the file's length and the reserved zeros). A mesh file never passes by chance:
+/// its first bytes are text or an STL header, and no STL has this section count, its own
+/// length and 32 zero bytes at these offsets.
+pub fn looks_like_map(head: &[u8], len: u64) -> bool {
+    let in_place = head.iter().zip(&MAGIC).filter(|(a, b)| a == b).count();
+    if in_place >= 5 {
+        return true;
+    }
+    head.len() >= HEADER_BYTES
+        && u32_at(head, 12) as usize == SECTIONS.len()
+        && u64_at(head, 16) == len
+        && head[24..CHECKSUM_AT].iter().all(|&b| b == 0)
+}
+
 /// Shorthand for an [`MapFileError::Invalid`].
 pub(crate) fn invalid(section: &'static str, reason: impl Into<String>) -> MapFileError {
     MapFileError::Invalid {
@@ -136,7 +171,7 @@ pub(crate) fn invalid(section: &'static str, reason: impl Into<String>) -> MapFi
 }
 
 /// The sections in file order: name and element size in bytes.
-const SECTIONS: [(&str, usize); 23] = [
+const SECTIONS: [(&str, usize); 24] = [
     ("report", 1),
     ("vertices", 24),
     ("triangles", 12),
@@ -160,6 +195,7 @@ const SECTIONS: [(&str, usize); 23] = [
     ("slabs", 4),
     ("brick slabs", 4),
     ("region slabs", 8),
+    ("provenance", 1),
 ];
 
 /// A little-endian word of an array.
@@ -243,6 +279,10 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     let parts = surface.parts();
     let report = serde_json::to_vec(&parts.report).unwrap_or_default();
     let params = map_params_bytes(&MapParams::of(map));
+    let provenance = map
+        .provenance()
+        .map(|p| serde_json::to_vec(p).unwrap_or_default())
+        .unwrap_or_default();
     let lengths = [
         report.len(),
         parts.vertices.len() * 24,
@@ -267,6 +307,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
         map.slabs.len() * 4,
         map.brick_slabs.len() * 4,
         map.region_slabs.len() * 8,
+        provenance.len(),
     ];
     let table_end = HEADER_BYTES + SECTIONS.len() * TABLE_ENTRY_BYTES;
     let mut offsets = [0usize; SECTIONS.len()];
@@ -345,6 +386,8 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     put::<u32, u32>(&mut out, &map.brick_slabs);
     start(&mut out);
     put::<u64, u64>(&mut out, &map.region_slabs);
+    start(&mut out);
+    out.extend_from_slice(&provenance);
     out.resize(total, 0);
     let checksum = checksum(&out);
     out[CHECKSUM_AT..HEADER_BYTES].copy_from_slice(&checksum.to_le_bytes());
@@ -484,6 +527,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         slabs,
         brick_slabs,
         region_slabs,
+        provenance,
     ] = sections;
 
     let report: MeshReport = serde_json::from_slice(&bytes[report])
@@ -524,10 +568,24 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
         triangle_count: params.triangle_count,
         solid: params.solid,
         cell_size_rule: params.cell_size_rule,
+        provenance: decode_provenance(&bytes[provenance])?,
     };
     check_map(&map, &surface)?;
     map.derive_free_space();
     Ok((surface, map))
+}
+
+/// The provenance section: empty, or the JSON of a [`Provenance`] this crate could write.
+fn decode_provenance(bytes: &[u8]) -> Result<Option<Box<Provenance>>, MapFileError> {
+    if bytes.is_empty() {
+        return Ok(None);
+    }
+    let p: Provenance = serde_json::from_slice(bytes)
+        .map_err(|e| invalid("provenance", format!("not a provenance record: {e}")))?;
+    match p.problem() {
+        Some(problem) => Err(invalid("provenance", problem)),
+        None => Ok(Some(Box::new(p))),
+    }
 }
 
 /// The array of little-endian words `W` at `range` of `file`: a view in place on a

@@ -50,6 +50,7 @@ mod fill;
 mod free_space;
 mod grid;
 mod overlap;
+mod provenance;
 mod slabs;
 mod validate;
 mod walk;
@@ -58,13 +59,16 @@ pub use crate::array::MapBytes;
 use bricks::BRICK_SIDE;
 pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
 pub(crate) use cast::{CellPart, Found};
-pub use file::{FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode};
+pub use file::{
+    FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode, looks_like_map,
+};
 use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
 #[cfg(any(test, feature = "testing"))]
 pub(crate) use grid::clip_to_box;
 pub(crate) use grid::floor_to_int;
 pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL};
 pub use overlap::overlap_triangle_box;
+pub use provenance::{MAX_SOURCE_NAME_BYTES, Provenance};
 pub use walk::{CellStep, CellWalk};
 
 /// Largest clearance a cell stores, in cells. Cells within 15 cells of the surface store

@@ -107,6 +107,21 @@ pub enum ReadErrorKind {
         /// How many vertices were read.
         vertices: usize,
     },
+    /// A non-convex polygon too large for ear clipping's work budget (thousands of
+    /// corners): a fan of it would overlap itself, so it is refused.
+    #[error(
+        "{}a non-convex polygon of {corners} corners, more than ear clipping can cut within \
+         its work budget; split it into smaller faces",
+        match at { Place::Face(_) => format!("{at}: "), _ => format!("{at}: face {face}: ") }
+    )]
+    PolygonTooComplex {
+        /// Where the face is (its line, or the face itself).
+        at: Place,
+        /// The face as numbered in the file, counted from 0.
+        face: usize,
+        /// Its corners.
+        corners: usize,
+    },
     /// More vertices or faces than haphe's 32-bit indices hold.
     #[error("{at}: too large: {message}")]
     TooLarge {

@@ -72,6 +72,8 @@
 
 mod device;
 mod realtime;
+#[cfg(feature = "scene-file")]
+pub mod scene_file;
 mod simulated;
 mod tick;
 mod trace;

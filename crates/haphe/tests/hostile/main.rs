@@ -4,6 +4,7 @@
 
 mod coordinates;
 mod long_segments;
+mod polygons;
 mod readers;
 mod self_intersections;
 mod values;

@@ -114,6 +114,68 @@ fn encode_then_decode_gives_the_same_surface_and_map() {
         let mut shifted = vec![0u8; 1];
         shifted.extend_from_slice(&bytes);
         assert_eq!(decode(&shifted[1..]).expect("decodes").1, map);
+        assert_eq!(
+            loaded_map.provenance(),
+            None,
+            "{name}: none recorded, none read"
+        );
+
+        // With the source recorded: read back exactly, and re-encoded to the same bytes.
+        let source = Provenance::of(&format!("some/folder/{name} ✓.obj"), name.as_bytes());
+        let map = map.with_provenance(source.clone());
+        let bytes = encode(&surface, &map);
+        let (loaded_surface, loaded_map) = decode(&bytes).expect("decodes");
+        assert_eq!(loaded_map, map, "{name}");
+        assert_eq!(loaded_map.provenance(), Some(&source), "{name}");
+        assert_eq!(source.file, format!("{name} ✓.obj"));
+        assert!(source.matches(name.as_bytes()) && !source.matches(b"other"));
+        assert!(
+            encode(&loaded_surface, &loaded_map) == bytes,
+            "{name}: re-encoding differs"
+        );
+    }
+}
+
+/// A provenance record that this crate could not have written is refused, naming the
+/// section; a long name is cut to the limit when recorded, and read back as cut.
+#[test]
+fn crafted_provenance_is_refused() {
+    let (surface, map, _) = sample();
+    let long = "é".repeat(MAX_SOURCE_NAME_BYTES);
+    let source = Provenance::of(&long, b"x");
+    assert!(
+        source.file.len() <= MAX_SOURCE_NAME_BYTES
+            && source.file.len() >= MAX_SOURCE_NAME_BYTES - 1
+    );
+    let map = map.clone().with_provenance(source.clone());
+    assert_eq!(
+        decode(&encode(surface, &map))
+            .expect("decodes")
+            .1
+            .provenance(),
+        Some(&source)
+    );
+    for bad in [
+        Provenance {
+            xxh3_128: "0123".into(),
+            ..source.clone()
+        },
+        Provenance {
+            xxh3_128: "G".repeat(32),
+            ..source.clone()
+        },
+        Provenance {
+            file: "x".repeat(MAX_SOURCE_NAME_BYTES + 1),
+            ..source.clone()
+        },
+    ] {
+        let bytes = encode(surface, &map.clone().with_provenance(bad.clone()));
+        match decode(&bytes) {
+            Err(MapFileError::Invalid { section, .. }) => {
+                assert_eq!(section, "provenance", "{bad:?}")
+            }
+            other => panic!("{bad:?}: {other:?}"),
+        }
     }
 }
 
@@ -191,8 +253,8 @@ fn crafted_files_with_a_valid_checksum_are_checked() {
     };
     let sections = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
     // A triangle reference out of range, in the section before the slabs of the cells,
-    // the bricks and the regions (the last three).
-    let last_ref = find_section_end(bytes, sections - 4) - 4;
+    // the bricks and the regions and the provenance (the last four).
+    let last_ref = find_section_end(bytes, sections - 5) - 4;
     assert_eq!(
         refused_in(last_ref, &u32::MAX.to_le_bytes()),
         "triangle references"
@@ -200,8 +262,8 @@ fn crafted_files_with_a_valid_checksum_are_checked() {
     // A triangle listed twice in one cell: the second entry of the first list of two or
     // more made a copy of its first.
     let (starts, refs) = (
+        find_section_start(bytes, sections - 6),
         find_section_start(bytes, sections - 5),
-        find_section_start(bytes, sections - 4),
     );
     let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
     let first = (0..)

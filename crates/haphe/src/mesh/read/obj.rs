@@ -287,8 +287,14 @@ fn triangulate_faces(faces: &Faces, vertices: &[DVec3]) -> Result<Vec<[u32; 3]>,
         Vec::with_capacity(faces.corners.len().saturating_sub(2 * faces.ends.len()));
     let mut triangulator = Triangulator::default();
     let mut start = 0;
-    for &end in &faces.ends {
-        triangulator.triangulate(&faces.corners[start..end], vertices, &mut triangles);
+    for (face, &end) in faces.ends.iter().enumerate() {
+        triangulator
+            .triangulate(&faces.corners[start..end], vertices, &mut triangles)
+            .map_err(|e| ReadErrorKind::PolygonTooComplex {
+                at: Place::Line(faces.lines[face]),
+                face,
+                corners: e.corners,
+            })?;
         start = end;
     }
     Ok(triangles)

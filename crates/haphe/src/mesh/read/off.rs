@@ -100,7 +100,13 @@ pub(super) fn read_off(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
             });
         };
         parse_face(text, line, vertices.len(), &mut polygon)?;
-        triangulator.triangulate(&polygon, &vertices, &mut triangles);
+        triangulator
+            .triangulate(&polygon, &vertices, &mut triangles)
+            .map_err(|e| ReadErrorKind::PolygonTooComplex {
+                at: Place::Line(line),
+                face: f,
+                corners: e.corners,
+            })?;
     }
     Ok(Mesh {
         vertices,

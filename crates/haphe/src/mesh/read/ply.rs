@@ -90,7 +90,7 @@ pub(super) fn read_ply(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
             }
         }
     }
-    Ok(reading.finish())
+    reading.finish()
 }
 
 /// The mesh being read.
@@ -210,21 +210,27 @@ impl Reading {
     }
 
     /// Triangulates the faces (now that every vertex is known) and appends the strips.
-    fn finish(self) -> Mesh {
+    fn finish(self) -> Result<Mesh, ReadErrorKind> {
         let mut triangles = Vec::with_capacity(
             self.corners.len().saturating_sub(2 * self.ends.len()) + self.strip_triangles.len(),
         );
         let mut triangulator = Triangulator::default();
         let mut start = 0;
-        for &end in &self.ends {
-            triangulator.triangulate(&self.corners[start..end], &self.vertices, &mut triangles);
+        for (face, &end) in self.ends.iter().enumerate() {
+            triangulator
+                .triangulate(&self.corners[start..end], &self.vertices, &mut triangles)
+                .map_err(|e| ReadErrorKind::PolygonTooComplex {
+                    at: Place::Face(face),
+                    face,
+                    corners: e.corners,
+                })?;
             start = end;
         }
         triangles.extend(self.strip_triangles);
-        Mesh {
+        Ok(Mesh {
             vertices: self.vertices,
             triangles,
-        }
+        })
     }
 }
 

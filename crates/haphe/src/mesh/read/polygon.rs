@@ -5,9 +5,11 @@
 //! warped polygon works too) and cut by ear clipping, which handles non-convex outlines such
 //! as an L or a wall with a notch. Convex polygons, degenerate ones (no area, a non-finite or
 //! missing corner) and polygons whose ear clipping fails or runs over its work budget get a
-//! fan instead. Every output triangle keeps the polygon's winding, and an `n`-gon always
-//! gives `n − 2` triangles (a degenerate polygon gives degenerate triangles, which the mesh
-//! report lists), so counts are predictable.
+//! fan instead. A non-convex polygon whose ear clipping runs over its work budget (thousands
+//! of corners) is refused with [`PolygonTooComplex`], which the readers report with the
+//! file's place: a fan of it would overlap itself, silently. Every output triangle keeps the
+//! polygon's winding, and an `n`-gon always gives `n − 2` triangles (a degenerate polygon
+//! gives degenerate triangles, which the mesh report lists), so counts are predictable.
 //!
 //! Self-intersecting polygons have no correct triangulation; they get some triangulation
 //! with `n − 2` triangles and never a panic.
@@ -22,8 +24,16 @@ const COLLINEAR_REL_TOL: f64 = 1e-12;
 
 /// Cap on the point-in-triangle tests spent on one polygon (a few milliseconds). Ear
 /// clipping is quadratic in the number of corners, cubic in the worst case; when the cap is
-/// reached the rest of the polygon is fanned, so a pathological polygon costs bounded time.
-const EAR_TEST_BUDGET: usize = 1 << 22;
+/// reached the polygon is refused ([`PolygonTooComplex`]), so a pathological polygon costs
+/// bounded time. A non-convex polygon of up to about 2 000 corners fits.
+pub(crate) const EAR_TEST_BUDGET: usize = 1 << 22;
+
+/// A non-convex polygon that ear clipping could not cut within [`EAR_TEST_BUDGET`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct PolygonTooComplex {
+    /// Its corners.
+    pub(crate) corners: usize,
+}
 
 /// Scratch space for triangulating polygons, reused across polygons so that a file with
 /// many quads does not allocate per face.
@@ -44,6 +54,10 @@ impl Triangulator {
     /// Indices out of range of `positions` are passed through (the polygon is fanned); the
     /// callers check ranges before, with the file's place.
     ///
+    /// # Errors
+    /// [`PolygonTooComplex`] when ear clipping runs over [`EAR_TEST_BUDGET`]; `out` is then
+    /// left as it was.
+    ///
     /// # Performance
     /// Linear for triangles and convex polygons; ear clipping is quadratic in the corners and
     /// capped by [`EAR_TEST_BUDGET`].
@@ -52,22 +66,29 @@ impl Triangulator {
         polygon: &[u32],
         positions: &[DVec3],
         out: &mut Vec<[u32; 3]>,
-    ) {
+    ) -> Result<(), PolygonTooComplex> {
         match polygon {
             [] | [_] | [_, _] => {}
             &[a, b, c] => out.push([a, b, c]),
             _ => {
                 let Some(tol) = self.project(polygon, positions) else {
                     fan(polygon, out);
-                    return;
+                    return Ok(());
                 };
                 if self.is_convex(tol) {
                     fan(polygon, out);
                 } else {
-                    self.clip_ears(polygon, tol, out);
+                    let before = out.len();
+                    if self.clip_ears(polygon, tol, out).is_none() {
+                        out.truncate(before);
+                        return Err(PolygonTooComplex {
+                            corners: polygon.len(),
+                        });
+                    }
                 }
             }
         }
+        Ok(())
     }
 
     /// Projects the corners into the plane of the Newell normal, oriented so the polygon
@@ -122,8 +143,9 @@ impl Triangulator {
     }
 
     /// Ear clipping over the projected corners; fans what is left if no ear is found in a
-    /// full turn around the ring (the polygon self-intersects) or the budget runs out.
-    fn clip_ears(&mut self, polygon: &[u32], tol: f64, out: &mut Vec<[u32; 3]>) {
+    /// full turn around the ring (the polygon self-intersects). `None` when the budget runs
+    /// out.
+    fn clip_ears(&mut self, polygon: &[u32], tol: f64, out: &mut Vec<[u32; 3]>) -> Option<()> {
         let n = polygon.len();
         self.prev.clear();
         self.prev.extend((0..n).map(|i| (i + n - 1) % n));
@@ -151,7 +173,7 @@ impl Triangulator {
                     misses += 1;
                     i = c;
                 }
-                None => break,
+                None => return None,
             }
         }
         // Fan whatever is left (three corners in the normal case).
@@ -162,6 +184,7 @@ impl Triangulator {
             out.push([polygon[start], polygon[k], polygon[k_next]]);
             k = k_next;
         }
+        Some(())
     }
 
     /// Whether corners `a`, `b`, `c` (consecutive on the ring) form an ear: a strictly
@@ -203,7 +226,8 @@ fn fan(polygon: &[u32], out: &mut Vec<[u32; 3]>) {
 /// Triangulates one polygon with fresh scratch space; see [`Triangulator::triangulate`].
 #[cfg(test)]
 pub(crate) fn triangulate_polygon(polygon: &[u32], positions: &[DVec3], out: &mut Vec<[u32; 3]>) {
-    Triangulator::default().triangulate(polygon, positions, out);
+    let done = Triangulator::default().triangulate(polygon, positions, out);
+    assert_eq!(done, Ok(()));
 }
 
 #[cfg(test)]
@@ -445,8 +469,34 @@ mod tests {
         let mut triangulator = Triangulator::default();
         let l = l_shape();
         let mut out = Vec::new();
-        triangulator.triangulate(&[0, 1, 2, 3, 4, 5], &l, &mut out);
-        triangulator.triangulate(&[0, 1, 2, 3], &l, &mut out);
+        triangulator
+            .triangulate(&[0, 1, 2, 3, 4, 5], &l, &mut out)
+            .unwrap();
+        triangulator
+            .triangulate(&[0, 1, 2, 3], &l, &mut out)
+            .unwrap();
         assert_eq!(out.len(), 4 + 2);
+    }
+
+    #[test]
+    fn a_polygon_past_the_budget_is_refused_in_bounded_time_not_fanned() {
+        // 20 000 corners of a star: ear clipping would need about 10^8 tests.
+        let n = 20_000;
+        let star: Vec<DVec3> = (0..n)
+            .map(|i| {
+                let angle = i as f64 / n as f64 * std::f64::consts::TAU;
+                let r = if i % 2 == 0 { 10.0 } else { 7.0 };
+                DVec3::new(r * angle.cos(), r * angle.sin(), 0.0)
+            })
+            .collect();
+        let polygon: Vec<u32> = (0..n as u32).collect();
+        let mut out = vec![[7, 7, 7]];
+        let start = std::time::Instant::now();
+        let result = Triangulator::default().triangulate(&polygon, &star, &mut out);
+        assert_eq!(result, Err(PolygonTooComplex { corners: n }));
+        assert_eq!(out, vec![[7, 7, 7]], "nothing is left of the polygon");
+        // The budget is a few milliseconds of tests; a debug build on a loaded machine
+        // takes longer, and the whole polygon would take minutes.
+        assert!(start.elapsed().as_secs_f64() < 5.0, "{:?}", start.elapsed());
     }
 }

@@ -20,23 +20,19 @@
 //! Errors name the file, the object and the line.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
-use anyhow::{Context, anyhow, bail};
-use haphe::DVec3;
-use haphe::glam::{DQuat, EulerRot};
-use haphe::map::MapOptions;
-use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{ReadOptions, Surface, SurfaceOptions, Units};
-use haphe::scene::{Material, ObjectId, Pose, SceneObject, Shape};
-use haphe::servo::{Motion, ObjectMotion};
+use glam::{DQuat, DVec3, EulerRot};
 use serde::Deserialize;
 
-use crate::load::load;
+use crate::mesh::Units;
+use crate::mesh::shapes::Catalog;
+use crate::scene::{Material, ObjectId, Pose};
+use crate::servo::{Motion, ObjectMotion};
 
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
+    #[serde(default)]
     object: Vec<toml::Spanned<ObjectSpec>>,
 }
 
@@ -97,15 +93,66 @@ enum MotionSpec {
 /// Triangles of a procedural shape when the file does not say.
 pub const DEFAULT_TRIANGLES: usize = 20_000;
 
-/// One object of a loaded scene file.
-pub struct LoadedObject {
-    /// A name for reports.
-    pub name: String,
-    /// The object, ready to insert.
-    pub object: SceneObject,
-    /// Its scripted motion.
-    pub motion: Option<ObjectMotion>,
+/// Where an object's shape comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ObjectSource {
+    /// A built-in procedural shape with about `triangles` triangles.
+    Shape {
+        /// Which shape.
+        which: Catalog,
+        /// Its size in triangles (checked by [`Catalog::check_triangles`]).
+        triangles: usize,
+    },
+    /// A mesh file, its path joined to the scene file's folder.
+    Mesh {
+        /// The mesh file.
+        path: PathBuf,
+        /// The unit of its numbers.
+        units: Units,
+    },
 }
+
+/// One object of a scene file, every value checked; the shape is not built yet.
+#[derive(Debug, Clone)]
+pub struct SceneEntry {
+    /// A name for reports (the `name` field, else the shape or mesh name).
+    pub name: String,
+    /// The object's id (the `id` field, else its place in the file from 0).
+    pub id: ObjectId,
+    /// Where its shape comes from.
+    pub source: ObjectSource,
+    /// `world_from_object` at the start.
+    pub pose: Pose,
+    /// How it feels (checked by [`Material::checked`]).
+    pub material: Material,
+    /// Its scripted motion (checked by [`Motion::checked`]).
+    pub motion: Option<ObjectMotion>,
+    /// `FILE: object N (line L)`, to name the object in later errors (building its shape).
+    pub place: String,
+}
+
+/// A scene file that cannot be used: the message names the file, and the object and the
+/// line where there is one.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{message}")]
+pub struct SceneFileError {
+    /// The whole message, starting with the file's name.
+    pub message: String,
+}
+
+fn fail(message: String) -> SceneFileError {
+    SceneFileError { message }
+}
+
+/// Returns a [`SceneFileError`] with the formatted message.
+macro_rules! bail {
+    ($($message:tt)*) => {
+        return Err(fail(format!($($message)*)))
+    };
+}
+
+/// Most objects a scene file may list.
+pub const MAX_OBJECTS: usize = 10_000;
 
 /// 1-based line of a byte offset.
 fn line_of(text: &str, offset: usize) -> usize {
@@ -116,29 +163,39 @@ fn vec3(a: [f64; 3]) -> DVec3 {
     DVec3::from_array(a)
 }
 
-/// Reads a scene file and builds every object (shapes shared between objects that name
-/// the same shape and size or the same mesh file).
-pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObject>> {
+/// Parses and checks the text of the scene file at `path` (used for messages and as the
+/// folder that mesh paths are relative to; nothing is read from disk).
+///
+/// # Errors
+/// A [`SceneFileError`] naming the file, and the object and line where there is one: TOML
+/// syntax, unknown fields, both or neither of `shape` and `mesh`, an unknown shape or
+/// unit, a triangle count out of range, a non-finite pose, an unusable material or motion,
+/// a repeated id, no object or more than [`MAX_OBJECTS`].
+pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFileError> {
     let file = path.display().to_string();
-    let text = crate::files::input::read_text(path, crate::files::input::SCENE)?;
-    let parsed: SceneFile = toml::from_str(&text).map_err(|e| {
-        let line = e.span().map(|s| line_of(&text, s.start));
-        match line {
-            Some(line) => anyhow!("{file}: line {line}: {}", e.message()),
-            None => anyhow!("{file}: {}", e.message()),
-        }
+    let parsed: SceneFile = toml::from_str(text).map_err(|e| {
+        let line = e.span().map(|s| line_of(text, s.start));
+        fail(match line {
+            Some(line) => format!("{file}: line {line}: {}", e.message()),
+            None => format!("{file}: {}", e.message()),
+        })
     })?;
     if parsed.object.is_empty() {
         bail!("{file}: no [[object]] in the scene");
     }
+    if parsed.object.len() > MAX_OBJECTS {
+        bail!(
+            "{file}: {} objects, more than the limit of {MAX_OBJECTS}",
+            parsed.object.len()
+        );
+    }
     let base = path.parent().unwrap_or(Path::new("."));
-    let mut shapes: Vec<(String, Arc<Shape>)> = Vec::new();
-    let mut out: Vec<LoadedObject> = Vec::new();
+    let mut out: Vec<SceneEntry> = Vec::new();
     for (i, spanned) in parsed.object.iter().enumerate() {
-        let line = line_of(&text, spanned.span().start);
+        let line = line_of(text, spanned.span().start);
         let place = format!("{file}: object {} (line {line})", i + 1);
         let spec = spanned.get_ref();
-        let (key, name) = match (&spec.shape, &spec.mesh) {
+        let (source, name) = match (&spec.shape, &spec.mesh) {
             (Some(_), Some(_)) => bail!("{place}: give either `shape` or `mesh`, not both"),
             (None, None) => bail!(
                 "{place}: give `shape = \"blob\"` (or another built-in shape) or `mesh = \"FILE\"`"
@@ -147,27 +204,40 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
                 if spec.units.is_some() {
                     bail!("{place}: `units` applies to a mesh file, not to a built-in shape");
                 }
+                let which: Catalog = match shape.parse() {
+                    Ok(which) => which,
+                    Err(e) => bail!("{place}: shape {shape:?}: {e}"),
+                };
                 let n = spec.triangles.unwrap_or(DEFAULT_TRIANGLES);
-                Catalog::check_triangles(n).map_err(|e| anyhow!("{place}: {e}"))?;
-                (format!("shape {shape} {n}"), shape.clone())
+                if let Err(e) = Catalog::check_triangles(n) {
+                    bail!("{place}: {e}");
+                }
+                (
+                    ObjectSource::Shape {
+                        which,
+                        triangles: n,
+                    },
+                    shape.clone(),
+                )
             }
             (None, Some(mesh)) => {
                 if spec.triangles.is_some() {
                     bail!("{place}: `triangles` applies to a built-in shape, not to a mesh file");
                 }
-                let full = base.join(mesh);
+                let units = match &spec.units {
+                    Some(u) => match u.parse::<Units>() {
+                        Ok(units) => units,
+                        Err(e) => bail!("{place}: units {u:?}: {e}"),
+                    },
+                    None => Units::Metres,
+                };
                 (
-                    format!("mesh {} {:?}", full.display(), spec.units),
+                    ObjectSource::Mesh {
+                        path: base.join(mesh),
+                        units,
+                    },
                     mesh.display().to_string(),
                 )
-            }
-        };
-        let shape = match shapes.iter().find(|(k, _)| *k == key) {
-            Some((_, s)) => s.clone(),
-            None => {
-                let s = Arc::new(build_shape(spec, base, map).with_context(|| place.clone())?);
-                shapes.push((key, s.clone()));
-                s
             }
         };
         for (what, v) in [("position", spec.position), ("rotation", spec.rotation)] {
@@ -176,21 +246,24 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
             }
         }
         let m = &spec.material;
-        let material = Material {
+        let material = match (Material {
             stiffness: m.stiffness,
             damping: m.damping,
             static_friction: m.static_friction,
             dynamic_friction: m.dynamic_friction,
-        }
+        })
         .checked()
-        .map_err(|e| anyhow!("{place}: material {e}"))?;
+        {
+            Ok(material) => material,
+            Err(e) => bail!("{place}: material {e}"),
+        };
         let [rx, ry, rz] = spec.rotation.map(f64::to_radians);
         let pose = Pose::new(
             DQuat::from_euler(EulerRot::ZYX, rz, ry, rx),
             vec3(spec.position),
         );
         let id = ObjectId(spec.id.unwrap_or(i as u32));
-        if out.iter().any(|o| o.object.id == id) {
+        if out.iter().any(|o| o.id == id) {
             bail!("{place}: id {} is used by another object", id.0);
         }
         let motion = match &spec.motion {
@@ -210,64 +283,25 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
                 rate: *rate,
             }),
         }
-        .map(|motion| motion.checked().map_err(|e| anyhow!("{place}: {e}")))
+        .map(|motion| motion.checked().map_err(|e| fail(format!("{place}: {e}"))))
         .transpose()?
         .map(|motion| ObjectMotion {
             id,
             base: pose,
             motion,
         });
-        out.push(LoadedObject {
+        out.push(SceneEntry {
             name: spec.name.clone().unwrap_or(name),
-            object: SceneObject::new(id, shape, pose, material),
+            id,
+            source,
+            pose,
+            material,
             motion,
+            place,
         });
     }
     Ok(out)
 }
 
-/// The units named in a scene file or on the command line.
-pub fn parse_units(s: &str) -> anyhow::Result<Units> {
-    s.parse::<Units>().map_err(|e| anyhow!("units {s:?}: {e}"))
-}
-
-fn build_shape(spec: &ObjectSpec, base: &Path, map: &MapOptions) -> anyhow::Result<Shape> {
-    if let Some(name) = &spec.shape {
-        let which: Catalog = name.parse().map_err(|e| anyhow!("shape {name:?}: {e}"))?;
-        let n = spec.triangles.unwrap_or(DEFAULT_TRIANGLES);
-        return shape_of(which, n, map);
-    }
-    let mesh = spec.mesh.as_deref().unwrap_or(Path::new(""));
-    let units = match &spec.units {
-        Some(u) => parse_units(u)?,
-        None => Units::Metres,
-    };
-    mesh_shape(&base.join(mesh), units, map)
-}
-
-/// A built-in procedural shape with about `triangles` triangles, with its map and its
-/// clear zones (see [`ready`]).
-pub fn shape_of(which: Catalog, triangles: usize, map: &MapOptions) -> anyhow::Result<Shape> {
-    let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
-    Ok(ready(Shape::build(surface, map)?))
-}
-
-/// `shape` with every triangle's clear zone computed, here rather than on the servo
-/// thread at the first contact with each triangle.
-fn ready(shape: Shape) -> Shape {
-    shape.prepare_clear_zones();
-    shape
-}
-
-/// A shape from a mesh file, with its map and clear zones.
-pub fn mesh_shape(path: &Path, units: Units, map: &MapOptions) -> anyhow::Result<Shape> {
-    let read = ReadOptions {
-        units,
-        ..ReadOptions::default()
-    };
-    let loaded = load(path, &read).map_err(|e| anyhow!("{e}"))?;
-    let surface = Surface::new(loaded.mesh, &SurfaceOptions::default())
-        .with_context(|| path.display().to_string())?;
-    let shape = Shape::build(surface, map).with_context(|| path.display().to_string())?;
-    Ok(ready(shape))
-}
+#[cfg(test)]
+mod tests;

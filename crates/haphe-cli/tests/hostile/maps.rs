@@ -1,0 +1,167 @@
+//! Map files: the source mesh recorded and checked, damaged and older maps named as such
+//! by every command, and the same answer whatever the map file is called.
+
+use std::path::Path;
+
+use crate::common::{assert_error, haphe, scratch, stderr, stdout, tetrahedron, write};
+
+/// Asserts exit code 2 and every one of `parts` in the output (`validate` reports on
+/// standard output, the other commands on standard error), with no "not a mesh" in it.
+fn assert_refused(o: &std::process::Output, parts: &[&str]) {
+    let all = format!("{}{}", stdout(o), stderr(o));
+    assert_eq!(o.status.code(), Some(2), "{all}");
+    for part in parts {
+        assert!(all.contains(part), "{part:?} missing from: {all}");
+    }
+    assert!(!all.contains("not a mesh file haphe can read"), "{all}");
+}
+
+/// Builds `mesh` into `dir/name` and returns the map's path.
+fn build(mesh: &str, dir: &Path, name: &str) -> String {
+    let map = dir.join(name).display().to_string();
+    let o = haphe(&["build", mesh, "-o", &map]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    map
+}
+
+/// `build` records the source's name, size and hash and prints them; `query` shows them;
+/// `query --mesh` accepts the mesh the map was built from (renamed too) and refuses
+/// another, naming both files.
+#[test]
+fn a_map_records_its_mesh_and_refuses_another() {
+    let dir = scratch("provenance");
+    let text = tetrahedron(0.0);
+    let mesh = write(&dir, "tet.obj", &text);
+    let map = dir.join("tet.map").display().to_string();
+    let o = haphe(&["build", &mesh, "-o", &map]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let hash = format!("{:032x}", xxhash_rust::xxh3::xxh3_128(text.as_bytes()));
+    let source = format!("source: tet.obj, {} bytes, xxh3-128 {hash}", text.len());
+    assert!(stdout(&o).contains(&source), "{}", stdout(&o));
+
+    let points = write(&dir, "p.csv", "0.01,0.01,0.01\n1,1,1\n");
+    let o = haphe(&["query", &map, "--inside", &points, "--mesh", &mesh]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(stdout(&o), "inside\noutside\n");
+    assert!(
+        stderr(&o).contains(&format!("tet.map: a map of tet.obj, {} bytes", text.len())),
+        "{}",
+        stderr(&o)
+    );
+    // The same bytes under another name match: the content decides.
+    let copy = write(&dir, "copy.obj", &text);
+    let o = haphe(&["query", &map, "--inside", &points, "--mesh", &copy]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+
+    let other = write(&dir, "other.obj", tetrahedron(2.0));
+    let o = haphe(&["query", &map, "--inside", &points, "--mesh", &other]);
+    assert_error(
+        &o,
+        &[
+            "tet.map was built from tet.obj",
+            "not from",
+            "other.obj",
+            "haphe build",
+        ],
+    );
+    assert!(stdout(&o).is_empty(), "no answer for the wrong mesh");
+    // A mesh file as the object: nothing to check against.
+    let o = haphe(&["query", &mesh, "--inside", &points, "--mesh", &mesh]);
+    assert_error(&o, &["tet.obj is a mesh file, not a map"]);
+}
+
+/// A map of an older format (version 10, before provenance) is refused with the version and
+/// how to rebuild it, naming the file, by `query`, `verify` and `validate` alike.
+#[test]
+fn an_older_map_names_its_version_and_how_to_rebuild() {
+    let dir = scratch("old-map");
+    let mesh = write(&dir, "tet.obj", tetrahedron(0.0));
+    let map = build(&mesh, &dir, "tet.map");
+    let mut bytes = std::fs::read(&map).unwrap();
+    bytes[8..12].copy_from_slice(&10u32.to_le_bytes());
+    std::fs::write(&map, &bytes).unwrap();
+    let points = write(&dir, "p.csv", "0,0,0\n");
+    for args in [
+        vec!["query", &map, "--inside", &points],
+        vec!["verify", &map, "--samples", "10"],
+        vec!["validate", &map],
+    ] {
+        let o = haphe(&args);
+        assert_refused(
+            &o,
+            &[
+                "tet.map: a map of format version 10",
+                "older haphe",
+                "haphe build MESH -o",
+            ],
+        );
+    }
+}
+
+/// A damaged header is a damaged map (never "not a mesh file"), with the byte offset and
+/// field, from every command; so is a magic with a byte changed.
+#[test]
+fn a_damaged_map_says_so_with_the_place() {
+    let dir = scratch("damaged-map");
+    let mesh = write(&dir, "tet.obj", tetrahedron(0.0));
+    let map = build(&mesh, &dir, "tet.map");
+    let good = std::fs::read(&map).unwrap();
+    let points = write(&dir, "p.csv", "0,0,0\n");
+    let cases: [(&str, usize, &[&str]); 4] = [
+        ("magic", 3, &["byte 0 (magic)"]),
+        ("version", 9, &["byte 8 (format version)"]),
+        ("length", 17, &["byte 16 (file length)"]),
+        ("body", good.len() - 100, &["byte 56 (checksum)", "damaged"]),
+    ];
+    for (what, at, says) in cases {
+        let mut bytes = good.clone();
+        bytes[at] ^= 0x5a;
+        let damaged = write(&dir, &format!("{what}.ply"), &bytes);
+        for args in [
+            vec!["query", damaged.as_str(), "--inside", &points],
+            vec!["verify", &damaged, "--samples", "10"],
+            vec!["validate", &damaged],
+        ] {
+            let o = haphe(&args);
+            let mut parts = vec!["damaged map: ", damaged.as_str()];
+            parts.extend_from_slice(says);
+            assert_refused(&o, &parts);
+        }
+    }
+}
+
+/// A good map named `.ply`: `query` and `verify` read it, `validate` says it is a map file
+/// (not "not a PLY file"): detection by content, the same in every command.
+#[test]
+fn a_map_named_ply_is_a_map_for_every_command() {
+    let dir = scratch("map-ply");
+    let mesh = write(&dir, "tet.obj", tetrahedron(0.0));
+    let map = build(&mesh, &dir, "tet.ply");
+    let points = write(&dir, "p.csv", "0.01,0.01,0.01\n");
+    let o = haphe(&["query", &map, "--inside", &points]);
+    assert_eq!(
+        (o.status.code(), stdout(&o).as_str()),
+        (Some(0), "inside\n"),
+        "{}",
+        stderr(&o)
+    );
+    let o = haphe(&["verify", &map, "--samples", "20", "--ticks", "0"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_refused(
+        &haphe(&["validate", &map]),
+        &["tet.ply: a map file written by `haphe build`"],
+    );
+}
+
+/// `verify` on a mesh of degenerate triangles only names the file.
+#[test]
+fn verify_on_an_all_degenerate_mesh_names_the_file() {
+    let dir = scratch("degenerate");
+    let mesh = write(
+        &dir,
+        "flat.obj",
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 3 2 1\n",
+    );
+    let o = haphe(&["verify", &mesh, "--samples", "10"]);
+    assert_error(&o, &["flat.obj"]);
+}

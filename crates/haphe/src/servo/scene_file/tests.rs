@@ -1,0 +1,89 @@
+//! Parsing and checking scene files.
+
+use super::*;
+
+fn err(text: &str) -> String {
+    parse_scene(Path::new("dir/s.toml"), text)
+        .err()
+        .map(|e| e.message)
+        .unwrap_or_default()
+}
+
+#[test]
+fn objects_are_read_with_their_sources_poses_and_motions() {
+    let text = "[[object]]\nshape = \"box\"\ntriangles = 500\n\n[[object]]\nname = \"part\"\n\
+                id = 7\nmesh = \"p.stl\"\nunits = \"mm\"\nposition = [1.0, 2.0, 3.0]\n\
+                motion = { kind = \"linear\", velocity = [0.1, 0.0, 0.0] }\n";
+    let entries = parse_scene(Path::new("dir/s.toml"), text).unwrap();
+    assert_eq!(entries.len(), 2);
+    assert_eq!(
+        entries[0].source,
+        ObjectSource::Shape {
+            which: Catalog::Box,
+            triangles: 500
+        }
+    );
+    assert_eq!(
+        (entries[0].id, entries[0].name.as_str()),
+        (ObjectId(0), "box")
+    );
+    assert_eq!(
+        entries[1].source,
+        ObjectSource::Mesh {
+            path: Path::new("dir/p.stl").to_path_buf(),
+            units: Units::Millimetres
+        }
+    );
+    assert_eq!(
+        (entries[1].id, entries[1].name.as_str()),
+        (ObjectId(7), "part")
+    );
+    assert_eq!(entries[1].pose.translation(), DVec3::new(1.0, 2.0, 3.0));
+    let motion = entries[1].motion.as_ref().unwrap();
+    assert_eq!(motion.id, ObjectId(7));
+    assert!(matches!(motion.motion, Motion::Linear { velocity } if velocity.x == 0.1));
+    assert_eq!(entries[1].place, "dir/s.toml: object 2 (line 5)");
+}
+
+#[test]
+fn errors_name_the_file_the_object_and_the_line() {
+    assert_eq!(err(""), "dir/s.toml: no [[object]] in the scene");
+    assert!(err("[[object]]\nshape = \"box\"\ncolour = 1\n").starts_with("dir/s.toml: line 3:"));
+    for (text, says) in [
+        ("[[object]]\nshape = \"teapot\"\n", "shape \"teapot\""),
+        ("[[object]]\n", "give `shape"),
+        (
+            "[[object]]\nshape = \"box\"\nmesh = \"a.stl\"\n",
+            "not both",
+        ),
+        ("[[object]]\nshape = \"box\"\ntriangles = 0\n", "triangles"),
+        (
+            "[[object]]\nmesh = \"a.stl\"\nunits = \"furlong\"\n",
+            "units \"furlong\"",
+        ),
+        (
+            "[[object]]\nshape = \"box\"\nposition = [nan, 0.0, 0.0]\n",
+            "`position` must be finite",
+        ),
+        (
+            "[[object]]\nshape = \"box\"\nmaterial = { stiffness = -1.0 }\n",
+            "material stiffness",
+        ),
+        (
+            "[[object]]\nshape = \"box\"\nmotion = { kind = \"rotating\", axis = [0.0, 0.0, 0.0], rate = 1.0 }\n",
+            "axis",
+        ),
+    ] {
+        let e = err(text);
+        assert!(
+            e.starts_with("dir/s.toml: object 1 (line 1): "),
+            "{text}: {e}"
+        );
+        assert!(e.contains(says), "{text}: {e}");
+    }
+    let twice = "[[object]]\nshape = \"box\"\nid = 3\n[[object]]\nshape = \"box\"\nid = 3\n";
+    assert_eq!(
+        err(twice),
+        "dir/s.toml: object 2 (line 4): id 3 is used by another object"
+    );
+}
