@@ -243,14 +243,26 @@ mod tests {
         let normal = surface.frame(t).normal;
         let on = (a + b + c) / 3.0;
         let (from, to) = (on + normal * 1e-6, on - normal * 2e-3);
-        assert!(scene.first_hit_shown(&Near::ALL, 0, t, from, to, 2.5e-7).is_some());
+        assert!(
+            scene
+                .first_hit_shown(&Near::ALL, 0, t, from, to, 2.5e-7)
+                .is_some()
+        );
         assert!(
             scene
                 .first_hit_shown(&Near::ALL, 0, TriId(1 << 30), from, to, 2.5e-7)
                 .is_none()
         );
-        assert!(scene.first_hit_shown(&Near::ALL, 3, t, from, to, 2.5e-7).is_none());
-        assert!(scene.first_hit_shown(&Near::ALL, 0, t, to, from, 2.5e-7).is_none());
+        assert!(
+            scene
+                .first_hit_shown(&Near::ALL, 3, t, from, to, 2.5e-7)
+                .is_none()
+        );
+        assert!(
+            scene
+                .first_hit_shown(&Near::ALL, 0, t, to, from, 2.5e-7)
+                .is_none()
+        );
         let shape = Arc::clone(&scene.objects()[0].shape);
         add(
             &mut scene,
@@ -258,6 +270,10 @@ mod tests {
             shape,
             Pose::from_translation(on + normal * 0.05),
         );
-        assert!(scene.first_hit_shown(&Near::ALL, 0, t, from, to, 2.5e-7).is_none());
+        assert!(
+            scene
+                .first_hit_shown(&Near::ALL, 0, t, from, to, 2.5e-7)
+                .is_none()
+        );
     }
 }

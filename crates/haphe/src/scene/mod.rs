@@ -45,9 +45,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use glam::DVec3;
 use rustc_hash::FxHashMap;
 
+use broad::Broad;
 pub(crate) use broad::Near;
 pub(crate) use clear::others_box;
-use broad::Broad;
 
 use crate::mesh::TriId;
 use crate::query::{
@@ -316,10 +316,9 @@ impl Scene {
         }
         self.in_moved[i] = true;
         let k = match self.moved.last() {
-            Some(&last) if (last as usize) > i => self
-                .moved
-                .binary_search(&(i as u32))
-                .unwrap_or_else(|k| k),
+            Some(&last) if (last as usize) > i => {
+                self.moved.binary_search(&(i as u32)).unwrap_or_else(|k| k)
+            }
             _ => self.moved.len(),
         };
         self.moved.insert(k, i as u32);
