@@ -5,6 +5,7 @@
 
 pub mod plot;
 pub mod scene_file;
+pub mod scene_grid;
 pub mod summary;
 
 use std::io::Write;

@@ -17,6 +17,8 @@
 //! # or { kind = "linear", velocity = [...] }, { kind = "rotating", axis = [0, 0, 1], rate = 0.5 }
 //! ```
 //!
+//! An object with a `grid` table is repeated on a grid (see [`super::scene_grid`]).
+//!
 //! Errors name the file, the object and the line.
 
 use std::path::{Path, PathBuf};
@@ -56,6 +58,7 @@ struct ObjectSpec {
     #[serde(default)]
     material: MaterialSpec,
     motion: Option<MotionSpec>,
+    grid: Option<super::scene_grid::GridSpec>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -134,6 +137,7 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
     let base = path.parent().unwrap_or(Path::new("."));
     let mut shapes: Vec<(String, Arc<Shape>)> = Vec::new();
     let mut out: Vec<LoadedObject> = Vec::new();
+    let mut ids = std::collections::HashSet::new();
     for (i, spanned) in parsed.object.iter().enumerate() {
         let line = line_of(&text, spanned.span().start);
         let place = format!("{file}: object {} (line {line})", i + 1);
@@ -189,39 +193,52 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
             DQuat::from_euler(EulerRot::ZYX, rz, ry, rx),
             vec3(spec.position),
         );
-        let id = ObjectId(spec.id.unwrap_or(i as u32));
-        if out.iter().any(|o| o.object.id == id) {
-            bail!("{place}: id {} is used by another object", id.0);
+        let copies = super::scene_grid::copies(spec.grid.as_ref(), &place)?;
+        if (out.len() + copies.len()) as u64 > super::scene_grid::MAX_OBJECTS {
+            bail!(
+                "{place}: more than {} objects in the scene",
+                super::scene_grid::MAX_OBJECTS
+            );
         }
-        let motion = match &spec.motion {
-            None => None,
-            Some(MotionSpec::Linear { velocity }) => Some(Motion::Linear {
-                velocity: vec3(*velocity),
-            }),
-            Some(MotionSpec::Oscillating {
-                amplitude,
-                frequency,
-            }) => Some(Motion::Oscillating {
-                amplitude: vec3(*amplitude),
-                frequency: *frequency,
-            }),
-            Some(MotionSpec::Rotating { axis, rate }) => Some(Motion::Rotating {
-                axis: vec3(*axis),
-                rate: *rate,
-            }),
+        let first = spec.id.unwrap_or(out.len() as u32);
+        for copy in copies {
+            let Some(id) = first.checked_add(copy.index).map(ObjectId) else {
+                bail!("{place}: the ids of the grid's copies pass {}", u32::MAX);
+            };
+            if !ids.insert(id) {
+                bail!("{place}: id {} is used by another object", id.0);
+            }
+            let pose = Pose::new(pose.rotation(), pose.translation() + copy.offset);
+            let motion = match &spec.motion {
+                None => None,
+                Some(MotionSpec::Linear { velocity }) => Some(Motion::Linear {
+                    velocity: vec3(*velocity),
+                }),
+                Some(MotionSpec::Oscillating {
+                    amplitude,
+                    frequency,
+                }) => Some(Motion::Oscillating {
+                    amplitude: vec3(*amplitude),
+                    frequency: *frequency,
+                }),
+                Some(MotionSpec::Rotating { axis, rate }) => Some(Motion::Rotating {
+                    axis: vec3(*axis),
+                    rate: *rate,
+                }),
+            }
+            .map(|motion| motion.checked().map_err(|e| anyhow!("{place}: {e}")))
+            .transpose()?
+            .map(|motion| ObjectMotion {
+                id,
+                base: pose,
+                motion,
+            });
+            out.push(LoadedObject {
+                name: spec.name.clone().unwrap_or_else(|| name.clone()) + &copy.suffix,
+                object: SceneObject::new(id, shape.clone(), pose, material),
+                motion,
+            });
         }
-        .map(|motion| motion.checked().map_err(|e| anyhow!("{place}: {e}")))
-        .transpose()?
-        .map(|motion| ObjectMotion {
-            id,
-            base: pose,
-            motion,
-        });
-        out.push(LoadedObject {
-            name: spec.name.clone().unwrap_or(name),
-            object: SceneObject::new(id, shape, pose, material),
-            motion,
-        });
     }
     Ok(out)
 }
