@@ -62,7 +62,7 @@ fn ticks_with_edits_from_another_thread_allocate_nothing() {
                     0 => Edit::Insert(SceneObject::new(
                         ObjectId(id),
                         Arc::clone(&sphere),
-                        Pose::from_translation(if k % 8 == 0 { near } else { grid(id) }),
+                        Pose::from_translation(if k.is_multiple_of(8) { near } else { grid(id) }),
                         material,
                     )),
                     1 => Edit::Remove(ObjectId(10_000 + (k / 2) % 1_500)),

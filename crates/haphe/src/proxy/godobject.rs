@@ -203,8 +203,7 @@ impl Proxy {
         let placed = std::mem::take(&mut self.placed);
         let under = self.last.map(|l| (l.object, l.triangle));
         let sweep = constrain(
-            scene,
-            &mut self.near,
+            (scene, &mut self.near),
             p,
             hip,
             placed,
@@ -541,8 +540,7 @@ struct Sweep {
 /// plane (moved out by `skin`) and add it. `rest` is the surface the proxy rested on,
 /// `under` the contact triangle of the last tick, under the proxy (object, triangle).
 fn constrain(
-    scene: &Scene,
-    near: &mut NearCache,
+    (scene, near): (&Scene, &mut NearCache),
     mut p: DVec3,
     hip: DVec3,
     placed: bool,

@@ -58,7 +58,7 @@ fn edge(level: usize) -> f64 {
 
 /// The cell of a sphere at `centre` of radius `radius` (already with its slack).
 fn cell_of(centre: DVec3, radius: f64) -> Cell {
-    if !centre.is_finite() || !(radius <= edge(LEVELS - 1)) {
+    if !centre.is_finite() || radius.is_nan() || radius > edge(LEVELS - 1) {
         return Cell::HUGE;
     }
     let mut level = 0;
@@ -328,7 +328,7 @@ mod tests {
         let mut rng = SplitMix64::new(7);
         let mut broad = Broad::new(300);
         let mut spheres: Vec<(DVec3, f64)> = Vec::new();
-        let mut point = |rng: &mut SplitMix64, s: f64| {
+        let point = |rng: &mut SplitMix64, s: f64| {
             DVec3::new(rng.range(-s, s), rng.range(-s, s), rng.range(-s, s))
         };
         for step in 0..3000 {

@@ -269,10 +269,10 @@ impl Scene {
             }
         }
         self.broad.remove(i);
-        if self.in_moved[i] {
-            if let Ok(k) = self.moved.binary_search(&(i as u32)) {
-                self.moved.remove(k);
-            }
+        if self.in_moved[i]
+            && let Ok(k) = self.moved.binary_search(&(i as u32))
+        {
+            self.moved.remove(k);
         }
         self.in_moved.remove(i);
         for m in &mut self.moved {
