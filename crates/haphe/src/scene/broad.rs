@@ -51,9 +51,10 @@ impl Cell {
     };
 }
 
-/// The cell edge of `level`, metres.
+/// The cell edge of `level` (below [`LEVELS`]), metres: an exact power of two.
+#[inline]
 fn edge(level: usize) -> f64 {
-    f64::powi(2.0, MIN_EXP + level as i32)
+    f64::from_bits(((1023 + MIN_EXP + level as i32) as u64) << 52)
 }
 
 /// The cell of a sphere at `centre` of radius `radius` (already with its slack).
@@ -61,18 +62,35 @@ fn cell_of(centre: DVec3, radius: f64) -> Cell {
     if !centre.is_finite() || radius.is_nan() || radius > edge(LEVELS - 1) {
         return Cell::HUGE;
     }
-    let mut level = 0;
-    while edge(level) < radius {
+    // The smallest level whose edge is at least the radius: from the radius's binary
+    // exponent, then one step up if the radius is not a power of two.
+    let exponent = ((radius.to_bits() >> 52) & 0x7FF) as i32 - 1023;
+    let mut level = (exponent - MIN_EXP).clamp(0, LEVELS as i32 - 1) as usize;
+    if edge(level) < radius {
         level += 1;
     }
-    let k = (centre / edge(level)).floor();
+    // Multiplying by the inverse of a power of two is exact: the same as dividing.
+    let k = centre * inverse_edge(level);
     if k.abs().max_element() > MAX_COORD {
         return Cell::HUGE;
     }
     Cell {
         level: level as u8,
-        k: [k.x as i32, k.y as i32, k.z as i32],
+        k: [floor_i32(k.x), floor_i32(k.y), floor_i32(k.z)],
     }
+}
+
+/// `1 / edge(level)`, exact.
+#[inline]
+fn inverse_edge(level: usize) -> f64 {
+    f64::from_bits(((1023 - MIN_EXP - level as i32) as u64) << 52)
+}
+
+/// `x.floor()` as an integer, for `|x|` within [`MAX_COORD`] (no call into the C library).
+#[inline]
+fn floor_i32(x: f64) -> i32 {
+    let t = x as i32;
+    if f64::from(t) > x { t - 1 } else { t }
 }
 
 /// The grid over the objects' bounding spheres (see the module documentation).
@@ -323,6 +341,22 @@ mod tests {
 
     /// The grid returns every sphere that meets a box, through inserts, moves and
     /// removals, compared with a brute-force list.
+    #[test]
+    fn the_level_is_the_smallest_edge_at_least_the_radius() {
+        for r in [0.0, 1e-300, 1e-7, 0.1, 0.125, 0.13, 1.0, 3.0, 1e5, 1048576.0] {
+            let c = cell_of(DVec3::ZERO, r);
+            let level = usize::from(c.level);
+            assert!(edge(level) >= r, "{r}");
+            assert!(level == 0 || edge(level - 1) < r, "{r}");
+        }
+        assert_eq!(cell_of(DVec3::ZERO, 2e6), Cell::HUGE);
+        assert_eq!(edge(20), 1.0);
+        assert_eq!(inverse_edge(17), 8.0);
+        for x in [-2.5, -2.0, -0.1, 0.0, 0.3, 1.0, 7.9, 1e9] {
+            assert_eq!(floor_i32(x), x.floor() as i32, "{x}");
+        }
+    }
+
     #[test]
     fn queries_hold_every_sphere_that_meets_the_box() {
         let mut rng = SplitMix64::new(7);
