@@ -60,7 +60,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let linear = args.next().is_some_and(|a| a == "linear");
     let objects = objects.max(1);
 
-    let surface = Surface::new(Catalog::Sphere.with_triangles(1000), &SurfaceOptions::default())?;
+    let surface = Surface::new(
+        Catalog::Sphere.with_triangles(1000),
+        &SurfaceOptions::default(),
+    )?;
     let shape = Arc::new(Shape::build(surface, &MapOptions::default())?);
     shape.prepare_clear_zones();
     let side = (1..).find(|s: &usize| s.pow(3) >= objects).unwrap_or(1);
@@ -72,7 +75,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     for k in 0..objects {
         let pose = Pose::from_translation(grid(k, side));
-        let _ = scene.insert(SceneObject::new(ObjectId(k as u32), shape.clone(), pose, material));
+        let _ = scene.insert(SceneObject::new(
+            ObjectId(k as u32),
+            shape.clone(),
+            pose,
+            material,
+        ));
     }
     let moving: Vec<(ObjectId, DVec3)> = (0..movers.min(objects - 1))
         .map(|m| {
@@ -81,7 +89,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         })
         .collect();
     let proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.2), ProxyOptions::default());
-    let mut proxy = if linear { proxy.with_linear_scan() } else { proxy };
+    let mut proxy = if linear {
+        proxy.with_linear_scan()
+    } else {
+        proxy
+    };
     let mut times = Vec::with_capacity(ticks);
     let mut contacts = 0;
     for t in 0..ticks {

@@ -339,11 +339,11 @@ mod tests {
     use super::*;
     use crate::rng::SplitMix64;
 
-    /// The grid returns every sphere that meets a box, through inserts, moves and
-    /// removals, compared with a brute-force list.
     #[test]
     fn the_level_is_the_smallest_edge_at_least_the_radius() {
-        for r in [0.0, 1e-300, 1e-7, 0.1, 0.125, 0.13, 1.0, 3.0, 1e5, 1048576.0] {
+        for r in [
+            0.0, 1e-300, 1e-7, 0.1, 0.125, 0.13, 1.0, 3.0, 1e5, 1048576.0,
+        ] {
             let c = cell_of(DVec3::ZERO, r);
             let level = usize::from(c.level);
             assert!(edge(level) >= r, "{r}");
@@ -357,6 +357,8 @@ mod tests {
         }
     }
 
+    /// The grid returns every sphere that meets a box, through inserts, moves and
+    /// removals, compared with a brute-force list.
     #[test]
     fn queries_hold_every_sphere_that_meets_the_box() {
         let mut rng = SplitMix64::new(7);

@@ -15,7 +15,7 @@
 //!
 //! The scene keeps its objects' bounding spheres in a world broad phase (a hierarchical
 //! loose hashed grid, see `broad.rs`), so that a tick asks only about the objects near the
-//! proxy: [`Scene::near`] returns a superset of the objects whose bounding sphere meets a
+//! proxy: `Scene::near` returns a superset of the objects whose bounding sphere meets a
 //! box, and every per-tick query over objects goes through it (the proxy keeps the set
 //! found on one tick for the next while nothing moved out of it, see
 //! [`Proxy`](crate::proxy::Proxy)). Moving an object updates its cell in constant time;
