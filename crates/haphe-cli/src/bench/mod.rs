@@ -31,6 +31,7 @@
 mod alloc;
 mod json;
 mod methods;
+mod objects;
 mod plot;
 mod streams;
 mod structures;
@@ -104,6 +105,18 @@ pub struct Args {
     /// Seed of the query streams (the same seed gives the same queries).
     #[arg(long, default_value_t = 1, value_name = "S")]
     seed: u64,
+    /// Object counts of the object-count series, comma-separated [default:
+    /// 1,10,100,1000,10000,100000; with --quick: up to 10000; none when only --mesh files
+    /// are given].
+    #[arg(long, value_delimiter = ',', value_name = "N,N,...")]
+    objects: Option<Vec<usize>>,
+    /// Timed ticks per configuration of the object-count series [default: 20000; with
+    /// --quick: 5000].
+    #[arg(long, value_name = "N")]
+    object_ticks: Option<usize>,
+    /// Run the object-count series alone (no mesh is measured).
+    #[arg(long)]
+    objects_only: bool,
     /// Length unit of the --mesh files: m, mm, cm, in, or a factor in metres per file unit.
     #[arg(long, default_value = "m", value_parser = parse_units)]
     units: Units,
@@ -152,6 +165,31 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     }
     for &n in &sizes {
         Catalog::check_triangles(n).map_err(|e| anyhow!("--sizes: {e}"))?;
+    }
+    let counts = match (
+        &args.objects,
+        args.meshes.is_empty() || args.objects_only,
+        args.quick,
+    ) {
+        (Some(counts), _, _) => counts.clone(),
+        (None, false, _) => Vec::new(),
+        (None, true, true) => objects::QUICK_COUNTS.to_vec(),
+        (None, true, false) => objects::DEFAULT_COUNTS.to_vec(),
+    };
+    if counts.iter().any(|&n| n == 0 || n > 1_000_000) {
+        bail!("--objects: an object count must be from 1 to 1000000");
+    }
+    let object_ticks = args
+        .object_ticks
+        .unwrap_or(if args.quick { 5_000 } else { 20_000 });
+    if object_ticks == 0 {
+        bail!("--object-ticks must be at least 1");
+    }
+    if args.objects_only {
+        eprintln!("haphe bench: object-count series ...");
+        let rows = objects::series(&counts, object_ticks)?;
+        objects::write(&mut std::io::stdout().lock(), &rows, object_ticks)?;
+        return Ok(ExitCode::SUCCESS);
     }
     let sources: Vec<Source> = args
         .shapes
@@ -208,6 +246,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         );
         results.push(measure_mesh(name, family, mesh, samples, args.seed)?);
     }
+    let object_rows = if counts.is_empty() {
+        Vec::new()
+    } else {
+        eprintln!("haphe bench: object-count series ...");
+        objects::series(&counts, object_ticks)?
+    };
     let wall = started.elapsed();
 
     let clocks = results.iter().flat_map(|r| &r.measured).map(|m| m.clock);
@@ -225,6 +269,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         clock_ns,
     };
     table::write(&mut std::io::stdout().lock(), &records, &header)?;
+    if !object_rows.is_empty() {
+        objects::write(&mut std::io::stdout().lock(), &object_rows, object_ticks)?;
+    }
     if let Some(path) = &args.json {
         json::write(path, &records)?;
     }

@@ -336,6 +336,9 @@ impl TraceOut {
     }
 }
 
+/// Objects listed by name in the summary.
+const LISTED_OBJECTS: usize = 20;
+
 impl Session {
     /// Builds the scene and device, runs, prints the summary, writes trace and plot.
     pub fn run(self, out: &mut impl Write) -> anyhow::Result<()> {
@@ -428,8 +431,12 @@ impl Session {
             names.len(),
             self.build_seconds
         )?;
-        for n in &names {
+        // A large scene (a grid of copies) lists its first objects only.
+        for n in names.iter().take(LISTED_OBJECTS) {
             writeln!(out, "  {n}")?;
+        }
+        if names.len() > LISTED_OBJECTS {
+            writeln!(out, "  ... and {} more", names.len() - LISTED_OBJECTS)?;
         }
         if let Some((choice, description, ..)) = &vendor {
             writeln!(out, "device: {description}")?;

@@ -6,10 +6,11 @@ use glam::DVec3;
 use super::constraints::{Constraints, Plane, advance_to_plane};
 use super::deep::{Hold, is_deep, saturation_depth};
 use super::force::{contact_force, friction_target};
+use super::near::{NearCache, search_box};
 use super::output::{Contact, TickOutput, TickStatus};
 use super::rest::{Rest, rest_hit};
 use crate::mesh::TriId;
-use crate::scene::{Hit, Material, Scene};
+use crate::scene::{Hit, Material, Scene, others_box};
 
 /// How far a probe reaches beyond the ends of a move, as a fraction of the skin: far
 /// above the rounding of coordinates (about 1e-16 m per metre), well inside the skin, so a
@@ -96,6 +97,8 @@ pub struct Proxy {
     placed: bool,
     /// The contact held beyond the saturation depth (see [`super::deep`]).
     hold: Option<Hold>,
+    /// The objects near the proxy, kept from tick to tick (see [`NearCache`]).
+    near: NearCache,
 }
 
 impl Proxy {
@@ -115,7 +118,17 @@ impl Proxy {
             sticking: false,
             placed: true,
             hold: None,
+            near: NearCache::new(),
         }
+    }
+
+    /// The same proxy testing every object of the scene in each search instead of asking
+    /// the scene's broad phase: the linear path, the oracle the broad phase is checked
+    /// against (same answers, slower for scenes of many objects).
+    #[cfg(any(test, feature = "testing"))]
+    pub fn with_linear_scan(mut self) -> Proxy {
+        self.near = NearCache::linear();
+        self
     }
 
     /// The proxy position, metres, world frame.
@@ -143,7 +156,9 @@ impl Proxy {
 
     /// Puts the proxy at `position` with no contact (for a device that was re-homed).
     pub fn reset(&mut self, position: DVec3) {
+        let near = self.near;
         *self = Proxy::new(position, self.options);
+        self.near = near;
     }
 
     /// One servo tick: `hip` is the device point (metres, world frame), `velocity` its
@@ -178,7 +193,7 @@ impl Proxy {
         let (hip, clamped) = clamp_to_radius(hip, self.options.workspace_radius);
         status.input_clamped = clamped;
 
-        let mut p = carry(scene, self.position, &self.options);
+        let mut p = carry(scene, &mut self.near, self.position, &self.options);
         if let Some(hold) = self.hold.take()
             && let Some(out) = self.hold_tick(scene, p, hip, velocity, hold, status)
         {
@@ -188,7 +203,7 @@ impl Proxy {
         let placed = std::mem::take(&mut self.placed);
         let under = self.last.map(|l| (l.object, l.triangle));
         let sweep = constrain(
-            scene,
+            (scene, &mut self.near),
             p,
             hip,
             placed,
@@ -223,7 +238,9 @@ impl Proxy {
                 None => (sweep.touch_down, true),
             };
             let (target, sticking) = friction_target(anchor, p, hip, &material, was_sticking);
-            p = if scene.clear_move(
+            let (lo, hi) = others_box(p, target, self.options.probe_reach());
+            p = if scene.clear_move_among(
+                self.near.get(scene, lo, hi),
                 hit.object,
                 hit.triangle,
                 p,
@@ -233,7 +250,7 @@ impl Proxy {
                 status.cleared = true;
                 target
             } else {
-                move_checked(scene, p, target, &self.options)
+                move_checked(scene, &mut self.near, p, target, &self.options)
             };
             self.sticking = sticking;
         } else {
@@ -414,10 +431,17 @@ pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
 }
 
 /// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
-/// object index.
-pub(crate) fn first_hit_all(scene: &Scene, p0: DVec3, p1: DVec3, reach: f64) -> Option<Hit> {
+/// object index. Only the objects near the segment are tested (see [`NearCache`]).
+pub(crate) fn first_hit_all(
+    scene: &Scene,
+    near: &mut NearCache,
+    p0: DVec3,
+    p1: DVec3,
+    reach: f64,
+) -> Option<Hit> {
+    let (lo, hi) = search_box(p0, p1, reach);
     let mut best: Option<Hit> = None;
-    for i in 0..scene.objects().len() {
+    for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
         if let Some(h) = scene.first_hit(i, p0, p1, reach)
             && best.is_none_or(|b| h.t < b.t)
         {
@@ -429,8 +453,16 @@ pub(crate) fn first_hit_all(scene: &Scene, p0: DVec3, p1: DVec3, reach: f64) -> 
 
 /// The surface within `reach` of the world point `p` of the lowest-index object that has
 /// one (see [`Scene::touching`]).
-pub(crate) fn touching_any(scene: &Scene, p: DVec3, reach: f64) -> Option<Hit> {
-    (0..scene.objects().len()).find_map(|i| scene.touching(i, p, reach))
+pub(crate) fn touching_any(
+    scene: &Scene,
+    near: &mut NearCache,
+    p: DVec3,
+    reach: f64,
+) -> Option<Hit> {
+    let (lo, hi) = search_box(p, p, reach);
+    near.get(scene, lo, hi)
+        .indices(scene.objects().len())
+        .find_map(|i| scene.touching(i, p, reach))
 }
 
 /// The constraint plane of `hit`, met by the move `from → to`.
@@ -441,17 +473,56 @@ fn hit_plane(hit: &Hit, from: DVec3, to: DVec3, options: &ProxyOptions) -> Plane
 /// Moving objects carry the proxy: for each object that moved since the previous tick (in
 /// index order), the proxy's motion relative to it is tested in its frame and stopped a
 /// skin's width before its surface.
-fn carry(scene: &Scene, mut p: DVec3, options: &ProxyOptions) -> DVec3 {
-    for (i, o) in scene.objects().iter().enumerate() {
+///
+/// Only the objects moved this tick are looked at; when none turned, only those whose
+/// cell in the broad phase lies within twice the largest shift of the proxy (a moved
+/// object's path relative to the proxy is as long as its shift), asked again after each
+/// stop that takes the proxy farther than one shift from where the query was made.
+fn carry(scene: &Scene, near: &mut NearCache, mut p: DVec3, options: &ProxyOptions) -> DVec3 {
+    let reach = options.probe_reach();
+    let carry_one = |i: usize, p: &mut DVec3| {
+        let o = &scene.objects()[i];
         if !o.moved() {
-            continue;
+            return;
         }
-        let from = scene.previous_relative(i, p);
-        if let Some(h) = scene.first_hit(i, from, p, options.probe_reach()) {
-            p = advance_to_plane(from, p, &hit_plane(&h, from, p, options));
+        let from = scene.previous_relative(i, *p);
+        if let Some(h) = scene.first_hit(i, from, *p, reach) {
+            *p = advance_to_plane(from, *p, &hit_plane(&h, from, *p, options));
         }
+    };
+    if near.is_linear() {
+        for i in 0..scene.objects().len() {
+            carry_one(i, &mut p);
+        }
+        return p;
     }
-    p
+    let moved = scene.moved_indices();
+    let Some(shift) = scene.moved_shift().filter(|_| !moved.is_empty()) else {
+        for &i in moved {
+            carry_one(i as usize, &mut p);
+        }
+        return p;
+    };
+    let mut next = 0;
+    'query: loop {
+        let centre = p;
+        let m = DVec3::splat(2.0 * shift + 3.0 * reach);
+        let found = scene.near(centre - m, centre + m);
+        if found.all() {
+            for &i in moved.iter().filter(|&&i| i as usize >= next) {
+                carry_one(i as usize, &mut p);
+            }
+            return p;
+        }
+        for i in found.indices(scene.objects().len()).filter(|&i| i >= next) {
+            carry_one(i, &mut p);
+            if p.distance(centre) > shift {
+                next = i + 1;
+                continue 'query;
+            }
+        }
+        return p;
+    }
 }
 
 /// The result of the constraint steps of one tick.
@@ -469,7 +540,7 @@ struct Sweep {
 /// plane (moved out by `skin`) and add it. `rest` is the surface the proxy rested on,
 /// `under` the contact triangle of the last tick, under the proxy (object, triangle).
 fn constrain(
-    scene: &Scene,
+    (scene, near): (&Scene, &mut NearCache),
     mut p: DVec3,
     hip: DVec3,
     placed: bool,
@@ -482,7 +553,7 @@ fn constrain(
     let mut touch_down = p;
     // A proxy placed on a surface (within a probe's reach) touches it when the device
     // point lies behind its plane, as if it had come to rest there.
-    if placed && let Some(hit) = touching_any(scene, p, options.probe_reach()) {
+    if placed && let Some(hit) = touching_any(scene, near, p, options.probe_reach()) {
         let plane = hit_plane(&hit, p, hip, options);
         if plane.height(hip) < 0.0 {
             planes.push(plane);
@@ -513,9 +584,17 @@ fn constrain(
         let slid_on = last_hit
             .map(|(h, _)| (h.object, h.triangle))
             .or(rest.map(|r| (r.object, r.triangle)));
+        let others = others_box(p, target, options.probe_reach());
         if resting.is_none()
             && let Some((object, triangle)) = slid_on
-            && scene.clear_move(object, triangle, p, target, options.probe_reach())
+            && scene.clear_move_among(
+                near.get(scene, others.0, others.1),
+                object,
+                triangle,
+                p,
+                target,
+                options.probe_reach(),
+            )
         {
             status.cleared = true;
             p = target;
@@ -524,22 +603,28 @@ fn constrain(
         }
         // A first leg into the surface under the proxy, where its neighbourhood is convex,
         // meets that triangle first: shown without the search (the same hit).
-        let shown = || match under {
-            Some((object, triangle)) if planes.is_empty() => {
-                scene.first_hit_shown(object, triangle, p, target, options.probe_reach())
-            }
+        let shown = match under {
+            Some((object, triangle)) if planes.is_empty() && resting.is_none() => scene
+                .first_hit_shown(
+                    near.get(scene, others.0, others.1),
+                    object,
+                    triangle,
+                    p,
+                    target,
+                    options.probe_reach(),
+                ),
             _ => None,
         };
         let (hit, plane) = match resting
-            .or_else(shown)
-            .or_else(|| first_hit_all(scene, p, target, options.probe_reach()))
+            .or(shown)
+            .or_else(|| first_hit_all(scene, near, p, target, options.probe_reach()))
         {
             Some(hit) => {
                 let plane = hit_plane(&hit, p, target, options);
                 p = advance_to_plane(p, target, &plane);
                 (hit, plane)
             }
-            None => match touching_any(scene, target, options.probe_reach()) {
+            None => match touching_any(scene, near, target, options.probe_reach()) {
                 // A free move that ends on a surface (or within a probe's reach of it,
                 // moving along it) touches it: its plane becomes a constraint, so that the
                 // proxy never rests where the next probe could start on the surface.
@@ -575,11 +660,17 @@ fn constrain(
 }
 
 /// Moves from `from` toward `to` and stops a skin's width before the first surface met.
-fn move_checked(scene: &Scene, from: DVec3, to: DVec3, options: &ProxyOptions) -> DVec3 {
+fn move_checked(
+    scene: &Scene,
+    near: &mut NearCache,
+    from: DVec3,
+    to: DVec3,
+    options: &ProxyOptions,
+) -> DVec3 {
     if from == to {
         return to;
     }
-    match first_hit_all(scene, from, to, options.probe_reach()) {
+    match first_hit_all(scene, near, from, to, options.probe_reach()) {
         None => to,
         Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
     }

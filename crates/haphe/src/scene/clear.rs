@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::{BOUND_SLACK, Hit, Scene, SceneObject, Sides};
+use super::{BOUND_SLACK, Hit, Near, Scene, SceneObject, Sides};
 use crate::mesh::TriId;
 use crate::query::{
     ClearZone, Probe, Segment, crossing_from_hit, distance_to_segment, triangle_hit,
@@ -35,6 +35,21 @@ impl Scene {
         to: DVec3,
         reach: f64,
     ) -> bool {
+        let (lo, hi) = others_box(from, to, reach);
+        self.clear_move_among(&self.near(lo, hi), i, triangle, from, to, reach)
+    }
+
+    /// [`Scene::clear_move`] with the other objects taken from `near`, a superset of those
+    /// whose bounding sphere comes within [`others_box`] of the move.
+    pub(crate) fn clear_move_among(
+        &self,
+        near: &Near,
+        i: usize,
+        triangle: TriId,
+        from: DVec3,
+        to: DVec3,
+        reach: f64,
+    ) -> bool {
         let Some((o, zone)) = self.zone_of(i, triangle) else {
             return false;
         };
@@ -46,7 +61,7 @@ impl Scene {
         ) {
             return false;
         }
-        self.others_beyond(i, from, to, reach)
+        self.others_beyond(near, i, from, to, reach)
     }
 
     /// [`first_hit`](Scene::first_hit) over every object, when it can be shown without a
@@ -62,6 +77,7 @@ impl Scene {
     /// One zone, one triangle test, a bounding-sphere test per other object.
     pub(crate) fn first_hit_shown(
         &self,
+        near: &Near,
         i: usize,
         triangle: TriId,
         from: DVec3,
@@ -70,7 +86,7 @@ impl Scene {
     ) -> Option<Hit> {
         let (o, zone) = self.zone_of(i, triangle)?;
         let surface = o.shape.surface();
-        if !zone.below || !self.others_beyond(i, from, to, reach) {
+        if !zone.below || !self.others_beyond(near, i, from, to, reach) {
             return None;
         }
         let one_sided = o.sides == Sides::Front;
@@ -102,9 +118,11 @@ impl Scene {
     }
 
     /// Whether every object but `i` keeps its bounding sphere farther than `reach` (and
-    /// the rounding of coordinates) from the move `from → to` (world frame).
-    fn others_beyond(&self, i: usize, from: DVec3, to: DVec3, reach: f64) -> bool {
-        self.objects.iter().enumerate().all(|(j, other)| {
+    /// the rounding of coordinates) from the move `from → to` (world frame); the others
+    /// are taken from `near`, a superset of those near [`others_box`].
+    fn others_beyond(&self, near: &Near, i: usize, from: DVec3, to: DVec3, reach: f64) -> bool {
+        near.indices(self.objects.len()).all(|j| {
+            let other = &self.objects[j];
             j == i || {
                 let shape = &*other.shape;
                 let centre = other.pose.to_world(shape.bound_centre());
@@ -114,6 +132,14 @@ impl Scene {
             }
         })
     }
+}
+
+/// The box around the move `from → to` within which an object's bounding sphere must come
+/// to count in [`Scene::clear_move`]: the move's box grown by three reaches (the test uses
+/// two; the broad phase adds the rounding of coordinates).
+pub(crate) fn others_box(from: DVec3, to: DVec3, reach: f64) -> (DVec3, DVec3) {
+    let m = DVec3::splat(3.0 * reach.max(0.0));
+    (from.min(to) - m, from.max(to) + m)
 }
 
 #[cfg(test)]
@@ -187,7 +213,7 @@ mod tests {
                 let (from, to) = (pose.to_world(from), pose.to_world(to));
                 let reach = 0.25 * skin;
                 legs += 1;
-                if let Some(hit) = scene.first_hit_shown(0, t, from, to, reach) {
+                if let Some(hit) = scene.first_hit_shown(&Near::ALL, 0, t, from, to, reach) {
                     shown += 1;
                     assert_eq!(
                         Some(hit),
@@ -217,14 +243,26 @@ mod tests {
         let normal = surface.frame(t).normal;
         let on = (a + b + c) / 3.0;
         let (from, to) = (on + normal * 1e-6, on - normal * 2e-3);
-        assert!(scene.first_hit_shown(0, t, from, to, 2.5e-7).is_some());
         assert!(
             scene
-                .first_hit_shown(0, TriId(1 << 30), from, to, 2.5e-7)
+                .first_hit_shown(&Near::ALL, 0, t, from, to, 2.5e-7)
+                .is_some()
+        );
+        assert!(
+            scene
+                .first_hit_shown(&Near::ALL, 0, TriId(1 << 30), from, to, 2.5e-7)
                 .is_none()
         );
-        assert!(scene.first_hit_shown(3, t, from, to, 2.5e-7).is_none());
-        assert!(scene.first_hit_shown(0, t, to, from, 2.5e-7).is_none());
+        assert!(
+            scene
+                .first_hit_shown(&Near::ALL, 3, t, from, to, 2.5e-7)
+                .is_none()
+        );
+        assert!(
+            scene
+                .first_hit_shown(&Near::ALL, 0, t, to, from, 2.5e-7)
+                .is_none()
+        );
         let shape = Arc::clone(&scene.objects()[0].shape);
         add(
             &mut scene,
@@ -232,6 +270,10 @@ mod tests {
             shape,
             Pose::from_translation(on + normal * 0.05),
         );
-        assert!(scene.first_hit_shown(0, t, from, to, 2.5e-7).is_none());
+        assert!(
+            scene
+                .first_hit_shown(&Near::ALL, 0, t, from, to, 2.5e-7)
+                .is_none()
+        );
     }
 }

@@ -10,7 +10,22 @@
 //! Motion counts: `begin_tick` remembers each object's pose of the previous tick, so the
 //! proxy tests its path in the object's frame between the two poses and a moving object
 //! pushes the proxy instead of jumping over it.
+//!
+//! # Broad phase
+//!
+//! The scene keeps its objects' bounding spheres in a world broad phase (a hierarchical
+//! loose hashed grid, see `broad.rs`), so that a tick asks only about the objects near the
+//! proxy: `Scene::near` returns a superset of the objects whose bounding sphere meets a
+//! box, and every per-tick query over objects goes through it (the proxy keeps the set
+//! found on one tick for the next while nothing moved out of it, see
+//! [`Proxy`](crate::proxy::Proxy)). Moving an object updates its cell in constant time;
+//! every array of the broad phase, and the table from names to indices, is reserved for
+//! the capacity when the scene is made, so no edit allocates on the servo thread. Only
+//! the objects that moved since the previous tick are visited by [`Scene::begin_tick`]
+//! and the carry. The answers are those of testing every object in index order, which
+//! the property tests check against that linear path.
 
+mod broad;
 mod clear;
 mod handoff;
 mod invalid;
@@ -25,8 +40,14 @@ pub use pose::Pose;
 pub use shape::Shape;
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::DVec3;
+use rustc_hash::FxHashMap;
+
+use broad::Broad;
+pub(crate) use broad::Near;
+pub(crate) use clear::others_box;
 
 use crate::mesh::TriId;
 use crate::query::{
@@ -138,7 +159,27 @@ pub struct Scene {
     objects: Vec<SceneObject>,
     capacity: usize,
     inbox: Option<handoff::Inbox>,
+    /// The broad phase over the objects' bounding spheres (slot `i` is object `i`).
+    broad: Broad,
+    /// Object index by name.
+    ids: FxHashMap<u32, u32>,
+    /// Indices of the objects whose pose was set since the last [`Scene::begin_tick`],
+    /// increasing, each once; `in_moved` marks them.
+    moved: Vec<u32>,
+    in_moved: Vec<bool>,
+    /// The largest translation of a moved object since the previous tick, metres, and
+    /// whether a moved object turned (its path relative to a point is then not bounded
+    /// by its translation).
+    shift: f64,
+    turned: bool,
+    /// A name for this scene, and a count of the changes to the broad phase's cells: a
+    /// candidate set found for (`uid`, `epoch`) stays valid while both are the same.
+    uid: u64,
+    epoch: u64,
 }
+
+/// The names of scenes (see `Scene::uid`).
+static NEXT_UID: AtomicU64 = AtomicU64::new(1);
 
 impl Scene {
     /// An empty scene with room for `capacity` objects, and the editor that other threads
@@ -146,23 +187,30 @@ impl Scene {
     pub fn new(capacity: usize) -> (Scene, SceneEditor) {
         let capacity = capacity.max(1);
         let (inbox, editor) = handoff::channel(capacity);
-        (
-            Scene {
-                objects: Vec::with_capacity(capacity),
-                capacity,
-                inbox: Some(inbox),
-            },
-            editor,
-        )
+        let mut scene = Scene::local(capacity);
+        scene.inbox = Some(inbox);
+        (scene, editor)
     }
 
     /// An empty scene edited only directly (no editor), with room for `capacity` objects.
     pub fn local(capacity: usize) -> Scene {
         let capacity = capacity.max(1);
+        let mut ids = FxHashMap::default();
+        // Twice the capacity: a table at most half full clears its removal marks in place
+        // instead of growing, so that no insertion ever allocates.
+        ids.reserve(2 * capacity);
         Scene {
             objects: Vec::with_capacity(capacity),
             capacity,
             inbox: None,
+            broad: Broad::new(capacity),
+            ids,
+            moved: Vec::with_capacity(capacity),
+            in_moved: Vec::with_capacity(capacity),
+            shift: 0.0,
+            turned: false,
+            uid: NEXT_UID.fetch_add(1, Ordering::Relaxed),
+            epoch: 0,
         }
     }
 
@@ -173,7 +221,7 @@ impl Scene {
 
     /// The index of the object named `id`.
     pub fn index_of(&self, id: ObjectId) -> Option<usize> {
-        self.objects.iter().position(|o| o.id == id)
+        self.ids.get(&id.0).map(|&i| i as usize)
     }
 
     /// Adds an object.
@@ -192,21 +240,88 @@ impl Scene {
         if self.objects.len() >= self.capacity {
             return Err((EditError::Full, object));
         }
+        let i = self.objects.len();
+        self.ids.insert(object.id.0, i as u32);
+        let (centre, radius) = sphere_of(&object);
+        self.broad.push(centre, radius);
+        self.in_moved.push(false);
+        let moved = object.moved();
         self.objects.push(object);
+        if moved {
+            // Its path since the previous pose is not bounded by a shift: test every mover.
+            self.turned = true;
+            self.mark_moved(i);
+        }
+        self.epoch += 1;
         Ok(())
     }
 
     /// Removes the object named `id` and hands it back.
+    ///
+    /// # Real-time
+    /// No allocation; the objects after it move down one index (one pass over the
+    /// objects and the broad phase's buckets).
     pub fn remove(&mut self, id: ObjectId) -> Option<SceneObject> {
-        self.index_of(id).map(|i| self.objects.remove(i))
+        let i = self.ids.remove(&id.0)? as usize;
+        for v in self.ids.values_mut() {
+            if *v as usize > i {
+                *v -= 1;
+            }
+        }
+        self.broad.remove(i);
+        if self.in_moved[i]
+            && let Ok(k) = self.moved.binary_search(&(i as u32))
+        {
+            self.moved.remove(k);
+        }
+        self.in_moved.remove(i);
+        for m in &mut self.moved {
+            if *m as usize > i {
+                *m -= 1;
+            }
+        }
+        self.epoch += 1;
+        Some(self.objects.remove(i))
     }
 
     /// Moves the object named `id` to `pose` (the motion since the previous tick is
     /// rendered). `false` when there is no such object.
+    ///
+    /// # Real-time
+    /// Constant time (its cell in the broad phase is updated), unless objects are moved
+    /// in decreasing index order within a tick (the list of moved objects is kept sorted).
     pub fn set_pose(&mut self, id: ObjectId, pose: Pose) -> bool {
-        self.index_of(id)
-            .map(|i| self.objects[i].pose = pose)
-            .is_some()
+        let Some(i) = self.index_of(id) else {
+            return false;
+        };
+        let o = &mut self.objects[i];
+        o.pose = pose;
+        let shift = pose.translation().distance(o.previous_pose.translation());
+        let turned = pose.rotation() != o.previous_pose.rotation();
+        let (centre, radius) = sphere_of(o);
+        // A non-finite shift (never, for valid poses) counts as a turn: test every mover.
+        self.shift = self.shift.max(shift);
+        self.turned |= turned || !shift.is_finite();
+        if self.broad.update(i, centre, radius) {
+            self.epoch += 1;
+        }
+        self.mark_moved(i);
+        true
+    }
+
+    /// Notes that object `i` moved this tick.
+    fn mark_moved(&mut self, i: usize) {
+        if self.in_moved[i] {
+            return;
+        }
+        self.in_moved[i] = true;
+        let k = match self.moved.last() {
+            Some(&last) if (last as usize) > i => {
+                self.moved.binary_search(&(i as u32)).unwrap_or_else(|k| k)
+            }
+            _ => self.moved.len(),
+        };
+        self.moved.insert(k, i as u32);
     }
 
     /// Changes the material of the object named `id`. `false` when there is no such object.
@@ -214,6 +329,35 @@ impl Scene {
         self.index_of(id)
             .map(|i| self.objects[i].material = material.sanitised())
             .is_some()
+    }
+
+    /// A superset of the objects whose bounding sphere (with its slack) comes within the
+    /// box `lo..hi` (world frame, metres), in increasing index order; the whole scene
+    /// when there are too many, or the box is very large.
+    ///
+    /// # Real-time
+    /// No allocation; a bounded number of grid cells visited.
+    pub(crate) fn near(&self, lo: DVec3, hi: DVec3) -> Near {
+        self.broad.query(lo, hi)
+    }
+
+    /// A name of this scene and of the state of its broad phase: a [`Scene::near`] set
+    /// stays valid while this is the same.
+    pub(crate) fn broad_epoch(&self) -> (u64, u64) {
+        (self.uid, self.epoch)
+    }
+
+    /// The indices of the objects whose pose was set since the last
+    /// [`Scene::begin_tick`], increasing (a superset of those that [`SceneObject::moved`]).
+    pub(crate) fn moved_indices(&self) -> &[u32] {
+        &self.moved
+    }
+
+    /// A bound on how far any moved object's path reaches from where the object is now,
+    /// metres: every moved object kept its rotation and moved at most this far since the
+    /// previous tick. `None` when an object turned.
+    pub(crate) fn moved_shift(&self) -> Option<f64> {
+        (!self.turned).then_some(self.shift)
     }
 
     /// Starts a servo tick: remembers every pose as the previous one, then applies the
@@ -226,9 +370,14 @@ impl Scene {
     /// No allocation, no lock, no shape freed here (removed objects go back to the
     /// editor); bounded by [`MAX_EDITS_PER_TICK`].
     pub fn begin_tick(&mut self) -> usize {
-        for o in &mut self.objects {
+        for &i in &self.moved {
+            let o = &mut self.objects[i as usize];
             o.previous_pose = o.pose;
+            self.in_moved[i as usize] = false;
         }
+        self.moved.clear();
+        self.shift = 0.0;
+        self.turned = false;
         let Some(mut inbox) = self.inbox.take() else {
             return 0;
         };
@@ -314,6 +463,15 @@ impl Scene {
         s.shading_normal = o.pose.vector_to_world(s.shading_normal);
         Some((s, status))
     }
+}
+
+/// The world bounding sphere of `o` at its pose, with its slack.
+fn sphere_of(o: &SceneObject) -> (DVec3, f64) {
+    let shape = &*o.shape;
+    (
+        o.pose.to_world(shape.bound_centre()),
+        shape.bound_radius() * BOUND_SLACK,
+    )
 }
 
 /// Relative slack on a shape's bounding sphere, covering the rounding of poses.

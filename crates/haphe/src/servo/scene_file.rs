@@ -17,6 +17,8 @@
 //! # or { kind = "linear", velocity = [...] }, { kind = "rotating", axis = [0, 0, 1], rate = 0.5 }
 //! ```
 //!
+//! An object with a `grid` table is repeated on a grid (see [`grid`]).
+//!
 //! Errors name the file, the object and the line.
 
 use std::path::{Path, PathBuf};
@@ -52,6 +54,7 @@ struct ObjectSpec {
     #[serde(default)]
     material: MaterialSpec,
     motion: Option<MotionSpec>,
+    grid: Option<grid::GridSpec>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -151,8 +154,10 @@ macro_rules! bail {
     };
 }
 
-/// Most objects a scene file may list.
-pub const MAX_OBJECTS: usize = 10_000;
+mod grid;
+
+/// Most objects a scene file may hold, its grids' copies included.
+pub const MAX_OBJECTS: usize = 1_000_000;
 
 /// 1-based line of a byte offset.
 fn line_of(text: &str, offset: usize) -> usize {
@@ -191,6 +196,7 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
     }
     let base = path.parent().unwrap_or(Path::new("."));
     let mut out: Vec<SceneEntry> = Vec::new();
+    let mut ids = std::collections::HashSet::new();
     for (i, spanned) in parsed.object.iter().enumerate() {
         let line = line_of(text, spanned.span().start);
         let place = format!("{file}: object {} (line {line})", i + 1);
@@ -262,10 +268,11 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
             DQuat::from_euler(EulerRot::ZYX, rz, ry, rx),
             vec3(spec.position),
         );
-        let id = ObjectId(spec.id.unwrap_or(i as u32));
-        if out.iter().any(|o| o.id == id) {
-            bail!("{place}: id {} is used by another object", id.0);
+        let copies = grid::copies(spec.grid.as_ref(), &place)?;
+        if out.len() + copies.len() > MAX_OBJECTS {
+            bail!("{place}: more than {MAX_OBJECTS} objects in the scene");
         }
+        let first = spec.id.unwrap_or(out.len() as u32);
         let motion = match &spec.motion {
             None => None,
             Some(MotionSpec::Linear { velocity }) => Some(Motion::Linear {
@@ -284,21 +291,29 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
             }),
         }
         .map(|motion| motion.checked().map_err(|e| fail(format!("{place}: {e}"))))
-        .transpose()?
-        .map(|motion| ObjectMotion {
-            id,
-            base: pose,
-            motion,
-        });
-        out.push(SceneEntry {
-            name: spec.name.clone().unwrap_or(name),
-            id,
-            source,
-            pose,
-            material,
-            motion,
-            place,
-        });
+        .transpose()?;
+        for copy in copies {
+            let Some(id) = first.checked_add(copy.index).map(ObjectId) else {
+                bail!("{place}: the ids of the grid's copies pass {}", u32::MAX);
+            };
+            if !ids.insert(id) {
+                bail!("{place}: id {} is used by another object", id.0);
+            }
+            let pose = Pose::new(pose.rotation(), pose.translation() + copy.offset);
+            out.push(SceneEntry {
+                name: spec.name.clone().unwrap_or_else(|| name.clone()) + &copy.suffix,
+                id,
+                source: source.clone(),
+                pose,
+                material,
+                motion: motion.map(|motion| ObjectMotion {
+                    id,
+                    base: pose,
+                    motion,
+                }),
+                place: place.clone(),
+            });
+        }
     }
     Ok(out)
 }

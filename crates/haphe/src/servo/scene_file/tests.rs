@@ -87,3 +87,24 @@ fn errors_name_the_file_the_object_and_the_line() {
         "dir/s.toml: object 2 (line 4): id 3 is used by another object"
     );
 }
+
+#[test]
+fn a_grid_repeats_an_object_with_consecutive_ids() {
+    let text = "[[object]]\nshape = \"sphere\"\ntriangles = 500\nid = 10\nposition = [1.0, 0.0, 0.0]\n\
+                grid = { count = [3, 2, 1], spacing = [0.5, 0.25, 1.0] }\n\n\
+                [[object]]\nshape = \"box\"\n";
+    let entries = parse_scene(Path::new("dir/s.toml"), text).unwrap();
+    assert_eq!(entries.len(), 7);
+    assert_eq!(entries[4].id, ObjectId(14));
+    assert_eq!(entries[4].name, "sphere[1,1,0]");
+    assert_eq!(entries[4].pose.translation(), DVec3::new(1.5, 0.25, 0.0));
+    // The object after the grid counts the copies before it.
+    assert_eq!(entries[6].id, ObjectId(6));
+    let clash = "[[object]]\nshape = \"box\"\nid = 2\n\n[[object]]\nshape = \"box\"\n\
+                 grid = { count = [3, 1, 1], spacing = [1.0, 1.0, 1.0] }\n";
+    assert!(
+        err(clash).contains("id 2 is used by another object"),
+        "{}",
+        err(clash)
+    );
+}

@@ -222,7 +222,9 @@ impl<D: Device> Servo<D> {
 
     /// Whether the world point `p` is inside a solid object of the scene.
     fn inside_any(&self, p: DVec3) -> bool {
-        self.scene.objects().iter().any(|o| {
+        let objects = self.scene.objects();
+        self.scene.near(p, p).indices(objects.len()).any(|i| {
+            let o = &objects[i];
             let shape = &*o.shape;
             shape.is_solid()
                 && o.pose.to_world(shape.bound_centre()).distance(p) <= shape.bound_radius()

@@ -1,0 +1,87 @@
+//! The objects near the proxy: which objects a tick's searches look at, found in the
+//! scene's broad phase and kept from one tick to the next while they stay valid.
+
+use glam::DVec3;
+
+use crate::scene::{Near, Scene};
+
+/// Least growth of a remembered box, metres, so that a hand moving slowly keeps the same
+/// candidates over many ticks (a tenth of a millimetre: a tick's travel at 1 m/s and
+/// 10 kHz).
+const FAT: f64 = 1e-4;
+
+/// The candidate objects of the proxy's searches: a [`Near`] set for a box, kept while the
+/// scene's broad phase is unchanged (same scene, no object changed cell) and every search
+/// lies in the box. A search outside the box asks the broad phase again, for its own box
+/// grown by its size (at least [`FAT`]), so that the next searches of the tick and of the
+/// following ticks fall inside.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct NearCache {
+    near: Near,
+    lo: DVec3,
+    hi: DVec3,
+    key: Option<(u64, u64)>,
+    /// Every object is a candidate (the linear path, the oracle of the broad phase).
+    linear: bool,
+}
+
+impl NearCache {
+    /// An empty cache.
+    pub(crate) const fn new() -> NearCache {
+        NearCache {
+            near: Near::ALL,
+            lo: DVec3::ZERO,
+            hi: DVec3::ZERO,
+            key: None,
+            linear: false,
+        }
+    }
+
+    /// A cache that always answers "every object".
+    #[cfg(any(test, feature = "testing"))]
+    pub(crate) const fn linear() -> NearCache {
+        NearCache {
+            linear: true,
+            ..NearCache::new()
+        }
+    }
+
+    /// Whether every search tests every object.
+    pub(crate) fn is_linear(&self) -> bool {
+        self.linear
+    }
+
+    /// A superset of the objects of `scene` whose bounding sphere comes within the box
+    /// `lo..hi`.
+    ///
+    /// # Real-time
+    /// No allocation: at most two broad-phase queries, none when the remembered box holds
+    /// this one.
+    pub(crate) fn get(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> &Near {
+        if self.linear {
+            return &Near::ALL;
+        }
+        let key = Some(scene.broad_epoch());
+        let inside = self.key == key && lo.cmpge(self.lo).all() && hi.cmple(self.hi).all();
+        if !inside {
+            let grow = DVec3::splat((hi - lo).max_element().max(FAT));
+            let (mut l, mut h) = (lo - grow, hi + grow);
+            let mut near = scene.near(l, h);
+            if near.all() {
+                (l, h) = (lo, hi);
+                near = scene.near(l, h);
+            }
+            self.near = near;
+            (self.lo, self.hi) = (l, h);
+            self.key = (l.is_finite() && h.is_finite()).then_some(key).flatten();
+        }
+        &self.near
+    }
+}
+
+/// The box of a search along `p0 → p1` (or at a point) whose probes reach `reach` beyond
+/// its ends: the segment's box grown by twice the reach.
+pub(crate) fn search_box(p0: DVec3, p1: DVec3, reach: f64) -> (DVec3, DVec3) {
+    let m = DVec3::splat(2.0 * reach.max(0.0));
+    (p0.min(p1) - m, p0.max(p1) + m)
+}

@@ -1,0 +1,402 @@
+//! The world broad phase: a hierarchical loose hashed grid over the objects' bounding
+//! spheres, so that a tick looks only at the objects near the proxy.
+//!
+//! Each object lives in one cell: the cell, at the level whose cell edge `h` is the
+//! smallest power of two at least its bounding radius, that holds its bounding sphere's
+//! centre (loose cells: the sphere reaches at most `h` beyond its cell). A query for a box
+//! visits, at each level that holds objects, the cells within `h` of the box (a few cells
+//! for the proxy's neighbourhood) and returns every object there: a superset of the objects
+//! whose sphere meets the box. Cells are hashed into a fixed table of buckets, each an
+//! intrusive doubly linked list of object slots, so that inserting, moving to another
+//! cell and removing an object take constant time and never allocate: every array is
+//! reserved for the scene's capacity when the scene is made.
+//!
+//! Objects too large for the top level, or too far out for a cell coordinate, are kept in
+//! one list that every query returns.
+//!
+//! Invariants: slot `i` is object `i` of the scene (the arrays shift with a removal, as the
+//! scene's objects do); every object is in exactly one list, the one of its `cell`; a
+//! level's count is the number of objects at that level.
+
+use glam::DVec3;
+
+/// Smallest cell edge, as a power of two (2^-20 m, about a micrometre).
+const MIN_EXP: i32 = -20;
+/// Number of levels: cell edges from 2^-20 m to 2^20 m (about a thousand kilometres).
+const LEVELS: usize = 41;
+/// A level index meaning "in the list of objects every query returns".
+const HUGE: u8 = u8::MAX;
+/// No slot (end of a list).
+const NONE: u32 = u32::MAX;
+/// Most cells a query visits per level; a larger query returns "every object"
+/// ([`Near::all`]), which the callers then test one by one (bounded by the capacity).
+const MAX_CELLS_PER_LEVEL: i64 = 512;
+/// Largest cell coordinate kept in a cell; objects beyond go to the list of all queries.
+const MAX_COORD: f64 = (1u64 << 30) as f64;
+
+/// How many objects a [`Near`] set holds before it stands for the whole scene.
+pub(crate) const NEAR_CAPACITY: usize = 96;
+
+/// The cell of an object: a level and integer coordinates at that level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Cell {
+    level: u8,
+    k: [i32; 3],
+}
+
+impl Cell {
+    const HUGE: Cell = Cell {
+        level: HUGE,
+        k: [0; 3],
+    };
+}
+
+/// The cell edge of `level` (below [`LEVELS`]), metres: an exact power of two.
+#[inline]
+fn edge(level: usize) -> f64 {
+    f64::from_bits(((1023 + MIN_EXP + level as i32) as u64) << 52)
+}
+
+/// The cell of a sphere at `centre` of radius `radius` (already with its slack).
+fn cell_of(centre: DVec3, radius: f64) -> Cell {
+    if !centre.is_finite() || radius.is_nan() || radius > edge(LEVELS - 1) {
+        return Cell::HUGE;
+    }
+    // The smallest level whose edge is at least the radius: from the radius's binary
+    // exponent, then one step up if the radius is not a power of two.
+    let exponent = ((radius.to_bits() >> 52) & 0x7FF) as i32 - 1023;
+    let mut level = (exponent - MIN_EXP).clamp(0, LEVELS as i32 - 1) as usize;
+    if edge(level) < radius {
+        level += 1;
+    }
+    // Multiplying by the inverse of a power of two is exact: the same as dividing.
+    let k = centre * inverse_edge(level);
+    if k.abs().max_element() > MAX_COORD {
+        return Cell::HUGE;
+    }
+    Cell {
+        level: level as u8,
+        k: [floor_i32(k.x), floor_i32(k.y), floor_i32(k.z)],
+    }
+}
+
+/// `1 / edge(level)`, exact.
+#[inline]
+fn inverse_edge(level: usize) -> f64 {
+    f64::from_bits(((1023 - MIN_EXP - level as i32) as u64) << 52)
+}
+
+/// `x.floor()` as an integer, for `|x|` within [`MAX_COORD`] (no call into the C library).
+#[inline]
+fn floor_i32(x: f64) -> i32 {
+    let t = x as i32;
+    if f64::from(t) > x { t - 1 } else { t }
+}
+
+/// The grid over the objects' bounding spheres (see the module documentation).
+#[derive(Debug)]
+pub(crate) struct Broad {
+    cell: Vec<Cell>,
+    next: Vec<u32>,
+    prev: Vec<u32>,
+    heads: Box<[u32]>,
+    huge_head: u32,
+    counts: [u32; LEVELS],
+}
+
+/// The objects a query found, in increasing index order, or the whole scene.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Near {
+    idx: [u32; NEAR_CAPACITY],
+    len: usize,
+    all: bool,
+}
+
+impl Near {
+    /// The whole scene: every object is a candidate.
+    pub(crate) const ALL: Near = Near {
+        idx: [0; NEAR_CAPACITY],
+        len: 0,
+        all: true,
+    };
+
+    /// Whether the set stands for every object.
+    pub(crate) fn all(&self) -> bool {
+        self.all
+    }
+
+    fn push(&mut self, i: u32) {
+        if self.len == NEAR_CAPACITY {
+            self.all = true;
+        } else {
+            self.idx[self.len] = i;
+            self.len += 1;
+        }
+    }
+
+    /// The candidates' indices, in increasing order, for a scene of `count` objects.
+    pub(crate) fn indices(&self, count: usize) -> NearIter<'_> {
+        if self.all {
+            NearIter::All(0..count)
+        } else {
+            NearIter::Some(self.idx[..self.len].iter())
+        }
+    }
+}
+
+/// The indices of a [`Near`] set.
+pub(crate) enum NearIter<'a> {
+    All(std::ops::Range<usize>),
+    Some(std::slice::Iter<'a, u32>),
+}
+
+impl Iterator for NearIter<'_> {
+    type Item = usize;
+
+    #[inline]
+    fn next(&mut self) -> Option<usize> {
+        match self {
+            NearIter::All(r) => r.next(),
+            NearIter::Some(s) => s.next().map(|&i| i as usize),
+        }
+    }
+}
+
+impl Broad {
+    /// An empty grid with room for `capacity` objects.
+    pub(crate) fn new(capacity: usize) -> Broad {
+        let buckets = (2 * capacity).next_power_of_two().max(16);
+        Broad {
+            cell: Vec::with_capacity(capacity),
+            next: Vec::with_capacity(capacity),
+            prev: Vec::with_capacity(capacity),
+            heads: vec![NONE; buckets].into_boxed_slice(),
+            huge_head: NONE,
+            counts: [0; LEVELS],
+        }
+    }
+
+    fn bucket(&self, c: &Cell) -> usize {
+        // A multiplicative mix of the level and coordinates.
+        let mut h = u64::from(c.level).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        for &k in &c.k {
+            h = (h ^ u64::from(k as u32)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        }
+        (h >> 17) as usize & (self.heads.len() - 1)
+    }
+
+    fn head_mut(&mut self, c: &Cell) -> &mut u32 {
+        if c.level == HUGE {
+            &mut self.huge_head
+        } else {
+            let b = self.bucket(c);
+            &mut self.heads[b]
+        }
+    }
+
+    fn link(&mut self, i: u32, c: Cell) {
+        let head = *self.head_mut(&c);
+        self.cell[i as usize] = c;
+        self.prev[i as usize] = NONE;
+        self.next[i as usize] = head;
+        if head != NONE {
+            self.prev[head as usize] = i;
+        }
+        *self.head_mut(&c) = i;
+        if c.level != HUGE {
+            self.counts[c.level as usize] += 1;
+        }
+    }
+
+    fn unlink(&mut self, i: u32) {
+        let c = self.cell[i as usize];
+        let (p, n) = (self.prev[i as usize], self.next[i as usize]);
+        if p == NONE {
+            *self.head_mut(&c) = n;
+        } else {
+            self.next[p as usize] = n;
+        }
+        if n != NONE {
+            self.prev[n as usize] = p;
+        }
+        if c.level != HUGE {
+            self.counts[c.level as usize] -= 1;
+        }
+    }
+
+    /// Adds object `len` (the next index) with its sphere. The caller keeps the count of
+    /// objects within the capacity, so this never reallocates.
+    pub(crate) fn push(&mut self, centre: DVec3, radius: f64) {
+        let i = self.cell.len() as u32;
+        self.cell.push(Cell::HUGE);
+        self.next.push(NONE);
+        self.prev.push(NONE);
+        self.link(i, cell_of(centre, radius));
+    }
+
+    /// Object `i` moved: its sphere is now at `centre`. Returns whether it changed cell.
+    pub(crate) fn update(&mut self, i: usize, centre: DVec3, radius: f64) -> bool {
+        let c = cell_of(centre, radius);
+        if self.cell.get(i) == Some(&c) || i >= self.cell.len() {
+            return false;
+        }
+        self.unlink(i as u32);
+        self.link(i as u32, c);
+        true
+    }
+
+    /// Removes object `i`; the objects after it move down one index, as in the scene.
+    ///
+    /// # Real-time
+    /// No allocation; one pass over the objects and the buckets to renumber the links.
+    pub(crate) fn remove(&mut self, i: usize) {
+        if i >= self.cell.len() {
+            return;
+        }
+        self.unlink(i as u32);
+        self.cell.remove(i);
+        self.next.remove(i);
+        self.prev.remove(i);
+        let shift = |v: &mut u32| {
+            if *v != NONE && *v as usize > i {
+                *v -= 1;
+            }
+        };
+        self.next.iter_mut().for_each(shift);
+        self.prev.iter_mut().for_each(shift);
+        self.heads.iter_mut().for_each(shift);
+        shift(&mut self.huge_head);
+    }
+
+    /// Every object whose bounding sphere (of the radius given when it was placed) may
+    /// come within the box `lo..hi` (world frame, metres): a superset, in increasing index
+    /// order, or [`Near::ALL`] when there are too many or the box is too large.
+    ///
+    /// # Real-time
+    /// No allocation; at most `MAX_CELLS_PER_LEVEL` cells per occupied level, and
+    /// [`NEAR_CAPACITY`] objects kept.
+    pub(crate) fn query(&self, lo: DVec3, hi: DVec3) -> Near {
+        let mut near = Near {
+            idx: [0; NEAR_CAPACITY],
+            len: 0,
+            all: false,
+        };
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Near::ALL;
+        }
+        // The rounding of coordinates far from the origin.
+        let slack = 1e-9 * lo.abs().max(hi.abs()).max_element().max(1.0);
+        for level in 0..LEVELS {
+            if self.counts[level] == 0 {
+                continue;
+            }
+            let h = edge(level);
+            // A sphere reaches at most `h` beyond its cell.
+            let ext = DVec3::splat(h * (1.0 + 1e-6) + slack);
+            let a = ((lo - ext) / h).floor();
+            let b = ((hi + ext) / h).floor();
+            let span = b - a + DVec3::ONE;
+            if a.abs().max_element() > MAX_COORD + 2.0
+                || b.abs().max_element() > MAX_COORD + 2.0
+                || span.x * span.y * span.z > MAX_CELLS_PER_LEVEL as f64
+            {
+                return Near::ALL;
+            }
+            let (a, b) = (a.as_i64vec3(), b.as_i64vec3());
+            for x in a.x..=b.x {
+                for y in a.y..=b.y {
+                    for z in a.z..=b.z {
+                        let c = Cell {
+                            level: level as u8,
+                            k: [x as i32, y as i32, z as i32],
+                        };
+                        let mut i = self.heads[self.bucket(&c)];
+                        while i != NONE {
+                            if self.cell[i as usize] == c {
+                                near.push(i);
+                            }
+                            i = self.next[i as usize];
+                        }
+                    }
+                }
+            }
+        }
+        let mut i = self.huge_head;
+        while i != NONE {
+            near.push(i);
+            i = self.next[i as usize];
+        }
+        if near.all {
+            return Near::ALL;
+        }
+        near.idx[..near.len].sort_unstable();
+        near
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    #[test]
+    fn the_level_is_the_smallest_edge_at_least_the_radius() {
+        for r in [
+            0.0, 1e-300, 1e-7, 0.1, 0.125, 0.13, 1.0, 3.0, 1e5, 1048576.0,
+        ] {
+            let c = cell_of(DVec3::ZERO, r);
+            let level = usize::from(c.level);
+            assert!(edge(level) >= r, "{r}");
+            assert!(level == 0 || edge(level - 1) < r, "{r}");
+        }
+        assert_eq!(cell_of(DVec3::ZERO, 2e6), Cell::HUGE);
+        assert_eq!(edge(20), 1.0);
+        assert_eq!(inverse_edge(17), 8.0);
+        for x in [-2.5, -2.0, -0.1, 0.0, 0.3, 1.0, 7.9, 1e9] {
+            assert_eq!(floor_i32(x), x.floor() as i32, "{x}");
+        }
+    }
+
+    /// The grid returns every sphere that meets a box, through inserts, moves and
+    /// removals, compared with a brute-force list.
+    #[test]
+    fn queries_hold_every_sphere_that_meets_the_box() {
+        let mut rng = SplitMix64::new(7);
+        let mut broad = Broad::new(300);
+        let mut spheres: Vec<(DVec3, f64)> = Vec::new();
+        let point = |rng: &mut SplitMix64, s: f64| {
+            DVec3::new(rng.range(-s, s), rng.range(-s, s), rng.range(-s, s))
+        };
+        for step in 0..3000 {
+            match rng.index(4) {
+                0 | 1 if spheres.len() < 300 => {
+                    let s = (point(&mut rng, 1.0), 10f64.powf(rng.range(-4.0, 0.5)));
+                    broad.push(s.0, s.1);
+                    spheres.push(s);
+                }
+                2 if !spheres.is_empty() => {
+                    let i = rng.index(spheres.len());
+                    spheres[i].0 += point(&mut rng, 0.05);
+                    broad.update(i, spheres[i].0, spheres[i].1);
+                }
+                3 if !spheres.is_empty() && step % 3 == 0 => {
+                    let i = rng.index(spheres.len());
+                    spheres.remove(i);
+                    broad.remove(i);
+                }
+                _ => {}
+            }
+            let c = point(&mut rng, 1.2);
+            let e = point(&mut rng, 0.02).abs();
+            let near = broad.query(c - e, c + e);
+            let found: Vec<usize> = near.indices(spheres.len()).collect();
+            assert!(found.windows(2).all(|w| w[0] < w[1]));
+            for (i, &(centre, r)) in spheres.iter().enumerate() {
+                let d = (centre - centre.clamp(c - e, c + e)).length();
+                if d <= r {
+                    assert!(found.contains(&i), "step {step}: sphere {i} missed");
+                }
+            }
+        }
+    }
+}
