@@ -1,32 +1,11 @@
 //! The `haphe` binary end to end: exit codes, JSON fields, error messages (the demo and
 //! `simulate` are in `simulate.rs`).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn haphe(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_haphe"))
-        .args(args)
-        .output()
-        .expect("the haphe binary runs")
-}
+use std::path::PathBuf;
 
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("haphe-cli-test-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).expect("write");
-    path.display().to_string()
-}
+use common::{haphe, scratch, stdout, write};
 
 /// The built-in shapes, by their command-line names.
 const SHAPES: [&str; 6] = [

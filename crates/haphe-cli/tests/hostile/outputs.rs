@@ -2,7 +2,7 @@
 
 use std::time::{Duration, Instant};
 
-use crate::common::{assert_error, files_in, haphe, scratch, write};
+use crate::common::{assert_error, files_in, haphe, scratch, simulate_sphere, write};
 
 /// `haphe build self.stl -o self.stl` used to replace the mesh with the map.
 #[test]
@@ -30,17 +30,7 @@ fn an_output_that_is_an_input_is_refused() {
     );
     let trace = write(&dir, "hip.csv", "t,x,y,z\n0,0,0,0.2\n0.01,0,0,0.19\n");
     assert_error(
-        &haphe(&[
-            "simulate",
-            "--shape",
-            "sphere",
-            "--triangles",
-            "100",
-            "--replay",
-            &trace,
-            "--out",
-            &trace,
-        ]),
+        &simulate_sphere(&["--replay", &trace, "--out", &trace]),
         &["hip.csv", "one of the input files"],
     );
     assert_eq!(std::fs::read(&mesh).unwrap(), before);
@@ -89,32 +79,12 @@ fn a_failed_run_keeps_the_old_output() {
     let dir = scratch("failed-run");
     let out = write(&dir, "trace.csv", "the old trace\n");
     // A scripted run that cannot start: a maximum force out of range is refused first.
-    let o = haphe(&[
-        "simulate",
-        "--shape",
-        "sphere",
-        "--triangles",
-        "100",
-        "--out",
-        &out,
-        "--max-force",
-        "-1",
-    ]);
+    let o = simulate_sphere(&["--out", &out, "--max-force", "-1"]);
     assert_error(&o, &["--max-force"]);
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "the old trace\n");
     assert_eq!(files_in(&dir), ["trace.csv"]);
     // A complete run replaces it whole.
-    let o = haphe(&[
-        "simulate",
-        "--shape",
-        "sphere",
-        "--triangles",
-        "100",
-        "--seconds",
-        "0.05",
-        "--out",
-        &out,
-    ]);
+    let o = simulate_sphere(&["--seconds", "0.05", "--out", &out]);
     assert_eq!(o.status.code(), Some(0), "{}", crate::common::stderr(&o));
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(
