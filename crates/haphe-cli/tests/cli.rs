@@ -165,3 +165,55 @@ fn every_odd_file_gets_a_verdict_not_a_crash() {
         }
     }
 }
+
+/// A command this build left out names the feature that brings it and the line that builds
+/// it in, whatever arguments it is given (`--help` included).
+#[test]
+fn commands_left_out_name_their_feature() {
+    let mut left_out: Vec<(&[&str], &str)> = Vec::new();
+    if cfg!(not(feature = "view")) {
+        left_out.push((&["view", "--shape", "sphere"], "view"));
+        left_out.push((&["view", "--help"], "view"));
+        left_out.push((&["demo", "--view"], "view"));
+    }
+    if cfg!(not(feature = "bench")) {
+        left_out.push((&["bench", "--quick"], "bench"));
+    }
+    for (args, feature) in left_out {
+        let out = haphe(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        for needed in [
+            format!("cargo feature `{feature}`"),
+            format!("--features {feature}"),
+            "cargo install --locked --path crates/haphe-cli".to_owned(),
+        ] {
+            assert!(err.contains(&needed), "{args:?}: {needed:?} missing: {err}");
+        }
+    }
+    // haphe verify runs with or without parry; without, it says why its columns are empty.
+    let dir = scratch("verify-peer");
+    let mesh = write(&dir, "t.obj", TETRAHEDRON);
+    let out = haphe(&[
+        "verify",
+        &mesh,
+        "--samples",
+        "50",
+        "--ticks",
+        "0",
+        "--strikes",
+        "0",
+    ]);
+    let text = stdout(&out);
+    assert_eq!(out.status.code(), Some(0), "{text}");
+    assert_eq!(
+        text.contains("parry3d-f64 is not in this build: cargo feature `bench`"),
+        cfg!(not(feature = "bench")),
+        "{text}"
+    );
+    assert_eq!(
+        text.contains("parry disagreements: -"),
+        cfg!(not(feature = "bench")),
+        "{text}"
+    );
+}
