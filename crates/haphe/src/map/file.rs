@@ -34,9 +34,9 @@
 
 use std::ops::Range;
 
+use crate::par::*;
 use bytemuck::Pod;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::bricks::{BrickBits, MASK_WORDS, VoxelMap};
 use super::validate::{MapParams, check_map, check_surface, map_params_bytes, parse_map_params};

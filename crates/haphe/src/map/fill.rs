@@ -7,8 +7,8 @@
 //! face neighbours. A brick whose mask grows sends its neighbours back to the work list,
 //! until nothing changes.
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::CellState;
 use super::bricks::{
