@@ -152,3 +152,26 @@ fn a_missing_library_says_what_to_do() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr.contains("unknown device \"phantom\""), "{stderr}");
 }
+
+/// `haphe run` checks the material of a lone object as `haphe simulate` does (they share
+/// the arguments), before any device is opened.
+#[test]
+fn a_bad_material_is_refused_as_in_simulate() {
+    for command in [&["run", "--device", "hand"][..], &["simulate"][..]] {
+        let out = haphe()
+            .args(command)
+            .args([
+                "--shape",
+                "sphere",
+                "--triangles",
+                "100",
+                "--stiffness",
+                "-5",
+            ])
+            .output()
+            .expect("runs");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command:?}: {stderr}");
+        assert!(stderr.contains("--stiffness"), "{command:?}: {stderr}");
+    }
+}
