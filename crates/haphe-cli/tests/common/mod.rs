@@ -131,6 +131,19 @@ pub fn tetrahedron(x: f64) -> String {
     )
 }
 
+/// Writes a sphere of about `triangles` triangles to `path` with `haphe generate`.
+pub fn generate_sphere(path: &Path, triangles: usize) {
+    let o = haphe(&[
+        "generate",
+        "sphere",
+        "--triangles",
+        &triangles.to_string(),
+        "-o",
+        s(path),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
 /// The names of the files in `dir`, sorted.
 pub fn files_in(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
