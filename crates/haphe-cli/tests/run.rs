@@ -160,14 +160,7 @@ fn a_bad_material_is_refused_as_in_simulate() {
     for command in [&["run", "--device", "hand"][..], &["simulate"][..]] {
         let out = haphe()
             .args(command)
-            .args([
-                "--shape",
-                "sphere",
-                "--triangles",
-                "100",
-                "--stiffness",
-                "-5",
-            ])
+            .args(["--shape", "sphere", "--triangles", "100", "--stiffness=-5"])
             .output()
             .expect("runs");
         let stderr = String::from_utf8_lossy(&out.stderr);
