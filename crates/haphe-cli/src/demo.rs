@@ -45,6 +45,7 @@ pub struct Args {
     /// clock while the page draws it; no summary or plot.
     #[arg(long)]
     view: bool,
+    #[cfg(feature = "view")]
     #[command(flatten)]
     serve: crate::view::Serve,
 }
@@ -54,15 +55,17 @@ pub const DEMO_SECONDS: f64 = 6.0;
 
 /// Runs the demo.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    #[cfg(not(feature = "view"))]
+    if args.view {
+        return Err(crate::feature::missing("view", "demo --view"));
+    }
     let (triangles, seconds) = if args.fast {
         (2_000, args.seconds.unwrap_or(3.0))
-    } else if args.view {
+    } else {
         (
             args.triangles,
-            args.seconds.unwrap_or(crate::view::HAND_SECONDS),
+            args.seconds.unwrap_or(default_seconds(args)),
         )
-    } else {
-        (args.triangles, args.seconds.unwrap_or(DEMO_SECONDS))
     };
     Catalog::check_triangles(triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
     let outputs: Vec<&std::path::Path> = std::iter::once(args.plot.as_path())
@@ -105,6 +108,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             motion: None,
         },
     ];
+    #[cfg(feature = "view")]
     if args.view {
         return crate::view::live(
             objects,
@@ -145,6 +149,17 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         "\nNext: `{haphe} simulate --shape torus --path slide --plot slide.png`, or your own mesh with `--mesh FILE` (see `{haphe} simulate --help`)."
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// Seconds without `--seconds`: the demo's, or with `--view` those of the view's hand.
+fn default_seconds(args: &Args) -> f64 {
+    #[cfg(feature = "view")]
+    if args.view {
+        return crate::view::HAND_SECONDS;
+    }
+    #[cfg(not(feature = "view"))]
+    let _ = args.view;
+    DEMO_SECONDS
 }
 
 /// How to run `haphe` from where the user is: after `cargo run` (which tells the program it

@@ -1,14 +1,18 @@
 //! The `haphe` command: a thin `main` that hands each subcommand to its module's `run` and maps
 //! errors to exit codes.
 
+#[cfg(feature = "bench")]
 mod bench;
 mod build;
 mod demo;
+#[cfg(not(all(feature = "view", feature = "bench")))]
+mod feature;
 mod files;
 mod generate;
 mod load;
 mod mapped;
 mod object;
+mod peer;
 mod query;
 mod run;
 mod scene;
@@ -16,6 +20,7 @@ mod simulate;
 mod validate;
 mod verify;
 mod verify_proxy;
+#[cfg(feature = "view")]
 mod view;
 
 use std::process::ExitCode;
@@ -52,9 +57,17 @@ enum Command {
     /// A simulated hand explores built-in models; summary and plot (no files needed).
     Demo(demo::Args),
     /// Time haphe's queries beside parry3d-f64 and brute force, on procedural meshes and files.
+    #[cfg(feature = "bench")]
     Bench(bench::Args),
+    /// Time haphe's queries beside parry3d-f64 (not in this build: feature `bench`).
+    #[cfg(not(feature = "bench"))]
+    Bench(feature::Missing),
     /// A live 3D view in the browser: touch a mesh with the mouse, or replay a trace.
+    #[cfg(feature = "view")]
     View(view::Args),
+    /// A live 3D view in the browser (not in this build: feature `view`).
+    #[cfg(not(feature = "view"))]
+    View(feature::Missing),
 }
 
 fn main() -> ExitCode {
@@ -69,8 +82,14 @@ fn main() -> ExitCode {
         Command::Run(args) => run::run(&args),
         Command::Devices(args) => run::devices(&args),
         Command::Demo(args) => demo::run(&args),
+        #[cfg(feature = "bench")]
         Command::Bench(args) => bench::run(&args),
+        #[cfg(not(feature = "bench"))]
+        Command::Bench(_) => Err(feature::missing("bench", "bench")),
+        #[cfg(feature = "view")]
         Command::View(args) => view::run(&args),
+        #[cfg(not(feature = "view"))]
+        Command::View(_) => Err(feature::missing("view", "view")),
     };
     match result {
         Ok(code) => code,

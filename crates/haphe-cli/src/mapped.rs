@@ -1,7 +1,7 @@
 //! Opening a saved map file in place: the file is mapped into memory, so loading it copies
 //! nothing (the checksum and the checks read it once, from the page cache).
 //!
-//! This is the one place outside the counting allocator where the binary uses `unsafe`:
+//! This is the one place where the binary uses `unsafe`:
 //! mapping a file is `unsafe` because the program would see the file change if another
 //! program modified it while mapped. `haphe build` never writes over an existing map file
 //! in place (it writes a new file and renames it over the old one, so a running reader

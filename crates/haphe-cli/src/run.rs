@@ -4,19 +4,17 @@
 //! `haphe simulate`'s (scene building, summary, CSV trace, plot).
 
 use std::io::Write;
-use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
 use haphe::DVec3;
-use haphe::mesh::Units;
-use haphe::scene::{Material, Scene};
+use haphe::scene::Scene;
 use haphe::servo::{Device, DeviceMapping, DeviceSpec, RealtimeRun, ServoLoop, TickRecord};
 use haphe_devices::{OpenedDevice, UdpOptions, list_devices, open_device, workspace_mapping};
 
-use crate::simulate::{DeviceChoice, Model, Session, load_model};
+use crate::simulate::{DeviceChoice, ModelArgs, OutputArgs, Session, load_model};
 
 /// Length of a run until Ctrl-C, for sizing the plot's sampling only, seconds.
 pub const PLOT_SECONDS: f64 = 60.0;
@@ -26,27 +24,13 @@ pub const DEFAULT_OVERRUN_BUDGET: u64 = haphe_devices::DEFAULT_OVERRUN_BUDGET;
 
 /// Arguments of `haphe run`.
 #[derive(clap::Args, Debug)]
-#[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape"])))]
 pub struct Args {
     /// The device: dhd (Force Dimension), openhaptics (3D Systems Touch), udp:HOST:PORT
     /// (listen there for a network device), or hand (the simulated hand).
     #[arg(long, value_name = "SPEC")]
     device: String,
-    /// A mesh file (OBJ, STL, PLY, OFF) placed at the origin.
-    #[arg(long, value_name = "FILE")]
-    mesh: Option<PathBuf>,
-    /// A scene file (TOML): objects, poses, materials, motions.
-    #[arg(long, value_name = "FILE.toml")]
-    scene: Option<PathBuf>,
-    /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
-    #[arg(long, value_name = "NAME")]
-    shape: Option<String>,
-    /// Triangles of the built-in shape.
-    #[arg(long, default_value_t = 20_000)]
-    triangles: usize,
-    /// Length unit of the mesh file: m, mm, cm, in, or metres per unit.
-    #[arg(long, default_value = "m", value_parser = crate::validate::parse_units)]
-    units: Units,
+    #[command(flatten)]
+    model: ModelArgs,
     /// Length of the run, seconds (default: until Ctrl-C; 5 s for the simulated hand).
     #[arg(long)]
     seconds: Option<f64>,
@@ -68,24 +52,8 @@ pub struct Args {
     /// priority for haphe's servo thread.
     #[arg(long)]
     normal_priority: bool,
-    /// Write every tick to this CSV file.
-    #[arg(long, value_name = "FILE.csv")]
-    out: Option<PathBuf>,
-    /// Draw force, penetration and the side view of the path to this PNG.
-    #[arg(long, value_name = "FILE.png")]
-    plot: Option<PathBuf>,
-    /// Stiffness of a --mesh or --shape object, N/m.
-    #[arg(long, default_value_t = 600.0)]
-    stiffness: f64,
-    /// Damping of a --mesh or --shape object, N·s/m.
-    #[arg(long, default_value_t = 1.0)]
-    damping: f64,
-    /// Static friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.3)]
-    static_friction: f64,
-    /// Dynamic friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.2)]
-    dynamic_friction: f64,
+    #[command(flatten)]
+    output: OutputArgs,
     /// Largest force rendered, N (lowered to the device's maximum).
     #[arg(long, default_value_t = 3.3)]
     max_force: f64,
@@ -184,6 +152,7 @@ pub fn catch_interrupts() -> anyhow::Result<()> {
 
 /// The device choice of `haphe view`: `mapping`, and `haphe run`'s default network
 /// settings and overrun budget.
+#[cfg(feature = "view")]
 pub fn view_choice(spec: &str, mapping: MappingArgs) -> VendorChoice {
     VendorChoice {
         spec: spec.to_string(),
@@ -209,23 +178,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         );
     }
     catch_interrupts()?;
-    let material = Material {
-        stiffness: args.stiffness,
-        damping: args.damping,
-        static_friction: args.static_friction,
-        dynamic_friction: args.dynamic_friction,
-    };
+    let material = args.model.material()?;
     let started = Instant::now();
-    let (objects, what) = load_model(
-        Model {
-            scene: args.scene.as_deref(),
-            mesh: args.mesh.as_deref(),
-            shape: args.shape.as_deref(),
-            triangles: args.triangles,
-            units: args.units,
-        },
-        material,
-    )?;
+    let (objects, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();
     let h = args.udp_workspace;
     let choice = VendorChoice {
@@ -253,8 +208,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         standby_core: None,
         seed: 1,
         max_force: args.max_force,
-        out: args.out.clone(),
-        plot: args.plot.clone(),
+        out: args.output.out.clone(),
+        plot: args.output.plot.clone(),
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)

@@ -7,18 +7,17 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{anyhow, bail};
-use haphe::mesh::{ReadOptions, Surface};
+use haphe::mesh::ReadOptions;
 use haphe::verify::{
     CrossingCheck, InsideCheck, SegmentKind, WalkCheck, bounds, check_crossings_with_peer,
     check_inside_with_peer, check_walk,
 };
-use parry3d_f64::query::{PointQuery, Ray, RayCast};
-use parry3d_f64::shape::{TriMesh, TriMeshFlags};
 use serde::Serialize;
 
 use crate::build::map_options;
 use crate::load::weld_mode;
 use crate::object::open;
+use crate::peer::{self, Parry};
 use crate::validate::parse_units;
 
 /// Arguments of `haphe verify`.
@@ -105,17 +104,6 @@ struct Verification {
     passed: bool,
 }
 
-/// parry's mesh with pseudo-normals (needed for its inside test); `None` where parry
-/// refuses the mesh.
-fn parry_mesh(surface: &Surface) -> Option<TriMesh> {
-    TriMesh::with_flags(
-        surface.vertices().to_vec(),
-        surface.triangles().to_vec(),
-        TriMeshFlags::ORIENTED,
-    )
-    .ok()
-}
-
 /// Runs the command; exit 0 when every check passes, 1 otherwise.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let n = args.samples;
@@ -142,7 +130,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     let object = open(&args.file, &read, &map_options(None, None)).map_err(|e| anyhow!("{e:#}"))?;
     let (surface, map) = (&object.surface, &object.map);
-    let parry = parry_mesh(surface);
+    let parry = Parry::of(surface);
 
     let crossings: Vec<CrossingRow> = SegmentKind::ALL
         .iter()
@@ -156,10 +144,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             };
             let clock = Instant::now();
             let peer = |p0: haphe::DVec3, p1: haphe::DVec3| {
-                parry.as_ref().is_some_and(|mesh| {
-                    mesh.cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false)
-                        .is_some()
-                })
+                parry.as_ref().is_some_and(|mesh| mesh.crosses(p0, p1))
             };
             let (check, parry_counts) = check_crossings_with_peer(
                 surface,
@@ -180,11 +165,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
 
     let n_points = args.points.unwrap_or(n);
     let clock = Instant::now();
-    let peer = |p: haphe::DVec3| {
-        parry
-            .as_ref()
-            .is_some_and(|mesh| mesh.contains_local_point(p))
-    };
+    let peer = |p: haphe::DVec3| parry.as_ref().is_some_and(|mesh| mesh.contains(p));
     let (inside_check, parry_disagreements) = check_inside_with_peer(
         surface,
         map,
@@ -316,6 +297,12 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
         i.overlap,
         opt(r.inside.parry_disagreements)
     )?;
+    if !peer::BUILT {
+        writeln!(
+            out,
+            "(parry columns: `-`, parry3d-f64 is not in this build: cargo feature `bench`)"
+        )?;
+    }
     let w = &r.walk;
     writeln!(
         out,

@@ -1,32 +1,11 @@
 //! The `haphe` binary end to end: exit codes, JSON fields, error messages (the demo and
 //! `simulate` are in `simulate.rs`).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn haphe(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_haphe"))
-        .args(args)
-        .output()
-        .expect("the haphe binary runs")
-}
+use std::path::PathBuf;
 
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-/// A fresh scratch folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("haphe-cli-test-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).expect("write");
-    path.display().to_string()
-}
+use common::{haphe, scratch, stdout, write};
 
 /// The built-in shapes, by their command-line names.
 const SHAPES: [&str; 6] = [
@@ -247,4 +226,56 @@ fn query_inside_says_inside_where_parts_overlap() {
         stdout(&out)
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A command this build left out names the feature that brings it and the line that builds
+/// it in, whatever arguments it is given (`--help` included).
+#[test]
+fn commands_left_out_name_their_feature() {
+    let mut left_out: Vec<(&[&str], &str)> = Vec::new();
+    if cfg!(not(feature = "view")) {
+        left_out.push((&["view", "--shape", "sphere"], "view"));
+        left_out.push((&["view", "--help"], "view"));
+        left_out.push((&["demo", "--view"], "view"));
+    }
+    if cfg!(not(feature = "bench")) {
+        left_out.push((&["bench", "--quick"], "bench"));
+    }
+    for (args, feature) in left_out {
+        let out = haphe(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        for needed in [
+            format!("cargo feature `{feature}`"),
+            format!("--features {feature}"),
+            "cargo install --locked --path crates/haphe-cli".to_owned(),
+        ] {
+            assert!(err.contains(&needed), "{args:?}: {needed:?} missing: {err}");
+        }
+    }
+    // haphe verify runs with or without parry; without, it says why its columns are empty.
+    let dir = scratch("verify-peer");
+    let mesh = write(&dir, "t.obj", TETRAHEDRON);
+    let out = haphe(&[
+        "verify",
+        &mesh,
+        "--samples",
+        "50",
+        "--ticks",
+        "0",
+        "--strikes",
+        "0",
+    ]);
+    let text = stdout(&out);
+    assert_eq!(out.status.code(), Some(0), "{text}");
+    assert_eq!(
+        text.contains("parry3d-f64 is not in this build: cargo feature `bench`"),
+        cfg!(not(feature = "bench")),
+        "{text}"
+    );
+    assert_eq!(
+        text.contains("parry disagreements: -"),
+        cfg!(not(feature = "bench")),
+        "{text}"
+    );
 }

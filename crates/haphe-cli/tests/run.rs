@@ -19,23 +19,28 @@ fn standin() -> PathBuf {
     support::standin(Standin::Dhd)
 }
 
+/// `haphe run --device dhd` on a small sphere, with the Force Dimension library at `lib`.
+fn run_dhd(lib: impl AsRef<std::ffi::OsStr>) -> Command {
+    let mut command = haphe();
+    command.env("HAPHE_DHD_LIBRARY", lib).args([
+        "run",
+        "--device",
+        "dhd",
+        "--shape",
+        "sphere",
+        "--triangles",
+        "500",
+    ]);
+    command
+}
+
 #[test]
 fn run_and_devices_with_the_stand_in() {
     let lib = standin();
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("run-cli");
     std::fs::create_dir_all(&dir).expect("a directory");
     let csv = dir.join("run.csv");
-    let out = haphe()
-        .env("HAPHE_DHD_LIBRARY", &lib)
-        .args([
-            "run",
-            "--device",
-            "dhd",
-            "--shape",
-            "sphere",
-            "--triangles",
-            "500",
-        ])
+    let out = run_dhd(&lib)
         // No overrun budget here: the test machine is shared (the budget has its own
         // tests in haphe's tests/servo_clocked.rs).
         .args([
@@ -93,17 +98,7 @@ fn run_and_devices_with_the_stand_in() {
 #[test]
 fn ctrl_c_stops_a_run_without_end() {
     let lib = standin();
-    let mut child = haphe()
-        .env("HAPHE_DHD_LIBRARY", &lib)
-        .args([
-            "run",
-            "--device",
-            "dhd",
-            "--shape",
-            "sphere",
-            "--triangles",
-            "500",
-        ])
+    let mut child = run_dhd(&lib)
         .args(["--normal-priority", "--overrun-budget", "1000000"])
         .stdout(Stdio::piped())
         .spawn()
@@ -128,19 +123,7 @@ fn ctrl_c_stops_a_run_without_end() {
 
 #[test]
 fn a_missing_library_says_what_to_do() {
-    let out = haphe()
-        .env("HAPHE_DHD_LIBRARY", "/nonexistent/libdhd.so")
-        .args([
-            "run",
-            "--device",
-            "dhd",
-            "--shape",
-            "sphere",
-            "--triangles",
-            "500",
-        ])
-        .output()
-        .expect("runs");
+    let out = run_dhd("/nonexistent/libdhd.so").output().expect("runs");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2));
     for needed in ["libdhd.so", "HAPHE_DHD_LIBRARY", "Force Dimension SDK"] {
@@ -153,4 +136,20 @@ fn a_missing_library_says_what_to_do() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr.contains("unknown device \"phantom\""), "{stderr}");
+}
+
+/// `haphe run` checks the material of a lone object as `haphe simulate` does (they share
+/// the arguments), before any device is opened.
+#[test]
+fn a_bad_material_is_refused_as_in_simulate() {
+    for command in [&["run", "--device", "hand"][..], &["simulate"][..]] {
+        let out = haphe()
+            .args(command)
+            .args(["--shape", "sphere", "--triangles", "100", "--stiffness=-5"])
+            .output()
+            .expect("runs");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command:?}: {stderr}");
+        assert!(stderr.contains("--stiffness"), "{command:?}: {stderr}");
+    }
 }

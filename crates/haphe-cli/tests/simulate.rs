@@ -2,36 +2,9 @@
 //! the documented columns, replay is byte-for-byte repeatable, scene files work and their
 //! errors say where, and a short real-time run reports its timing.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn haphe(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_haphe"))
-        .args(args)
-        .output()
-        .expect("the haphe binary runs")
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = haphe(args);
-    assert!(
-        out.status.success(),
-        "haphe {args:?} failed:\n{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("haphe-sim-test-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().expect("a UTF-8 path")
-}
+use common::{haphe, ok, s, scratch};
 
 /// The first number after `label` on the summary line that starts with it.
 fn figure(text: &str, label: &str) -> f64 {

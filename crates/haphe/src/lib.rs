@@ -98,6 +98,7 @@
 mod array;
 pub mod map;
 pub mod mesh;
+mod par;
 pub mod proxy;
 pub mod query;
 #[cfg(feature = "testing")]

@@ -57,23 +57,7 @@ fn servo_ticks_allocate_nothing() {
         },
     }]);
 
-    let mut records = vec![
-        TickRecord {
-            tick: 0,
-            t: 0.0,
-            hip: DVec3::ZERO,
-            velocity: DVec3::ZERO,
-            proxy: DVec3::ZERO,
-            force: DVec3::ZERO,
-            object: None,
-            triangle: None,
-            penetration: 0.0,
-            status: Default::default(),
-            phase: Default::default(),
-            fault: None,
-        };
-        20_000
-    ];
+    let mut records = vec![TickRecord::default(); 20_000];
     let mut spare = Some(SceneObject::new(
         ObjectId(2),
         torus,

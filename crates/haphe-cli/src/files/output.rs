@@ -186,12 +186,17 @@ pub fn write_png(
     (width, height): (u32, u32),
     draw: impl FnOnce(&mut [u8]) -> Result<(), Box<dyn std::error::Error>>,
 ) -> anyhow::Result<()> {
-    use image::ImageEncoder;
     let mut pixels = vec![0u8; width as usize * height as usize * 3];
     draw(&mut pixels).map_err(|e| anyhow::anyhow!("cannot draw {}: {e}", path.display()))?;
     write_output(path, |out| {
-        image::codecs::png::PngEncoder::new(out)
-            .write_image(&pixels, width, height, image::ColorType::Rgb8)
-            .map_err(anyhow::Error::from)
+        let mut encoder = png::Encoder::new(out, width, height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        // A plot is mostly flat colour: the adaptive filter and the default compression
+        // keep it small.
+        encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(&pixels)?;
+        Ok(writer.finish()?)
     })
 }

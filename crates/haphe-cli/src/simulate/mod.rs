@@ -3,6 +3,7 @@
 //! servo loop on a virtual clock or on the wall clock; a per-tick CSV trace, a summary and
 //! a plot.
 
+mod args;
 pub mod plot;
 pub mod summary;
 
@@ -27,30 +28,16 @@ use haphe::servo::{
 use crate::files::input::{self, read_input};
 use crate::files::output::{Staged, check_outputs};
 
+pub use self::args::{ModelArgs, OutputArgs};
 use self::summary::{RunInfo, Summary};
 use crate::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
 
 /// Arguments of `haphe simulate`.
 #[derive(clap::Args, Debug)]
 #[command(allow_negative_numbers = true)]
-#[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape"])))]
 pub struct Args {
-    /// A mesh file (OBJ, STL, PLY, OFF) placed with the centre of its bounding box at the
-    /// origin.
-    #[arg(long, value_name = "FILE")]
-    mesh: Option<PathBuf>,
-    /// A scene file (TOML): objects, poses, materials, motions (see docs/guide.md).
-    #[arg(long, value_name = "FILE.toml")]
-    scene: Option<PathBuf>,
-    /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
-    #[arg(long, value_name = "NAME")]
-    shape: Option<String>,
-    /// Triangles of the built-in shape.
-    #[arg(long, default_value_t = 20_000)]
-    triangles: usize,
-    /// Length unit of the mesh file: m, mm, cm, in, or metres per unit.
-    #[arg(long, default_value = "m", value_parser = crate::validate::parse_units)]
-    units: Units,
+    #[command(flatten)]
+    model: ModelArgs,
     /// The motion: press, slide, circle, explore or strike (over the top of the objects).
     #[arg(long, default_value = "explore")]
     path: PathKind,
@@ -90,27 +77,11 @@ pub struct Args {
     /// thread). It spins the whole period at normal priority: it costs a second core.
     #[arg(long, value_name = "CORE")]
     standby_core: Option<usize>,
-    /// Write every tick to this CSV file.
-    #[arg(long, value_name = "FILE.csv")]
-    out: Option<PathBuf>,
-    /// Draw force, penetration and the side view of the path to this PNG.
-    #[arg(long, value_name = "FILE.png")]
-    plot: Option<PathBuf>,
+    #[command(flatten)]
+    output: OutputArgs,
     /// Seed of the explore path.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Stiffness of a --mesh or --shape object, N/m.
-    #[arg(long, default_value_t = 600.0)]
-    stiffness: f64,
-    /// Damping of a --mesh or --shape object, N·s/m.
-    #[arg(long, default_value_t = 1.0)]
-    damping: f64,
-    /// Static friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.3)]
-    static_friction: f64,
-    /// Dynamic friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.2)]
-    dynamic_friction: f64,
     /// Largest force rendered, N (the simulated device's maximum is 3.3 N).
     #[arg(long, default_value_t = 3.3)]
     max_force: f64,
@@ -124,12 +95,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             args.rate
         );
     }
-    let outputs: Vec<&Path> = [&args.out, &args.plot]
+    let outputs: Vec<&Path> = [&args.output.out, &args.output.plot]
         .into_iter()
         .flatten()
         .map(PathBuf::as_path)
         .collect();
-    let inputs: Vec<&Path> = [&args.mesh, &args.scene, &args.replay]
+    let inputs: Vec<&Path> = [&args.model.mesh, &args.model.scene, &args.replay]
         .into_iter()
         .flatten()
         .map(PathBuf::as_path)
@@ -139,27 +110,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         haphe::servo::check_core(core).map_err(|e| anyhow!("--standby-core: {e}"))?;
     }
     // The same check as a scene file's materials.
-    let material = Material {
-        stiffness: args.stiffness,
-        damping: args.damping,
-        static_friction: args.static_friction,
-        dynamic_friction: args.dynamic_friction,
-    }
-    .checked()
-    .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
+    let material = args.model.material()?;
     check_max_force(args.max_force)
         .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
     let started = Instant::now();
-    let (objects, what) = load_model(
-        Model {
-            scene: args.scene.as_deref(),
-            mesh: args.mesh.as_deref(),
-            shape: args.shape.as_deref(),
-            triangles: args.triangles,
-            units: args.units,
-        },
-        material,
-    )?;
+    let (objects, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();
     let device = if let Some(file) = &args.replay {
         let name = file.display().to_string();
@@ -183,8 +138,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         standby_core: args.standby_core,
         seed: args.seed,
         max_force: args.max_force,
-        out: args.out.clone(),
-        plot: args.plot.clone(),
+        out: args.output.out.clone(),
+        plot: args.output.plot.clone(),
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)

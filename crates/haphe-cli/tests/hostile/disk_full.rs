@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::common::{files_in, haphe};
+use crate::common::{files_in, generate_sphere, haphe};
 
 /// A 1 MiB tmpfs, unmounted when dropped.
 struct Tmpfs(PathBuf);
@@ -51,12 +51,7 @@ fn a_full_disk_leaves_the_old_file_and_no_temporary_file() {
     let dir = &disk.0;
     let mesh = std::env::temp_dir().join(format!("haphe-hostile-{}-mesh.stl", std::process::id()));
     let m = mesh.to_str().unwrap();
-    assert_eq!(
-        haphe(&["generate", "sphere", "--triangles", "40000", "-o", m])
-            .status
-            .code(),
-        Some(0)
-    );
+    generate_sphere(&mesh, 40_000);
     let cases: Vec<(&str, Vec<String>)> = vec![
         (
             "big.stl",

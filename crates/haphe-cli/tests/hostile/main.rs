@@ -2,6 +2,7 @@
 //! naming the file and the place, or a correct result) — never a hang, a silent wrong
 //! answer or a lost file. One file per theme; see `docs/limits-of-input.md`.
 
+#[path = "../common/mod.rs"]
 mod common;
 mod disk_full;
 mod inputs;

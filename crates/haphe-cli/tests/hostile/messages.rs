@@ -3,7 +3,7 @@
 
 use std::process::{Command, Stdio};
 
-use crate::common::{assert_error, haphe, scratch, stderr};
+use crate::common::{assert_error, haphe, scratch, simulate_sphere, stderr};
 
 /// `/dev/full` as standard output: the message says it is standard output.
 #[test]
@@ -62,28 +62,12 @@ fn causes_are_shown_once_without_debug_output() {
 /// A negative `--seconds` is read as a value and refused with the limit.
 #[test]
 fn negative_seconds_are_a_value_with_a_clear_refusal() {
-    let o = haphe(&[
-        "simulate",
-        "--shape",
-        "sphere",
-        "--triangles",
-        "100",
-        "--seconds",
-        "-1",
-    ]);
+    let o = simulate_sphere(&["--seconds", "-1"]);
     assert_error(
         &o,
         &["--seconds must be a positive number of at most 3600, not -1"],
     );
-    let o = haphe(&[
-        "simulate",
-        "--shape",
-        "sphere",
-        "--triangles",
-        "100",
-        "--seconds",
-        "1e9",
-    ]);
+    let o = simulate_sphere(&["--seconds", "1e9"]);
     assert_error(&o, &["--seconds", "3600", "1000000000"]);
 }
 

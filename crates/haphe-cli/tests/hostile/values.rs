@@ -1,7 +1,9 @@
 //! Numbers out of range from the command line or a scene file: the same library check,
 //! a clear refusal naming the value and the limit.
 
-use crate::common::{assert_error, haphe, scratch, stderr, tetrahedron, write};
+use crate::common::{
+    assert_error, haphe, scratch, simulate_scene, simulate_sphere, stderr, tetrahedron, write,
+};
 
 #[test]
 fn material_flags_are_checked_like_a_scene_file() {
@@ -23,25 +25,15 @@ fn material_flags_are_checked_like_a_scene_file() {
             "--max-force must be a finite number from 0 to 10000, not -1",
         ),
     ] {
-        let o = haphe(&[
-            "simulate",
-            "--shape",
-            "sphere",
-            "--triangles",
-            "100",
-            flag,
-            value,
-        ]);
+        let o = simulate_sphere(&[flag, value]);
         assert_error(&o, &[says]);
     }
     let dir = scratch("material");
-    let scene = write(
-        &dir,
-        "s.toml",
-        "[[object]]\nshape = \"sphere\"\ntriangles = 100\nmaterial = { stiffness = -5.0, damping = 0.0, static_friction = 0.0, dynamic_friction = 0.0 }\n",
-    );
     assert_error(
-        &haphe(&["simulate", "--scene", &scene]),
+        &simulate_scene(
+            &dir,
+            "[[object]]\nshape = \"sphere\"\ntriangles = 100\nmaterial = { stiffness = -5.0, damping = 0.0, static_friction = 0.0, dynamic_friction = 0.0 }\n",
+        ),
         &[
             "s.toml: object 1 (line 1): material stiffness must be a finite number of at least 0, not -5",
         ],
@@ -73,13 +65,11 @@ fn scene_motions_are_checked() {
             "motion rate must be",
         ),
     ] {
-        let scene = write(
-            &dir,
-            "s.toml",
-            format!("[[object]]\nshape = \"sphere\"\ntriangles = 100\nmotion = {motion}\n"),
-        );
         assert_error(
-            &haphe(&["simulate", "--scene", &scene]),
+            &simulate_scene(
+                &dir,
+                &format!("[[object]]\nshape = \"sphere\"\ntriangles = 100\nmotion = {motion}\n"),
+            ),
             &["s.toml: object 1", says],
         );
     }
@@ -111,27 +101,17 @@ fn sizes_and_lengths_have_stated_limits() {
         &["--triangles", "10000000"],
     );
     let dir = scratch("limits");
-    let scene = write(
-        &dir,
-        "s.toml",
-        "[[object]]\nshape = \"sphere\"\ntriangles = 18446744073709551615\n",
-    );
     assert_error(
-        &haphe(&["simulate", "--scene", &scene]),
+        &simulate_scene(
+            &dir,
+            "[[object]]\nshape = \"sphere\"\ntriangles = 18446744073709551615\n",
+        ),
         &["s.toml: object 1", "10000000 triangles"],
     );
     // A trace with a gap of 1e9 s would run for decades.
     let trace = write(&dir, "gap.csv", "t,x,y,z\n0,0,0,0.2\n1e9,0,0,0.2\n");
     assert_error(
-        &haphe(&[
-            "simulate",
-            "--shape",
-            "sphere",
-            "--triangles",
-            "100",
-            "--replay",
-            &trace,
-        ]),
+        &simulate_sphere(&["--replay", &trace]),
         &["spans 1000000000 s", "3600 s", "--seconds"],
     );
 }
@@ -143,16 +123,7 @@ fn verify_and_realtime_refuse_what_cannot_be_done() {
     let o = haphe(&["verify", &mesh, "--samples", "0"]);
     assert_error(&o, &["nothing to check"]);
     assert!(!crate::common::stdout(&o).contains("PASSED"));
-    let o = haphe(&[
-        "simulate",
-        "--shape",
-        "sphere",
-        "--triangles",
-        "100",
-        "--realtime",
-        "--standby-core",
-        "99999",
-    ]);
+    let o = simulate_sphere(&["--realtime", "--standby-core", "99999"]);
     assert_error(
         &o,
         &[

@@ -1,7 +1,7 @@
 //! Binning: every (cell, triangle) pair of a map, found in parallel and sorted by cell.
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::bricks::{BRICK_CELLS, brick_dims, brick_of, local_of};
 use super::build::PROGRESS_BINNED;

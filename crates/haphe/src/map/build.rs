@@ -2,7 +2,7 @@
 //! triangle) pairs ([`super::bin`]), assemble the bricks, then the flood fill and the
 //! clearance ([`super::fill`]).
 
-use rayon::prelude::*;
+use crate::par::*;
 
 use super::bin::{bin_triangles, sort_by_cell};
 use super::bricks::{
@@ -50,7 +50,7 @@ impl VoxelMap {
     ///
     /// `progress` is called with the fraction done, from 0 to 1, one call at a time (on
     /// the thread that runs the build: a thread of rayon's pool, or the calling thread
-    /// when that is one), non-decreasing, about 25 times — except that in the rare case
+    /// when that is one or without the `parallel` feature), non-decreasing, about 25 times — except that in the rare case
     /// where the finished map turns out larger than the budget and an automatic cell size
     /// must grow, the fraction starts again from 0 for the next attempt.
     ///
@@ -67,7 +67,7 @@ impl VoxelMap {
     /// - [`MapError::TooManyTriangleRefs`] beyond 2³² (cell, triangle) pairs.
     ///
     /// # Performance
-    /// Parallel (rayon), `O(T + P log P + B + D)` for `T` triangles, `P` (cell, triangle)
+    /// Parallel (rayon, feature `parallel`), `O(T + P log P + B + D)` for `T` triangles, `P` (cell, triangle)
     /// pairs, `B` bricks and `D` cells in bricks near the surface; about 0.6 s per million
     /// triangles on two cores. Peak memory is the finished map plus about 16 bytes per
     /// pair (the pairs, and their sorted copy). Not for a servo tick.
@@ -81,9 +81,7 @@ impl VoxelMap {
                 value: options.triangles_per_cell,
             });
         }
-        // On a thread of rayon's pool, so that the parallel steps do not each wait for the
-        // pool to pick them up (what dominates for small meshes).
-        rayon::scope(|_| build_on_pool(surface, options, progress))
+        on_pool(|| build_on_pool(surface, options, progress))
     }
 }
 

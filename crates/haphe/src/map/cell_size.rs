@@ -1,8 +1,8 @@
 //! Choosing the cell size of a voxel map: the typical triangle size, the fitted rule for a
 //! target number of triangles per surface cell, and the memory estimate that enlarges it.
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::bricks::{BRICK_SIDE, MAX_BRICKS, NIBBLE_BYTES, brick_dims};
 use super::grid::Grid;

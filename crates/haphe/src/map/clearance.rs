@@ -3,7 +3,7 @@
 //! dilating bit masks of the surface cells one cell at a time; and the reach of bricks
 //! farther away, from their distance in bricks to the nearest brick with a surface cell.
 
-use rayon::prelude::*;
+use crate::par::*;
 
 use super::MAX_CLEARANCE;
 use super::bricks::{

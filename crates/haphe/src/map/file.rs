@@ -37,9 +37,9 @@
 
 use std::ops::Range;
 
+use crate::par::*;
 use bytemuck::Pod;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::bricks::{BrickBits, MASK_WORDS, VoxelMap};
 use super::provenance::Provenance;

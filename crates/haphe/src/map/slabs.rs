@@ -31,8 +31,8 @@
 //! it crosses. On smooth surfaces at the cell sizes a map chooses, a brick's slab is
 //! about a cell thick and a region's a few cells.
 
+use crate::par::*;
 use glam::{DMat3, DVec3};
-use rayon::prelude::*;
 
 use super::VoxelMap;
 use super::bricks::{BRICK_SIDE, UNIFORM, brick_coords, cell_in_brick};

@@ -2,8 +2,8 @@
 //! across creases, for force shading (the normal interpolated with barycentric weights
 //! makes a coarse mesh feel smooth, while CAD edges stay edges).
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::frame::TriFrame;
 

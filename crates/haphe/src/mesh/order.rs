@@ -12,8 +12,8 @@
 //! not to, and keeps each triangle's index in the mesh it was given
 //! ([`Surface::source_triangle`](super::Surface::source_triangle)).
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::Mesh;
 

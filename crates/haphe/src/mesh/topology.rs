@@ -100,9 +100,7 @@ impl Surface {
     /// assert_eq!(surface.triangle_count(), 320);
     /// ```
     pub fn new(mesh: Mesh, options: &SurfaceOptions) -> Result<Surface, SurfaceError> {
-        // On a thread of rayon's pool, so that the parallel steps below do not each wait
-        // for the pool to pick them up (what dominates for small meshes).
-        rayon::scope(|_| Surface::new_on_pool(mesh, options))
+        crate::par::on_pool(|| Surface::new_on_pool(mesh, options))
     }
 
     /// [`Surface::new`], on the thread that runs it.

@@ -3,8 +3,8 @@
 //! Files such as STL store every triangle with its own three corners; the topology (which
 //! triangle lies across which edge) exists only once equal corners are one vertex.
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::Mesh;

@@ -1,8 +1,8 @@
 //! Solid angles and the generalised winding number: the one definition of inside that every
 //! stage shares (the non-zero rule: a point is inside when its winding number is not 0).
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::{Surface, TriId};
 

@@ -2,8 +2,8 @@
 //! anywhere but in the corners they share. Where a surface passes through itself, inside
 //! and outside are not defined, and a user would feel walls that are not there.
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::intersect_triangle_triangle;
 use crate::map::VoxelMap;

@@ -107,15 +107,18 @@ impl Shape {
         zone
     }
 
-    /// Computes every triangle's clear zone now, on every core (rayon), so that no tick
-    /// computes one: for a servo loop that must keep its worst tick short from the first
-    /// contact on. Returns how many zones were computed (those not cached yet).
+    /// Computes every triangle's clear zone now, on every core (rayon, feature `parallel`),
+    /// so that no tick computes one: for a servo loop that must keep its worst tick short
+    /// from the first contact on. Returns how many zones were computed (those not cached
+    /// yet).
     pub fn prepare_clear_zones(&self) -> usize {
-        use rayon::prelude::*;
+        use crate::par::*;
         (0..self.zones.len())
             .into_par_iter()
             .filter(|&t| self.zones[t].load(Ordering::Relaxed) == 0)
-            .map(|t| self.clear_zone(TriId(t as u32)))
+            .inspect(|&t| {
+                self.clear_zone(TriId(t as u32));
+            })
             .count()
     }
 }

@@ -42,8 +42,10 @@ impl Phase {
     }
 }
 
-/// One tick as recorded: a small `Copy` value, so recording never allocates.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One tick as recorded: a small `Copy` value, so recording never allocates. The default
+/// is tick 0 at time 0, everything at the origin, free, in the first phase (a buffer's
+/// filler).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TickRecord {
     /// Tick number, from 0.
     pub tick: u64,
@@ -162,18 +164,8 @@ mod tests {
     #[test]
     fn every_status_a_record_can_have_is_listed() {
         let base = TickRecord {
-            tick: 0,
-            t: 0.0,
-            hip: DVec3::ZERO,
-            velocity: DVec3::ZERO,
-            proxy: DVec3::ZERO,
-            force: DVec3::ZERO,
-            object: None,
-            triangle: None,
-            penetration: 0.0,
-            status: TickStatus::default(),
             phase: Phase::Running,
-            fault: None,
+            ..TickRecord::default()
         };
         let flags: [fn(&mut TickStatus); 9] = [
             |_| {},

@@ -27,8 +27,8 @@ pub use strikes::{
     strike_path,
 };
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::map::VoxelMap;

@@ -1,7 +1,7 @@
 //! The analysis behind [`MeshReport::of`].
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::{ComponentReport, Defects, EdgeUse, MeshReport, Usability, nesting};

@@ -3,8 +3,8 @@
 //! two be told apart; a component with outward normals inside another is an overlapping
 //! solid (parts of an assembly), reported separately.
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::ComponentReport;
 use crate::mesh::Mesh;

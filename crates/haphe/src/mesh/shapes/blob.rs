@@ -15,8 +15,8 @@
 use crate::rng::SplitMix64;
 use std::f64::consts::TAU;
 
+use crate::par::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::sphere::{MAX_SPHERE_SUBDIVISIONS, unit_geodesic_sphere};
 use super::{Mesh, is_positive_length};
@@ -46,7 +46,7 @@ const WAVE_FREQUENCY_MAX: f64 = 4.5;
 /// finite and positive, or a `noise_amplitude` that is not finite, gives an empty mesh.
 ///
 /// # Performance
-/// The noise is evaluated in parallel on the rayon thread pool; each vertex depends only on
+/// The noise is evaluated in parallel on the rayon thread pool (feature `parallel`); each vertex depends only on
 /// its own direction, so the result does not depend on the scheduling.
 ///
 /// # Examples

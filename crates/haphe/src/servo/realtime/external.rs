@@ -11,7 +11,9 @@ use std::time::{Duration, Instant};
 use rtrb::RingBuffer;
 
 use super::interference::Counters;
-use super::{RealtimeOptions, RealtimeRun, RealtimeSetup, Run, Schedule, ServoLoop, nanos};
+use super::{
+    RealtimeOptions, RealtimeRun, RealtimeSetup, Run, Schedule, ServoLoop, nanos, period_and_ticks,
+};
 use crate::servo::device::{Device, DeviceFault};
 use crate::servo::tick::{Servo, ServoError, StopReason};
 use crate::servo::trace::TickRecord;
@@ -70,20 +72,9 @@ fn run_clocked<D: Device>(
     stop_flag: &AtomicBool,
     producer: rtrb::Producer<TickRecord>,
 ) -> RealtimeRun<D> {
-    let rate = servo.options().rate_hz;
-    let period_ns = ((1e9 / rate).round() as u64).max(1);
+    let (period_ns, max_ticks) = period_and_ticks(servo.options().rate_hz, seconds);
     let period = Duration::from_nanos(period_ns);
-    let max_ticks = seconds
-        .filter(|s| s.is_finite() && *s >= 0.0)
-        .map(|s| (s * rate).round() as u64);
-    let mut run = Run {
-        servo,
-        producer,
-        k: 0,
-        dropped: 0,
-        stop: None,
-        overrun_budget: options.overrun_budget,
-    };
+    let mut run = Run::new(servo, producer, options.overrun_budget);
     let counters = Counters::read(None);
     let schedule = Schedule {
         start: Instant::now(),

@@ -347,7 +347,33 @@ impl Schedule {
     }
 }
 
+/// The period of a run at `rate` Hz, nanoseconds (at least 1), and its number of ticks
+/// when it lasts `seconds` (`None`, negative or not finite: until stopped).
+pub(super) fn period_and_ticks(rate: f64, seconds: Option<f64>) -> (u64, Option<u64>) {
+    let period_ns = ((1e9 / rate).round() as u64).max(1);
+    let max_ticks = seconds
+        .filter(|s| s.is_finite() && *s >= 0.0)
+        .map(|s| (s * rate).round() as u64);
+    (period_ns, max_ticks)
+}
+
 impl<D: Device> Run<D> {
+    /// A run of `servo`, not started, recording into `producer`.
+    pub(super) fn new(
+        servo: Servo<D>,
+        producer: rtrb::Producer<TickRecord>,
+        overrun_budget: Option<u64>,
+    ) -> Run<D> {
+        Run {
+            servo,
+            producer,
+            k: 0,
+            dropped: 0,
+            stop: None,
+            overrun_budget,
+        }
+    }
+
     /// Whether the run has ended; decides it (the time is up, or a stop was asked) when
     /// it has not yet.
     pub(super) fn ended(&mut self, schedule: &Schedule, stop_flag: &AtomicBool) -> bool {
@@ -441,23 +467,13 @@ fn run_thread<D: Device>(
         other => other,
     };
     let rate = servo.options().rate_hz;
-    let period_ns = ((1e9 / rate).round() as u64).max(1);
+    let (period_ns, max_ticks) = period_and_ticks(rate, seconds);
     let spin_s = options
         .spin_seconds
         .filter(|s| s.is_finite() && *s >= 0.0)
         .unwrap_or_else(|| DEFAULT_SPIN_S.min(DEFAULT_SPIN_FRACTION / rate));
     let spin = Duration::from_secs_f64(spin_s);
-    let max_ticks = seconds
-        .filter(|s| s.is_finite() && *s >= 0.0)
-        .map(|s| (s * rate).round() as u64);
-    let mut run = Run {
-        servo,
-        producer,
-        k: 0,
-        dropped: 0,
-        stop: None,
-        overrun_budget: options.overrun_budget,
-    };
+    let mut run = Run::new(servo, producer, options.overrun_budget);
     let counters = Counters::read(setup.pinned_core);
     let (mut run, standby) = match standby_core {
         None => {

@@ -188,14 +188,7 @@ mod tests {
         let device = ScriptedDevice::new(Trajectory::still(DVec3::new(0.0, 0.0, 1.0)));
         let servo = Servo::new(device, Scene::local(1), ServoOptions::default()).expect("a servo");
         let (producer, consumer) = RingBuffer::new(1024);
-        let run = Run {
-            servo,
-            producer,
-            k: 0,
-            dropped: 0,
-            stop: None,
-            overrun_budget: None,
-        };
+        let run = Run::new(servo, producer, None);
         let schedule = Schedule {
             start: Instant::now() + Duration::from_secs(3600),
             period_ns: 1_000_000,

@@ -1,4 +1,6 @@
-//! Running the binary and scratch folders.
+//! What the command-line tests share: running the binary, reading what it printed, scratch
+//! folders and small files. Each test binary uses its own part of it.
+#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -48,6 +50,31 @@ pub fn haphe(args: &[&str]) -> Output {
     haphe_within(args, Duration::from_secs(120))
 }
 
+/// Runs `haphe` with `args`, expects success, and returns its standard output.
+pub fn ok(args: &[&str]) -> String {
+    let out = haphe(args);
+    assert!(
+        out.status.success(),
+        "haphe {args:?} failed:\n{}{}",
+        stdout(&out),
+        stderr(&out)
+    );
+    stdout(&out)
+}
+
+/// `haphe simulate` on a small sphere (100 triangles), `args` added.
+pub fn simulate_sphere(args: &[&str]) -> Output {
+    let mut all = vec!["simulate", "--shape", "sphere", "--triangles", "100"];
+    all.extend_from_slice(args);
+    haphe(&all)
+}
+
+/// `haphe simulate` on the scene file `text`, written as `dir/s.toml`.
+pub fn simulate_scene(dir: &Path, text: &str) -> Output {
+    let scene = write(dir, "s.toml", text);
+    haphe(&["simulate", "--scene", &scene])
+}
+
 /// Standard error as text.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -78,10 +105,15 @@ pub fn assert_error(o: &Output, parts: &[&str]) {
 
 /// A fresh scratch folder for one test.
 pub fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("haphe-hostile-{}-{name}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("haphe-cli-test-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
+}
+
+/// A path as text (the tests' paths are UTF-8).
+pub fn s(p: &Path) -> &str {
+    p.to_str().expect("a UTF-8 path")
 }
 
 /// Writes `bytes` to `dir/name` and returns the path as a string.
@@ -97,6 +129,19 @@ pub fn tetrahedron(x: f64) -> String {
         "v {x} 0 0\nv {} 0 0\nv {x} 0.1 0\nv {x} 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
         x + 0.1
     )
+}
+
+/// Writes a sphere of about `triangles` triangles to `path` with `haphe generate`.
+pub fn generate_sphere(path: &Path, triangles: usize) {
+    let o = haphe(&[
+        "generate",
+        "sphere",
+        "--triangles",
+        &triangles.to_string(),
+        "-o",
+        s(path),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
 
 /// The names of the files in `dir`, sorted.
