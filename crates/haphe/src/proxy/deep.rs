@@ -52,6 +52,12 @@ pub(crate) struct Hold {
     pub triangle: TriId,
     pub normal_object: DVec3,
     pub constraints: u8,
+    /// Where the proxy was when the hold began (the entry), object frame.
+    pub entry_object: DVec3,
+    /// Where the device point was when the hold began, object frame.
+    pub hip_object: DVec3,
+    /// The unit direction the hand went deep in, object frame (see [`deep_direction`]).
+    pub direction_object: DVec3,
 }
 
 impl Hold {
@@ -60,6 +66,55 @@ impl Hold {
     pub fn normal(&self, pose: &Pose) -> DVec3 {
         pose.vector_to_world(self.normal_object)
     }
+
+    /// Where a holding proxy at `p` heads with the device point at `hip`, and the unit
+    /// normal of the held plane, world frame (see [`hold_targets`]).
+    #[inline]
+    pub fn targets(&self, pose: &Pose, p: DVec3, hip: DVec3) -> (DVec3, DVec3) {
+        let normal = self.normal(pose);
+        let slide = hold_slide(
+            pose.to_world(self.entry_object),
+            pose.to_world(self.hip_object),
+            pose.vector_to_world(self.direction_object),
+            normal,
+            p,
+            hip,
+        );
+        (slide, normal)
+    }
+}
+
+/// The unit direction the hand went deep in: its motion over the tick that went beyond
+/// the saturation depth (`previous` to `hip`) where that motion goes into the contact
+/// plane of unit `normal`, else straight in (`-normal`).
+#[inline]
+pub fn deep_direction(previous: Option<DVec3>, hip: DVec3, normal: DVec3) -> DVec3 {
+    previous
+        .map(|q| hip - q)
+        .filter(|m| m.dot(normal) < 0.0)
+        .and_then(DVec3::try_normalize)
+        .unwrap_or(-normal)
+}
+
+/// The first leg of a holding proxy at `p`: along the held plane (unit `normal`) to the
+/// point over its goal. The goal is the `entry` (the proxy when the hold began) plus the
+/// part of the hand's travel since then (`hip - hip_entry`) across the unit `direction` it
+/// went deep in: pushing on along `direction` leaves it where it is, moving sideways moves
+/// it with the hand. The second leg goes from there straight back into the surface, along
+/// `-normal`, by at most the saturation depth.
+#[inline]
+pub fn hold_slide(
+    entry: DVec3,
+    hip_entry: DVec3,
+    direction: DVec3,
+    normal: DVec3,
+    p: DVec3,
+    hip: DVec3,
+) -> DVec3 {
+    let travel = hip - hip_entry;
+    let goal = entry + (travel - direction * travel.dot(direction));
+    let to_goal = goal - p;
+    p + (to_goal - normal * to_goal.dot(normal))
 }
 
 #[cfg(test)]

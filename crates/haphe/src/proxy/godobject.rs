@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::constraints::{Constraints, Plane, advance_to_plane};
-use super::deep::{Hold, is_deep, saturation_depth};
+use super::deep::{Hold, deep_direction, is_deep, saturation_depth};
 use super::force::{contact_force, friction_target};
 use super::near::{NearCache, search_box};
 use super::output::{Contact, TickOutput, TickStatus};
@@ -99,6 +99,8 @@ pub struct Proxy {
     hold: Option<Hold>,
     /// The objects near the proxy, kept from tick to tick (see [`NearCache`]).
     near: NearCache,
+    /// The device point of the previous tick (the direction a hold starts in).
+    previous_hip: Option<DVec3>,
 }
 
 impl Proxy {
@@ -119,6 +121,7 @@ impl Proxy {
             placed: true,
             hold: None,
             near: NearCache::new(),
+            previous_hip: None,
         }
     }
 
@@ -147,6 +150,12 @@ impl Proxy {
     #[cfg(any(test, feature = "testing"))]
     pub(crate) fn hold(&self) -> Option<Hold> {
         self.hold
+    }
+
+    /// The device point of the previous tick (for the oracles).
+    #[cfg(any(test, feature = "testing"))]
+    pub(crate) fn previous_hip(&self) -> Option<DVec3> {
+        self.previous_hip
     }
 
     /// The settings.
@@ -183,6 +192,7 @@ impl Proxy {
             self.rest = None;
             self.sticking = false;
             self.hold = None;
+            self.previous_hip = None;
             return TickOutput {
                 proxy: self.position,
                 force: DVec3::ZERO,
@@ -192,6 +202,7 @@ impl Proxy {
         }
         let (hip, clamped) = clamp_to_radius(hip, self.options.workspace_radius);
         status.input_clamped = clamped;
+        let previous_hip = self.previous_hip.replace(hip);
 
         let mut p = carry(scene, &mut self.near, self.position, &self.options);
         if let Some(hold) = self.hold.take()
@@ -293,6 +304,13 @@ impl Proxy {
                 triangle: contact.map_or(hit.triangle, |c| c.triangle),
                 normal_object: object.pose.vector_to_object(plane.normal),
                 constraints: sweep.planes.len() as u8,
+                entry_object: object.pose.to_object(p),
+                hip_object: object.pose.to_object(hip),
+                direction_object: object.pose.vector_to_object(deep_direction(
+                    previous_hip,
+                    hip,
+                    plane.normal,
+                )),
             });
         }
         TickOutput {
@@ -303,9 +321,11 @@ impl Proxy {
         }
     }
     /// A tick of a holding proxy (see [`super::deep`]): while the device point `hip` stays
-    /// deeper than the saturation depth behind the held plane, the proxy at `p` stays, on
-    /// the same contact; `None` (and no change) once it is back within that depth or the
-    /// held object is gone.
+    /// deeper than the saturation depth behind the held plane, the proxy at `p` moves by
+    /// the god-object's constraint steps toward the hold's goal (the entry plus the hand's
+    /// offset across the direction it went deep, at the saturation depth), without
+    /// friction; `None` (and no change) once it is back within that depth or the held
+    /// object is gone.
     fn hold_tick(
         &mut self,
         scene: &Scene,
@@ -318,17 +338,47 @@ impl Proxy {
         let object = scene.objects().get(hold.object)?;
         let normal = hold.normal(&object.pose);
         let material = object.material;
-        if !is_deep(
-            p,
-            hip,
-            normal,
-            saturation_depth(&material, self.options.max_force),
-        ) {
+        let depth = saturation_depth(&material, self.options.max_force)?;
+        if !is_deep(p, hip, normal, Some(depth)) {
             return None;
         }
         status.in_contact = true;
         status.deep_hold = true;
         status.sticking = self.sticking;
+        // Toward the point over the goal on the held plane, pulled back into the surface
+        // by the saturation depth, by the god-object's constraint steps.
+        let (slide, normal) = hold.targets(&object.pose, p, hip);
+        let under = self.last.map(|l| (l.object, l.triangle));
+        // A hand that moved across by no more than a skin since the proxy last moved
+        // leaves it where it is (a straight strike never moves it).
+        let sweep = (slide.distance(p) > self.options.skin).then(|| {
+            constrain(
+                (scene, &mut self.near),
+                p,
+                slide - normal * depth,
+                false,
+                (self.rest, under),
+                &self.options,
+                &mut status,
+            )
+        });
+        let p = sweep.as_ref().map_or(p, |s| s.position);
+        if let Some(sweep) = &sweep {
+            self.rest = sweep.last_hit.map(|(hit, _)| Rest {
+                object: hit.object,
+                triangle: hit.triangle,
+            });
+        }
+        let mut hold = hold;
+        if let Some(sweep) = &sweep
+            && let Some((hit, plane)) = sweep.last_hit
+            && hit.object == hold.object
+        {
+            hold.triangle = hit.triangle;
+            hold.normal_object = object.pose.vector_to_object(plane.normal);
+            hold.constraints = sweep.planes.len() as u8;
+        }
+        let normal = hold.normal(&object.pose);
         let contact = contact_at(
             scene,
             (hold.object, hold.triangle),

@@ -105,7 +105,7 @@ mod rest;
 pub use constraints::{Constraints, MAX_CONSTRAINTS, Plane, advance_to_plane};
 #[cfg(any(test, feature = "testing"))]
 pub(crate) use deep::Hold;
-pub use deep::{is_deep, saturation_depth};
+pub use deep::{deep_direction, hold_slide, is_deep, saturation_depth};
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
 pub use godobject::{
     DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions, clamp_to_radius,

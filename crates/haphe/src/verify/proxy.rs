@@ -15,7 +15,7 @@ use super::{KEPT_FAILURES, bounds, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
     Constraints, Hold, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
-    clamp_to_radius, friction_target, is_deep, rests_on, saturation_depth,
+    clamp_to_radius, deep_direction, friction_target, is_deep, rests_on, saturation_depth,
 };
 use crate::query::{Probe, Side, classify_point, nearest_within_brute_force, walk_to_nearest};
 use crate::rng::SplitMix64;
@@ -48,6 +48,34 @@ pub struct BruteProxy {
     rest: Option<Rest>,
     /// The contact held beyond the saturation depth.
     hold: Option<Hold>,
+    /// The device point of the previous tick.
+    previous_hip: Option<DVec3>,
+}
+
+/// The state of the constraint steps of one tick.
+struct Steps {
+    position: DVec3,
+    planes: Constraints,
+    /// Where the proxy first stopped at a surface.
+    touch_down: Option<DVec3>,
+    /// The object and plane met last.
+    object: usize,
+    plane: Option<Plane>,
+    rest: Option<Rest>,
+}
+
+impl Steps {
+    /// No plane yet, at `position`.
+    fn from(position: DVec3) -> Steps {
+        Steps {
+            position,
+            planes: Constraints::NONE,
+            touch_down: None,
+            object: 0,
+            plane: None,
+            rest: None,
+        }
+    }
 }
 
 /// A crossing found by brute force, world frame.
@@ -86,6 +114,7 @@ impl BruteProxy {
             placed: true,
             rest: None,
             hold: None,
+            previous_hip: None,
         }
     }
 
@@ -102,6 +131,7 @@ impl BruteProxy {
         self.placed = false;
         self.rest = proxy.rest();
         self.hold = proxy.hold();
+        self.previous_hip = proxy.previous_hip();
     }
 
     /// Reads the objects' poses and materials from the scene, which must hold the same
@@ -195,61 +225,18 @@ impl BruteProxy {
         best
     }
 
-    /// One tick; returns the proxy and whether it touches an object.
-    pub fn tick(&mut self, hip: DVec3) -> (DVec3, bool) {
-        if !hip.is_finite() {
-            self.in_contact = false;
-            self.sticking = false;
-            self.rest = None;
-            self.hold = None;
-            return (self.position, false);
-        }
-        let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
-        // Carry by moving objects.
-        let mut p = self.position;
-        for i in 0..self.objects.len() {
-            let o = &self.objects[i];
-            if o.pose == o.previous_pose {
-                continue;
-            }
-            let from = o.pose.to_world(o.previous_pose.to_object(p));
-            if let Some(h) = self.hit(i, from, p) {
-                p = advance_to_plane(from, p, &self.plane(&h, from, p));
-            }
-        }
-        // Beyond the saturation depth of the held plane, the proxy stays.
-        if let Some(hold) = self.hold.take() {
-            let o = &self.objects[hold.object];
-            let depth = saturation_depth(&o.material, self.options.max_force);
-            if is_deep(p, hip, hold.normal(&o.pose), depth) {
-                self.hold = Some(hold);
-                self.position = p;
-                self.in_contact = true;
-                return (p, true);
-            }
-        }
-        let held = p;
-        // Constraint steps.
-        let mut planes = Constraints::NONE;
-        let mut touch_down = None;
-        let mut last_object = 0;
-        let mut last_plane = None;
-        let mut rest = None;
-        if std::mem::take(&mut self.placed)
-            && let Some(h) = self.touching(p)
-        {
-            let plane = self.plane(&h, p, hip);
-            if plane.height(hip) < 0.0 {
-                planes.push(plane);
-                touch_down = Some(p);
-                last_object = h.object;
-                last_plane = Some(plane);
-                rest = Some(Rest {
-                    object: h.object,
-                    triangle: h.triangle,
-                });
-            }
-        }
+    /// The constraint steps toward `goal` from `from.position` with the planes (and the
+    /// surface met last) of `from`.
+    fn steps(&self, mut p: DVec3, goal: DVec3, from: Steps) -> Steps {
+        let hip = goal;
+        let Steps {
+            mut planes,
+            mut touch_down,
+            object: mut last_object,
+            plane: mut last_plane,
+            mut rest,
+            ..
+        } = from;
         for _ in 0..MAX_PROXY_STEPS {
             let Some(target) = planes.closest_feasible(hip, self.options.plane_tolerance()) else {
                 break;
@@ -290,6 +277,111 @@ impl BruteProxy {
                 break;
             }
         }
+        Steps {
+            position: p,
+            planes,
+            touch_down,
+            object: last_object,
+            plane: last_plane,
+            rest,
+        }
+    }
+
+    /// One tick; returns the proxy and whether it touches an object.
+    pub fn tick(&mut self, hip: DVec3) -> (DVec3, bool) {
+        if !hip.is_finite() {
+            self.in_contact = false;
+            self.sticking = false;
+            self.rest = None;
+            self.hold = None;
+            self.previous_hip = None;
+            return (self.position, false);
+        }
+        let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
+        let previous_hip = self.previous_hip.replace(hip);
+        // Carry by moving objects.
+        let mut p = self.position;
+        for i in 0..self.objects.len() {
+            let o = &self.objects[i];
+            if o.pose == o.previous_pose {
+                continue;
+            }
+            let from = o.pose.to_world(o.previous_pose.to_object(p));
+            if let Some(h) = self.hit(i, from, p) {
+                p = advance_to_plane(from, p, &self.plane(&h, from, p));
+            }
+        }
+        // Beyond the saturation depth of the held plane, the proxy moves by constraint
+        // steps toward the hold's goal, without friction.
+        if let Some(mut hold) = self.hold.take() {
+            let o = &self.objects[hold.object];
+            let depth = saturation_depth(&o.material, self.options.max_force);
+            if let Some(d) = depth
+                && is_deep(p, hip, hold.normal(&o.pose), depth)
+            {
+                let (slide, normal) = hold.targets(&o.pose, p, hip);
+                if slide.distance(p) > self.options.skin {
+                    let step = self.steps(p, slide - normal * d, Steps::from(p));
+                    p = step.position;
+                    self.rest = step.rest;
+                    if let (Some(plane), Some(r)) = (step.plane, step.rest)
+                        && step.object == hold.object
+                    {
+                        let pose = &self.objects[hold.object].pose;
+                        hold.triangle = r.triangle;
+                        hold.normal_object = pose.vector_to_object(plane.normal);
+                        hold.constraints = step.planes.len() as u8;
+                    }
+                }
+                self.hold = Some(hold);
+                self.position = p;
+                self.in_contact = true;
+                return (p, true);
+            }
+        }
+        let held = p;
+        // Constraint steps.
+        let mut planes = Constraints::NONE;
+        let mut touch_down = None;
+        let mut last_object = 0;
+        let mut last_plane = None;
+        let mut rest = None;
+        if std::mem::take(&mut self.placed)
+            && let Some(h) = self.touching(p)
+        {
+            let plane = self.plane(&h, p, hip);
+            if plane.height(hip) < 0.0 {
+                planes.push(plane);
+                touch_down = Some(p);
+                last_object = h.object;
+                last_plane = Some(plane);
+                rest = Some(Rest {
+                    object: h.object,
+                    triangle: h.triangle,
+                });
+            }
+        }
+        let step = self.steps(
+            p,
+            hip,
+            Steps {
+                position: p,
+                planes,
+                touch_down,
+                object: last_object,
+                plane: last_plane,
+                rest,
+            },
+        );
+        p = step.position;
+        let Steps {
+            planes,
+            touch_down,
+            object: last_object,
+            plane: last_plane,
+            rest,
+            ..
+        } = step;
         self.rest = rest;
         let Some(touch_down) = touch_down else {
             self.position = p;
@@ -332,6 +424,11 @@ impl BruteProxy {
                     .pose
                     .vector_to_object(plane.normal),
                 constraints: planes.len() as u8,
+                entry_object: self.objects[last_object].pose.to_object(p),
+                hip_object: self.objects[last_object].pose.to_object(hip),
+                direction_object: self.objects[last_object]
+                    .pose
+                    .vector_to_object(deep_direction(previous_hip, hip, plane.normal)),
             });
         }
         self.position = p;
