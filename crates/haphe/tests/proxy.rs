@@ -123,7 +123,7 @@ fn fit_to_hand_size(mesh: &mut Mesh) {
 }
 
 /// A flat floor: the top face of a box, z = 0 over x, y in [−0.1, 0.1].
-fn floor(material: Material) -> Scene {
+pub(crate) fn floor(material: Material) -> Scene {
     let mesh = shapes::cuboid(DVec3::new(0.1, 0.1, 0.05), [4, 4, 2]);
     let mut scene = Scene::local(4);
     scene

@@ -209,3 +209,38 @@ fn deep_strikes_on_every_closed_model() {
     meshes.extend(closed_models(&support::meshes().join("models")));
     assert!(strike_family(meshes, 200) >= 10);
 }
+
+/// Sliding sideways under a hard press: the hand presses 10 mm into a flat floor (beyond
+/// the saturation depth of 6.6 mm), then slides 40 mm across at 0.1 m/s while staying
+/// that deep. The proxy holds all along and follows the hand across: it stays over the
+/// hand within a skin (1 µm), the dead band a held proxy keeps; it used to stay at the
+/// point where the hand went deep. The brute-force proxy does the same.
+#[test]
+fn sliding_under_a_hard_press_moves_the_held_proxy_with_the_hand() {
+    let scene = super::floor(Material::default());
+    let above = DVec3::new(-0.02, 0.01, 0.005);
+    let mut path: Vec<DVec3> = (0..=150)
+        .map(|k| above - DVec3::Z * (0.015 * k as f64 / 150.0))
+        .collect();
+    let pressed = *path.last().unwrap();
+    path.extend((1..=400).map(|k| pressed + DVec3::new(1e-4, 0.0, 0.0) * k as f64));
+    let mut proxy = Proxy::new(above, ProxyOptions::default());
+    let (mut held, mut worst, mut previous) = (0, 0.0f64, above);
+    for (k, &hip) in path.iter().enumerate() {
+        let out = proxy.tick(&scene, hip, (hip - previous) * 1e3);
+        previous = hip;
+        if k > 150 {
+            assert!(out.status.deep_hold, "tick {k}: {out:?}");
+            held += 1;
+            let across = (out.proxy - hip).truncate().length();
+            worst = worst.max(across);
+            assert!(out.proxy.z >= 0.0, "tick {k}: {out:?}");
+        }
+    }
+    println!("held {held} ticks; proxy off the hand across by at most {worst:.3e} m");
+    assert_eq!(held, 400);
+    assert!(worst <= ProxyOptions::default().skin, "{worst}");
+    let check = check_proxy(&scene, &path, ProxyOptions::default());
+    assert_eq!(check.mismatches, 0, "{check:?}");
+    assert_eq!(check.inside, 0, "{check:?}");
+}
