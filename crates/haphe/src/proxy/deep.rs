@@ -1,4 +1,4 @@
-//! Deep penetration: the proxy holds its place once the force saturates.
+//! Deep penetration: the proxy holds its contact once the force saturates.
 //!
 //! In the physical range — the device point no deeper behind the contact plane than the
 //! saturation depth `F_max / k`, where the spring's force reaches the device's maximum —
@@ -7,9 +7,13 @@
 //! convex part, the closest surface point moves around the body, the proxy crawls after it
 //! to the far side and the force then pulls the hand on through the object. So a proxy
 //! whose device point lies deeper than the saturation depth behind its contact plane
-//! *holds*: it stays where it is, on the same contact, and the force keeps pointing from
-//! the hand back to that point, the way the hand came in. It lets go (the god-object
-//! resumes from where it held) on the first tick the device point is back within the
+//! *holds* that contact. It heads for a goal that depends only on where the hand is: the
+//! entry (the proxy when the hold began) plus the part of the hand's travel since then
+//! that runs across the direction it went deep in, pulled back to the saturation depth
+//! along the held plane's normal ([`hold_slide`]); the god-object's constraint steps take
+//! it there, so it never enters the object. Pushing on along the direction of entry leaves
+//! it where it is; sliding sideways moves it with the hand. It lets go (the god-object
+//! resumes from where it is) on the first tick the device point is back within the
 //! saturation depth of the held plane — the hand has come back out toward the side of
 //! entry.
 
