@@ -72,7 +72,7 @@ impl Hold {
     }
 
     /// Where a holding proxy at `p` heads with the device point at `hip`, and the unit
-    /// normal of the held plane, world frame (see [`hold_targets`]).
+    /// normal of the held plane, world frame (see [`hold_slide`]).
     #[inline]
     pub fn targets(&self, pose: &Pose, p: DVec3, hip: DVec3) -> (DVec3, DVec3) {
         let normal = self.normal(pose);
@@ -100,12 +100,12 @@ pub fn deep_direction(previous: Option<DVec3>, hip: DVec3, normal: DVec3) -> DVe
         .unwrap_or(-normal)
 }
 
-/// The first leg of a holding proxy at `p`: along the held plane (unit `normal`) to the
-/// point over its goal. The goal is the `entry` (the proxy when the hold began) plus the
-/// part of the hand's travel since then (`hip - hip_entry`) across the unit `direction` it
-/// went deep in: pushing on along `direction` leaves it where it is, moving sideways moves
-/// it with the hand. The second leg goes from there straight back into the surface, along
-/// `-normal`, by at most the saturation depth.
+/// The point over the goal of a holding proxy at `p`, on the held plane (unit `normal`)
+/// through `p`. The goal is the `entry` (the proxy when the hold began) plus the part of
+/// the hand's travel since then (`hip - hip_entry`) across the unit `direction` it went
+/// deep in: pushing on along `direction` leaves it where it is, moving sideways moves it
+/// with the hand. The proxy's constraint steps aim at this point pulled back into the
+/// surface by the saturation depth, along `-normal`.
 #[inline]
 pub fn hold_slide(
     entry: DVec3,
