@@ -141,7 +141,8 @@ fn compare(
 #[test]
 fn a_large_static_pile_gives_the_linear_answers() {
     let contacts = compare(1000, 0, false, false, 11).unwrap();
-    assert!(contacts > 50, "{contacts} ticks in contact");
+    // Few, since a held proxy lets go once the hand has moved on past the object.
+    assert!(contacts > 10, "{contacts} ticks in contact");
 }
 
 #[test]
