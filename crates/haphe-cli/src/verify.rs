@@ -9,8 +9,8 @@ use std::time::Instant;
 use anyhow::{anyhow, bail};
 use haphe::mesh::ReadOptions;
 use haphe::verify::{
-    CrossingCheck, InsideCheck, SegmentKind, WalkCheck, bounds, check_crossings_with_peer,
-    check_inside_with_peer, check_walk,
+    CrossingCheck, InsideCheck, STRIKE_SPEED_CLASSES, SegmentKind, WalkCheck, bounds,
+    check_crossings_with_peer, check_inside_with_peer, check_walk,
 };
 use serde::Serialize;
 
@@ -117,9 +117,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     .into_iter()
     .map(|count| count.unwrap_or(n))
     .sum::<usize>();
-    if checked == 0 {
+    if checked + args.strikes == 0 {
         bail!(
-            "nothing to check: --samples 0 (and no --random, --adversarial, --points, --walks or --ticks above 0) would pass having checked nothing"
+            "nothing to check: --samples 0 (and no --random, --adversarial, --points, --walks, --ticks or --strikes above 0) would pass having checked nothing"
         );
     }
     let start = Instant::now();
@@ -130,6 +130,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     let object = open(&args.file, &read, &map_options(None, None)).map_err(|e| anyhow!("{e:#}"))?;
     let (surface, map) = (&object.surface, &object.map);
+    if checked == 0 && !surface.is_solid() {
+        bail!(
+            "nothing to check: {}: deep strikes need a closed model and this one is not (see `haphe validate`)",
+            args.file.display()
+        );
+    }
     let parry = Parry::of(surface);
 
     let crossings: Vec<CrossingRow> = SegmentKind::ALL
@@ -360,18 +366,31 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
         )?;
         writeln!(
             out,
-            "{} strikes ({} drawn not run), {} went deep; {} ticks checked, {} held; force along the strike: {} ticks after a hold, {} before (largest {:.3} N); on the far side: {} after a hold, {} before",
-            c.strikes,
-            c.skipped,
-            c.deep_strikes,
-            c.checked_ticks,
-            c.held_ticks,
-            c.pushes_on - c.pushes_on_shallow,
-            c.pushes_on_shallow,
-            c.max_push_n,
-            c.far_side - c.far_side_shallow,
-            c.far_side_shallow
+            "{} strikes ({} drawn not run), {} ticks, {} held. Deep ticks, from the one a strike first goes deeper than the saturation depth until the hand stops, must never push the hand on along the strike (above 1e-6 N) nor face the far side. Shallow ticks, from the first touch until then, are the physical range: past a crest the surface pushes the hand on along its normal, as a rigid one does.\n",
+            c.strikes, c.skipped, c.ticks, c.held_ticks
         )?;
+        writeln!(
+            out,
+            "| ticks | speed m/s | strikes | ticks checked | pushing on | far side | largest push N |\n|---|---|---:|---:|---:|---:|---:|"
+        )?;
+        for (kind, all, by_speed) in [
+            ("deep", &c.deep, &c.deep_by_speed),
+            ("shallow", &c.shallow, &c.shallow_by_speed),
+        ] {
+            let classes = STRIKE_SPEED_CLASSES
+                .windows(2)
+                .map(|w| format!("{}–{}", w[0], w[1]));
+            for (speeds, t) in classes
+                .chain(std::iter::once("all".to_string()))
+                .zip(by_speed.iter().chain(std::iter::once(all)))
+            {
+                writeln!(
+                    out,
+                    "| {kind} | {speeds} | {} | {} | {} | {} | {:.3} |",
+                    t.strikes, t.ticks, t.pushes_on, t.far_side, t.max_push_n
+                )?;
+            }
+        }
     }
     writeln!(out, "\n{}", if r.passed { "PASSED" } else { "FAILED" })?;
     Ok(())

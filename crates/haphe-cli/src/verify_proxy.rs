@@ -107,13 +107,13 @@ pub struct StrikeReport {
 }
 
 impl StrikeReport {
-    /// Whether no strike pulled the hand on or reached the far side once the proxy held.
-    /// (Before a hold the proxy is the god-object of the physical range: a grazing strike
-    /// that never goes deeper than the saturation depth slides over the surface and may be
-    /// pushed on by it, as by a real surface; those ticks are counted apart.)
+    /// Whether no tick of a strike that went deeper than the saturation depth pulled the
+    /// hand on or faced the far side. (A grazing strike that never goes that deep stays in
+    /// the physical range, where the proxy is the god-object: it slides over the surface
+    /// and may be pushed on by it past a crest, as by a real surface; those strikes are
+    /// counted apart.)
     pub fn passed(&self) -> bool {
-        self.check.pushes_on == self.check.pushes_on_shallow
-            && self.check.far_side == self.check.far_side_shallow
+        self.check.deep.clean()
     }
 }
 

@@ -279,3 +279,31 @@ fn commands_left_out_name_their_feature() {
         "{text}"
     );
 }
+
+/// `haphe verify --samples 0 --strikes N` runs the deep strikes alone on a closed model,
+/// with the ticks by speed class; an open one has nothing to strike and says so.
+#[test]
+fn verify_runs_deep_strikes_alone() {
+    let dir = scratch("verify-strikes");
+    let mesh = write(&dir, "t.obj", TETRAHEDRON);
+    let out = haphe(&["verify", &mesh, "--samples", "0", "--strikes", "20"]);
+    let text = stdout(&out);
+    assert_eq!(out.status.code(), Some(0), "{text}");
+    for line in [
+        "| deep | 0.5–1 |",
+        "| deep | 4–10 |",
+        "| deep | all |",
+        "| shallow | all |",
+    ] {
+        assert!(text.contains(line), "{line}: {text}");
+    }
+    assert!(text.contains("PASSED"), "{text}");
+    let open = write(&dir, "open.obj", OPEN_TETRAHEDRON);
+    let out = haphe(&["verify", &open, "--samples", "0", "--strikes", "20"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stdout(&out));
+    let message = common::stderr(&out);
+    assert!(
+        message.contains("open.obj") && message.contains("closed model"),
+        "{message}"
+    );
+}

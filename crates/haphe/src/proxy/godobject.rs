@@ -66,9 +66,9 @@ impl ProxyOptions {
 
 /// What the proxy remembers from its last contact (coherence: the next walk starts here).
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct LastContact {
-    object: usize,
-    triangle: TriId,
+pub(super) struct LastContact {
+    pub(super) object: usize,
+    pub(super) triangle: TriId,
 }
 
 /// The haptic proxy of one point device.
@@ -87,20 +87,20 @@ struct LastContact {
 /// normal by walking the surface from the last triangle touched.
 #[derive(Debug, Clone)]
 pub struct Proxy {
-    position: DVec3,
-    options: ProxyOptions,
-    last: Option<LastContact>,
+    pub(super) position: DVec3,
+    pub(super) options: ProxyOptions,
+    pub(super) last: Option<LastContact>,
     /// The last constraint of the previous tick (see [`Rest`]).
-    rest: Option<Rest>,
-    sticking: bool,
+    pub(super) rest: Option<Rest>,
+    pub(super) sticking: bool,
     /// Placed (by [`Proxy::new`] or [`Proxy::reset`]) and not ticked yet.
-    placed: bool,
+    pub(super) placed: bool,
     /// The contact held beyond the saturation depth (see [`super::deep`]).
-    hold: Option<Hold>,
+    pub(super) hold: Option<Hold>,
     /// The objects near the proxy, kept from tick to tick (see [`NearCache`]).
-    near: NearCache,
+    pub(super) near: NearCache,
     /// The device point of the previous tick (the direction a hold starts in).
-    previous_hip: Option<DVec3>,
+    pub(super) previous_hip: Option<DVec3>,
 }
 
 impl Proxy {
@@ -292,13 +292,21 @@ impl Proxy {
             object: c.object,
             triangle: c.triangle,
         });
-        // Beyond the saturation depth the proxy holds from the next tick on.
+        // Beyond the saturation depth the proxy holds: from where it first met the surface
+        // this tick, or (where the hand is not that deep behind that surface) from here,
+        // on the next tick.
         if is_deep(
             p,
             hip,
             plane.normal,
             saturation_depth(&material, self.options.max_force),
         ) {
+            let clamped = status.input_clamped;
+            if let Some(out) =
+                self.hold_from_touch_down(scene, &sweep, (hip, velocity), previous_hip, clamped)
+            {
+                return out;
+            }
             self.hold = Some(Hold {
                 object: hit.object,
                 triangle: contact.map_or(hit.triangle, |c| c.triangle),
@@ -320,109 +328,12 @@ impl Proxy {
             status,
         }
     }
-    /// A tick of a holding proxy (see [`super::deep`]): while the device point `hip` stays
-    /// deeper than the saturation depth behind the held plane, the proxy at `p` moves by
-    /// the god-object's constraint steps toward the hold's goal (the entry plus the hand's
-    /// offset across the direction it went deep, at the saturation depth), without
-    /// friction; `None` (and no change) once it is back within that depth or the held
-    /// object is gone.
-    fn hold_tick(
-        &mut self,
-        scene: &Scene,
-        p: DVec3,
-        hip: DVec3,
-        velocity: DVec3,
-        hold: Hold,
-        mut status: TickStatus,
-    ) -> Option<TickOutput> {
-        let object = scene.objects().get(hold.object)?;
-        let normal = hold.normal(&object.pose);
-        let material = object.material;
-        let depth = saturation_depth(&material, self.options.max_force)?;
-        if !is_deep(p, hip, normal, Some(depth)) {
-            return None;
-        }
-        status.in_contact = true;
-        status.deep_hold = true;
-        status.sticking = self.sticking;
-        // Toward the point over the goal on the held plane, pulled back into the surface
-        // by the saturation depth, by the god-object's constraint steps.
-        let (slide, normal) = hold.targets(&object.pose, p, hip);
-        let under = self.last.map(|l| (l.object, l.triangle));
-        // A hand that moved across by no more than a skin since the proxy last moved
-        // leaves it where it is (a straight strike never moves it).
-        let sweep = (slide.distance(p) > self.options.skin).then(|| {
-            constrain(
-                (scene, &mut self.near),
-                p,
-                slide - normal * depth,
-                false,
-                (self.rest, under),
-                &self.options,
-                &mut status,
-            )
-        });
-        let p = sweep.as_ref().map_or(p, |s| s.position);
-        if let Some(sweep) = &sweep {
-            self.rest = sweep.last_hit.map(|(hit, _)| Rest {
-                object: hit.object,
-                triangle: hit.triangle,
-            });
-        }
-        let mut hold = hold;
-        if let Some(sweep) = &sweep
-            && let Some((hit, plane)) = sweep.last_hit
-            && hit.object == hold.object
-        {
-            hold.triangle = hit.triangle;
-            hold.normal_object = object.pose.vector_to_object(plane.normal);
-            hold.constraints = sweep.planes.len() as u8;
-        }
-        let normal = hold.normal(&object.pose);
-        let contact = contact_at(
-            scene,
-            (hold.object, hold.triangle),
-            p,
-            hip,
-            (normal, hold.constraints),
-            &mut status,
-        );
-        // The plain spring toward the held point: no force shading, whose normal (turned
-        // toward the next face near an edge) would, this deep, lead the force off the
-        // line back to the point of entry.
-        let (force, force_clamped) = contact_force(
-            p,
-            hip,
-            velocity,
-            contact.map(|c| (c.normal, c.normal, c.constraints)),
-            &material,
-            self.options.max_force,
-        );
-        status.force_clamped = force_clamped;
-        self.position = p;
-        if let Some(c) = contact {
-            self.last = Some(LastContact {
-                object: c.object,
-                triangle: c.triangle,
-            });
-        }
-        self.hold = Some(Hold {
-            triangle: contact.map_or(hold.triangle, |c| c.triangle),
-            ..hold
-        });
-        Some(TickOutput {
-            proxy: p,
-            force,
-            contact,
-            status,
-        })
-    }
 }
 
 /// The contact of a proxy at `p` on `object`, found by walking its surface from
 /// `triangle`, with the contact plane's unit `normal` (toward the proxy) and the number of
 /// active planes; `None` where the walk finds no triangle.
-fn contact_at(
+pub(super) fn contact_at(
     scene: &Scene,
     (object, triangle): (usize, TriId),
     p: DVec3,
@@ -576,20 +487,22 @@ fn carry(scene: &Scene, near: &mut NearCache, mut p: DVec3, options: &ProxyOptio
 }
 
 /// The result of the constraint steps of one tick.
-struct Sweep {
-    position: DVec3,
+pub(super) struct Sweep {
+    pub(super) position: DVec3,
     /// Where the proxy first stopped at a surface this tick.
-    touch_down: DVec3,
-    planes: Constraints,
+    pub(super) touch_down: DVec3,
+    pub(super) planes: Constraints,
+    /// The first surface met this tick, and its plane.
+    pub(super) first_hit: Option<(Hit, Plane)>,
     /// The last surface met, and its plane.
-    last_hit: Option<(Hit, Plane)>,
+    pub(super) last_hit: Option<(Hit, Plane)>,
 }
 
 /// The god-object's constraint steps: aim at the point closest to `hip` on the free side
 /// of the active planes, move toward it, and on a crossing stop at the touched triangle's
 /// plane (moved out by `skin`) and add it. `rest` is the surface the proxy rested on,
 /// `under` the contact triangle of the last tick, under the proxy (object, triangle).
-fn constrain(
+pub(super) fn constrain(
     (scene, near): (&Scene, &mut NearCache),
     mut p: DVec3,
     hip: DVec3,
@@ -610,6 +523,7 @@ fn constrain(
             last_hit = Some((hit, plane));
         }
     }
+    let mut first_hit = last_hit;
     let mut finished = false;
     for _ in 0..MAX_PROXY_STEPS {
         let Some(target) = planes.closest_feasible(hip, options.plane_tolerance()) else {
@@ -692,6 +606,7 @@ fn constrain(
         };
         if last_hit.is_none() {
             touch_down = p;
+            first_hit = Some((hit, plane));
         }
         last_hit = Some((hit, plane));
         if !planes.push(plane) {
@@ -705,6 +620,7 @@ fn constrain(
         position: p,
         touch_down,
         planes,
+        first_hit,
         last_hit,
     }
 }

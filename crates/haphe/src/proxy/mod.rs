@@ -98,6 +98,7 @@ mod constraints;
 mod deep;
 mod force;
 mod godobject;
+mod hold;
 mod near;
 mod output;
 mod rest;

@@ -23,8 +23,8 @@ pub use proxy::{
 };
 pub use samples::{SegmentKind, bounds, points, segments, trajectory};
 pub use strikes::{
-    MAX_STRIKE_ANGLE_DEG, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEEDS, StrikeCheck, check_strikes,
-    strike_path,
+    MAX_STRIKE_ANGLE_DEG, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEED_CLASSES, STRIKE_SPEEDS,
+    StrikeCheck, StrikeTicks, check_strikes, strike_path,
 };
 
 use crate::par::*;

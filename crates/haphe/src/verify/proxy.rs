@@ -58,6 +58,8 @@ struct Steps {
     planes: Constraints,
     /// Where the proxy first stopped at a surface.
     touch_down: Option<DVec3>,
+    /// The surface and plane met first.
+    first: Option<(Rest, Plane)>,
     /// The object and plane met last.
     object: usize,
     plane: Option<Plane>,
@@ -71,6 +73,7 @@ impl Steps {
             position,
             planes: Constraints::NONE,
             touch_down: None,
+            first: None,
             object: 0,
             plane: None,
             rest: None,
@@ -232,6 +235,7 @@ impl BruteProxy {
         let Steps {
             mut planes,
             mut touch_down,
+            mut first,
             object: mut last_object,
             plane: mut last_plane,
             mut rest,
@@ -267,6 +271,13 @@ impl BruteProxy {
                 },
             };
             touch_down.get_or_insert(p);
+            first.get_or_insert((
+                Rest {
+                    object: h.object,
+                    triangle: h.triangle,
+                },
+                plane,
+            ));
             last_object = h.object;
             last_plane = Some(plane);
             rest = Some(Rest {
@@ -281,10 +292,41 @@ impl BruteProxy {
             position: p,
             planes,
             touch_down,
+            first,
             object: last_object,
             plane: last_plane,
             rest,
         }
+    }
+
+    /// A tick of a holding proxy at `p` (after the carry): while the device point stays
+    /// deeper than the saturation depth behind the held plane, constraint steps toward the
+    /// hold's goal, without friction; `None` (and no change) once it is back within it.
+    fn hold_step(&mut self, mut p: DVec3, hip: DVec3, mut hold: Hold) -> Option<DVec3> {
+        let o = &self.objects[hold.object];
+        let depth = saturation_depth(&o.material, self.options.max_force);
+        let d = depth?;
+        if !is_deep(p, hip, hold.normal(&o.pose), depth) {
+            return None;
+        }
+        let (slide, normal) = hold.targets(&o.pose, p, hip);
+        if slide.distance(p) > self.options.skin {
+            let step = self.steps(p, slide - normal * d, Steps::from(p));
+            p = step.position;
+            self.rest = step.rest;
+            if let (Some(plane), Some(r)) = (step.plane, step.rest)
+                && step.object == hold.object
+            {
+                let pose = &self.objects[hold.object].pose;
+                hold.triangle = r.triangle;
+                hold.normal_object = pose.vector_to_object(plane.normal);
+                hold.constraints = step.planes.len() as u8;
+            }
+        }
+        self.hold = Some(hold);
+        self.position = p;
+        self.in_contact = true;
+        Some(p)
     }
 
     /// One tick; returns the proxy and whether it touches an object.
@@ -313,36 +355,16 @@ impl BruteProxy {
         }
         // Beyond the saturation depth of the held plane, the proxy moves by constraint
         // steps toward the hold's goal, without friction.
-        if let Some(mut hold) = self.hold.take() {
-            let o = &self.objects[hold.object];
-            let depth = saturation_depth(&o.material, self.options.max_force);
-            if let Some(d) = depth
-                && is_deep(p, hip, hold.normal(&o.pose), depth)
-            {
-                let (slide, normal) = hold.targets(&o.pose, p, hip);
-                if slide.distance(p) > self.options.skin {
-                    let step = self.steps(p, slide - normal * d, Steps::from(p));
-                    p = step.position;
-                    self.rest = step.rest;
-                    if let (Some(plane), Some(r)) = (step.plane, step.rest)
-                        && step.object == hold.object
-                    {
-                        let pose = &self.objects[hold.object].pose;
-                        hold.triangle = r.triangle;
-                        hold.normal_object = pose.vector_to_object(plane.normal);
-                        hold.constraints = step.planes.len() as u8;
-                    }
-                }
-                self.hold = Some(hold);
-                self.position = p;
-                self.in_contact = true;
-                return (p, true);
-            }
+        if let Some(hold) = self.hold.take()
+            && let Some(p) = self.hold_step(p, hip, hold)
+        {
+            return (p, true);
         }
         let held = p;
         // Constraint steps.
         let mut planes = Constraints::NONE;
         let mut touch_down = None;
+        let mut first = None;
         let mut last_object = 0;
         let mut last_plane = None;
         let mut rest = None;
@@ -359,6 +381,7 @@ impl BruteProxy {
                     object: h.object,
                     triangle: h.triangle,
                 });
+                first = rest.map(|r| (r, plane));
             }
         }
         let step = self.steps(
@@ -368,6 +391,7 @@ impl BruteProxy {
                 position: p,
                 planes,
                 touch_down,
+                first,
                 object: last_object,
                 plane: last_plane,
                 rest,
@@ -377,6 +401,7 @@ impl BruteProxy {
         let Steps {
             planes,
             touch_down,
+            first,
             object: last_object,
             plane: last_plane,
             rest,
@@ -408,7 +433,9 @@ impl BruteProxy {
         } else {
             self.sticking = false;
         }
-        // Beyond the saturation depth the proxy holds from the next tick on.
+        // Beyond the saturation depth the proxy holds: from where it first met a surface
+        // this tick when the hand is that deep behind that surface too, else from here on
+        // the next tick.
         if let (Some(plane), Some(r)) = (last_plane, rest)
             && is_deep(
                 p,
@@ -417,6 +444,28 @@ impl BruteProxy {
                 saturation_depth(&material, self.options.max_force),
             )
         {
+            if let Some((at, first_plane)) = first {
+                let entry = touch_down;
+                let o = &self.objects[at.object];
+                let hold = Hold {
+                    object: at.object,
+                    triangle: at.triangle,
+                    normal_object: o.pose.vector_to_object(first_plane.normal),
+                    constraints: 1,
+                    entry_object: o.pose.to_object(entry),
+                    hip_object: o.pose.to_object(previous_hip.unwrap_or(hip)),
+                    direction_object: o.pose.vector_to_object(deep_direction(
+                        previous_hip,
+                        hip,
+                        first_plane.normal,
+                    )),
+                };
+                let rest = self.rest.replace(at);
+                if let Some(p) = self.hold_step(entry, hip, hold) {
+                    return (p, true);
+                }
+                self.rest = rest;
+            }
             self.hold = Some(Hold {
                 object: last_object,
                 triangle: r.triangle,

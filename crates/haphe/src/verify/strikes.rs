@@ -1,10 +1,14 @@
 //! Deep strikes: the hand driven in a straight line into an object, to any depth up to
 //! passing through it and out the other side, and what the proxy's force does meanwhile.
 //!
-//! A solid never pulls the hand on into itself: from the tick a strike first touches
-//! until the hand stops, the force must have no component along the strike direction, and
-//! the proxy must stay on the side of entry (never on a surface that faces along the
-//! strike, the side the hand leaves through).
+//! A solid never pulls the hand on into itself: from the tick a strike first goes deeper
+//! than the saturation depth until the hand stops, the force must have no component along
+//! the strike direction, and the proxy must stay on the side of entry (never on a surface
+//! that faces along the strike, the side the hand leaves through). Before that tick the
+//! hand is within the saturation depth, the physical range, where the proxy is the
+//! god-object: a grazing strike slides over the surface, and past a crest a frictionless
+//! surface's normal leans along the strike and pushes the hand on, as a rigid surface
+//! does. Those ticks are counted apart.
 
 use glam::DVec3;
 use serde::Serialize;
@@ -52,7 +56,47 @@ pub fn strike_path(
     (out, last)
 }
 
-/// The force along the strike and the side of the proxy over deep strikes on one object.
+/// The edges of the speed classes a [`StrikeCheck`] counts apart, m/s.
+pub const STRIKE_SPEED_CLASSES: [f64; 5] = [0.5, 1.0, 2.0, 4.0, 10.0];
+
+/// What the ticks of some strikes did: ticks checked, and of those the ticks whose force
+/// pushes the hand on along the strike or whose contact plane faces along it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct StrikeTicks {
+    /// Strikes.
+    pub strikes: usize,
+    /// Ticks checked (from the first touch until the hand stops).
+    pub ticks: usize,
+    /// Checked ticks with a force along the strike above [`STRIKE_FORCE_TOLERANCE_N`].
+    pub pushes_on: usize,
+    /// Checked ticks where the proxy's contact plane faces along the strike (the far
+    /// side).
+    pub far_side: usize,
+    /// Largest force along the strike, newtons (0 when there is none).
+    pub max_push_n: f64,
+}
+
+impl StrikeTicks {
+    fn add(&mut self, other: &StrikeTicks) {
+        self.strikes += other.strikes;
+        self.ticks += other.ticks;
+        self.pushes_on += other.pushes_on;
+        self.far_side += other.far_side;
+        self.max_push_n = self.max_push_n.max(other.max_push_n);
+    }
+
+    /// Whether no tick pushed the hand on or faced the far side.
+    pub fn clean(&self) -> bool {
+        self.pushes_on == 0 && self.far_side == 0
+    }
+}
+
+/// The force along the strike and the side of the proxy over strikes on one object: the
+/// ticks from the first touch until the hand stops, split where the strike first goes
+/// deeper than the saturation depth. The *deep* ticks (from that tick on, the proxy holding
+/// or about to) must all be clean. The *shallow* ticks before it are the physical range,
+/// where the proxy is the god-object: a grazing strike slides over the surface, and past a
+/// crest a frictionless surface pushes the hand on along its normal, as a rigid one does.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StrikeCheck {
     /// Strikes run.
@@ -60,32 +104,27 @@ pub struct StrikeCheck {
     /// Drawn strikes not run: their start was not outside, or the line did not enter the
     /// object first at the drawn point.
     pub skipped: usize,
-    /// Strikes that went deeper than the saturation depth.
-    pub deep_strikes: usize,
     /// Ticks run.
     pub ticks: usize,
-    /// Ticks checked (from first touch until the hand stops).
-    pub checked_ticks: usize,
     /// Ticks where the proxy held (beyond the saturation depth).
     pub held_ticks: usize,
-    /// Checked ticks with a force along the strike above [`STRIKE_FORCE_TOLERANCE_N`].
-    pub pushes_on: usize,
-    /// Of those, ticks before the proxy first held: the god-object's own ticks, in the
-    /// physical range (a grazing strike sliding over a curved surface) or on the tick that
-    /// first goes beyond the saturation depth.
-    pub pushes_on_shallow: usize,
-    /// Checked ticks where the proxy's contact plane faces along the strike (the far
-    /// side).
-    pub far_side: usize,
-    /// Of those, ticks before the proxy first held.
-    pub far_side_shallow: usize,
-    /// Largest force along the strike, newtons.
-    pub max_push_n: f64,
-    /// Strikes (index, angle in degrees, speed m/s, depth m) with a failing tick after
-    /// the proxy first held, a few.
+    /// The ticks from the one a strike first goes deeper than the saturation depth until
+    /// the hand stops (`strikes`: the strikes that went that deep): every one must be
+    /// clean.
+    pub deep: StrikeTicks,
+    /// The ticks from the first touch until then (`strikes`: the strikes with such
+    /// ticks): the physical range.
+    pub shallow: StrikeTicks,
+    /// The deep ticks by the strike's speed class ([`STRIKE_SPEED_CLASSES`]).
+    pub deep_by_speed: [StrikeTicks; 4],
+    /// The shallow ticks by the strike's speed class.
+    pub shallow_by_speed: [StrikeTicks; 4],
+    /// Strikes (index, angle in degrees, speed m/s, depth m) with a deep tick that is not
+    /// clean, a few.
     pub failures: Vec<(usize, f64, f64, f64)>,
-    /// Strikes (the same) with a failing tick before that, a few.
-    pub shallow_failures: Vec<(usize, f64, f64, f64)>,
+    /// Strikes (the same) with a shallow tick pushing on or facing along the strike, a
+    /// few.
+    pub shallow_pushing: Vec<(usize, f64, f64, f64)>,
 }
 
 /// Runs `count` deep strikes drawn with `seed` on object 0 of `scene` (a solid at rest):
@@ -105,17 +144,14 @@ pub fn check_strikes(
     let mut check = StrikeCheck {
         strikes: 0,
         skipped: 0,
-        deep_strikes: 0,
         ticks: 0,
-        checked_ticks: 0,
         held_ticks: 0,
-        pushes_on: 0,
-        pushes_on_shallow: 0,
-        far_side: 0,
-        far_side_shallow: 0,
-        max_push_n: 0.0,
+        deep: StrikeTicks::default(),
+        shallow: StrikeTicks::default(),
+        deep_by_speed: [StrikeTicks::default(); 4],
+        shallow_by_speed: [StrikeTicks::default(); 4],
         failures: Vec::new(),
-        shallow_failures: Vec::new(),
+        shallow_pushing: Vec::new(),
     };
     let Some(o) = scene.objects().first() else {
         return check;
@@ -156,46 +192,44 @@ pub fn check_strikes(
         let (path, last_moving) = strike_path(start, dir, speed, RUN_UP_M + depth, rate_hz);
         let mut proxy = Proxy::new(start, options);
         let mut touched = false;
-        let mut held = false;
         let mut deep = false;
-        let mut failed = false;
-        let mut failed_shallow = false;
+        let mut ticks = [StrikeTicks::default(); 2];
         let mut previous = start;
         for (k, &hip) in path.iter().enumerate() {
             let out = proxy.tick(scene, hip, (hip - previous) * rate_hz);
             previous = hip;
             check.ticks += 1;
             check.held_ticks += usize::from(out.status.deep_hold);
-            held |= out.status.deep_hold;
-            deep |= out
-                .contact
-                .is_some_and(|c| saturation.is_some_and(|d| c.penetration > d));
+            deep |= out.status.deep_hold
+                || out
+                    .contact
+                    .is_some_and(|c| saturation.is_some_and(|d| c.penetration > d));
             touched |= out.contact.is_some();
             if !touched || k > last_moving {
                 continue;
             }
-            check.checked_ticks += 1;
+            let t = &mut ticks[usize::from(deep)];
+            t.strikes = 1;
+            t.ticks += 1;
             let push = out.force.dot(dir);
-            check.max_push_n = check.max_push_n.max(push);
-            if push > STRIKE_FORCE_TOLERANCE_N {
-                check.pushes_on += 1;
-                check.pushes_on_shallow += usize::from(!held);
-                failed |= held;
-                failed_shallow |= !held;
-            }
-            if out.contact.is_some_and(|c| c.normal.dot(dir) > 0.0) {
-                check.far_side += 1;
-                check.far_side_shallow += usize::from(!held);
-                failed |= held;
-                failed_shallow |= !held;
-            }
+            t.max_push_n = t.max_push_n.max(push);
+            t.pushes_on += usize::from(push > STRIKE_FORCE_TOLERANCE_N);
+            t.far_side += usize::from(out.contact.is_some_and(|c| c.normal.dot(dir) > 0.0));
         }
-        check.deep_strikes += usize::from(deep);
-        if failed && check.failures.len() < super::KEPT_FAILURES {
+        let class = STRIKE_SPEED_CLASSES[1..4]
+            .iter()
+            .take_while(|&&edge| speed >= edge)
+            .count();
+        let [shallow, deep] = ticks;
+        check.shallow.add(&shallow);
+        check.shallow_by_speed[class].add(&shallow);
+        check.deep.add(&deep);
+        check.deep_by_speed[class].add(&deep);
+        if !deep.clean() && check.failures.len() < super::KEPT_FAILURES {
             check.failures.push((index, angle, speed, depth));
         }
-        if failed_shallow && check.shallow_failures.len() < super::KEPT_FAILURES {
-            check.shallow_failures.push((index, angle, speed, depth));
+        if !shallow.clean() && check.shallow_pushing.len() < super::KEPT_FAILURES {
+            check.shallow_pushing.push((index, angle, speed, depth));
         }
     }
     check
