@@ -7,7 +7,10 @@
 //! convex part, the closest surface point moves around the body, the proxy crawls after it
 //! to the far side and the force then pulls the hand on through the object. So a proxy
 //! whose device point lies deeper than the saturation depth behind its contact plane
-//! *holds* that contact. It heads for a goal that depends only on where the hand is: the
+//! *holds*, from the tick the hand goes that deep: it goes back to where it first met the
+//! surface in that tick (where it rested, or touched down) and holds that contact (or, when
+//! the hand is not that deep behind that first plane, it holds from the next tick where
+//! the god-object left it). It heads for a goal that depends only on where the hand is: the
 //! entry (the proxy when the hold began) plus the part of the hand's travel since then
 //! that runs across the direction it went deep in, pulled back to the saturation depth
 //! along the held plane's normal ([`hold_slide`]); the god-object's constraint steps take
