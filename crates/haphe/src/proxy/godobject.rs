@@ -6,7 +6,8 @@ use glam::DVec3;
 use super::constraints::{Constraints, Plane, advance_to_plane};
 use super::deep::{Hold, deep_direction, is_deep, saturation_depth};
 use super::force::{contact_force, friction_target};
-use super::near::{NearCache, search_box};
+use super::meet::{carry, first_hit_all, hit_plane, move_checked, touching_any};
+use super::near::NearCache;
 use super::output::{Contact, TickOutput, TickStatus};
 use super::rest::{Rest, rest_hit};
 use crate::mesh::TriId;
@@ -391,101 +392,6 @@ pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
     }
 }
 
-/// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
-/// object index. Only the objects near the segment are tested (see [`NearCache`]).
-pub(crate) fn first_hit_all(
-    scene: &Scene,
-    near: &mut NearCache,
-    p0: DVec3,
-    p1: DVec3,
-    reach: f64,
-) -> Option<Hit> {
-    let (lo, hi) = search_box(p0, p1, reach);
-    let mut best: Option<Hit> = None;
-    for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
-        if let Some(h) = scene.first_hit(i, p0, p1, reach)
-            && best.is_none_or(|b| h.t < b.t)
-        {
-            best = Some(h);
-        }
-    }
-    best
-}
-
-/// The surface within `reach` of the world point `p` of the lowest-index object that has
-/// one (see [`Scene::touching`]).
-pub(crate) fn touching_any(
-    scene: &Scene,
-    near: &mut NearCache,
-    p: DVec3,
-    reach: f64,
-) -> Option<Hit> {
-    let (lo, hi) = search_box(p, p, reach);
-    near.get(scene, lo, hi)
-        .indices(scene.objects().len())
-        .find_map(|i| scene.touching(i, p, reach))
-}
-
-/// The constraint plane of `hit`, met by the move `from → to`.
-fn hit_plane(hit: &Hit, from: DVec3, to: DVec3, options: &ProxyOptions) -> Plane {
-    Plane::of_hit(hit.normal, hit.point, hit.one_sided, from, to, options.skin)
-}
-
-/// Moving objects carry the proxy: for each object that moved since the previous tick (in
-/// index order), the proxy's motion relative to it is tested in its frame and stopped a
-/// skin's width before its surface.
-///
-/// Only the objects moved this tick are looked at; when none turned, only those whose
-/// cell in the broad phase lies within twice the largest shift of the proxy (a moved
-/// object's path relative to the proxy is as long as its shift), asked again after each
-/// stop that takes the proxy farther than one shift from where the query was made.
-fn carry(scene: &Scene, near: &mut NearCache, mut p: DVec3, options: &ProxyOptions) -> DVec3 {
-    let reach = options.probe_reach();
-    let carry_one = |i: usize, p: &mut DVec3| {
-        let o = &scene.objects()[i];
-        if !o.moved() {
-            return;
-        }
-        let from = scene.previous_relative(i, *p);
-        if let Some(h) = scene.first_hit(i, from, *p, reach) {
-            *p = advance_to_plane(from, *p, &hit_plane(&h, from, *p, options));
-        }
-    };
-    if near.is_linear() {
-        for i in 0..scene.objects().len() {
-            carry_one(i, &mut p);
-        }
-        return p;
-    }
-    let moved = scene.moved_indices();
-    let Some(shift) = scene.moved_shift().filter(|_| !moved.is_empty()) else {
-        for &i in moved {
-            carry_one(i as usize, &mut p);
-        }
-        return p;
-    };
-    let mut next = 0;
-    'query: loop {
-        let centre = p;
-        let m = DVec3::splat(2.0 * shift + 3.0 * reach);
-        let found = scene.near(centre - m, centre + m);
-        if found.all() {
-            for &i in moved.iter().filter(|&&i| i as usize >= next) {
-                carry_one(i as usize, &mut p);
-            }
-            return p;
-        }
-        for i in found.indices(scene.objects().len()).filter(|&i| i >= next) {
-            carry_one(i, &mut p);
-            if p.distance(centre) > shift {
-                next = i + 1;
-                continue 'query;
-            }
-        }
-        return p;
-    }
-}
-
 /// The result of the constraint steps of one tick.
 pub(super) struct Sweep {
     pub(super) position: DVec3,
@@ -622,23 +528,6 @@ pub(super) fn constrain(
         planes,
         first_hit,
         last_hit,
-    }
-}
-
-/// Moves from `from` toward `to` and stops a skin's width before the first surface met.
-fn move_checked(
-    scene: &Scene,
-    near: &mut NearCache,
-    from: DVec3,
-    to: DVec3,
-    options: &ProxyOptions,
-) -> DVec3 {
-    if from == to {
-        return to;
-    }
-    match first_hit_all(scene, near, from, to, options.probe_reach()) {
-        None => to,
-        Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
     }
 }
 

@@ -99,6 +99,7 @@ mod deep;
 mod force;
 mod godobject;
 mod hold;
+mod meet;
 mod near;
 mod output;
 mod rest;

@@ -1,0 +1,127 @@
+//! What the proxy meets in the scene: the first surface along a move over every object,
+//! the surface it touches, the carry of objects that moved, and moves that stop before
+//! a surface. Only the objects near the proxy are asked (see [`NearCache`]).
+
+use glam::DVec3;
+
+use super::constraints::{Plane, advance_to_plane};
+use super::godobject::ProxyOptions;
+use super::near::{NearCache, search_box};
+use crate::scene::{Hit, Scene};
+
+/// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
+/// object index. Only the objects near the segment are tested (see [`NearCache`]).
+pub(crate) fn first_hit_all(
+    scene: &Scene,
+    near: &mut NearCache,
+    p0: DVec3,
+    p1: DVec3,
+    reach: f64,
+) -> Option<Hit> {
+    let (lo, hi) = search_box(p0, p1, reach);
+    let mut best: Option<Hit> = None;
+    for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
+        if let Some(h) = scene.first_hit(i, p0, p1, reach)
+            && best.is_none_or(|b| h.t < b.t)
+        {
+            best = Some(h);
+        }
+    }
+    best
+}
+
+/// The surface within `reach` of the world point `p` of the lowest-index object that has
+/// one (see [`Scene::touching`]).
+pub(crate) fn touching_any(
+    scene: &Scene,
+    near: &mut NearCache,
+    p: DVec3,
+    reach: f64,
+) -> Option<Hit> {
+    let (lo, hi) = search_box(p, p, reach);
+    near.get(scene, lo, hi)
+        .indices(scene.objects().len())
+        .find_map(|i| scene.touching(i, p, reach))
+}
+
+/// The constraint plane of `hit`, met by the move `from → to`.
+pub(super) fn hit_plane(hit: &Hit, from: DVec3, to: DVec3, options: &ProxyOptions) -> Plane {
+    Plane::of_hit(hit.normal, hit.point, hit.one_sided, from, to, options.skin)
+}
+
+/// Moving objects carry the proxy: for each object that moved since the previous tick (in
+/// index order), the proxy's motion relative to it is tested in its frame and stopped a
+/// skin's width before its surface.
+///
+/// Only the objects moved this tick are looked at; when none turned, only those whose
+/// cell in the broad phase lies within twice the largest shift of the proxy (a moved
+/// object's path relative to the proxy is as long as its shift), asked again after each
+/// stop that takes the proxy farther than one shift from where the query was made.
+pub(super) fn carry(
+    scene: &Scene,
+    near: &mut NearCache,
+    mut p: DVec3,
+    options: &ProxyOptions,
+) -> DVec3 {
+    let reach = options.probe_reach();
+    let carry_one = |i: usize, p: &mut DVec3| {
+        let o = &scene.objects()[i];
+        if !o.moved() {
+            return;
+        }
+        let from = scene.previous_relative(i, *p);
+        if let Some(h) = scene.first_hit(i, from, *p, reach) {
+            *p = advance_to_plane(from, *p, &hit_plane(&h, from, *p, options));
+        }
+    };
+    if near.is_linear() {
+        for i in 0..scene.objects().len() {
+            carry_one(i, &mut p);
+        }
+        return p;
+    }
+    let moved = scene.moved_indices();
+    let Some(shift) = scene.moved_shift().filter(|_| !moved.is_empty()) else {
+        for &i in moved {
+            carry_one(i as usize, &mut p);
+        }
+        return p;
+    };
+    let mut next = 0;
+    'query: loop {
+        let centre = p;
+        let m = DVec3::splat(2.0 * shift + 3.0 * reach);
+        let found = scene.near(centre - m, centre + m);
+        if found.all() {
+            for &i in moved.iter().filter(|&&i| i as usize >= next) {
+                carry_one(i as usize, &mut p);
+            }
+            return p;
+        }
+        for i in found.indices(scene.objects().len()).filter(|&i| i >= next) {
+            carry_one(i, &mut p);
+            if p.distance(centre) > shift {
+                next = i + 1;
+                continue 'query;
+            }
+        }
+        return p;
+    }
+}
+
+/// Moves from `from` toward `to` and stops a skin's width before the first surface met.
+pub(super) fn move_checked(
+    scene: &Scene,
+    near: &mut NearCache,
+    from: DVec3,
+    to: DVec3,
+    options: &ProxyOptions,
+) -> DVec3 {
+    if from == to {
+        return to;
+    }
+    match first_hit_all(scene, near, from, to, options.probe_reach()) {
+        None => to,
+        Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
+    }
+}
