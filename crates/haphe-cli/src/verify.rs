@@ -92,6 +92,8 @@ struct Verification {
     open_seconds: f64,
     /// Whether the object came from a map file.
     from_map_file: bool,
+    /// The mesh a map file was built from (name, size and hash), when it records one.
+    source: Option<String>,
     seconds: f64,
     crossings: Vec<CrossingRow>,
     inside: InsideRow,
@@ -222,6 +224,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         map_cells: map.grid().dims(),
         open_seconds: object.elapsed.as_secs_f64(),
         from_map_file: object.from_map_file,
+        source: object.map.provenance().map(|p| p.to_string()),
         seconds: start.elapsed().as_secs_f64(),
         crossings,
         inside,
@@ -267,6 +270,9 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
         r.open_seconds,
         r.seconds
     )?;
+    if let Some(source) = &r.source {
+        writeln!(out, "a map of {source}\n")?;
+    }
     writeln!(
         out,
         "| segments         | samples | crossing | mismatches vs brute force | outside→inside | leaks | parry misses | parry leaks |"

@@ -281,7 +281,8 @@ fn commands_left_out_name_their_feature() {
 }
 
 /// `haphe verify --samples 0 --strikes N` runs the deep strikes alone on a closed model,
-/// with the ticks by speed class; an open one has nothing to strike and says so.
+/// with the ticks by speed class, and names a map file's source; an open model has
+/// nothing to strike and says so.
 #[test]
 fn verify_runs_deep_strikes_alone() {
     let dir = scratch("verify-strikes");
@@ -298,6 +299,13 @@ fn verify_runs_deep_strikes_alone() {
         assert!(text.contains(line), "{line}: {text}");
     }
     assert!(text.contains("PASSED"), "{text}");
+    // A map file says which mesh it was built from.
+    let map = dir.join("t.hmap").display().to_string();
+    assert!(haphe(&["build", &mesh, "-o", &map]).status.success());
+    let out = haphe(&["verify", &map, "--samples", "0", "--strikes", "5"]);
+    let text = stdout(&out);
+    assert_eq!(out.status.code(), Some(0), "{text}");
+    assert!(text.contains("a map of t.obj, "), "{text}");
     let open = write(&dir, "open.obj", OPEN_TETRAHEDRON);
     let out = haphe(&["verify", &open, "--samples", "0", "--strikes", "20"]);
     assert_eq!(out.status.code(), Some(2), "{}", stdout(&out));
