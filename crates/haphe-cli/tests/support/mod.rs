@@ -4,9 +4,11 @@
 
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Child, Command};
-use std::sync::OnceLock;
+
+#[path = "../../../haphe-devices/tests/standin/library.rs"]
+mod library;
 
 /// A stand-in library of the tests' C sources.
 #[derive(Debug, Clone, Copy)]
@@ -17,36 +19,12 @@ pub enum Standin {
     Hd,
 }
 
-/// Builds the stand-in once per test process (the tests run in parallel, and one must not
-/// load the library while another is still writing it) and returns its file.
+/// The stand-in's library file, built once per test process.
 pub fn standin(which: Standin) -> PathBuf {
-    static DHD: OnceLock<PathBuf> = OnceLock::new();
-    static HD: OnceLock<PathBuf> = OnceLock::new();
-    let (cell, source, name) = match which {
-        Standin::Dhd => (&DHD, "dhd.c", "libdhd_cli_standin.so"),
-        Standin::Hd => (&HD, "hd.c", "libHD_cli_standin.so"),
-    };
-    cell.get_or_init(|| {
-        let source = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../haphe-devices/tests/standin")
-            .join(source);
-        let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-        let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
-        let status = Command::new(&cc)
-            .args(["-shared", "-fPIC", "-O2", "-o"])
-            .arg(&out)
-            .arg(&source)
-            .args(["-lpthread", "-lm"])
-            .status()
-            .expect("a C compiler");
-        assert!(
-            status.success(),
-            "{cc} could not build {}",
-            source.display()
-        );
-        out
+    library::standin(match which {
+        Standin::Dhd => "dhd",
+        Standin::Hd => "hd",
     })
-    .clone()
 }
 
 /// A child process, killed if the test fails half way.

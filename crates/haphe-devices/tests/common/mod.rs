@@ -4,14 +4,18 @@
 
 #![allow(dead_code)]
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::sync::{Mutex, MutexGuard, OnceLock};
+use std::path::Path;
+use std::sync::{Mutex, MutexGuard};
 
 use haphe::DVec3;
 use haphe::scene::{Material, Scene};
 use haphe::servo::{PathKind, ScriptedDevice, Servo, ServoOptions, TickRecord, scripted_path};
 use libloading::Library;
+
+#[path = "../standin/library.rs"]
+mod library;
+#[allow(unused_imports)] // Not every test binary builds a stand-in.
+pub use library::standin;
 
 /// The stand-ins keep their state in globals, and the variables naming them are the
 /// process's: one test at a time.
@@ -19,29 +23,6 @@ pub fn serial() -> MutexGuard<'static, ()> {
     static LOCK: Mutex<()> = Mutex::new(());
     LOCK.lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner)
-}
-
-/// Builds `tests/standin/{name}.c` into a shared library (once per process).
-pub fn standin(name: &str) -> PathBuf {
-    static BUILT: OnceLock<Mutex<Vec<(String, PathBuf)>>> = OnceLock::new();
-    let built = BUILT.get_or_init(|| Mutex::new(Vec::new()));
-    let mut built = built.lock().expect("not poisoned");
-    if let Some((_, p)) = built.iter().find(|(n, _)| n == name) {
-        return p.clone();
-    }
-    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/standin/{name}.c"));
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("lib{name}_standin.so"));
-    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
-    let status = Command::new(&cc)
-        .args(["-shared", "-fPIC", "-O2", "-Wall", "-Werror", "-o"])
-        .arg(&out)
-        .arg(&source)
-        .args(["-lpthread", "-lm"])
-        .status()
-        .unwrap_or_else(|e| panic!("cannot run the C compiler {cc}: {e}"));
-    assert!(status.success(), "{cc} failed on {}", source.display());
-    built.push((name.to_string(), out.clone()));
-    out
 }
 
 /// The stand-in's test-only symbols.
