@@ -7,9 +7,12 @@
 
 mod common;
 
+use std::sync::MutexGuard;
+
 use haphe::DVec3;
 use haphe::servo::{
-    DeviceFault, RealtimeOptions, Servo, ServoLoop, ServoOptions, StopReason, TickRecord,
+    Device, DeviceClock, DeviceFault, RealtimeOptions, RealtimeRun, Servo, ServoLoop, ServoOptions,
+    StopReason, TickRecord,
 };
 use haphe_devices::{UdpOptions, open_device};
 
@@ -23,6 +26,62 @@ fn set(variable: &str, value: &std::path::Path) {
     unsafe { std::env::set_var(variable, value) };
 }
 
+/// A vendor's stand-in, as a test drives it.
+struct Vendor {
+    /// The C source in tests/standin.
+    source: &'static str,
+    /// The variable that names the library to the device.
+    variable: &'static str,
+    /// The reference trajectory in the stand-in's units and frame.
+    trajectory: fn(&[TickRecord]) -> Vec<[f64; 6]>,
+    /// Whether its scheduler clocks the servo (OpenHaptics): then it ticks as fast as
+    /// the servo goes rather than at 1 kHz.
+    scheduler: bool,
+}
+
+const DHD: Vendor = Vendor {
+    source: "dhd",
+    variable: "HAPHE_DHD_LIBRARY",
+    trajectory,
+    scheduler: false,
+};
+
+const HD: Vendor = Vendor {
+    source: "hd",
+    variable: "HAPHE_HD_LIBRARY",
+    trajectory: trajectory_hd,
+    scheduler: true,
+};
+
+/// The `vendor`'s stand-in with one device that replays the reference run of `TICKS`
+/// ticks, named to the device by its variable; with the lock that keeps the other tests
+/// out meanwhile, and the reference records.
+fn replaying(vendor: &Vendor) -> (MutexGuard<'static, ()>, Standin, Vec<TickRecord>) {
+    let one = serial();
+    let lib = standin(vendor.source);
+    set(vendor.variable, &lib);
+    let standin = Standin::open(&lib);
+    standin.reset(1);
+    if vendor.scheduler {
+        standin.set_period_ns(0);
+    }
+    let expected = reference(TICKS);
+    standin.set_path(&(vendor.trajectory)(&expected));
+    (one, standin, expected)
+}
+
+/// Makes the device fail (unplugged) from the tick after the first that presses into
+/// the sphere; returns that tick.
+fn unplug_while_pressing(standin: &Standin, expected: &[TickRecord]) -> usize {
+    let k = expected
+        .iter()
+        .position(|r| r.force.length() > 0.5)
+        .expect("a press")
+        + 1;
+    standin.fail_from(i32::try_from(k).expect("fits"));
+    k
+}
+
 /// The records of a run of `spec` on the virtual clock (every tick on this thread).
 fn run_simulated(spec: &str, ticks: u64) -> (Vec<TickRecord>, StopReason, String) {
     let opened = open_device(spec, &scene(), 1.0, UdpOptions::default()).expect("opens");
@@ -33,15 +92,28 @@ fn run_simulated(spec: &str, ticks: u64) -> (Vec<TickRecord>, StopReason, String
     (records, stop, (opened.report)().unwrap_or_default())
 }
 
+/// The records of a run of `TICKS` ticks of `device`, clocked by its own `clock`, and
+/// the run (the servo not yet closed).
+fn run_clocked(
+    device: Box<dyn Device>,
+    clock: Box<dyn DeviceClock>,
+) -> (Vec<TickRecord>, RealtimeRun<Box<dyn Device>>) {
+    let servo = Servo::new(device, scene(), ServoOptions::default()).expect("servo");
+    let running = ServoLoop::spawn_clocked(
+        servo,
+        clock,
+        Some(TICKS as f64 / 1000.0),
+        RealtimeOptions::default(),
+    )
+    .expect("spawn");
+    let mut records = Vec::new();
+    let run = running.wait(|r| records.push(*r)).expect("no panic");
+    (records, run)
+}
+
 #[test]
 fn dhd_forces_equal_the_scripted_run() {
-    let _one = serial();
-    let lib = standin("dhd");
-    set("HAPHE_DHD_LIBRARY", &lib);
-    let standin = Standin::open(&lib);
-    standin.reset(1);
-    let expected = reference(TICKS);
-    standin.set_path(&trajectory(&expected));
+    let (_one, standin, expected) = replaying(&DHD);
     let (records, stop, _) = run_simulated("dhd", TICKS);
     assert_eq!(stop, StopReason::Finished);
     assert_eq!(records.len(), expected.len());
@@ -76,20 +148,8 @@ fn dhd_forces_equal_the_scripted_run() {
 
 #[test]
 fn dhd_unplugged_mid_run_gives_zero_force_and_a_clear_error() {
-    let _one = serial();
-    let lib = standin("dhd");
-    set("HAPHE_DHD_LIBRARY", &lib);
-    let standin = Standin::open(&lib);
-    standin.reset(1);
-    let expected = reference(TICKS);
-    standin.set_path(&trajectory(&expected));
-    // Unplugged while pressing.
-    let k = expected
-        .iter()
-        .position(|r| r.force.length() > 0.5)
-        .expect("a press")
-        + 1;
-    standin.fail_from(i32::try_from(k).expect("fits"));
+    let (_one, standin, expected) = replaying(&DHD);
+    let k = unplug_while_pressing(&standin, &expected);
     let (records, stop, report) = run_simulated("dhd", TICKS);
     assert_eq!(stop, StopReason::Fault(DeviceFault::Hardware(5)));
     assert_eq!(records.len(), k + 1);
@@ -113,14 +173,7 @@ fn dhd_unplugged_mid_run_gives_zero_force_and_a_clear_error() {
 
 #[test]
 fn openhaptics_forces_equal_the_scripted_run_clocked_by_the_scheduler() {
-    let _one = serial();
-    let lib = standin("hd");
-    set("HAPHE_HD_LIBRARY", &lib);
-    let standin = Standin::open(&lib);
-    standin.reset(1);
-    standin.set_period_ns(0);
-    let expected = reference(TICKS);
-    standin.set_path(&trajectory_hd(&expected));
+    let (_one, standin, expected) = replaying(&HD);
     let opened = open_device("openhaptics", &scene(), 1.0, UdpOptions::default()).expect("opens");
     assert!(
         opened.description.contains("stand-in Touch at 1000 Hz"),
@@ -133,16 +186,7 @@ fn openhaptics_forces_equal_the_scripted_run_clocked_by_the_scheduler() {
         opened.description
     );
     let clock = opened.clock.expect("the HD scheduler clocks the servo");
-    let servo = Servo::new(opened.device, scene(), ServoOptions::default()).expect("servo");
-    let running = ServoLoop::spawn_clocked(
-        servo,
-        clock,
-        Some(TICKS as f64 / 1000.0),
-        RealtimeOptions::default(),
-    )
-    .expect("spawn");
-    let mut records = Vec::new();
-    let mut run = running.wait(|r| records.push(*r)).expect("no panic");
+    let (records, mut run) = run_clocked(opened.device, clock);
     assert_eq!(run.stop, StopReason::Finished);
     assert_eq!(records.len(), TICKS as usize);
     run.servo.close();
@@ -168,32 +212,11 @@ fn openhaptics_forces_equal_the_scripted_run_clocked_by_the_scheduler() {
 
 #[test]
 fn openhaptics_unplugged_mid_run_gives_zero_force_and_a_clear_error() {
-    let _one = serial();
-    let lib = standin("hd");
-    set("HAPHE_HD_LIBRARY", &lib);
-    let standin = Standin::open(&lib);
-    standin.reset(1);
-    standin.set_period_ns(0);
-    let expected = reference(TICKS);
-    standin.set_path(&trajectory_hd(&expected));
-    let k = expected
-        .iter()
-        .position(|r| r.force.length() > 0.5)
-        .expect("a press")
-        + 1;
-    standin.fail_from(i32::try_from(k).expect("fits"));
+    let (_one, standin, expected) = replaying(&HD);
+    let k = unplug_while_pressing(&standin, &expected);
     let opened = open_device("openhaptics", &scene(), 1.0, UdpOptions::default()).expect("opens");
     let clock = opened.clock.expect("a clock");
-    let servo = Servo::new(opened.device, scene(), ServoOptions::default()).expect("servo");
-    let running = ServoLoop::spawn_clocked(
-        servo,
-        clock,
-        Some(TICKS as f64 / 1000.0),
-        RealtimeOptions::default(),
-    )
-    .expect("spawn");
-    let mut records = Vec::new();
-    let run = running.wait(|r| records.push(*r)).expect("no panic");
+    let (records, run) = run_clocked(opened.device, clock);
     assert_eq!(run.stop, StopReason::Fault(DeviceFault::Hardware(0x0302)));
     assert_eq!(records.len(), k + 1);
     let written = standin.forces();
