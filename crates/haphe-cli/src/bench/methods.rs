@@ -298,6 +298,14 @@ fn chunk_lengths(query: Query, streams: &Streams) -> Vec<usize> {
     }
 }
 
+/// A run that times `query` on each of chunk `c`'s inputs, `inputs(c)`.
+fn each<'a, T: Copy + 'a, R>(
+    inputs: impl Fn(usize) -> &'a [T] + 'a,
+    mut query: impl FnMut(T) -> R + 'a,
+) -> Run<'a> {
+    Box::new(move |c, out| time_each(inputs(c).iter().copied(), &mut query, out))
+}
+
 /// The methods of `query`, each a closure that times one chunk.
 fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'a>> {
     let Context {
@@ -326,34 +334,20 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
             };
             add(
                 Method::Haphe,
-                Box::new(move |c, out| {
-                    time_each(
-                        points(c).iter().copied(),
-                        |p| classify_point(surface, map, p),
-                        out,
-                    )
-                }),
+                each(points, move |p| classify_point(surface, map, p)),
                 1,
             );
             if let Some(mesh) = parry {
                 add(
                     Method::Parry,
-                    Box::new(move |c, out| {
-                        time_each(
-                            points(c).iter().copied(),
-                            |p| mesh.contains_local_point(p),
-                            out,
-                        )
-                    }),
+                    each(points, move |p| mesh.contains_local_point(p)),
                     1,
                 );
             }
             if let Some(oracle) = brute {
                 add(
                     Method::BruteForce,
-                    Box::new(move |c, out| {
-                        time_each(points(c).iter().copied(), |p| oracle.winding(p), out)
-                    }),
+                    each(points, move |p| oracle.winding(p)),
                     every,
                 );
             }
@@ -365,24 +359,16 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
             };
             add(
                 Method::Haphe,
-                Box::new(move |c, out| {
-                    time_each(
-                        segments(c).iter().copied(),
-                        |(p0, p1)| first_crossing(surface, map, p0, p1),
-                        out,
-                    )
+                each(segments, move |(p0, p1)| {
+                    first_crossing(surface, map, p0, p1)
                 }),
                 1,
             );
             if let Some(mesh) = parry {
                 add(
                     Method::Parry,
-                    Box::new(move |c, out| {
-                        time_each(
-                            segments(c).iter().copied(),
-                            |(p0, p1)| mesh.cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false),
-                            out,
-                        )
+                    each(segments, move |(p0, p1)| {
+                        mesh.cast_local_ray(&Ray::new(p0, p1 - p0), 1.0, false)
                     }),
                     1,
                 );
@@ -390,12 +376,8 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
             if brute.is_some() {
                 add(
                     Method::BruteForce,
-                    Box::new(move |c, out| {
-                        time_each(
-                            segments(c).iter().copied(),
-                            |(p0, p1)| first_crossing_brute_force(surface, p0, p1),
-                            out,
-                        )
+                    each(segments, move |(p0, p1)| {
+                        first_crossing_brute_force(surface, p0, p1)
                     }),
                     every,
                 );
@@ -419,29 +401,18 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
                 }),
                 1,
             );
+            let positions = move |c: usize| streams.near[c].positions.as_slice();
             if let Some(mesh) = parry {
                 add(
                     Method::Parry,
-                    Box::new(move |c, out| {
-                        time_each(
-                            streams.near[c].positions.iter().copied(),
-                            |p| mesh.project_local_point(p, true),
-                            out,
-                        )
-                    }),
+                    each(positions, move |p| mesh.project_local_point(p, true)),
                     1,
                 );
             }
             if brute.is_some() {
                 add(
                     Method::BruteForce,
-                    Box::new(move |c, out| {
-                        time_each(
-                            streams.near[c].positions.iter().copied(),
-                            |p| nearest_point_brute_force(surface, p),
-                            out,
-                        )
-                    }),
+                    each(positions, move |p| nearest_point_brute_force(surface, p)),
                     every,
                 );
             }
@@ -488,21 +459,18 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
                 let stiffness = Material::default().stiffness;
                 add(
                     Method::Parry,
-                    Box::new(move |c, out| {
-                        time_each(
-                            streams.contact[c].iter().copied(),
-                            |hip| {
-                                let projection = mesh.project_local_point(hip, true);
-                                let proxy = if projection.is_inside {
-                                    projection.point
-                                } else {
-                                    hip
-                                };
-                                (proxy, stiffness * (proxy - hip))
-                            },
-                            out,
-                        )
-                    }),
+                    each(
+                        move |c| streams.contact[c].as_slice(),
+                        move |hip| {
+                            let projection = mesh.project_local_point(hip, true);
+                            let proxy = if projection.is_inside {
+                                projection.point
+                            } else {
+                                hip
+                            };
+                            (proxy, stiffness * (proxy - hip))
+                        },
+                    ),
                     1,
                 );
             }
