@@ -5,7 +5,7 @@ use std::io::Write;
 
 use haphe::DVec3;
 use haphe::servo::{
-    Interference, Phase, RealtimeSetup, StandbyReport, StopReason, TickRecord, TickStats,
+    Histogram, Interference, Phase, RealtimeSetup, StandbyReport, StopReason, TickRecord, TickStats,
 };
 
 /// Most samples kept for the plot; longer runs are decimated evenly.
@@ -110,6 +110,17 @@ fn us(ns: u64) -> String {
     } else {
         format!("{:.2} ms", v / 1e3)
     }
+}
+
+/// The median, p99, p99.9 and largest of `h` (nanoseconds), as µs.
+fn quantiles(h: &Histogram) -> String {
+    format!(
+        "p50 {}  p99 {}  p99.9 {}  max {}",
+        us(h.quantile(0.5)),
+        us(h.quantile(0.99)),
+        us(h.quantile(0.999)),
+        us(h.max())
+    )
 }
 
 /// How a run was made, for the report.
@@ -237,25 +248,9 @@ pub fn print(
         "  safe start        held {} tick(s) at zero force (device inside an object)",
         s.held_ticks
     )?;
-    let c = &stats.compute;
-    writeln!(
-        out,
-        "  tick time         p50 {}  p99 {}  p99.9 {}  max {}",
-        us(c.quantile(0.5)),
-        us(c.quantile(0.99)),
-        us(c.quantile(0.999)),
-        us(c.max())
-    )?;
+    writeln!(out, "  tick time         {}", quantiles(&stats.compute))?;
     if info.realtime {
-        let l = &stats.lateness;
-        writeln!(
-            out,
-            "  lateness          p50 {}  p99 {}  p99.9 {}  max {}",
-            us(l.quantile(0.5)),
-            us(l.quantile(0.99)),
-            us(l.quantile(0.999)),
-            us(l.max())
-        )?;
+        writeln!(out, "  lateness          {}", quantiles(&stats.lateness))?;
         writeln!(
             out,
             "  overruns          {} ({:.4} % of ticks; a tick that ended after the next deadline), {} deadline(s) skipped",
