@@ -203,9 +203,10 @@ fn every_path_runs_with_and_without_the_hand() {
     }
 }
 
-#[test]
-fn realtime_smoke_run_reports_lateness() {
-    let text = ok(&[
+/// The report of a press into a sphere of 1000 triangles in real time, at `rate` Hz for
+/// `seconds`, `args` added.
+fn realtime_press(rate: &str, seconds: &str, args: &[&str]) -> String {
+    let mut all = vec![
         "simulate",
         "--shape",
         "sphere",
@@ -214,11 +215,18 @@ fn realtime_smoke_run_reports_lateness() {
         "--path",
         "press",
         "--rate",
-        "2000",
+        rate,
         "--seconds",
-        "0.3",
+        seconds,
         "--realtime",
-    ]);
+    ];
+    all.extend_from_slice(args);
+    ok(&all)
+}
+
+#[test]
+fn realtime_smoke_run_reports_lateness() {
+    let text = realtime_press("2000", "0.3", &[]);
     println!("{text}");
     assert!(
         text.contains("lateness") && text.contains("overruns") && text.contains("missed deadlines"),
@@ -230,23 +238,7 @@ fn realtime_smoke_run_reports_lateness() {
 /// `--normal-priority` keeps the time-shared priority and may spin the whole period.
 #[test]
 fn realtime_at_normal_priority_spins_the_whole_period() {
-    let text = ok(&[
-        "simulate",
-        "--shape",
-        "sphere",
-        "--triangles",
-        "1000",
-        "--path",
-        "press",
-        "--rate",
-        "5000",
-        "--seconds",
-        "0.2",
-        "--realtime",
-        "--spin-us",
-        "200",
-        "--normal-priority",
-    ]);
+    let text = realtime_press("5000", "0.2", &["--spin-us", "200", "--normal-priority"]);
     println!("{text}");
     assert!(text.contains("servo thread      normal priority"), "{text}");
     assert!(!text.contains("FIFO"), "{text}");
