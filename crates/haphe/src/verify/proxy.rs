@@ -79,6 +79,20 @@ impl Steps {
             rest: None,
         }
     }
+
+    /// Met `h` on `plane` at `p`: the touch-down and the surface met first (if the
+    /// first), the object, plane and triangle met last.
+    fn met(&mut self, p: DVec3, h: &BruteHit, plane: Plane) {
+        let surface = Rest {
+            object: h.object,
+            triangle: h.triangle,
+        };
+        self.touch_down.get_or_insert(p);
+        self.first.get_or_insert((surface, plane));
+        self.object = h.object;
+        self.plane = Some(plane);
+        self.rest = Some(surface);
+    }
 }
 
 /// A crossing found by brute force, world frame.
@@ -230,26 +244,20 @@ impl BruteProxy {
 
     /// The constraint steps toward `goal` from `from.position` with the planes (and the
     /// surface met last) of `from`.
-    fn steps(&self, mut p: DVec3, goal: DVec3, from: Steps) -> Steps {
+    fn steps(&self, mut p: DVec3, goal: DVec3, mut from: Steps) -> Steps {
         let hip = goal;
-        let Steps {
-            mut planes,
-            mut touch_down,
-            mut first,
-            object: mut last_object,
-            plane: mut last_plane,
-            mut rest,
-            ..
-        } = from;
         for _ in 0..MAX_PROXY_STEPS {
-            let Some(target) = planes.closest_feasible(hip, self.options.plane_tolerance()) else {
+            let Some(target) = from
+                .planes
+                .closest_feasible(hip, self.options.plane_tolerance())
+            else {
                 break;
             };
             if target == p {
                 break;
             }
             let resting = match self.rest {
-                Some(r) if planes.is_empty() => self.resting(r, p, target),
+                Some(r) if from.planes.is_empty() => self.resting(r, p, target),
                 _ => None,
             };
             let (h, plane) = match resting.or_else(|| self.first_hit(p, target)) {
@@ -270,33 +278,13 @@ impl BruteProxy {
                     }
                 },
             };
-            touch_down.get_or_insert(p);
-            first.get_or_insert((
-                Rest {
-                    object: h.object,
-                    triangle: h.triangle,
-                },
-                plane,
-            ));
-            last_object = h.object;
-            last_plane = Some(plane);
-            rest = Some(Rest {
-                object: h.object,
-                triangle: h.triangle,
-            });
-            if !planes.push(plane) {
+            from.met(p, &h, plane);
+            if !from.planes.push(plane) {
                 break;
             }
         }
-        Steps {
-            position: p,
-            planes,
-            touch_down,
-            first,
-            object: last_object,
-            plane: last_plane,
-            rest,
-        }
+        from.position = p;
+        from
     }
 
     /// A tick of a holding proxy at `p` (after the carry): while the device point stays
@@ -362,41 +350,17 @@ impl BruteProxy {
         }
         let held = p;
         // Constraint steps.
-        let mut planes = Constraints::NONE;
-        let mut touch_down = None;
-        let mut first = None;
-        let mut last_object = 0;
-        let mut last_plane = None;
-        let mut rest = None;
+        let mut from = Steps::from(p);
         if std::mem::take(&mut self.placed)
             && let Some(h) = self.touching(p)
         {
             let plane = self.plane(&h, p, hip);
             if plane.height(hip) < 0.0 {
-                planes.push(plane);
-                touch_down = Some(p);
-                last_object = h.object;
-                last_plane = Some(plane);
-                rest = Some(Rest {
-                    object: h.object,
-                    triangle: h.triangle,
-                });
-                first = rest.map(|r| (r, plane));
+                from.planes.push(plane);
+                from.met(p, &h, plane);
             }
         }
-        let step = self.steps(
-            p,
-            hip,
-            Steps {
-                position: p,
-                planes,
-                touch_down,
-                first,
-                object: last_object,
-                plane: last_plane,
-                rest,
-            },
-        );
+        let step = self.steps(p, hip, from);
         p = step.position;
         let Steps {
             planes,
