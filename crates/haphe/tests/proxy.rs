@@ -20,7 +20,7 @@ use haphe::mesh::{Mesh, Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::query::{Side, classify_point};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape, Sides};
-use haphe::verify::{check_proxy, haptic_path};
+use haphe::verify::{check_proxy, haptic_path, one_object_scene};
 
 fn shape(mesh: Mesh) -> Arc<Shape> {
     let surface = Surface::new(mesh, &SurfaceOptions::default()).expect("a usable surface");
@@ -28,16 +28,7 @@ fn shape(mesh: Mesh) -> Arc<Shape> {
 }
 
 fn scene_of(shape: Arc<Shape>, material: Material) -> Scene {
-    let mut scene = Scene::local(4);
-    scene
-        .insert(SceneObject::new(
-            ObjectId(0),
-            shape,
-            Pose::IDENTITY,
-            material,
-        ))
-        .expect("room");
-    scene
+    one_object_scene(shape, material, 4).expect("room")
 }
 
 fn friction() -> Material {

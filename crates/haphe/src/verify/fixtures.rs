@@ -1,12 +1,12 @@
 //! The scene the servo, device and view tests and examples share: one sphere of the
-//! shape catalog at the origin.
+//! shape catalog at the origin; and a scene of any one shape.
 
 use std::sync::Arc;
 
 use crate::map::MapOptions;
 use crate::mesh::shapes::Catalog;
 use crate::mesh::{Surface, SurfaceOptions};
-use crate::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use crate::scene::{EditError, Material, ObjectId, Pose, Scene, SceneObject, Shape};
 
 /// A scene of one object, [`ObjectId`] 0: the catalog's sphere of about `triangles`
 /// triangles at the origin with `material`, its map and clear zones built (so that no
@@ -24,7 +24,20 @@ pub fn sphere_scene(
     )?;
     let shape = Arc::new(Shape::build(surface, &MapOptions::default())?);
     shape.prepare_clear_zones();
-    let mut scene = Scene::local(2);
+    Ok(one_object_scene(shape, material, 2)?)
+}
+
+/// A scene of one object, [`ObjectId`] 0: `shape` at the origin with `material`, room
+/// for `capacity` objects in all.
+///
+/// # Errors
+/// [`EditError::Full`] when `capacity` is 0.
+pub fn one_object_scene(
+    shape: Arc<Shape>,
+    material: Material,
+    capacity: usize,
+) -> Result<Scene, EditError> {
+    let mut scene = Scene::local(capacity);
     scene
         .insert(SceneObject::new(
             ObjectId(0),

@@ -16,7 +16,7 @@ mod proxy;
 mod samples;
 mod strikes;
 
-pub use fixtures::sphere_scene;
+pub use fixtures::{one_object_scene, sphere_scene};
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
 pub use proxy::{
     BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy, haptic_path, haptic_path_in_contact,
