@@ -13,7 +13,7 @@ use haphe::proxy::ProxyOptions;
 use haphe::query::{Side, classify_point};
 use haphe::rng::SplitMix64;
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
-use haphe::verify::{WindingOracle, check_inside, check_proxy, haptic_path, strike_path};
+use haphe::verify::{WindingOracle, check_inside, check_proxy, haptic_path, point_on, strike_path};
 
 /// `parts`, each moved by its offset, in one mesh.
 fn union(parts: &[(Mesh, DVec3)]) -> Mesh {
@@ -73,14 +73,7 @@ fn assert_inside_matches(name: &str, surface: &Surface, map: &VoxelMap) -> usize
     let (mut counted, mut compared, mut wound) = (0, 0, 0);
     for _ in 0..20_000 {
         let t = haphe::mesh::TriId(random.index(surface.triangle_count()) as u32);
-        let [a, b, c] = surface.corners(t);
-        let (u, v) = (random.next_unit(), random.next_unit());
-        let (u, v) = if u + v > 1.0 {
-            (1.0 - u, 1.0 - v)
-        } else {
-            (u, v)
-        };
-        let on = a + (b - a) * u + (c - a) * v;
+        let on = point_on(surface, t, &mut random);
         let p = on + random.unit_vector() * random.range(0.01, 2.0) * h;
         let winding = oracle.winding(p);
         if haphe::verify::distance_to_surface(surface, p) < 1e-9 {

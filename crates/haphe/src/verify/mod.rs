@@ -21,7 +21,7 @@ pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
 pub use proxy::{
     BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy, haptic_path, haptic_path_in_contact,
 };
-pub use samples::{SegmentKind, bounds, points, segments, trajectory};
+pub use samples::{SegmentKind, bounds, point_on, points, segments, trajectory};
 pub use strikes::{
     MAX_STRIKE_ANGLE_DEG, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEED_CLASSES, STRIKE_SPEEDS,
     StrikeCheck, StrikeTicks, check_strikes, strike_path,

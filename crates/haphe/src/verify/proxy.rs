@@ -11,7 +11,7 @@ use serde::Serialize;
 use std::sync::Arc;
 
 use super::oracle::TriangleBounds;
-use super::{KEPT_FAILURES, bounds, distance_to_surface};
+use super::{KEPT_FAILURES, bounds, distance_to_surface, point_on};
 use crate::mesh::TriId;
 use crate::proxy::{
     Constraints, Hold, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
@@ -518,14 +518,7 @@ fn path(
             }
             _ => {
                 let t = TriId(random.index(surface.triangle_count()) as u32);
-                let [a, b, c] = surface.corners(t);
-                let (u, v) = (random.next_unit(), random.next_unit());
-                let (u, v) = if u + v > 1.0 {
-                    (1.0 - u, 1.0 - v)
-                } else {
-                    (u, v)
-                };
-                (t, a + u * (b - a) + v * (c - a))
+                (t, point_on(surface, t, random))
             }
         };
         let n = surface.frame(t).normal;

@@ -84,8 +84,8 @@ fn direction(random: &mut SplitMix64) -> DVec3 {
     }
 }
 
-/// A random point of triangle `t` (uniform).
-fn point_on(surface: &Surface, t: TriId, random: &mut SplitMix64) -> DVec3 {
+/// A random point of triangle `t` of `surface` (uniform over the triangle).
+pub fn point_on(surface: &Surface, t: TriId, random: &mut SplitMix64) -> DVec3 {
     let [a, b, c] = surface.corners(t);
     let (mut u, mut v) = (random.next_unit(), random.next_unit());
     if u + v > 1.0 {
