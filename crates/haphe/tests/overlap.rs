@@ -3,6 +3,8 @@
 //! map's fill, a saved map and the proxy; a part inside another facing inwards is a cavity
 //! (outside), and an inside-out part on its own leaves the mesh without an inside.
 
+mod support;
+
 use std::sync::Arc;
 
 use haphe::DVec3;
@@ -14,19 +16,7 @@ use haphe::query::{Side, classify_point};
 use haphe::rng::SplitMix64;
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
 use haphe::verify::{WindingOracle, check_inside, check_proxy, haptic_path, point_on, strike_path};
-
-/// `parts`, each moved by its offset, in one mesh.
-fn union(parts: &[(Mesh, DVec3)]) -> Mesh {
-    let mut mesh = Mesh::default();
-    for (part, offset) in parts {
-        let n = mesh.vertices.len() as u32;
-        mesh.vertices
-            .extend(part.vertices.iter().map(|&v| v + *offset));
-        mesh.triangles
-            .extend(part.triangles.iter().map(|t| t.map(|v| v + n)));
-    }
-    mesh
-}
+use support::union;
 
 /// `mesh` facing inwards.
 fn inside_out(mesh: Mesh) -> Mesh {

@@ -1,7 +1,10 @@
 //! The validation report on small hand-built meshes whose defects are known by construction.
 
+mod support;
+
 use haphe::DVec3;
 use haphe::mesh::{Mesh, MeshReport, Surface, SurfaceError, SurfaceOptions, Usability};
+use support::append;
 
 /// A tetrahedron with outward (counter-clockwise) faces, corners at the origin and the unit
 /// axes scaled by `s` and shifted by `offset`.
@@ -40,15 +43,6 @@ fn cube(h: f64) -> Mesh {
         vertices,
         triangles,
     }
-}
-
-fn append(a: &Mesh, b: &Mesh) -> Mesh {
-    let offset = a.vertices.len() as u32;
-    let mut out = a.clone();
-    out.vertices.extend_from_slice(&b.vertices);
-    out.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + offset)));
-    out
 }
 
 fn flipped(m: &Mesh) -> Mesh {

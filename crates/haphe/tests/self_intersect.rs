@@ -8,6 +8,7 @@ use haphe::map::{MapOptions, VoxelMap};
 use haphe::mesh::shapes::{self, Catalog};
 use haphe::mesh::{Mesh, ReadOptions, Surface, SurfaceOptions, TriId, read_mesh};
 use haphe::query::{SelfIntersections, intersect_triangle_triangle, self_intersections};
+use support::append;
 
 fn find(mesh: Mesh) -> (Surface, SelfIntersections) {
     let surface = Surface::new(mesh, &SurfaceOptions::default()).expect("surface");
@@ -40,15 +41,6 @@ fn all_pairs(surface: &Surface) -> usize {
         }
     }
     count
-}
-
-fn append(a: &Mesh, b: &Mesh) -> Mesh {
-    let offset = a.vertices.len() as u32;
-    let mut out = a.clone();
-    out.vertices.extend_from_slice(&b.vertices);
-    out.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + offset)));
-    out
 }
 
 #[test]

@@ -4,6 +4,9 @@
 
 use std::path::PathBuf;
 
+use haphe::DVec3;
+use haphe::mesh::Mesh;
+
 /// Whether the larger collection of test meshes, `shared/meshes` beside the repository root
 /// (for a clone at `/work/<name>`, that is `/work/shared/meshes`), was found when the crate
 /// was built (see `build.rs`). Tests that need it are marked
@@ -27,4 +30,30 @@ pub fn meshes() -> PathBuf {
     } else {
         in_tree_meshes()
     }
+}
+
+/// Appends `part` to `mesh`: its vertices, each mapped by `place`, and its triangles with
+/// their corners renumbered.
+fn push_part(mesh: &mut Mesh, part: &Mesh, place: impl Fn(DVec3) -> DVec3) {
+    let n = mesh.vertices.len() as u32;
+    mesh.vertices
+        .extend(part.vertices.iter().map(|&v| place(v)));
+    mesh.triangles
+        .extend(part.triangles.iter().map(|t| t.map(|v| v + n)));
+}
+
+/// `a` and `b` in one mesh, neither moved.
+pub fn append(a: &Mesh, b: &Mesh) -> Mesh {
+    let mut out = a.clone();
+    push_part(&mut out, b, |v| v);
+    out
+}
+
+/// `parts`, each moved by its offset, in one mesh.
+pub fn union(parts: &[(Mesh, DVec3)]) -> Mesh {
+    let mut mesh = Mesh::default();
+    for (part, offset) in parts {
+        push_part(&mut mesh, part, |v| v + *offset);
+    }
+    mesh
 }
