@@ -126,6 +126,19 @@ fn single_triangle() -> Surface {
 /// grid. Clearance is exact in bricks that hold a surface cell or touch one (26
 /// neighbours) and, elsewhere, the smallest exact clearance of the brick (the documented
 /// lower bound).
+/// The cells of `grid` within `margin` cells of the bounding box of the triangle with
+/// `corners` (which lies in the grid).
+fn cells_around(grid: &Grid, corners: [DVec3; 3], margin: u32) -> impl Iterator<Item = [u32; 3]> {
+    let lo = grid
+        .cell_of(corners[0].min(corners[1]).min(corners[2]))
+        .expect("in grid");
+    let hi = grid
+        .cell_of(corners[0].max(corners[1]).max(corners[2]))
+        .expect("in grid");
+    let span = move |a: usize| lo[a].saturating_sub(margin)..=hi[a] + margin;
+    span(2).flat_map(move |z| span(1).flat_map(move |y| span(0).map(move |x| [x, y, z])))
+}
+
 fn assert_matches_dense(name: &str, surface: &Surface, map: &VoxelMap) {
     let dense: Dense = dense_reference(surface, map.grid(), surface.is_solid());
     let brick = |c: [u32; 3]| c.map(|v| v / 8);
@@ -242,35 +255,24 @@ fn every_triangle_is_listed_where_it_overlaps_and_nowhere_else() {
         let mut pairs = 0usize;
         for t in 0..surface.triangle_count() {
             let corners = surface.corners(TriId(t as u32));
-            let lo = grid
-                .cell_of(corners[0].min(corners[1]).min(corners[2]))
-                .expect("in grid");
-            let hi = grid
-                .cell_of(corners[0].max(corners[1]).max(corners[2]))
-                .expect("in grid");
             // Every cell within two of the triangle's bounding box.
-            for z in lo[2].saturating_sub(2)..=hi[2] + 2 {
-                for y in lo[1].saturating_sub(2)..=hi[1] + 2 {
-                    for x in lo[0].saturating_sub(2)..=hi[0] + 2 {
-                        let c = [x, y, z];
-                        let listed = map.triangles_in(c).contains(&(t as u32));
-                        pairs += usize::from(listed);
-                        assert_eq!(
-                            listed,
-                            grid.overlaps_cell(corners, c),
-                            "{name}: triangle {t} in cell {c:?}"
-                        );
-                        // Conservative against the plain kernel on the cell's closed box,
-                        // and never farther than the tolerance (twice, for rounding).
-                        let (min, max) = grid.cell_bounds(c);
-                        let centre = 0.5 * (min + max);
-                        let exact = overlap_triangle_box(corners, centre, 0.5 * (max - min));
-                        let slack = DVec3::splat((0.5 + 2.0 * OVERLAP_TOLERANCE_REL) * h);
-                        let loose = overlap_triangle_box(corners, centre, slack);
-                        assert!(!exact || listed, "{name}: {t} missed in {c:?}");
-                        assert!(!listed || loose, "{name}: {t} listed far from {c:?}");
-                    }
-                }
+            for c in cells_around(grid, corners, 2) {
+                let listed = map.triangles_in(c).contains(&(t as u32));
+                pairs += usize::from(listed);
+                assert_eq!(
+                    listed,
+                    grid.overlaps_cell(corners, c),
+                    "{name}: triangle {t} in cell {c:?}"
+                );
+                // Conservative against the plain kernel on the cell's closed box, and
+                // never farther than the tolerance (twice, for rounding).
+                let (min, max) = grid.cell_bounds(c);
+                let centre = 0.5 * (min + max);
+                let exact = overlap_triangle_box(corners, centre, 0.5 * (max - min));
+                let slack = DVec3::splat((0.5 + 2.0 * OVERLAP_TOLERANCE_REL) * h);
+                let loose = overlap_triangle_box(corners, centre, slack);
+                assert!(!exact || listed, "{name}: {t} missed in {c:?}");
+                assert!(!listed || loose, "{name}: {t} listed far from {c:?}");
             }
         }
         assert_eq!(

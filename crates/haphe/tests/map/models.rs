@@ -29,23 +29,12 @@ fn every_real_model_gets_a_consistent_map() {
         let grid = map.grid();
         for t in 0..surface.triangle_count() as u32 {
             let corners = surface.corners(TriId(t));
-            let lo = grid
-                .cell_of(corners[0].min(corners[1]).min(corners[2]))
-                .expect("in grid");
-            let hi = grid
-                .cell_of(corners[0].max(corners[1]).max(corners[2]))
-                .expect("in grid");
-            for z in lo[2].saturating_sub(1)..=hi[2] + 1 {
-                for y in lo[1].saturating_sub(1)..=hi[1] + 1 {
-                    for x in lo[0].saturating_sub(1)..=hi[0] + 1 {
-                        let c = [x, y, z];
-                        assert_eq!(
-                            map.triangles_in(c).contains(&t),
-                            grid.overlaps_cell(corners, c),
-                            "{name}: triangle {t} in cell {c:?}"
-                        );
-                    }
-                }
+            for c in cells_around(grid, corners, 1) {
+                assert_eq!(
+                    map.triangles_in(c).contains(&t),
+                    grid.overlaps_cell(corners, c),
+                    "{name}: triangle {t} in cell {c:?}"
+                );
             }
         }
         let stats = map.stats();
