@@ -26,6 +26,18 @@ fn reseal(bytes: &mut [u8]) {
     bytes[56..64].copy_from_slice(&sum.to_le_bytes());
 }
 
+/// `value` written at byte `at` of a copy of the file `bytes`, the checksum recomputed:
+/// the section named in the error.
+fn refused_in(bytes: &[u8], at: usize, value: &[u8]) -> &'static str {
+    let mut crafted = bytes.to_vec();
+    crafted[at..at + value.len()].copy_from_slice(value);
+    reseal(&mut crafted);
+    match decode(&crafted) {
+        Err(MapFileError::Invalid { section, .. }) => section,
+        other => panic!("expected an invalid file, got {other:?}"),
+    }
+}
+
 #[test]
 fn loading_in_place_gives_the_same_surface_and_map_and_refuses_damage() {
     let (surface, map, bytes) = sample();
@@ -240,17 +252,7 @@ fn a_map_paired_with_another_surface_is_refused() {
 #[test]
 fn crafted_files_with_a_valid_checksum_are_checked() {
     let (surface, _, bytes) = sample();
-    // `value` written at byte `at` of a copy of the file, the checksum recomputed: the
-    // section named in the error.
-    let refused_in = |at: usize, value: &[u8]| {
-        let mut crafted = bytes.clone();
-        crafted[at..at + value.len()].copy_from_slice(value);
-        reseal(&mut crafted);
-        match decode(&crafted) {
-            Err(MapFileError::Invalid { section, .. }) => section,
-            other => panic!("expected an invalid file, got {other:?}"),
-        }
-    };
+    let refused_in = |at: usize, value: &[u8]| refused_in(bytes, at, value);
     let sections = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
     // A triangle reference out of range, in the section before the slabs of the cells,
     // the bricks and the regions and the provenance (the last four).
@@ -364,15 +366,7 @@ fn crafted_overlap_cells_are_refused() {
     let surface = surface(mesh);
     let map = build(&surface, &MapOptions::default());
     let bytes = encode(&surface, &map);
-    let refused_in = |at: usize, value: &[u8]| {
-        let mut crafted = bytes.clone();
-        crafted[at..at + value.len()].copy_from_slice(value);
-        reseal(&mut crafted);
-        match decode(&crafted) {
-            Err(MapFileError::Invalid { section, .. }) => section,
-            other => panic!("expected an invalid file, got {other:?}"),
-        }
-    };
+    let refused_in = |at: usize, value: &[u8]| refused_in(&bytes, at, value);
     // Sections 13 and 14: the overlap bricks and their masks.
     let (bricks, masks) = (
         find_section_start(&bytes, 13),
