@@ -409,16 +409,21 @@ mod tests {
         assert!((area - 12.0).abs() < 1e-9, "{area} {out:?}");
     }
 
-    #[test]
-    fn large_star_is_covered_exactly_and_quickly() {
-        let n = 2000;
-        let star: Vec<DVec3> = (0..n)
+    /// A star of `n` corners (`n` even) in the plane z = 0, radii 10 and 7 in turn.
+    fn star(n: usize) -> Vec<DVec3> {
+        (0..n)
             .map(|i| {
                 let angle = i as f64 / n as f64 * std::f64::consts::TAU;
                 let r = if i % 2 == 0 { 10.0 } else { 7.0 };
                 DVec3::new(r * angle.cos(), r * angle.sin(), 0.0)
             })
-            .collect();
+            .collect()
+    }
+
+    #[test]
+    fn large_star_is_covered_exactly_and_quickly() {
+        let n = 2000;
+        let star = star(n);
         check_exact_cover(&star);
     }
 
@@ -482,13 +487,7 @@ mod tests {
     fn a_polygon_past_the_budget_is_refused_in_bounded_time_not_fanned() {
         // 20 000 corners of a star: ear clipping would need about 10^8 tests.
         let n = 20_000;
-        let star: Vec<DVec3> = (0..n)
-            .map(|i| {
-                let angle = i as f64 / n as f64 * std::f64::consts::TAU;
-                let r = if i % 2 == 0 { 10.0 } else { 7.0 };
-                DVec3::new(r * angle.cos(), r * angle.sin(), 0.0)
-            })
-            .collect();
+        let star = star(n);
         let polygon: Vec<u32> = (0..n as u32).collect();
         let mut out = vec![[7, 7, 7]];
         let start = std::time::Instant::now();
