@@ -88,7 +88,12 @@ fn bin_triangle(corners: [DVec3; 3], t: u32, dims: [u32; 3], bdims: [u32; 3], ou
         (first, last)
     };
     let tester = cell_tester(corners);
-    let emit = |cell: [u32; 3], out: &mut Vec<u64>| {
+    // Appends the key of the cell at (i, j, k) along (u, v, w) when the triangle overlaps it.
+    let emit = |k: i64, j: i64, i: i64, out: &mut Vec<u64>| {
+        let mut cell = [0u32; 3];
+        cell[w] = k as u32;
+        cell[v] = j as u32;
+        cell[u] = i as u32;
         if tester.overlaps(cell_centre_units(cell)) {
             let key = (brick_of(cell, bdims) * BRICK_CELLS + local_of(cell)) as u64;
             out.push(key << 32 | u64::from(t));
@@ -103,11 +108,7 @@ fn bin_triangle(corners: [DVec3; 3], t: u32, dims: [u32; 3], bdims: [u32; 3], ou
         for k in k0..=k1 {
             for j in j0..=j1 {
                 for i in i0..=i1 {
-                    let mut cell = [0u32; 3];
-                    cell[w] = k as u32;
-                    cell[v] = j as u32;
-                    cell[u] = i as u32;
-                    emit(cell, out);
+                    emit(k, j, i, out);
                 }
             }
         }
@@ -127,11 +128,7 @@ fn bin_triangle(corners: [DVec3; 3], t: u32, dims: [u32; 3], bdims: [u32; 3], ou
             };
             let (i0, i1) = span(u, a, b);
             for i in i0..=i1 {
-                let mut cell = [0u32; 3];
-                cell[w] = k as u32;
-                cell[v] = j as u32;
-                cell[u] = i as u32;
-                emit(cell, out);
+                emit(k, j, i, out);
             }
         }
     }
