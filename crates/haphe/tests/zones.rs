@@ -39,14 +39,7 @@ fn point_over(shape: &Shape, t: TriId, rng: &mut SplitMix64, spread: f64, height
 #[test]
 fn cleared_moves_keep_clear_of_every_triangle() {
     let mut rng = SplitMix64::new(7);
-    for which in [
-        Catalog::Sphere,
-        Catalog::Torus,
-        Catalog::Box,
-        Catalog::ThinPlate,
-        Catalog::ConcaveCorner,
-        Catalog::Blob,
-    ] {
+    for which in Catalog::ALL {
         let shape = shape(which, 2000);
         let n = shape.surface().triangle_count();
         let (mut cleared, mut tried) = (0, 0);
