@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 use haphe::DVec3;
 use haphe::scene::{Material, ObjectId, Pose, Scene};
 use haphe::servo::{
-    Device, Motion, ObjectMotion, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions,
+    Motion, ObjectMotion, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions,
     scene_bounds, scripted_path,
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
@@ -34,15 +34,27 @@ fn sphere_scene() -> Scene {
     haphe::verify::sphere_scene(2_000, material).expect("the sphere scene")
 }
 
-/// A live source at 1 kHz at normal priority (the test machine is shared).
-fn live(
-    device: Box<dyn Device>,
+/// The sphere scene's box, centre and radius.
+fn sphere_bounds(scene: &Scene) -> (DVec3, DVec3, DVec3, f64) {
+    let (lo, hi) = scene_bounds(scene).expect("bounds");
+    (lo, hi, 0.5 * (lo + hi), 0.5 * (hi.z - lo.z))
+}
+
+/// The view of a live run at 1 kHz at normal priority (the test machine is shared) of a
+/// mouse device at `start`, free in the scene's box grown by its size each way; the
+/// page's mouse moves it when `mouse`.
+fn live_view(
+    model: Model,
     scene: Scene,
-    motions: Vec<ObjectMotion>,
-    seconds: Option<f64>,
-) -> LiveSource {
-    LiveSource {
-        device,
+    start: DVec3,
+    (motions, seconds): (Vec<ObjectMotion>, Option<f64>),
+    mouse: bool,
+    title: &str,
+) -> ViewServer {
+    let (lo, hi) = scene_bounds(&scene).expect("bounds");
+    let (device, handle) = MouseDevice::new(start, lo - (hi - lo), hi + (hi - lo));
+    let source = LiveSource {
+        device: Box::new(device),
         scene,
         options: ServoOptions::default(),
         motions,
@@ -52,7 +64,45 @@ fn live(
             ..RealtimeOptions::default()
         },
         clock: None,
-    }
+    };
+    ViewServer::start(
+        model,
+        Source::Live {
+            source: Box::new(source),
+            mouse: mouse.then_some(handle),
+        },
+        &options(title),
+    )
+    .expect("the view starts")
+}
+
+/// The trace of a simulated press of `ticks` ticks at 1 kHz into the sphere, whose
+/// objects move by `motions`, read back from its CSV as file `name`.
+fn recorded_press(ticks: u32, motions: Vec<ObjectMotion>, name: &str) -> Trace {
+    let scene = sphere_scene();
+    let path = scripted_path(PathKind::Press, &scene, f64::from(ticks) / 1000.0, 1).expect("path");
+    let mut servo =
+        Servo::new(ScriptedDevice::new(path), scene, ServoOptions::default()).expect("servo");
+    servo.set_motions(motions);
+    let mut csv = Vec::new();
+    haphe::servo::write_csv_header(&mut csv).expect("header");
+    servo.run_simulated(u64::from(ticks), |r| r.write_csv(&mut csv).expect("row"));
+    Trace::read(name, csv.as_slice()).expect("reads back")
+}
+
+/// Opens `view`, a replay, and waits until it has played to its last tick.
+fn replay_to_the_end(browser: &mut Browser, view: &ViewServer) {
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.replay && window.haphe.replay.atEnd)",
+        Duration::from_secs(30),
+        "the replay to reach its last tick",
+    );
+}
+
+/// Where world point `p` is on the page.
+fn project(browser: &mut Browser, p: DVec3) -> (f64, f64) {
+    xy(&browser.eval(&format!("window.haphe.project({}, {}, {})", p.x, p.y, p.z)))
 }
 
 fn options(title: &str) -> ViewOptions {
@@ -73,22 +123,17 @@ fn xy(v: &Value) -> (f64, f64) {
 fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
     let started = Instant::now();
     let scene = sphere_scene();
-    let (lo, hi) = scene_bounds(&scene).expect("bounds");
-    let centre = 0.5 * (lo + hi);
-    let radius = 0.5 * (hi.z - lo.z);
+    let (_, hi, centre, radius) = sphere_bounds(&scene);
     let model = Model::from_scene(&scene, &["sphere".to_string()]);
     let start = DVec3::new(centre.x, centre.y, hi.z + 0.2 * radius);
-    let (device, mouse) = MouseDevice::new(start, lo - (hi - lo), hi + (hi - lo));
-    let source = live(Box::new(device), scene, Vec::new(), None);
-    let view = ViewServer::start(
+    let view = live_view(
         model.clone(),
-        Source::Live {
-            source: Box::new(source),
-            mouse: Some(mouse),
-        },
-        &options("haphe view: the mouse on a sphere"),
-    )
-    .expect("the view starts");
+        scene,
+        start,
+        (Vec::new(), None),
+        true,
+        "haphe view: the mouse on a sphere",
+    );
 
     let mut browser = Browser::start(WIDTH, HEIGHT);
     browser.navigate(&view.url());
@@ -107,10 +152,7 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
         let (x, y) = (i as u32 % w, i as u32 / w);
         if middle(x, y) {
             total += 1;
-            let lum = (u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2])) / 3;
-            if lum > 70 && p[2] > p[0] {
-                object += 1;
-            }
+            object += usize::from(object_colour(*p));
         }
     }
     let covered = object as f64 / total as f64;
@@ -123,14 +165,8 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
     assert!(before.object.is_none() && before.force().length() == 0.0);
 
     // Mouse events move the device point from above the sphere to its centre on the page.
-    let from = xy(&browser.eval(&format!(
-        "window.haphe.project({}, {}, {})",
-        start.x, start.y, start.z
-    )));
-    let to = xy(&browser.eval(&format!(
-        "window.haphe.project({}, {}, {})",
-        centre.x, centre.y, centre.z
-    )));
+    let from = project(&mut browser, start);
+    let to = project(&mut browser, centre);
     let steps = 40;
     for k in 0..=steps {
         let a = f64::from(k) / f64::from(steps);
@@ -176,24 +212,12 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
     assert!(stats.ticks > 1000 && stats.contact_ticks > 100);
 
     // Replay: a short press recorded in simulation plays to its last tick.
-    let scene = sphere_scene();
-    let path = scripted_path(PathKind::Press, &scene, 0.6, 1).expect("path");
-    let mut servo =
-        Servo::new(ScriptedDevice::new(path), scene, ServoOptions::default()).expect("servo");
-    let mut csv = Vec::new();
-    haphe::servo::write_csv_header(&mut csv).expect("header");
-    servo.run_simulated(600, |r| r.write_csv(&mut csv).expect("row"));
-    let trace = Trace::read("press.csv", csv.as_slice()).expect("reads back");
+    let trace = recorded_press(600, Vec::new(), "press.csv");
     let rows = trace.rows.len();
     assert!(trace.rows.iter().any(|r| r.object.is_some()));
     let view = ViewServer::start(model, Source::Replay(trace), &options("replay"))
         .expect("the replay view starts");
-    browser.navigate(&view.url());
-    browser.wait_for(
-        "!!(window.haphe && window.haphe.replay && window.haphe.replay.atEnd)",
-        Duration::from_secs(30),
-        "the replay to reach its last tick",
-    );
+    replay_to_the_end(&mut browser, &view);
     let r = browser.eval("window.haphe.replay");
     assert_eq!(r["index"].as_u64(), Some(rows as u64 - 1), "{r}");
     assert_eq!(
@@ -207,19 +231,21 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
     println!("browser test took {:.1} s", started.elapsed().as_secs_f64());
 }
 
-/// Whether the pixel at page point `p` is the object's grey-blue (not the background).
-fn is_object(pixels: &[[u8; 4]], w: u32, p: (f64, f64)) -> bool {
-    let px = pixels[(p.1 as u32 * w + p.0 as u32) as usize];
+/// Whether pixel `px` is the object's grey-blue (not the dark background).
+fn object_colour(px: [u8; 4]) -> bool {
     let lum = (u32::from(px[0]) + u32::from(px[1]) + u32::from(px[2])) / 3;
     lum > 70 && px[2] > px[0]
+}
+
+/// Whether the pixel at page point `p` is the object's grey-blue (not the background).
+fn is_object(pixels: &[[u8; 4]], w: u32, p: (f64, f64)) -> bool {
+    object_colour(pixels[(p.1 as u32 * w + p.0 as u32) as usize])
 }
 
 #[test]
 fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
     let scene = sphere_scene();
-    let (lo, hi) = scene_bounds(&scene).expect("bounds");
-    let centre = 0.5 * (lo + hi);
-    let radius = 0.5 * (hi.z - lo.z);
+    let (_, hi, centre, radius) = sphere_bounds(&scene);
     let model = Model::from_scene(&scene, &["sphere".to_string()]);
     // The sphere slides 2 radii along x in one second, then the run ends; the device
     // point waits far above it.
@@ -232,17 +258,14 @@ fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
         },
     }];
     let start = DVec3::new(centre.x, centre.y, hi.z + 1.5 * radius);
-    let (device, _mouse) = MouseDevice::new(start, lo - (hi - lo), hi + (hi - lo));
-    let source = live(Box::new(device), scene, motions.clone(), Some(seconds));
-    let view = ViewServer::start(
+    let view = live_view(
         model.clone(),
-        Source::Live {
-            source: Box::new(source),
-            mouse: None,
-        },
-        &options("a sliding sphere"),
-    )
-    .expect("the view starts");
+        scene,
+        start,
+        (motions.clone(), Some(seconds)),
+        false,
+        "a sliding sphere",
+    );
     let mut browser = Browser::start(WIDTH, HEIGHT);
     browser.navigate(&view.url());
     browser.wait_for(
@@ -260,9 +283,6 @@ fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
     assert!(t > 0.9 * seconds, "{frame}");
     assert!((x - expected.x).abs() < 1e-9, "{drawn} against {expected}");
     // And on the page: the sphere's colour where it is now, the background where it was.
-    let project = |browser: &mut Browser, p: DVec3| {
-        xy(&browser.eval(&format!("window.haphe.project({}, {}, {})", p.x, p.y, p.z)))
-    };
     let now = project(&mut browser, centre + expected);
     let before = project(&mut browser, centre);
     let (w, _, pixels) = decode_png(&browser.screenshot());
@@ -277,15 +297,7 @@ fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
     view.stop().expect("stops");
 
     // Replay: a simulated run of the same motion, scrubbed to its end.
-    let scene = sphere_scene();
-    let path = scripted_path(PathKind::Press, &scene, 0.5, 1).expect("path");
-    let mut servo =
-        Servo::new(ScriptedDevice::new(path), scene, ServoOptions::default()).expect("servo");
-    servo.set_motions(motions.clone());
-    let mut csv = Vec::new();
-    haphe::servo::write_csv_header(&mut csv).expect("header");
-    servo.run_simulated(500, |r| r.write_csv(&mut csv).expect("row"));
-    let trace = Trace::read("slide.csv", csv.as_slice()).expect("reads back");
+    let trace = recorded_press(500, motions.clone(), "slide.csv");
     let last_t = trace.rows.last().expect("rows").t;
     let view = ViewServer::start(
         model.with_motions(motions.clone()),
@@ -293,12 +305,7 @@ fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
         &options("replay of a sliding sphere"),
     )
     .expect("the replay view starts");
-    browser.navigate(&view.url());
-    browser.wait_for(
-        "!!(window.haphe && window.haphe.replay && window.haphe.replay.atEnd)",
-        Duration::from_secs(30),
-        "the replay to reach its last tick",
-    );
+    replay_to_the_end(&mut browser, &view);
     let drawn = browser.eval("window.haphe.drawn[0]");
     let x = drawn["translation"][0].as_f64().expect("drawn x");
     let expected = motions[0].pose_at(last_t).translation();
