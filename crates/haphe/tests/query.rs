@@ -91,18 +91,7 @@ fn inside_agrees_with_parry_on_solids() {
 
 #[test]
 fn real_models_agree_with_brute_force() {
-    let dir = support::meshes();
-    let mut names: Vec<_> = std::fs::read_dir(dir.join("models"))
-        .expect("models")
-        .map(|e| e.expect("entry").path())
-        .collect();
-    names.sort();
-    for path in names {
-        let name = path
-            .file_name()
-            .expect("name")
-            .to_string_lossy()
-            .into_owned();
+    for (name, path) in support::model_files() {
         let bytes = std::fs::read(&path).expect("readable");
         let mesh = read_mesh(&name, &bytes, &ReadOptions::default()).expect("loads");
         // Brute force is O(n) per sample: fewer samples on bigger meshes.

@@ -290,20 +290,10 @@ fn every_odd_file_has_a_test() {
 
 #[test]
 fn every_model_loads() {
-    let dir = support::meshes();
-    let mut paths: Vec<_> = std::fs::read_dir(dir.join("models"))
-        .expect("models/ is readable")
-        .map(|e| e.expect("entry").path())
-        .collect();
-    paths.sort();
+    let models = support::model_files();
     let least = if support::SHARED { 21 } else { 7 };
-    assert!(paths.len() >= least, "{paths:?}");
-    for path in paths {
-        let name = path
-            .file_name()
-            .expect("name")
-            .to_string_lossy()
-            .into_owned();
+    assert!(models.len() >= least, "{models:?}");
+    for (name, path) in models {
         let bytes = std::fs::read(&path).expect("model is readable");
         let mesh =
             read_mesh(&name, &bytes, &ReadOptions::default()).unwrap_or_else(|e| panic!("{e}"));

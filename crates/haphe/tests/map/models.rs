@@ -8,17 +8,7 @@ use super::*;
 /// surfaces), and the file round trip.
 #[test]
 fn every_real_model_gets_a_consistent_map() {
-    let dir = support::meshes();
-    let mut files: Vec<_> = std::fs::read_dir(dir.join("models"))
-        .expect("models folder")
-        .map(|e| e.expect("entry").path())
-        .collect();
-    files.sort();
-    for path in files {
-        let name = path
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
+    for (name, path) in support::model_files() {
         let bytes = std::fs::read(&path).expect("readable");
         let mesh = haphe::mesh::read_mesh(&name, &bytes, &haphe::mesh::ReadOptions::default())
             .unwrap_or_else(|e| panic!("{e}"));

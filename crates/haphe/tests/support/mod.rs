@@ -32,6 +32,22 @@ pub fn meshes() -> PathBuf {
     }
 }
 
+/// The real models, the files of `models/` in [`meshes`], sorted, each with its file name.
+pub fn model_files() -> Vec<(String, PathBuf)> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(meshes().join("models"))
+        .expect("models/ is readable")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    paths.sort();
+    paths
+        .into_iter()
+        .map(|path| {
+            let name = path.file_name().expect("name").to_string_lossy();
+            (name.into_owned(), path)
+        })
+        .collect()
+}
+
 /// Appends `part` to `mesh`: its vertices, each mapped by `place`, and its triangles with
 /// their corners renumbered.
 fn push_part(mesh: &mut Mesh, part: &Mesh, place: impl Fn(DVec3) -> DVec3) {
