@@ -12,15 +12,15 @@
 
 mod fixtures;
 mod oracle;
+mod paths;
 mod proxy;
 mod samples;
 mod strikes;
 
 pub use fixtures::{one_object_scene, sphere_scene};
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
-pub use proxy::{
-    BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy, haptic_path, haptic_path_in_contact,
-};
+pub use paths::{haptic_path, haptic_path_in_contact};
+pub use proxy::{BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy};
 pub use samples::{SegmentKind, bounds, point_on, points, segments, trajectory};
 pub use strikes::{
     MAX_STRIKE_ANGLE_DEG, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEED_CLASSES, STRIKE_SPEEDS,
