@@ -26,7 +26,7 @@ use haphe::map::MapOptions;
 use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions, TickOutput};
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::scene::{Material, ObjectId, ObjectKey, Pose, Scene, SceneObject, Shape};
 
 /// Where object `k` of a grid of `side`³ sits.
 fn grid(k: usize, side: usize) -> DVec3 {
@@ -39,13 +39,13 @@ fn grid(k: usize, side: usize) -> DVec3 {
 fn tick_once(
     scene: &mut Scene,
     proxy: &mut Proxy,
-    moving: &[(ObjectId, DVec3)],
+    moving: &mut [(ObjectKey, DVec3)],
     t: usize,
 ) -> TickOutput {
     scene.begin_tick();
     let wobble = DVec3::new(0.0, 0.0, 1e-3 * (t as f64 * 0.01).sin());
-    for &(id, at) in moving {
-        scene.set_pose(id, Pose::from_translation(at + wobble));
+    for (key, at) in moving.iter_mut() {
+        scene.set_pose_keyed(key, Pose::from_translation(*at + wobble));
     }
     let s = t as f64 * 2e-3;
     let hip = DVec3::new(0.04 * s.cos(), 0.04 * s.sin(), 0.085);
@@ -82,10 +82,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             material,
         ));
     }
-    let moving: Vec<(ObjectId, DVec3)> = (0..movers.min(objects - 1))
+    let mut moving: Vec<(ObjectKey, DVec3)> = (0..movers.min(objects - 1))
         .map(|m| {
             let k = 1 + m * (objects - 1) / movers;
-            (ObjectId(k as u32), grid(k, side))
+            (ObjectKey::new(ObjectId(k as u32)), grid(k, side))
         })
         .collect();
     let proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.2), ProxyOptions::default());
@@ -98,7 +98,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut contacts = 0;
     for t in 0..ticks {
         let start = Instant::now();
-        let out = tick_once(&mut scene, &mut proxy, &moving, t);
+        let out = tick_once(&mut scene, &mut proxy, &mut moving, t);
         times.push(start.elapsed().as_nanos() as u64);
         contacts += usize::from(out.contact.is_some());
     }

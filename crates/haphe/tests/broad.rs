@@ -12,7 +12,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::rng::SplitMix64;
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::scene::{Material, ObjectId, ObjectKey, Pose, Scene, SceneObject, Shape};
 use proptest::prelude::*;
 
 fn shape(which: Catalog, triangles: usize) -> Arc<Shape> {
@@ -84,12 +84,18 @@ fn compare(
     let rate = 500.0;
     let mut next_id = objects as u32;
     let mut contacts = 0;
+    // Every other mover is moved by a key made once, whose index goes stale when an
+    // object before it is removed.
+    let mut keys: Vec<ObjectKey> = (0..movers.min(objects))
+        .map(|m| ObjectKey::new(ObjectId(m as u32)))
+        .collect();
     for tick in 0..250 {
         scene.begin_tick();
         for m in 0..movers.min(objects) {
             // Moving objects: the first `movers` ids (some may have been removed).
             let id = ObjectId(m as u32);
             let Some(i) = scene.index_of(id) else {
+                assert!(!scene.set_pose_keyed(&mut keys[m], Pose::IDENTITY));
                 continue;
             };
             let old = scene.objects()[i].pose;
@@ -100,13 +106,17 @@ fn compare(
             } else {
                 old.rotation()
             };
-            scene.set_pose(id, Pose::new(rotation, old.translation() + step * wobble));
+            let pose = Pose::new(rotation, old.translation() + step * wobble);
+            if m % 2 == 0 {
+                assert!(scene.set_pose(id, pose));
+            } else {
+                assert!(scene.set_pose_keyed(&mut keys[m], pose));
+            }
         }
         if edits && tick % 25 == 7 && scene.objects().len() > 1 {
+            // Any object, a mover now and then (the keys after it go stale).
             let victim = scene.objects()[rng.index(scene.objects().len())].id;
-            if victim.0 as usize >= movers {
-                scene.remove(victim);
-            }
+            scene.remove(victim);
             let s = Arc::clone(&shapes()[rng.index(shapes().len())]);
             let pose = Pose::from_translation(hip + rng.unit_vector() * 0.12);
             let _ = scene.insert(SceneObject::new(ObjectId(next_id), s, pose, material));

@@ -9,7 +9,7 @@ use haphe::mesh::shapes;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::{
-    Edit, EditError, Material, ObjectId, Pose, Returned, Scene, SceneObject, Shape,
+    Edit, EditError, Material, ObjectId, ObjectKey, Pose, Returned, Scene, SceneObject, Shape,
 };
 
 fn shape(mesh: haphe::mesh::Mesh) -> Arc<Shape> {
@@ -138,4 +138,66 @@ fn force_shading_follows_the_smooth_normal() {
         worst_force < 0.5 * worst_face,
         "shaded {worst_force} vs flat {worst_face}"
     );
+}
+
+/// Keys move the object they name: made before the object is inserted, after objects
+/// before it are removed (a stale index), in a batch; never another object, and a key of a
+/// removed object moves nothing.
+#[test]
+fn keys_move_the_object_they_name() {
+    let ball = shape(shapes::sphere(0.05, 1));
+    let mut scene = Scene::local(8);
+    let at = |x: f64| Pose::from_translation(DVec3::new(x, 0.0, 0.0));
+    let mut early = ObjectKey::new(ObjectId(7));
+    assert!(
+        !scene.set_pose_keyed(&mut early, at(1.0)),
+        "no object 7 yet"
+    );
+    for k in 0..5 {
+        let o = SceneObject::new(ObjectId(k), ball.clone(), at(0.0), Material::default());
+        scene.insert(o).expect("room");
+    }
+    let o = SceneObject::new(ObjectId(7), ball.clone(), at(0.0), Material::default());
+    scene.insert(o).expect("room");
+    let x_of = |scene: &Scene, id: u32| {
+        let i = scene.index_of(ObjectId(id)).expect("in the scene");
+        scene.objects()[i].pose.translation().x
+    };
+    assert!(scene.set_pose_keyed(&mut early, at(1.0)));
+    assert_eq!(x_of(&scene, 7), 1.0);
+    assert_eq!(early, scene.key_of(ObjectId(7)).expect("a key"));
+
+    let mut key3 = scene.key_of(ObjectId(3)).expect("a key");
+    assert_eq!(key3.id(), ObjectId(3));
+    scene.remove(ObjectId(1)).expect("removed");
+    // Object 3's key now points past it; the object there is another one.
+    assert!(scene.set_pose_keyed(&mut key3, at(3.0)));
+    assert_eq!(x_of(&scene, 3), 3.0);
+    for id in [0, 2, 4] {
+        assert_eq!(x_of(&scene, id), 0.0, "object {id} moved");
+    }
+    assert_eq!(key3, scene.key_of(ObjectId(3)).expect("a key"));
+
+    scene.begin_tick();
+    let mut moves = [
+        (ObjectKey::new(ObjectId(4)), at(4.0)),
+        (key3, at(-3.0)),
+        (ObjectKey::new(ObjectId(1)), at(9.0)),
+        (early, at(7.0)),
+    ];
+    assert_eq!(scene.set_poses(&mut moves), 3, "object 1 is gone");
+    for (id, x) in [(4, 4.0), (3, -3.0), (7, 7.0), (0, 0.0), (2, 0.0)] {
+        assert_eq!(x_of(&scene, id), x, "object {id}");
+    }
+    let moved: Vec<ObjectId> = scene
+        .objects()
+        .iter()
+        .filter(|o| o.moved())
+        .map(|o| o.id)
+        .collect();
+    assert_eq!(moved, [ObjectId(3), ObjectId(4), ObjectId(7)]);
+    // Setting an object's pose to where it already is moves nothing.
+    scene.begin_tick();
+    assert!(scene.set_pose(ObjectId(4), at(4.0)));
+    assert!(scene.objects().iter().all(|o| !o.moved()));
 }

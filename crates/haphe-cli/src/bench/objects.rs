@@ -6,9 +6,10 @@
 //! 0.25 m apart, one [`Shape`] behind an `Arc`); the hand presses about 6 mm into the
 //! sphere at the corner of the grid, which has neighbours on three sides, and slides on
 //! it in circles. A tick is timed as the servo thread runs it: [`Scene::begin_tick`], the
-//! poses of the moving objects (a 1 mm wobble, [`Scene::set_pose`] by name), and
-//! [`Proxy::tick`]. Every configuration keeps its own scene and proxy; they take turns
-//! by chunks of ticks, so that a slow spell of a shared machine falls on all alike.
+//! poses of the moving objects (a 1 mm wobble, each set by [`Scene::set_pose_keyed`] with
+//! a key made once per object), and [`Proxy::tick`]. Every configuration keeps its own
+//! scene and proxy; they take turns by chunks of ticks, so that a slow spell of a shared
+//! machine falls on all alike.
 
 use std::hint::black_box;
 use std::sync::Arc;
@@ -20,7 +21,7 @@ use haphe::map::MapOptions;
 use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+use haphe::scene::{Material, ObjectId, ObjectKey, Pose, Scene, SceneObject, Shape};
 
 use super::timing::{Overhead, Summary, time_empty};
 
@@ -53,7 +54,7 @@ pub struct Row {
 struct Config {
     scene: Scene,
     proxy: Proxy,
-    moving: Vec<(ObjectId, DVec3)>,
+    moving: Vec<(ObjectKey, DVec3)>,
     row: Row,
     raw: Vec<u32>,
 }
@@ -82,7 +83,7 @@ fn config(shape: &Arc<Shape>, objects: usize, moving: usize, linear: bool) -> Co
     let moving = (0..moving)
         .map(|m| {
             let k = 1 + m * (objects - 1) / moving.max(1);
-            (ObjectId(k as u32), grid(k, side))
+            (ObjectKey::new(ObjectId(k as u32)), grid(k, side))
         })
         .collect();
     let proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.2), ProxyOptions::default());
@@ -160,8 +161,9 @@ pub fn series(counts: &[usize], ticks: usize) -> anyhow::Result<Vec<Row>> {
                 let start = Instant::now();
                 c.scene.begin_tick();
                 let wobble = DVec3::new(0.0, 0.0, 1e-3 * (t as f64 * 0.01).sin());
-                for &(id, at) in &c.moving {
-                    c.scene.set_pose(id, Pose::from_translation(at + wobble));
+                for (key, at) in &mut c.moving {
+                    c.scene
+                        .set_pose_keyed(key, Pose::from_translation(*at + wobble));
                 }
                 let out = c.proxy.tick(&c.scene, black_box(hip), DVec3::ZERO);
                 black_box(out);

@@ -57,27 +57,43 @@ fn edge(level: usize) -> f64 {
     f64::from_bits(((1023 + MIN_EXP + level as i32) as u64) << 52)
 }
 
-/// The cell of a sphere at `centre` of radius `radius` (already with its slack).
-fn cell_of(centre: DVec3, radius: f64) -> Cell {
-    if !centre.is_finite() || radius.is_nan() || radius > edge(LEVELS - 1) {
-        return Cell::HUGE;
+/// The level of a sphere of radius `radius` (already with its slack): the smallest whose
+/// edge is at least the radius, or [`HUGE`] when none is.
+fn level_of(radius: f64) -> u8 {
+    if radius.is_nan() || radius > edge(LEVELS - 1) {
+        return HUGE;
     }
-    // The smallest level whose edge is at least the radius: from the radius's binary
-    // exponent, then one step up if the radius is not a power of two.
+    // From the radius's binary exponent, then one step up if the radius is not a power
+    // of two.
     let exponent = ((radius.to_bits() >> 52) & 0x7FF) as i32 - 1023;
     let mut level = (exponent - MIN_EXP).clamp(0, LEVELS as i32 - 1) as usize;
     if edge(level) < radius {
         level += 1;
     }
+    level as u8
+}
+
+/// The cell at `level` (from [`level_of`]) of a sphere centred at `centre`.
+#[inline]
+fn cell_at(level: u8, centre: DVec3) -> Cell {
+    if level == HUGE || !centre.is_finite() {
+        return Cell::HUGE;
+    }
     // Multiplying by the inverse of a power of two is exact: the same as dividing.
-    let k = centre * inverse_edge(level);
+    let k = centre * inverse_edge(usize::from(level));
     if k.abs().max_element() > MAX_COORD {
         return Cell::HUGE;
     }
     Cell {
-        level: level as u8,
+        level,
         k: [floor_i32(k.x), floor_i32(k.y), floor_i32(k.z)],
     }
+}
+
+/// The cell of a sphere at `centre` of radius `radius` (already with its slack).
+#[cfg(test)]
+fn cell_of(centre: DVec3, radius: f64) -> Cell {
+    cell_at(level_of(radius), centre)
 }
 
 /// `1 / edge(level)`, exact.
@@ -97,6 +113,8 @@ fn floor_i32(x: f64) -> i32 {
 #[derive(Debug)]
 pub(crate) struct Broad {
     cell: Vec<Cell>,
+    /// Each object's level, from its radius ([`HUGE`] when too large for any).
+    level: Vec<u8>,
     next: Vec<u32>,
     prev: Vec<u32>,
     heads: Box<[u32]>,
@@ -168,6 +186,7 @@ impl Broad {
         let buckets = (2 * capacity).next_power_of_two().max(16);
         Broad {
             cell: Vec::with_capacity(capacity),
+            level: Vec::with_capacity(capacity),
             next: Vec::with_capacity(capacity),
             prev: Vec::with_capacity(capacity),
             heads: vec![NONE; buckets].into_boxed_slice(),
@@ -228,16 +247,46 @@ impl Broad {
     /// objects within the capacity, so this never reallocates.
     pub(crate) fn push(&mut self, centre: DVec3, radius: f64) {
         let i = self.cell.len() as u32;
+        let level = level_of(radius);
         self.cell.push(Cell::HUGE);
+        self.level.push(level);
         self.next.push(NONE);
         self.prev.push(NONE);
-        self.link(i, cell_of(centre, radius));
+        self.link(i, cell_at(level, centre));
     }
 
-    /// Object `i` moved: its sphere is now at `centre`. Returns whether it changed cell.
-    pub(crate) fn update(&mut self, i: usize, centre: DVec3, radius: f64) -> bool {
-        let c = cell_of(centre, radius);
-        if self.cell.get(i) == Some(&c) || i >= self.cell.len() {
+    /// Object `i` moved: its sphere (of the radius it was placed with) is now at `centre`.
+    /// Returns whether it changed cell.
+    ///
+    /// # Real-time
+    /// A sphere that stays in its cell costs a few multiplies and compares (no rounding
+    /// to integers); a change of cell relinks it.
+    #[inline]
+    pub(crate) fn update(&mut self, i: usize, centre: DVec3) -> bool {
+        let Some(&old) = self.cell.get(i) else {
+            return false;
+        };
+        if old.level != HUGE {
+            // Inside the cell when `k ≤ centre / h < k + 1` on every axis (false for a
+            // non-finite centre).
+            let u = centre * inverse_edge(usize::from(old.level));
+            let d = u - DVec3::new(
+                f64::from(old.k[0]),
+                f64::from(old.k[1]),
+                f64::from(old.k[2]),
+            );
+            if d.x >= 0.0 && d.y >= 0.0 && d.z >= 0.0 && d.x < 1.0 && d.y < 1.0 && d.z < 1.0 {
+                return false;
+            }
+        }
+        self.relink(i, centre)
+    }
+
+    /// Puts object `i` in the cell of its sphere at `centre`; whether that changed it.
+    #[cold]
+    fn relink(&mut self, i: usize, centre: DVec3) -> bool {
+        let c = cell_at(self.level[i], centre);
+        if self.cell[i] == c {
             return false;
         }
         self.unlink(i as u32);
@@ -255,6 +304,7 @@ impl Broad {
         }
         self.unlink(i as u32);
         self.cell.remove(i);
+        self.level.remove(i);
         self.next.remove(i);
         self.prev.remove(i);
         let shift = |v: &mut u32| {
@@ -377,7 +427,7 @@ mod tests {
                 2 if !spheres.is_empty() => {
                     let i = rng.index(spheres.len());
                     spheres[i].0 += point(&mut rng, 0.05);
-                    broad.update(i, spheres[i].0, spheres[i].1);
+                    broad.update(i, spheres[i].0);
                 }
                 3 if !spheres.is_empty() && step % 3 == 0 => {
                     let i = rng.index(spheres.len());

@@ -30,12 +30,14 @@ mod clear;
 mod handoff;
 mod invalid;
 mod material;
+mod moves;
 mod pose;
 mod shape;
 
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
 pub use invalid::{InvalidValue, MAX_FORCE_LIMIT_N, check_max_force};
 pub use material::Material;
+pub use moves::ObjectKey;
 pub use pose::Pose;
 pub use shape::Shape;
 
@@ -167,10 +169,10 @@ pub struct Scene {
     /// increasing, each once; `in_moved` marks them.
     moved: Vec<u32>,
     in_moved: Vec<bool>,
-    /// The largest translation of a moved object since the previous tick, metres, and
-    /// whether a moved object turned (its path relative to a point is then not bounded
-    /// by its translation).
-    shift: f64,
+    /// The square of the largest translation of a moved object since the previous tick,
+    /// square metres, and whether a moved object turned (its path relative to a point is
+    /// then not bounded by its translation).
+    shift2: f64,
     turned: bool,
     /// A name for this scene, and a count of the changes to the broad phase's cells: a
     /// candidate set found for (`uid`, `epoch`) stays valid while both are the same.
@@ -207,7 +209,7 @@ impl Scene {
             ids,
             moved: Vec::with_capacity(capacity),
             in_moved: Vec::with_capacity(capacity),
-            shift: 0.0,
+            shift2: 0.0,
             turned: false,
             uid: NEXT_UID.fetch_add(1, Ordering::Relaxed),
             epoch: 0,
@@ -284,46 +286,6 @@ impl Scene {
         Some(self.objects.remove(i))
     }
 
-    /// Moves the object named `id` to `pose` (the motion since the previous tick is
-    /// rendered). `false` when there is no such object.
-    ///
-    /// # Real-time
-    /// Constant time (its cell in the broad phase is updated), unless objects are moved
-    /// in decreasing index order within a tick (the list of moved objects is kept sorted).
-    pub fn set_pose(&mut self, id: ObjectId, pose: Pose) -> bool {
-        let Some(i) = self.index_of(id) else {
-            return false;
-        };
-        let o = &mut self.objects[i];
-        o.pose = pose;
-        let shift = pose.translation().distance(o.previous_pose.translation());
-        let turned = pose.rotation() != o.previous_pose.rotation();
-        let (centre, radius) = sphere_of(o);
-        // A non-finite shift (never, for valid poses) counts as a turn: test every mover.
-        self.shift = self.shift.max(shift);
-        self.turned |= turned || !shift.is_finite();
-        if self.broad.update(i, centre, radius) {
-            self.epoch += 1;
-        }
-        self.mark_moved(i);
-        true
-    }
-
-    /// Notes that object `i` moved this tick.
-    fn mark_moved(&mut self, i: usize) {
-        if self.in_moved[i] {
-            return;
-        }
-        self.in_moved[i] = true;
-        let k = match self.moved.last() {
-            Some(&last) if (last as usize) > i => {
-                self.moved.binary_search(&(i as u32)).unwrap_or_else(|k| k)
-            }
-            _ => self.moved.len(),
-        };
-        self.moved.insert(k, i as u32);
-    }
-
     /// Changes the material of the object named `id`. `false` when there is no such object.
     pub fn set_material(&mut self, id: ObjectId, material: Material) -> bool {
         self.index_of(id)
@@ -357,7 +319,7 @@ impl Scene {
     /// metres: every moved object kept its rotation and moved at most this far since the
     /// previous tick. `None` when an object turned.
     pub(crate) fn moved_shift(&self) -> Option<f64> {
-        (!self.turned).then_some(self.shift)
+        (!self.turned).then(|| self.shift2.sqrt())
     }
 
     /// Starts a servo tick: remembers every pose as the previous one, then applies the
@@ -370,14 +332,7 @@ impl Scene {
     /// No allocation, no lock, no shape freed here (removed objects go back to the
     /// editor); bounded by [`MAX_EDITS_PER_TICK`].
     pub fn begin_tick(&mut self) -> usize {
-        for &i in &self.moved {
-            let o = &mut self.objects[i as usize];
-            o.previous_pose = o.pose;
-            self.in_moved[i as usize] = false;
-        }
-        self.moved.clear();
-        self.shift = 0.0;
-        self.turned = false;
+        self.settle_moved();
         let Some(mut inbox) = self.inbox.take() else {
             return 0;
         };

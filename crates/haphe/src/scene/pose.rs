@@ -49,9 +49,26 @@ impl Pose {
         }
     }
 
-    /// A pure translation, metres.
+    /// A pure translation, metres (a non-finite translation gives zero): the same pose as
+    /// `Pose::new(DQuat::IDENTITY, translation)`, without normalising the rotation.
+    #[inline]
     pub fn from_translation(translation: DVec3) -> Pose {
-        Pose::new(DQuat::IDENTITY, translation)
+        Pose {
+            rotation: DQuat::IDENTITY,
+            // `x - x` is 0 for a finite `x`, NaN otherwise: one compare for all three.
+            translation: if (translation - translation).element_sum() == 0.0 {
+                translation
+            } else {
+                DVec3::ZERO
+            },
+            unrotated: true,
+        }
+    }
+
+    /// Whether the rotation is the identity (a pure translation).
+    #[inline]
+    pub(crate) fn is_unrotated(&self) -> bool {
+        self.unrotated
     }
 
     /// The rotation, object axes to world axes.
@@ -114,6 +131,22 @@ mod tests {
         let p = DVec3::new(0.4, 0.5, -0.6);
         assert!(pose.to_object(pose.to_world(p)).distance(p) < 1e-15);
         assert!(pose.vector_to_object(pose.vector_to_world(p)).distance(p) < 1e-15);
+    }
+
+    #[test]
+    fn a_translation_is_the_pose_with_the_identity_rotation() {
+        for t in [
+            DVec3::new(0.1, -2.0, 3e5),
+            DVec3::ZERO,
+            DVec3::NAN,
+            DVec3::INFINITY,
+        ] {
+            assert_eq!(
+                Pose::from_translation(t),
+                Pose::new(DQuat::IDENTITY, t),
+                "{t}"
+            );
+        }
     }
 
     #[test]

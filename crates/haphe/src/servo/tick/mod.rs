@@ -17,7 +17,7 @@ use glam::DVec3;
 
 use crate::proxy::{Proxy, ProxyOptions, TickStatus};
 use crate::query::{Side, classify_point};
-use crate::scene::Scene;
+use crate::scene::{ObjectKey, Scene};
 use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
 use crate::servo::trace::{Phase, TickRecord};
 
@@ -121,6 +121,8 @@ pub struct Servo<D: Device> {
     spec: DeviceSpec,
     scene: Scene,
     motions: Vec<ObjectMotion>,
+    /// The moving objects' keys, one per motion: poses are set without a lookup by name.
+    motion_keys: Vec<ObjectKey>,
     proxy: Proxy,
     options: ServoOptions,
     phase: Phase,
@@ -157,6 +159,7 @@ impl<D: Device> Servo<D> {
             spec,
             scene,
             motions: Vec::new(),
+            motion_keys: Vec::new(),
             proxy: Proxy::new(DVec3::ZERO, options.proxy),
             options,
             phase: Phase::Holding,
@@ -170,8 +173,9 @@ impl<D: Device> Servo<D> {
     /// of the next tick (so that they do not jump at it), and at the start of every tick.
     pub fn set_motions(&mut self, motions: Vec<ObjectMotion>) {
         let t = self.stats.ticks as f64 * self.period();
-        for m in &motions {
-            self.scene.set_pose(m.id, m.pose_at(t));
+        self.motion_keys = motions.iter().map(|m| ObjectKey::new(m.id)).collect();
+        for (m, key) in motions.iter().zip(&mut self.motion_keys) {
+            self.scene.set_pose_keyed(key, m.pose_at(t));
         }
         self.motions = motions;
     }
@@ -269,8 +273,8 @@ impl<D: Device> Servo<D> {
             return record;
         }
         self.scene.begin_tick();
-        for m in &self.motions {
-            self.scene.set_pose(m.id, m.pose_at(t));
+        for (m, key) in self.motions.iter().zip(&mut self.motion_keys) {
+            self.scene.set_pose_keyed(key, m.pose_at(t));
         }
         let state = match self.device.read(t) {
             Ok(s) => s,
