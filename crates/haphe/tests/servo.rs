@@ -515,3 +515,38 @@ fn no_standby_on_the_servo_threads_own_core() {
         );
     }
 }
+
+/// On a grid of many objects the explore path strokes over the first object at a hand's
+/// speed, hovering just above it, instead of crossing the whole scene.
+#[test]
+fn explore_on_a_large_scene_stays_on_one_object() {
+    let ball = shape(Catalog::Sphere, 320);
+    let r = ball.bound_radius();
+    let mut scene = Scene::local(64);
+    for k in 0..64u32 {
+        let at = DVec3::new(f64::from(k % 4), f64::from((k / 4) % 4), f64::from(k / 16)) * 0.25;
+        let o = SceneObject::new(
+            ObjectId(k),
+            ball.clone(),
+            Pose::from_translation(at),
+            Material::default(),
+        );
+        scene.insert(o).expect("room");
+    }
+    let path = scripted_path(PathKind::Explore, &scene, 5.0, 3).expect("a path");
+    let mut fastest = 0.0f64;
+    let steps = 5_000;
+    for k in 0..=steps {
+        let (p, v) = path.sample(path.end_time() * f64::from(k) / f64::from(steps));
+        fastest = fastest.max(v.length());
+        assert!(
+            p.truncate().length() < r,
+            "{p} is not over the first object"
+        );
+        assert!(
+            p.z > -r && p.z < r + 0.05,
+            "{p} is not at the first object's height"
+        );
+    }
+    assert!(fastest < 1.0, "{fastest} m/s");
+}

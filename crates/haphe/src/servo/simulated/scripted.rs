@@ -22,6 +22,10 @@ pub const HOVER_M: f64 = 0.03;
 pub const STRIKE_SPEED: f64 = 1.5;
 /// Speed of a slide along a surface, m/s.
 pub const SLIDE_SPEED: f64 = 0.05;
+/// [`PathKind::Explore`] strokes over random objects of a scene of at most this many
+/// objects; a larger scene is explored on its first object only, hovering just above it (a
+/// user exploring one object of many, at the speeds of a hand).
+pub const EXPLORE_ANY_MAX_OBJECTS: usize = 16;
 
 /// A scripted motion over a scene. The paths are built in the world frame with `+z` up,
 /// over the top of the scene's objects (found by probing downward with the collision
@@ -217,9 +221,33 @@ pub fn scripted_path(
             let mut rng = SplitMix64::new(seed);
             let strokes = (seconds / 1.0).round().max(1.0) as usize;
             let dt = t / strokes as f64;
+            // One object of many: its own surface under the hand, hovering over its own
+            // bounding sphere.
+            let one = scene.objects().len() > EXPLORE_ANY_MAX_OBJECTS;
+            let own_top = |x: f64, y: f64| {
+                let (top, bottom) = (
+                    DVec3::new(x, y, c.z + r + 1.0),
+                    DVec3::new(x, y, c.z - r - 1.0),
+                );
+                scene
+                    .first_hit(0, top, bottom, 0.0)
+                    .map_or(DVec3::new(x, y, c.z), |h| h.point)
+            };
+            let surface = |x: f64, y: f64| if one { own_top(x, y) } else { top_at(x, y) };
+            let above = |p: DVec3| {
+                if one {
+                    DVec3::new(p.x, p.y, c.z + r + HOVER_M)
+                } else {
+                    above(p)
+                }
+            };
             let mut keys = Vec::new();
             for s in 0..strokes {
-                let o = &scene.objects()[rng.index(scene.objects().len())];
+                let o = if one {
+                    first
+                } else {
+                    &scene.objects()[rng.index(scene.objects().len())]
+                };
                 let oc = o.pose.to_world(o.shape.bound_centre());
                 let reach = 0.6 * o.shape.bound_radius();
                 let mut pick = || {
@@ -227,7 +255,7 @@ pub fn scripted_path(
                         oc.x + rng.range(-reach, reach),
                         oc.y + rng.range(-reach, reach),
                     );
-                    top_at(x, y)
+                    surface(x, y)
                 };
                 let (a, b) = (pick(), pick());
                 let depth = PRESS_DEPTH_M * rng.range(0.3, 1.5);
@@ -240,7 +268,7 @@ pub fn scripted_path(
                 for k in 1..=6 {
                     let f = f64::from(k) / 6.0;
                     let p = a.lerp(b, f);
-                    keys.push((t0 + (0.35 + 0.45 * f) * dt, under(top_at(p.x, p.y), depth)));
+                    keys.push((t0 + (0.35 + 0.45 * f) * dt, under(surface(p.x, p.y), depth)));
                 }
                 keys.push((t0 + 0.9 * dt, b + DVec3::Z * 0.01));
             }
