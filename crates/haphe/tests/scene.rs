@@ -140,9 +140,9 @@ fn force_shading_follows_the_smooth_normal() {
     );
 }
 
-/// Keys move the object they name: made before the object is inserted, after objects
-/// before it are removed (a stale index), in a batch; never another object, and a key of a
-/// removed object moves nothing.
+/// Keys move the object they name: made before the object is inserted, after a removal
+/// moved it and another object took its index (a stale index), in a batch; never another
+/// object, and a key of a removed object moves nothing.
 #[test]
 fn keys_move_the_object_they_name() {
     let ball = shape(shapes::sphere(0.05, 1));
@@ -167,16 +167,19 @@ fn keys_move_the_object_they_name() {
     assert_eq!(x_of(&scene, 7), 1.0);
     assert_eq!(early, scene.key_of(ObjectId(7)).expect("a key"));
 
-    let mut key3 = scene.key_of(ObjectId(3)).expect("a key");
-    assert_eq!(key3.id(), ObjectId(3));
+    // Objects 0, 1, 2, 3, 4, 7: removing 1 puts 7 in its place, and 8 takes 7's old
+    // index, where `early` points.
     scene.remove(ObjectId(1)).expect("removed");
-    // Object 3's key now points past it; the object there is another one.
-    assert!(scene.set_pose_keyed(&mut key3, at(3.0)));
-    assert_eq!(x_of(&scene, 3), 3.0);
-    for id in [0, 2, 4] {
+    let o = SceneObject::new(ObjectId(8), ball.clone(), at(0.0), Material::default());
+    scene.insert(o).expect("room");
+    assert!(scene.set_pose_keyed(&mut early, at(-7.0)));
+    assert_eq!(x_of(&scene, 7), -7.0);
+    for id in [0, 2, 3, 4, 8] {
         assert_eq!(x_of(&scene, id), 0.0, "object {id} moved");
     }
-    assert_eq!(key3, scene.key_of(ObjectId(3)).expect("a key"));
+    assert_eq!(early, scene.key_of(ObjectId(7)).expect("a key"));
+    let key3 = scene.key_of(ObjectId(3)).expect("a key");
+    assert_eq!(key3.id(), ObjectId(3));
 
     scene.begin_tick();
     let mut moves = [
@@ -186,7 +189,7 @@ fn keys_move_the_object_they_name() {
         (early, at(7.0)),
     ];
     assert_eq!(scene.set_poses(&mut moves), 3, "object 1 is gone");
-    for (id, x) in [(4, 4.0), (3, -3.0), (7, 7.0), (0, 0.0), (2, 0.0)] {
+    for (id, x) in [(4, 4.0), (3, -3.0), (7, 7.0), (0, 0.0), (2, 0.0), (8, 0.0)] {
         assert_eq!(x_of(&scene, id), x, "object {id}");
     }
     let moved: Vec<ObjectId> = scene
@@ -195,7 +198,8 @@ fn keys_move_the_object_they_name() {
         .filter(|o| o.moved())
         .map(|o| o.id)
         .collect();
-    assert_eq!(moved, [ObjectId(3), ObjectId(4), ObjectId(7)]);
+    // In index order: 7 took index 1.
+    assert_eq!(moved, [ObjectId(7), ObjectId(3), ObjectId(4)]);
     // Setting an object's pose to where it already is moves nothing.
     scene.begin_tick();
     assert!(scene.set_pose(ObjectId(4), at(4.0)));

@@ -14,8 +14,8 @@
 //! Objects too large for the top level, or too far out for a cell coordinate, are kept in
 //! one list that every query returns.
 //!
-//! Invariants: slot `i` is object `i` of the scene (the arrays shift with a removal, as the
-//! scene's objects do); every object is in exactly one list, the one of its `cell`; a
+//! Invariants: slot `i` is object `i` of the scene (a removal puts the last slot in the
+//! removed one's place, as the scene does with its objects); every object is in exactly one list, the one of its `cell`; a
 //! level's count is the number of objects at that level.
 
 use glam::DVec3;
@@ -294,28 +294,40 @@ impl Broad {
         true
     }
 
-    /// Removes object `i`; the objects after it move down one index, as in the scene.
+    /// Removes object `i`; the last object takes its index, as in the scene.
     ///
     /// # Real-time
-    /// No allocation; one pass over the objects and the buckets to renumber the links.
-    pub(crate) fn remove(&mut self, i: usize) {
-        if i >= self.cell.len() {
+    /// No allocation; constant time (the last object's neighbours in its list are
+    /// renamed).
+    pub(crate) fn swap_remove(&mut self, i: usize) {
+        let Some(last) = self.cell.len().checked_sub(1) else {
+            return;
+        };
+        if i > last {
             return;
         }
         self.unlink(i as u32);
-        self.cell.remove(i);
-        self.level.remove(i);
-        self.next.remove(i);
-        self.prev.remove(i);
-        let shift = |v: &mut u32| {
-            if *v != NONE && *v as usize > i {
-                *v -= 1;
+        if i != last {
+            // Slot `last` becomes slot `i`: the same place in the same list.
+            let (p, n) = (self.prev[last], self.next[last]);
+            self.cell[i] = self.cell[last];
+            self.level[i] = self.level[last];
+            self.prev[i] = p;
+            self.next[i] = n;
+            if p == NONE {
+                let c = self.cell[i];
+                *self.head_mut(&c) = i as u32;
+            } else {
+                self.next[p as usize] = i as u32;
             }
-        };
-        self.next.iter_mut().for_each(shift);
-        self.prev.iter_mut().for_each(shift);
-        self.heads.iter_mut().for_each(shift);
-        shift(&mut self.huge_head);
+            if n != NONE {
+                self.prev[n as usize] = i as u32;
+            }
+        }
+        self.cell.pop();
+        self.level.pop();
+        self.next.pop();
+        self.prev.pop();
     }
 
     /// Every object whose bounding sphere (of the radius given when it was placed) may
@@ -431,8 +443,8 @@ mod tests {
                 }
                 3 if !spheres.is_empty() && step % 3 == 0 => {
                     let i = rng.index(spheres.len());
-                    spheres.remove(i);
-                    broad.remove(i);
+                    spheres.swap_remove(i);
+                    broad.swap_remove(i);
                 }
                 _ => {}
             }

@@ -216,7 +216,8 @@ impl Scene {
         }
     }
 
-    /// The objects, in insertion order (removal keeps the order of the others).
+    /// The objects, in insertion order, except that removing an object puts the last one in
+    /// its place.
     pub fn objects(&self) -> &[SceneObject] {
         &self.objects
     }
@@ -258,32 +259,33 @@ impl Scene {
         Ok(())
     }
 
-    /// Removes the object named `id` and hands it back.
+    /// Removes the object named `id` and hands it back. The last object takes its index
+    /// (the others keep theirs).
     ///
     /// # Real-time
-    /// No allocation; the objects after it move down one index (one pass over the
-    /// objects and the broad phase's buckets).
+    /// No allocation; constant time, plus a shift within the list of the objects moved
+    /// this tick when the removed or the last object is in it.
     pub fn remove(&mut self, id: ObjectId) -> Option<SceneObject> {
         let i = self.ids.remove(&id.0)? as usize;
-        for v in self.ids.values_mut() {
-            if *v as usize > i {
-                *v -= 1;
-            }
+        let last = self.objects.len() - 1;
+        self.broad.swap_remove(i);
+        if self.in_moved[i] {
+            self.unlist_moved(i);
         }
-        self.broad.remove(i);
-        if self.in_moved[i]
-            && let Ok(k) = self.moved.binary_search(&(i as u32))
-        {
-            self.moved.remove(k);
-        }
-        self.in_moved.remove(i);
-        for m in &mut self.moved {
-            if *m as usize > i {
-                *m -= 1;
+        if i != last {
+            self.ids.insert(self.objects[last].id.0, i as u32);
+            if self.in_moved[last] {
+                self.unlist_moved(last);
+                self.in_moved.swap_remove(i);
+                self.mark_moved(i);
+            } else {
+                self.in_moved.swap_remove(i);
             }
+        } else {
+            self.in_moved.pop();
         }
         self.epoch += 1;
-        Some(self.objects.remove(i))
+        Some(self.objects.swap_remove(i))
     }
 
     /// Changes the material of the object named `id`. `false` when there is no such object.

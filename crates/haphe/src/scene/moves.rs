@@ -156,6 +156,14 @@ impl Scene {
         self.moved.insert(k, i as u32);
     }
 
+    /// Takes object `i` (listed) off the list of moved objects.
+    pub(super) fn unlist_moved(&mut self, i: usize) {
+        if let Ok(k) = self.moved.binary_search(&(i as u32)) {
+            self.moved.remove(k);
+        }
+        self.in_moved[i] = false;
+    }
+
     /// Remembers the poses of the objects that moved as their previous poses, and empties
     /// the list of moved objects (the start of [`Scene::begin_tick`]).
     pub(super) fn settle_moved(&mut self) {
