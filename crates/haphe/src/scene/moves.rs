@@ -166,6 +166,7 @@ impl Scene {
 
     /// Remembers the poses of the objects that moved as their previous poses, and empties
     /// the list of moved objects (the start of [`Scene::begin_tick`]).
+    #[inline]
     pub(super) fn settle_moved(&mut self) {
         for &i in &self.moved {
             let o = &mut self.objects[i as usize];
