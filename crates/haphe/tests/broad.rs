@@ -90,11 +90,11 @@ fn compare(
         .collect();
     for tick in 0..250 {
         scene.begin_tick();
-        for m in 0..movers.min(objects) {
+        for (m, key) in keys.iter_mut().enumerate() {
             // Moving objects: the first `movers` ids (some may have been removed).
-            let id = ObjectId(m as u32);
+            let id = key.id();
             let Some(i) = scene.index_of(id) else {
-                assert!(!scene.set_pose_keyed(&mut keys[m], Pose::IDENTITY));
+                assert!(!scene.set_pose_keyed(key, Pose::IDENTITY));
                 continue;
             };
             let old = scene.objects()[i].pose;
@@ -109,7 +109,7 @@ fn compare(
             if m % 2 == 0 {
                 assert!(scene.set_pose(id, pose));
             } else {
-                assert!(scene.set_pose_keyed(&mut keys[m], pose));
+                assert!(scene.set_pose_keyed(key, pose));
             }
         }
         if edits && tick % 25 == 7 && scene.objects().len() > 1 {

@@ -55,8 +55,8 @@ impl Pose {
     pub fn from_translation(translation: DVec3) -> Pose {
         Pose {
             rotation: DQuat::IDENTITY,
-            // `x - x` is 0 for a finite `x`, NaN otherwise: one compare for all three.
-            translation: if (translation - translation).element_sum() == 0.0 {
+            // `0 · x` is 0 for a finite `x`, NaN otherwise: one compare for all three.
+            translation: if (translation * 0.0).element_sum() == 0.0 {
                 translation
             } else {
                 DVec3::ZERO
