@@ -118,7 +118,8 @@ fn ticks_with_edits_from_another_thread_allocate_nothing() {
     let sent = editor_thread.join().expect("the editor thread");
     assert!(sent > 1_000, "only {sent} edits sent");
     assert!(applied > 1_000, "only {applied} edits applied");
-    // How many depends on when the other thread's edits land (13 000 to 20 000 seen).
-    assert!(contacts > 5_000, "{contacts} ticks in contact");
+    // How many depends on when the other thread's edits land (it turns the touched sphere
+    // now and then): 3 800 to 20 000 seen on a loaded machine, on main as on this branch.
+    assert!(contacts > 2_000, "{contacts} ticks in contact");
     assert_eq!(total, 0, "the servo thread allocated");
 }
