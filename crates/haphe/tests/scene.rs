@@ -205,3 +205,51 @@ fn keys_move_the_object_they_name() {
     assert!(scene.set_pose(ObjectId(4), at(4.0)));
     assert!(scene.objects().iter().all(|o| !o.moved()));
 }
+
+/// The proxy keeps the objects it touches by index; removing an object puts the last one
+/// in its place. A hold on the object that moved goes on as before, and a hold on a
+/// removed object is forgotten, never carried over to the object that took its index.
+#[test]
+fn a_held_contact_follows_its_object_across_removals() {
+    let ball = shape(shapes::Catalog::Sphere.with_triangles(2_000));
+    let mut scene = Scene::local(8);
+    for k in 0..4 {
+        let pose = Pose::from_translation(DVec3::new(k as f64, 0.0, 0.0));
+        let object = SceneObject::new(ObjectId(k), ball.clone(), pose, Material::default());
+        scene.insert(object).expect("room");
+    }
+    // Press 15 mm into the last sphere's top (beyond the 6.6 mm saturation depth).
+    let top = DVec3::new(3.0, 0.0, 0.12);
+    let mut proxy = Proxy::new(top, ProxyOptions::default());
+    let mut out = None;
+    for k in 0..=100 {
+        let hip = top - DVec3::Z * (0.035 * k as f64 / 100.0);
+        scene.begin_tick();
+        out = Some(proxy.tick(&scene, hip, DVec3::ZERO));
+    }
+    let pressed = out.expect("ticked");
+    let hip = top - DVec3::Z * 0.035;
+    assert!(pressed.status.deep_hold, "{pressed:?}");
+    assert_eq!(pressed.contact.map(|c| c.id), Some(ObjectId(3)));
+    // Remove the first sphere: the held one takes index 0.
+    assert!(scene.remove(ObjectId(0)).is_some());
+    assert_eq!(scene.index_of(ObjectId(3)), Some(0));
+    scene.begin_tick();
+    let out = proxy.tick(&scene, hip, DVec3::ZERO);
+    assert!(out.status.deep_hold, "{out:?}");
+    assert_eq!(
+        out.contact.map(|c| (c.object, c.id)),
+        Some((0, ObjectId(3)))
+    );
+    assert!(
+        out.force.distance(pressed.force) < 1e-9,
+        "{out:?} {pressed:?}"
+    );
+    // Remove the held sphere: sphere 2 takes its index, far from the hand.
+    assert!(scene.remove(ObjectId(3)).is_some());
+    scene.begin_tick();
+    let out = proxy.tick(&scene, hip, DVec3::ZERO);
+    assert!(!out.status.deep_hold, "{out:?}");
+    assert!(out.contact.is_none(), "{out:?}");
+    assert_eq!(out.force, DVec3::ZERO);
+}

@@ -102,6 +102,9 @@ pub struct Proxy {
     pub(super) near: NearCache,
     /// The device point of the previous tick (the direction a hold starts in).
     pub(super) previous_hip: Option<DVec3>,
+    /// The scene and its count of removals when the indices above were kept (see
+    /// [`Proxy::follow_removals`]).
+    pub(super) removals_seen: Option<(u64, u64)>,
 }
 
 impl Proxy {
@@ -123,6 +126,7 @@ impl Proxy {
             hold: None,
             near: NearCache::new(),
             previous_hip: None,
+            removals_seen: None,
         }
     }
 
@@ -204,6 +208,7 @@ impl Proxy {
         let (hip, clamped) = clamp_to_radius(hip, self.options.workspace_radius);
         status.input_clamped = clamped;
         let previous_hip = self.previous_hip.replace(hip);
+        self.follow_removals(scene);
 
         let mut p = carry(scene, &mut self.near, self.position, &self.options);
         if let Some(hold) = self.hold.take()

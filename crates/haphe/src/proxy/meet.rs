@@ -1,11 +1,12 @@
 //! What the proxy meets in the scene: the first surface along a move over every object,
 //! the surface it touches, the carry of objects that moved, and moves that stop before
-//! a surface. Only the objects near the proxy are asked (see [`NearCache`]).
+//! a surface. Only the objects near the proxy are asked (see [`NearCache`]). The objects
+//! met are kept by index from one tick to the next, and followed across removals.
 
 use glam::DVec3;
 
 use super::constraints::{Plane, advance_to_plane};
-use super::godobject::ProxyOptions;
+use super::godobject::{Proxy, ProxyOptions};
 use super::near::{NearCache, search_box};
 use crate::scene::{Hit, Scene};
 
@@ -123,5 +124,40 @@ pub(super) fn move_checked(
     match first_hit_all(scene, near, from, to, options.probe_reach()) {
         None => to,
         Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
+    }
+}
+
+impl Proxy {
+    /// Follows the objects the proxy keeps by index (its last contact, the surface it
+    /// rests on, the contact it holds) across the removals since the previous tick: an
+    /// index that moved (the last object takes a removed one's place) is updated, and what
+    /// was kept of a removed object is forgotten, so that it never stands for another
+    /// object. A proxy moved to another scene forgets them all.
+    ///
+    /// # Real-time
+    /// No allocation; at most [`REMOVALS_KEPT`](crate::scene::REMOVALS_KEPT) steps per
+    /// index (a proxy that missed more forgets them).
+    pub(super) fn follow_removals(&mut self, scene: &Scene) {
+        let log = scene.removals();
+        let now = (scene.broad_epoch().0, log.count());
+        let Some(seen) = self.removals_seen.replace(now) else {
+            return;
+        };
+        if seen == now {
+            return;
+        }
+        let follow = |i: usize| (seen.0 == now.0).then(|| log.follow(seen.1, i)).flatten();
+        self.last = self.last.and_then(|mut l| {
+            l.object = follow(l.object)?;
+            Some(l)
+        });
+        self.rest = self.rest.and_then(|mut r| {
+            r.object = follow(r.object)?;
+            Some(r)
+        });
+        self.hold = self.hold.and_then(|mut h| {
+            h.object = follow(h.object)?;
+            Some(h)
+        });
     }
 }

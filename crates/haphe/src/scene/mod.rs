@@ -32,6 +32,7 @@ mod invalid;
 mod material;
 mod moves;
 mod pose;
+mod removals;
 mod shape;
 
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
@@ -39,6 +40,7 @@ pub use invalid::{InvalidValue, MAX_FORCE_LIMIT_N, check_max_force};
 pub use material::Material;
 pub use moves::ObjectKey;
 pub use pose::Pose;
+pub use removals::REMOVALS_KEPT;
 pub use shape::Shape;
 
 use std::sync::Arc;
@@ -50,6 +52,7 @@ use rustc_hash::FxHashMap;
 use broad::Broad;
 pub(crate) use broad::Near;
 pub(crate) use clear::others_box;
+use removals::RemovalLog;
 
 use crate::mesh::TriId;
 use crate::query::{
@@ -178,6 +181,8 @@ pub struct Scene {
     /// candidate set found for (`uid`, `epoch`) stays valid while both are the same.
     uid: u64,
     epoch: u64,
+    /// The last removals (where the indices went).
+    removals: RemovalLog,
 }
 
 /// The names of scenes (see `Scene::uid`).
@@ -213,6 +218,7 @@ impl Scene {
             turned: false,
             uid: NEXT_UID.fetch_add(1, Ordering::Relaxed),
             epoch: 0,
+            removals: RemovalLog::new(),
         }
     }
 
@@ -285,6 +291,7 @@ impl Scene {
             self.in_moved.pop();
         }
         self.epoch += 1;
+        self.removals.record(i, last);
         Some(self.objects.swap_remove(i))
     }
 
@@ -303,6 +310,11 @@ impl Scene {
     /// No allocation; a bounded number of grid cells visited.
     pub(crate) fn near(&self, lo: DVec3, hi: DVec3) -> Near {
         self.broad.query(lo, hi)
+    }
+
+    /// The last removals, so that indices kept from one tick to the next can follow them.
+    pub(crate) fn removals(&self) -> &RemovalLog {
+        &self.removals
     }
 
     /// A name of this scene and of the state of its broad phase: a [`Scene::near`] set
