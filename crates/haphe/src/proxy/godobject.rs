@@ -403,8 +403,9 @@ pub(super) struct Sweep {
     /// Where the proxy first stopped at a surface this tick.
     pub(super) touch_down: DVec3,
     pub(super) planes: Constraints,
-    /// The first surface met this tick, and its plane.
-    pub(super) first_hit: Option<(Hit, Plane)>,
+    /// The first surface met this tick (object, triangle); its plane is the first of
+    /// `planes`.
+    pub(super) first_hit: Option<(usize, TriId)>,
     /// The last surface met, and its plane.
     pub(super) last_hit: Option<(Hit, Plane)>,
 }
@@ -434,7 +435,7 @@ pub(super) fn constrain(
             last_hit = Some((hit, plane));
         }
     }
-    let mut first_hit = last_hit;
+    let mut first_hit = last_hit.map(|(h, _): (Hit, Plane)| (h.object, h.triangle));
     let mut finished = false;
     for _ in 0..MAX_PROXY_STEPS {
         let Some(target) = planes.closest_feasible(hip, options.plane_tolerance()) else {
@@ -517,7 +518,7 @@ pub(super) fn constrain(
         };
         if last_hit.is_none() {
             touch_down = p;
-            first_hit = Some((hit, plane));
+            first_hit = Some((hit.object, hit.triangle));
         }
         last_hit = Some((hit, plane));
         if !planes.push(plane) {

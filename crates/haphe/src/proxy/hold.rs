@@ -26,12 +26,13 @@ impl Proxy {
         previous_hip: Option<DVec3>,
         input_clamped: bool,
     ) -> Option<TickOutput> {
-        let (hit, plane) = sweep.first_hit?;
-        let object = scene.objects().get(hit.object)?;
+        let (index, triangle) = sweep.first_hit?;
+        let plane = sweep.planes.planes().first()?;
+        let object = scene.objects().get(index)?;
         let entry = sweep.touch_down;
         let hold = Hold {
-            object: hit.object,
-            triangle: hit.triangle,
+            object: index,
+            triangle,
             normal_object: object.pose.vector_to_object(plane.normal),
             constraints: 1,
             entry_object: object.pose.to_object(entry),
@@ -47,14 +48,13 @@ impl Proxy {
         if !is_deep(entry, hip, hold.normal(&object.pose), depth) {
             return None;
         }
-        let rest = Rest {
-            object: hit.object,
-            triangle: hit.triangle,
-        };
-        self.rest = Some(rest);
+        self.rest = Some(Rest {
+            object: index,
+            triangle,
+        });
         self.last = Some(LastContact {
-            object: hit.object,
-            triangle: hit.triangle,
+            object: index,
+            triangle,
         });
         let status = TickStatus {
             input_clamped,
