@@ -42,8 +42,10 @@ use bytemuck::Pod;
 use glam::DVec3;
 
 use super::bricks::{BrickBits, MASK_WORDS, VoxelMap};
+use super::file_error::{MapFileError, invalid};
+use super::params::{MapParams, map_params_bytes, parse_map_params};
 use super::provenance::Provenance;
-use super::validate::{MapParams, check_map, check_surface, map_params_bytes, parse_map_params};
+use super::validate::{check_map, check_surface};
 use crate::array::{Array, MapBytes};
 use crate::mesh::{MeshReport, OwnedSurfaceParts, Surface, SurfaceParts, TriFrame};
 
@@ -61,7 +63,7 @@ pub const FORMAT_VERSION: u32 = 12;
 /// Bytes of the fixed header.
 const HEADER_BYTES: usize = 64;
 /// Where the checksum is stored in the header.
-const CHECKSUM_AT: usize = 56;
+pub(super) const CHECKSUM_AT: usize = 56;
 /// Sections start at multiples of this many bytes.
 const SECTION_ALIGN: usize = 64;
 /// Bytes of one section-table entry.
@@ -69,81 +71,6 @@ const TABLE_ENTRY_BYTES: usize = 32;
 /// The checksum hashes the body in chunks of this many bytes (in parallel), then the
 /// chunks' hashes.
 const CHECKSUM_CHUNK_BYTES: usize = 4 << 20;
-
-/// Why a map file could not be loaded.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[non_exhaustive]
-pub enum MapFileError {
-    /// The file does not start with [`MAGIC`]: not a haphe map file.
-    #[error("not a haphe map file: it starts with {found:?}, not \"HAPHEMAP\"", found = String::from_utf8_lossy(found))]
-    WrongMagic {
-        /// The first eight bytes.
-        found: [u8; 8],
-    },
-    /// A map file of another format version.
-    #[error(
-        "map file format version {found} is not supported (this build reads version \
-         {supported}); rebuild the map from its mesh"
-    )]
-    UnsupportedVersion {
-        /// The version in the file.
-        found: u32,
-        /// The version this build reads ([`FORMAT_VERSION`]).
-        supported: u32,
-    },
-    /// The file is shorter than its header says (or than a header).
-    #[error("truncated map file: {found} bytes, expected {expected}")]
-    Truncated {
-        /// Bytes the header promises (or the header's size).
-        expected: u64,
-        /// Bytes present.
-        found: u64,
-    },
-    /// The file is longer than its header says.
-    #[error("map file has {found} bytes, but its header says {expected}: trailing bytes")]
-    TrailingBytes {
-        /// Bytes the header promises.
-        expected: u64,
-        /// Bytes present.
-        found: u64,
-    },
-    /// The checksum does not match: the file is damaged.
-    #[error(
-        "map file checksum mismatch (stored {stored:#018x}, computed {computed:#018x}): the \
-         file is damaged"
-    )]
-    ChecksumMismatch {
-        /// The checksum in the header.
-        stored: u64,
-        /// The checksum of the content.
-        computed: u64,
-    },
-    /// The checksum matches but the content breaks an invariant (a file written by a
-    /// faulty or hostile program).
-    #[error("invalid map file, section '{section}': {reason}")]
-    Invalid {
-        /// The section at fault.
-        section: &'static str,
-        /// What is wrong, with indices.
-        reason: String,
-    },
-}
-
-impl MapFileError {
-    /// Where in the file the error was found: a byte offset of the header and the field's
-    /// name, or (for [`MapFileError::Invalid`]) the section's name alone.
-    pub fn place(&self) -> (Option<u64>, &'static str) {
-        match self {
-            MapFileError::WrongMagic { .. } => (Some(0), "magic"),
-            MapFileError::UnsupportedVersion { .. } => (Some(8), "format version"),
-            MapFileError::Truncated { .. } | MapFileError::TrailingBytes { .. } => {
-                (Some(16), "file length")
-            }
-            MapFileError::ChecksumMismatch { .. } => (Some(CHECKSUM_AT as u64), "checksum"),
-            MapFileError::Invalid { section, .. } => (None, section),
-        }
-    }
-}
 
 /// Whether `head`, the first bytes of a file of `len` bytes (at least the first 64 when the
 /// file has them), is the header of a map file, even a damaged one: at least five of the
@@ -160,14 +87,6 @@ pub fn looks_like_map(head: &[u8], len: u64) -> bool {
         && u32_at(head, 12) as usize == SECTIONS.len()
         && u64_at(head, 16) == len
         && head[24..CHECKSUM_AT].iter().all(|&b| b == 0)
-}
-
-/// Shorthand for an [`MapFileError::Invalid`].
-pub(crate) fn invalid(section: &'static str, reason: impl Into<String>) -> MapFileError {
-    MapFileError::Invalid {
-        section,
-        reason: reason.into(),
-    }
 }
 
 /// The sections in file order: name and element size in bytes.

@@ -46,10 +46,12 @@ mod cell_size;
 mod cells;
 mod clearance;
 mod file;
+mod file_error;
 mod fill;
 mod free_space;
 mod grid;
 mod overlap;
+mod params;
 mod provenance;
 mod slabs;
 mod validate;
@@ -59,9 +61,8 @@ pub use crate::array::MapBytes;
 use bricks::BRICK_SIDE;
 pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
 pub(crate) use cast::{CellPart, Found};
-pub use file::{
-    FORMAT_VERSION, MAGIC, MapFileError, decode, decode_in_place, encode, looks_like_map,
-};
+pub use file::{FORMAT_VERSION, MAGIC, decode, decode_in_place, encode, looks_like_map};
+pub use file_error::MapFileError;
 use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
 #[cfg(any(test, feature = "testing"))]
 pub(crate) use grid::clip_to_box;
