@@ -68,6 +68,30 @@ pub(crate) struct Hold {
 }
 
 impl Hold {
+    /// A hold on `triangle` of object `object`, at `pose`, with `constraints` planes
+    /// active: it begins with the proxy at `entry` on the contact plane of unit `normal`,
+    /// the hand at `hip_entry`, and the direction the hand went deep in taken from its
+    /// motion `previous → hip` ([`deep_direction`]). World frame in; the hold keeps them in
+    /// the object's frame, so that it turns with a moving object.
+    #[inline]
+    pub fn begin(
+        pose: &Pose,
+        (object, triangle, constraints): (usize, TriId, u8),
+        (entry, normal): (DVec3, DVec3),
+        hip_entry: DVec3,
+        (previous, hip): (Option<DVec3>, DVec3),
+    ) -> Hold {
+        Hold {
+            object,
+            triangle,
+            normal_object: pose.vector_to_object(normal),
+            constraints,
+            entry_object: pose.to_object(entry),
+            hip_object: pose.to_object(hip_entry),
+            direction_object: pose.vector_to_object(deep_direction(previous, hip, normal)),
+        }
+    }
+
     /// The held plane's unit normal in the world frame, with the object at `pose`.
     #[inline]
     pub fn normal(&self, pose: &Pose) -> DVec3 {

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::constraints::{Constraints, Plane, advance_to_plane};
-use super::deep::{Hold, deep_direction, is_deep, saturation_depth};
+use super::deep::{Hold, is_deep, saturation_depth};
 use super::force::{contact_force, friction_target};
 use super::meet::{carry, first_hit_all, hit_plane, move_checked, touching_any};
 use super::near::NearCache;
@@ -313,19 +313,17 @@ impl Proxy {
             {
                 return out;
             }
-            self.hold = Some(Hold {
-                object: hit.object,
-                triangle: contact.map_or(hit.triangle, |c| c.triangle),
-                normal_object: object.pose.vector_to_object(plane.normal),
-                constraints: sweep.planes.len() as u8,
-                entry_object: object.pose.to_object(p),
-                hip_object: object.pose.to_object(hip),
-                direction_object: object.pose.vector_to_object(deep_direction(
-                    previous_hip,
-                    hip,
-                    plane.normal,
-                )),
-            });
+            self.hold = Some(Hold::begin(
+                &object.pose,
+                (
+                    hit.object,
+                    contact.map_or(hit.triangle, |c| c.triangle),
+                    sweep.planes.len() as u8,
+                ),
+                (p, plane.normal),
+                hip,
+                (previous_hip, hip),
+            ));
         }
         TickOutput {
             proxy: p,

@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::deep::{Hold, deep_direction, is_deep, saturation_depth};
+use super::deep::{Hold, is_deep, saturation_depth};
 use super::force::contact_force;
 use super::godobject::{LastContact, Proxy, Sweep, constrain, contact_at};
 use super::output::{TickOutput, TickStatus};
@@ -30,19 +30,13 @@ impl Proxy {
         let plane = sweep.planes.planes().first()?;
         let object = scene.objects().get(index)?;
         let entry = sweep.touch_down;
-        let hold = Hold {
-            object: index,
-            triangle,
-            normal_object: object.pose.vector_to_object(plane.normal),
-            constraints: 1,
-            entry_object: object.pose.to_object(entry),
-            hip_object: object.pose.to_object(previous_hip.unwrap_or(hip)),
-            direction_object: object.pose.vector_to_object(deep_direction(
-                previous_hip,
-                hip,
-                plane.normal,
-            )),
-        };
+        let hold = Hold::begin(
+            &object.pose,
+            (index, triangle, 1),
+            (entry, plane.normal),
+            previous_hip.unwrap_or(hip),
+            (previous_hip, hip),
+        );
         // The same test as the hold's own, so that it goes ahead once begun.
         let depth = saturation_depth(&object.material, self.options.max_force);
         if !is_deep(entry, hip, hold.normal(&object.pose), depth) {

@@ -15,7 +15,7 @@ use super::{KEPT_FAILURES, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
     Constraints, Hold, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
-    clamp_to_radius, deep_direction, friction_target, is_deep, rests_on, saturation_depth,
+    clamp_to_radius, friction_target, is_deep, rests_on, saturation_depth,
 };
 use crate::query::{Probe, Side, classify_point, nearest_within_brute_force};
 use crate::scene::{Material, Pose, Scene, Shape, Sides};
@@ -409,39 +409,26 @@ impl BruteProxy {
         {
             if let Some((at, first_plane)) = first {
                 let entry = touch_down;
-                let o = &self.objects[at.object];
-                let hold = Hold {
-                    object: at.object,
-                    triangle: at.triangle,
-                    normal_object: o.pose.vector_to_object(first_plane.normal),
-                    constraints: 1,
-                    entry_object: o.pose.to_object(entry),
-                    hip_object: o.pose.to_object(previous_hip.unwrap_or(hip)),
-                    direction_object: o.pose.vector_to_object(deep_direction(
-                        previous_hip,
-                        hip,
-                        first_plane.normal,
-                    )),
-                };
+                let hold = Hold::begin(
+                    &self.objects[at.object].pose,
+                    (at.object, at.triangle, 1),
+                    (entry, first_plane.normal),
+                    previous_hip.unwrap_or(hip),
+                    (previous_hip, hip),
+                );
                 let rest = self.rest.replace(at);
                 if let Some(p) = self.hold_step(entry, hip, hold) {
                     return (p, true);
                 }
                 self.rest = rest;
             }
-            self.hold = Some(Hold {
-                object: last_object,
-                triangle: r.triangle,
-                normal_object: self.objects[last_object]
-                    .pose
-                    .vector_to_object(plane.normal),
-                constraints: planes.len() as u8,
-                entry_object: self.objects[last_object].pose.to_object(p),
-                hip_object: self.objects[last_object].pose.to_object(hip),
-                direction_object: self.objects[last_object]
-                    .pose
-                    .vector_to_object(deep_direction(previous_hip, hip, plane.normal)),
-            });
+            self.hold = Some(Hold::begin(
+                &self.objects[last_object].pose,
+                (last_object, r.triangle, planes.len() as u8),
+                (p, plane.normal),
+                hip,
+                (previous_hip, hip),
+            ));
         }
         self.position = p;
         self.in_contact = true;
