@@ -1,31 +1,23 @@
 //! The `haphe` command: a thin `main` that hands each subcommand to its module's `run` and maps
 //! errors to exit codes.
 
-#[cfg(feature = "bench")]
-mod bench;
-mod build;
-mod demo;
-#[cfg(not(all(feature = "view", feature = "bench")))]
-mod feature;
-mod files;
-mod generate;
-mod load;
-mod mapped;
-mod object;
-mod peer;
-mod query;
-mod run;
-mod scene;
-mod simulate;
-mod validate;
-mod verify;
-mod verify_proxy;
-#[cfg(feature = "view")]
-mod view;
+mod args;
+mod commands;
+mod input;
+mod output;
+mod session;
 
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+
+#[cfg(feature = "bench")]
+use commands::bench;
+#[cfg(not(all(feature = "view", feature = "bench")))]
+use commands::missing;
+#[cfg(feature = "view")]
+use commands::view;
+use commands::{build, demo, devices, generate, query, run, simulate, validate, verify};
 
 /// haphe: real-time haptic rendering against triangle meshes.
 #[derive(Parser, Debug)]
@@ -53,7 +45,7 @@ enum Command {
     /// Run a haptic session with a device: dhd, openhaptics, udp:HOST:PORT or hand.
     Run(run::Args),
     /// List the haptic devices found: vendor libraries loaded or not, devices connected.
-    Devices(run::DevicesArgs),
+    Devices(devices::Args),
     /// A simulated hand explores built-in models; summary and plot (no files needed).
     Demo(demo::Args),
     /// Time haphe's queries beside parry3d-f64 and brute force, on procedural meshes and files.
@@ -61,13 +53,13 @@ enum Command {
     Bench(bench::Args),
     /// Time haphe's queries beside parry3d-f64 (not in this build: feature `bench`).
     #[cfg(not(feature = "bench"))]
-    Bench(feature::Missing),
+    Bench(missing::Missing),
     /// A live 3D view in the browser: touch a mesh with the mouse, or replay a trace.
     #[cfg(feature = "view")]
     View(view::Args),
     /// A live 3D view in the browser (not in this build: feature `view`).
     #[cfg(not(feature = "view"))]
-    View(feature::Missing),
+    View(missing::Missing),
 }
 
 fn main() -> ExitCode {
@@ -80,16 +72,16 @@ fn main() -> ExitCode {
         Command::Generate(args) => generate::run(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Run(args) => run::run(&args),
-        Command::Devices(args) => run::devices(&args),
+        Command::Devices(args) => devices::run(&args),
         Command::Demo(args) => demo::run(&args),
         #[cfg(feature = "bench")]
         Command::Bench(args) => bench::run(&args),
         #[cfg(not(feature = "bench"))]
-        Command::Bench(_) => Err(feature::missing("bench", "bench")),
+        Command::Bench(_) => Err(missing::missing("bench", "bench")),
         #[cfg(feature = "view")]
         Command::View(args) => view::run(&args),
         #[cfg(not(feature = "view"))]
-        Command::View(_) => Err(feature::missing("view", "view")),
+        Command::View(_) => Err(missing::missing("view", "view")),
     };
     match result {
         Ok(code) => code,

@@ -32,7 +32,7 @@ pub fn write(dir: &Path, records: &[Record]) -> anyhow::Result<Vec<PathBuf>> {
             continue;
         }
         let path = dir.join(format!("{}.png", query.name()));
-        crate::files::output::write_png(&path, SIZE, |pixels| draw(pixels, query, &rows))?;
+        crate::output::write_png(&path, SIZE, |pixels| draw(pixels, query, &rows))?;
         written.push(path);
     }
     Ok(written)

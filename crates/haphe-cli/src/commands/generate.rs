@@ -28,7 +28,7 @@ pub struct Args {
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
     Catalog::check_triangles(args.triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
-    crate::files::output::check_outputs(&[&args.output], &[])?;
+    crate::output::check_outputs(&[&args.output], &[])?;
     let start = Instant::now();
     let mut mesh = args.shape.with_triangles(args.triangles);
     if let Some(seed) = args.shuffle_faces {
@@ -44,7 +44,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             vertices: [f32x3(a), f32x3(b), f32x3(c)],
         }
     });
-    crate::files::output::write_output(&args.output, |out| {
+    crate::output::write_output(&args.output, |out| {
         Ok(stl_io::write_stl(&mut &mut *out, triangles)?)
     })?;
     writeln!(

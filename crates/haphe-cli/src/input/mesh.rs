@@ -3,8 +3,8 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use crate::files::input::{self, read_input};
-use haphe::mesh::{Format, Mesh, ReadError, ReadOptions, Weld, WeldStats, read_unwelded, weld};
+use crate::input::files::{self, read_input};
+use haphe::mesh::{Format, Mesh, ReadError, ReadOptions, WeldStats, read_unwelded, weld};
 
 /// A mesh read from a file, with what it took.
 pub struct Loaded {
@@ -35,9 +35,9 @@ impl std::fmt::Display for LoadFailure {
     }
 }
 
-/// Reads, parses and welds a mesh file (opened once, within [`input::MESH`]).
+/// Reads, parses and welds a mesh file (opened once, within [`files::MESH`]).
 pub fn load(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
-    let bytes = read_input(path, input::MESH).map_err(LoadFailure::Io)?;
+    let bytes = read_input(path, files::MESH).map_err(LoadFailure::Io)?;
     load_bytes(path, &bytes, options)
 }
 
@@ -49,7 +49,7 @@ pub fn load_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<Lo
     if haphe::map::looks_like_map(bytes, bytes.len() as u64) {
         let map = haphe::map::MapBytes::copy_from_slice(bytes);
         return Err(LoadFailure::Io(
-            match crate::object::decode_map(path, &map) {
+            match crate::input::map::decode_map(path, &map) {
                 Ok(_) => anyhow::anyhow!(
                     "{name}: a map file written by `haphe build`, not a mesh file (query and verify read map files)"
                 ),
@@ -79,16 +79,4 @@ pub fn load_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<Lo
         weld,
         elapsed: start.elapsed(),
     })
-}
-
-/// The weld mode from the command line's `--weld-tolerance` (metres; 0 means exact).
-pub fn weld_mode(tolerance_m: Option<f64>) -> anyhow::Result<Weld> {
-    match tolerance_m {
-        None => Ok(Weld::Exact),
-        Some(0.0) => Ok(Weld::Exact),
-        Some(t) if t.is_finite() && t > 0.0 => Ok(Weld::Tolerance(t)),
-        Some(t) => {
-            anyhow::bail!("--weld-tolerance must be a non-negative distance in metres, not {t}")
-        }
-    }
 }

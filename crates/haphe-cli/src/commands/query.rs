@@ -9,10 +9,8 @@ use haphe::DVec3;
 use haphe::mesh::ReadOptions;
 use haphe::query::{Side, classify_point, first_crossing};
 
-use crate::build::map_options;
-use crate::load::weld_mode;
-use crate::object::{check_source, open};
-use crate::validate::parse_units;
+use crate::args::{map_options, parse_units, weld_mode};
+use crate::input::object::{check_source, open};
 
 /// Arguments of `haphe query`.
 #[derive(clap::Args, Debug)]
@@ -57,7 +55,7 @@ fn header_names(width: usize) -> &'static [&'static str] {
 /// `width` finite numbers is an error naming the file and the line, so the output always
 /// lines up with the input.
 fn read_rows(path: &Path, width: usize) -> anyhow::Result<Vec<Vec<f64>>> {
-    let bytes = crate::files::input::read_input(path, crate::files::input::CSV)?;
+    let bytes = crate::input::files::read_input(path, crate::input::files::CSV)?;
     let text = bytes
         .strip_prefix(b"\xEF\xBB\xBF".as_slice())
         .unwrap_or(&bytes);

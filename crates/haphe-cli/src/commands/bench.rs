@@ -49,12 +49,11 @@ use haphe::mesh::{Mesh, ReadOptions, Units, Weld};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
 use haphe::verify::WindingOracle;
 
-use crate::files::output::check_outputs;
-use crate::load::load;
-use crate::validate::parse_units;
-use methods::{Context, Measured, Query};
+use crate::args::parse_units;
+use crate::input::mesh::load;
+use crate::output::check_outputs;
+use methods::{Context, MeshResult, Query};
 use streams::Streams;
-use structures::BuildCost;
 
 /// Triangle counts of the procedural meshes by default.
 const DEFAULT_SIZES: [usize; 5] = [1_000, 10_000, 100_000, 1_000_000, 4_000_000];
@@ -128,20 +127,6 @@ enum Source {
     Catalog(Catalog, usize),
     /// A mesh file.
     File(PathBuf),
-}
-
-/// Everything measured on one mesh.
-pub struct MeshResult {
-    /// `SHAPE-SIZE` or the file name.
-    pub name: String,
-    /// The shape name or the file name.
-    pub family: String,
-    /// Triangles of the mesh.
-    pub triangles: usize,
-    /// Build, decode and memory.
-    pub cost: BuildCost,
-    /// The timed query kinds.
-    pub measured: Vec<Measured>,
 }
 
 /// Runs the command.

@@ -250,61 +250,7 @@ pub fn print(
     )?;
     writeln!(out, "  tick time         {}", quantiles(&stats.compute))?;
     if info.realtime {
-        writeln!(out, "  lateness          {}", quantiles(&stats.lateness))?;
-        writeln!(
-            out,
-            "  overruns          {} ({:.4} % of ticks; a tick that ended after the next deadline), {} deadline(s) skipped",
-            stats.overruns,
-            100.0 * stats.overrun_fraction(),
-            stats.skipped
-        )?;
-        writeln!(
-            out,
-            "  missed deadlines  {} ({:.4} % of {} deadlines: overruns and skipped together)",
-            stats.missed(),
-            100.0 * stats.missed_fraction(),
-            stats.deadlines()
-        )?;
-        writeln!(
-            out,
-            "  achieved rate     {:.1} Hz (asked {} Hz)",
-            stats.achieved_rate(),
-            info.rate_hz
-        )?;
-        if let Some(setup) = info.setup {
-            let mut how = vec![if setup.realtime_priority {
-                "FIFO real-time priority".to_string()
-            } else {
-                "normal priority".to_string()
-            }];
-            if let Some(core) = setup.pinned_core {
-                how.push(format!("pinned to core {core}"));
-            }
-            how.extend(setup.notes.iter().cloned());
-            writeln!(out, "  servo thread      {}", how.join("; "))?;
-            if let Some(i) = info.interference {
-                print_interference(out, &i, setup.pinned_core)?;
-            }
-        }
-        if let Some(standby) = &info.standby {
-            let core = standby
-                .pinned_core
-                .map_or("not pinned".to_string(), |c| format!("pinned to core {c}"));
-            writeln!(
-                out,
-                "  standby thread    {core}; ran {} tick(s) ({:.4} % of ticks) when the servo thread was late",
-                standby.ticks,
-                100.0 * standby.ticks as f64 / stats.ticks.max(1) as f64
-            )?;
-            print_interference(out, &standby.interference, standby.pinned_core)?;
-        }
-        if info.dropped_records > 0 {
-            writeln!(
-                out,
-                "  records dropped   {} (the writer fell behind)",
-                info.dropped_records
-            )?;
-        }
+        print_realtime(out, stats, info)?;
     } else {
         writeln!(
             out,
@@ -312,6 +258,71 @@ pub fn print(
             stats.achieved_rate(),
             stats.wall_seconds,
             stats.achieved_rate() / info.rate_hz
+        )?;
+    }
+    Ok(())
+}
+
+/// The real-time part of the summary: lateness, overruns, the rate achieved, the threads
+/// and what else ran on their cores.
+fn print_realtime(
+    out: &mut impl Write,
+    stats: &TickStats,
+    info: &RunInfo<'_>,
+) -> std::io::Result<()> {
+    writeln!(out, "  lateness          {}", quantiles(&stats.lateness))?;
+    writeln!(
+        out,
+        "  overruns          {} ({:.4} % of ticks; a tick that ended after the next deadline), {} deadline(s) skipped",
+        stats.overruns,
+        100.0 * stats.overrun_fraction(),
+        stats.skipped
+    )?;
+    writeln!(
+        out,
+        "  missed deadlines  {} ({:.4} % of {} deadlines: overruns and skipped together)",
+        stats.missed(),
+        100.0 * stats.missed_fraction(),
+        stats.deadlines()
+    )?;
+    writeln!(
+        out,
+        "  achieved rate     {:.1} Hz (asked {} Hz)",
+        stats.achieved_rate(),
+        info.rate_hz
+    )?;
+    if let Some(setup) = info.setup {
+        let mut how = vec![if setup.realtime_priority {
+            "FIFO real-time priority".to_string()
+        } else {
+            "normal priority".to_string()
+        }];
+        if let Some(core) = setup.pinned_core {
+            how.push(format!("pinned to core {core}"));
+        }
+        how.extend(setup.notes.iter().cloned());
+        writeln!(out, "  servo thread      {}", how.join("; "))?;
+        if let Some(i) = info.interference {
+            print_interference(out, &i, setup.pinned_core)?;
+        }
+    }
+    if let Some(standby) = &info.standby {
+        let core = standby
+            .pinned_core
+            .map_or("not pinned".to_string(), |c| format!("pinned to core {c}"));
+        writeln!(
+            out,
+            "  standby thread    {core}; ran {} tick(s) ({:.4} % of ticks) when the servo thread was late",
+            standby.ticks,
+            100.0 * standby.ticks as f64 / stats.ticks.max(1) as f64
+        )?;
+        print_interference(out, &standby.interference, standby.pinned_core)?;
+    }
+    if info.dropped_records > 0 {
+        writeln!(
+            out,
+            "  records dropped   {} (the writer fell behind)",
+            info.dropped_records
         )?;
     }
     Ok(())

@@ -14,8 +14,8 @@ use haphe::mesh::shapes::Catalog;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe::servo::{HandOptions, PathKind};
 
-use crate::scene::{LoadedObject, shape_of};
-use crate::simulate::{DeviceChoice, Session};
+use crate::input::scene::{LoadedObject, shape_of};
+use crate::session::{DeviceChoice, Session};
 
 /// Arguments of `haphe demo`.
 #[derive(clap::Args, Debug)]
@@ -47,7 +47,7 @@ pub struct Args {
     view: bool,
     #[cfg(feature = "view")]
     #[command(flatten)]
-    serve: crate::view::Serve,
+    serve: crate::session::live::Serve,
 }
 
 /// Seconds of the demo without `--seconds`.
@@ -57,7 +57,7 @@ pub const DEMO_SECONDS: f64 = 6.0;
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     #[cfg(not(feature = "view"))]
     if args.view {
-        return Err(crate::feature::missing("view", "demo --view"));
+        return Err(super::missing::missing("view", "demo --view"));
     }
     let (triangles, seconds) = if args.fast {
         (2_000, args.seconds.unwrap_or(3.0))
@@ -71,7 +71,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let outputs: Vec<&std::path::Path> = std::iter::once(args.plot.as_path())
         .chain(args.out.as_deref())
         .collect();
-    crate::files::output::check_outputs(&outputs, &[])?;
+    crate::output::check_outputs(&outputs, &[])?;
     let map = MapOptions::default();
     let started = Instant::now();
     let blob = Arc::new(shape_of(Catalog::Blob, triangles, &map)?);
@@ -110,9 +110,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     ];
     #[cfg(feature = "view")]
     if args.view {
-        return crate::view::live(
+        return crate::session::live::live(
             objects,
-            crate::view::ViewDevice::Hand(seconds),
+            crate::session::live::ViewDevice::Hand(seconds),
             args.rate,
             "the demo (a blob and a 0.1 mm thin plate)",
             &args.serve,
@@ -155,7 +155,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
 fn default_seconds(args: &Args) -> f64 {
     #[cfg(feature = "view")]
     if args.view {
-        return crate::view::HAND_SECONDS;
+        return crate::session::live::HAND_SECONDS;
     }
     #[cfg(not(feature = "view"))]
     let _ = args.view;

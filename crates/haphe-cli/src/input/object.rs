@@ -6,12 +6,13 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow};
-use haphe::map::{MapBytes, MapFileError, MapOptions, VoxelMap, decode_in_place, looks_like_map};
+use haphe::map::{MapBytes, MapOptions, VoxelMap, looks_like_map};
 use haphe::mesh::{ReadOptions, Surface, SurfaceOptions};
 
-use crate::files::input::{self, open_input};
-use crate::load::load_bytes;
-use crate::mapped::map_file;
+use crate::input::files::{self, open_input};
+use crate::input::map::decode_map;
+use crate::input::mapped::map_file;
+use crate::input::mesh::load_bytes;
 
 /// A surface with its voxel map, and how long it took to get them.
 pub struct Object {
@@ -25,51 +26,11 @@ pub struct Object {
 /// Bytes of a map file's header: what [`looks_like_map`] reads to tell a map from a mesh.
 const MAP_HEADER_BYTES: u64 = 64;
 
-/// Why the map file `path` cannot be used, in words a user can act on: an older or newer
-/// format names the version and how to rebuild; anything else is a damaged map, with the
-/// byte offset and field (or the section) where the damage was found.
-pub fn map_failure(path: &Path, e: &MapFileError) -> anyhow::Error {
-    let file = path.display();
-    match e {
-        MapFileError::UnsupportedVersion { found, supported }
-            if (1..*supported).contains(found) =>
-        {
-            anyhow!(
-                "{file}: a map of format version {found}, written by an older haphe; this one \
-                 reads version {supported} (which records the source mesh): rebuild it with \
-                 `haphe build MESH -o {file}`"
-            )
-        }
-        MapFileError::UnsupportedVersion { found, supported }
-            if (*supported + 1..*supported + 100).contains(found) =>
-        {
-            anyhow!(
-                "{file}: a map of format version {found}, written by a newer haphe; this one \
-                 reads version {supported}: use that haphe, or rebuild the map with this one \
-                 (`haphe build MESH -o {file}`)"
-            )
-        }
-        MapFileError::WrongMagic { found } => anyhow!(
-            "damaged map: {file}: byte 0 (magic): {:?} where \"HAPHEMAP\" should be",
-            String::from_utf8_lossy(found)
-        ),
-        _ => match e.place() {
-            (Some(at), field) => anyhow!("damaged map: {file}: byte {at} ({field}): {e}"),
-            (None, _) => anyhow!("damaged map: {file}: {e}"),
-        },
-    }
-}
-
-/// Decodes the map file `path` whose bytes are `bytes`, its errors in [`map_failure`]'s words.
-pub fn decode_map(path: &Path, bytes: &MapBytes) -> anyhow::Result<(Surface, VoxelMap)> {
-    decode_in_place(bytes).map_err(|e| map_failure(path, &e))
-}
-
 /// Opens `path` once: a map file written by `haphe build` (recognised by its header, even a
 /// damaged one: [`looks_like_map`]), or a mesh file, whose surface and map are built now.
 pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow::Result<Object> {
     let start = Instant::now();
-    let mut input = open_input(path, input::OBJECT)?;
+    let mut input = open_input(path, files::OBJECT)?;
     let mut head = Vec::with_capacity(MAP_HEADER_BYTES as usize);
     (&mut input.file)
         .take(MAP_HEADER_BYTES)
@@ -86,7 +47,7 @@ pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow
             map_file(&input.file).with_context(|| format!("cannot map {}", path.display()))?
         } else {
             head.reserve(1 << 20);
-            input.read_rest(input::MAP, &mut head)?;
+            input.read_rest(files::MAP, &mut head)?;
             MapBytes::copy_from_slice(&head)
         };
         let (surface, map) = decode_map(path, &bytes)?;
@@ -97,16 +58,16 @@ pub fn open(path: &Path, read: &ReadOptions, map_options: &MapOptions) -> anyhow
             from_map_file: true,
         });
     }
-    if input.regular && len > input::MESH.bytes {
+    if input.regular && len > files::MESH.bytes {
         // Not a map: the mesh limit applies.
         return Err(anyhow!(
             "cannot read {}: larger than the limit for a {} ({} bytes)",
             path.display(),
-            input::MESH.what,
-            input::MESH.bytes
+            files::MESH.what,
+            files::MESH.bytes
         ));
     }
-    input.read_rest(input::MESH, &mut head)?;
+    input.read_rest(files::MESH, &mut head)?;
     let loaded = load_bytes(path, &head, read).map_err(|e| anyhow!("{e}"))?;
     let surface = Surface::new(loaded.mesh, &SurfaceOptions::default())
         .with_context(|| format!("{}", path.display()))?;
@@ -137,7 +98,7 @@ pub fn check_source(path: &Path, object: &Object, mesh: Option<&Path>) -> anyhow
              file's source"
         ));
     }
-    let bytes = input::read_input(mesh, input::MESH)?;
+    let bytes = files::read_input(mesh, files::MESH)?;
     match object.map.provenance() {
         None => Err(anyhow!(
             "{map_name} records no source mesh, so it cannot be checked against {mesh_name}: \

@@ -8,7 +8,8 @@ use std::time::Instant;
 use haphe::mesh::{ReadOptions, Units};
 use haphe::query::{SELF_INTERSECTION_BUDGET_PER_TRIANGLE, Validation, self_intersection_budget};
 
-use crate::load::{load, weld_mode};
+use crate::args::{parse_units, weld_mode};
+use crate::input::mesh::load;
 
 /// Shown after `haphe validate --help`.
 pub const EXIT_CODES: &str = "\
@@ -55,11 +56,6 @@ pub struct Args {
     skip_self_intersections: bool,
 }
 
-/// Parses a `--units` value.
-pub fn parse_units(s: &str) -> Result<Units, String> {
-    s.parse()
-}
-
 /// Runs the command; the exit code is the worst file's.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
@@ -89,10 +85,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 let triangles = loaded.mesh.triangles.len();
                 let validated = Instant::now();
                 let validation = Validation::of(loaded.mesh, !args.skip_self_intersections)?;
-                let (report, intersections) = (&validation.report, &validation.intersections);
                 let t_validate = validated.elapsed();
                 let seconds = start.elapsed().as_secs_f64();
-                let crossing_itself = validation.crosses_itself();
                 if args.json {
                     let line = validation.record(
                         &path.display().to_string(),
@@ -112,60 +106,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         loaded.weld.merged,
                         loaded.weld.unreferenced,
                     )?;
-                    write!(out, "{}", report.text(crossing_itself))?;
-                    if let Some(s) = intersections
-                        .as_ref()
-                        .filter(|s| s.count > 0 || s.coincident > 0 || !s.complete)
-                    {
-                        let at_least = if s.complete { "" } else { "at least " };
-                        writeln!(
-                            out,
-                            "  self-intersections: {at_least}{} triangle pairs ({} crossing, {} only touching{})",
-                            s.count,
-                            s.crossing,
-                            s.touching,
-                            if s.coincident > 0 {
-                                format!(
-                                    "; {} pairs of coincident triangles, duplicate faces not counted here",
-                                    s.coincident
-                                )
-                            } else {
-                                String::new()
-                            }
-                        )?;
-                        if !s.complete {
-                            writeln!(
-                                out,
-                                "  self-intersections: the search stopped at its budget of {} candidate pairs ({} per triangle); the counts are lower bounds",
-                                self_intersection_budget(triangles),
-                                SELF_INTERSECTION_BUDGET_PER_TRIANGLE
-                            )?;
-                        }
-                        let shown: Vec<String> =
-                            s.pairs.iter().take(8).map(|p| format!("{p:?}")).collect();
-                        if s.count > 0 {
-                            writeln!(
-                                out,
-                                "  self-intersecting triangle pairs ({}): {}{}",
-                                s.count,
-                                shown.join(" "),
-                                if s.count > 8 {
-                                    format!(" … and {} more", s.count - 8)
-                                } else {
-                                    String::new()
-                                }
-                            )?;
-                        }
-                    }
-                    for problem in report.problems() {
-                        writeln!(out, "  problem: {problem}")?;
-                    }
-                    if crossing_itself {
-                        writeln!(
-                            out,
-                            "  problem: the surface passes through itself: inside and outside are not defined where it does"
-                        )?;
-                    }
+                    print_text(&mut out, triangles, &validation)?;
                     writeln!(out)?;
                 }
                 validation.exit_code()
@@ -174,4 +115,69 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         worst = worst.max(code);
     }
     Ok(ExitCode::from(worst))
+}
+
+/// The text report of a mesh of `triangles` triangles: the report, the
+/// self-intersections and the problems.
+fn print_text(
+    out: &mut impl Write,
+    triangles: usize,
+    validation: &Validation,
+) -> anyhow::Result<()> {
+    let (report, intersections) = (&validation.report, &validation.intersections);
+    let crossing_itself = validation.crosses_itself();
+    write!(out, "{}", report.text(crossing_itself))?;
+    if let Some(s) = intersections
+        .as_ref()
+        .filter(|s| s.count > 0 || s.coincident > 0 || !s.complete)
+    {
+        let at_least = if s.complete { "" } else { "at least " };
+        writeln!(
+            out,
+            "  self-intersections: {at_least}{} triangle pairs ({} crossing, {} only touching{})",
+            s.count,
+            s.crossing,
+            s.touching,
+            if s.coincident > 0 {
+                format!(
+                    "; {} pairs of coincident triangles, duplicate faces not counted here",
+                    s.coincident
+                )
+            } else {
+                String::new()
+            }
+        )?;
+        if !s.complete {
+            writeln!(
+                out,
+                "  self-intersections: the search stopped at its budget of {} candidate pairs ({} per triangle); the counts are lower bounds",
+                self_intersection_budget(triangles),
+                SELF_INTERSECTION_BUDGET_PER_TRIANGLE
+            )?;
+        }
+        let shown: Vec<String> = s.pairs.iter().take(8).map(|p| format!("{p:?}")).collect();
+        if s.count > 0 {
+            writeln!(
+                out,
+                "  self-intersecting triangle pairs ({}): {}{}",
+                s.count,
+                shown.join(" "),
+                if s.count > 8 {
+                    format!(" … and {} more", s.count - 8)
+                } else {
+                    String::new()
+                }
+            )?;
+        }
+    }
+    for problem in report.problems() {
+        writeln!(out, "  problem: {problem}")?;
+    }
+    if crossing_itself {
+        writeln!(
+            out,
+            "  problem: the surface passes through itself: inside and outside are not defined where it does"
+        )?;
+    }
+    Ok(())
 }

@@ -5,8 +5,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::MeshResult;
-use super::methods::{Method, Query};
+use super::methods::{MeshResult, Method, Query};
 use super::timing::Summary;
 
 /// The fields of a record, for `haphe bench --help`.
@@ -196,5 +195,5 @@ pub fn ratio(a: f64, b: f64) -> Option<f64> {
 /// When the file cannot be written.
 pub fn write(path: &Path, records: &[Record]) -> anyhow::Result<()> {
     let text = serde_json::to_string_pretty(records)?;
-    crate::files::output::write_output(path, |out| Ok(out.write_all((text + "\n").as_bytes())?))
+    crate::output::write_output(path, |out| Ok(out.write_all((text + "\n").as_bytes())?))
 }

@@ -7,18 +7,20 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{anyhow, bail};
-use haphe::mesh::ReadOptions;
+use haphe::map::VoxelMap;
+use haphe::mesh::{ReadOptions, Surface};
 use haphe::verify::{
     CrossingCheck, InsideCheck, STRIKE_SPEED_CLASSES, SegmentKind, WalkCheck, bounds,
     check_crossings_with_peer, check_inside_with_peer, check_walk,
 };
 use serde::Serialize;
 
-use crate::build::map_options;
-use crate::load::weld_mode;
-use crate::object::open;
-use crate::peer::{self, Parry};
-use crate::validate::parse_units;
+mod peer;
+mod proxy;
+
+use self::peer::Parry;
+use crate::args::{map_options, parse_units, weld_mode};
+use crate::input::object::open;
 
 /// Arguments of `haphe verify`.
 #[derive(clap::Args, Debug)]
@@ -100,9 +102,9 @@ struct Verification {
     walk: WalkCheck,
     walk_seconds: f64,
     /// The proxy against the brute-force proxy, when run.
-    proxy: Option<crate::verify_proxy::ProxyReport>,
+    proxy: Option<proxy::ProxyReport>,
     /// Deep strikes, when run on a closed model.
-    strikes: Option<crate::verify_proxy::StrikeReport>,
+    strikes: Option<proxy::StrikeReport>,
     passed: bool,
 }
 
@@ -140,52 +142,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     }
     let parry = Parry::of(surface);
 
-    let crossings: Vec<CrossingRow> = SegmentKind::ALL
-        .iter()
-        .enumerate()
-        .map(|(k, &kind)| {
-            let seed = args.seed.wrapping_mul(1000).wrapping_add(k as u64);
-            let n = if kind.is_adversarial() {
-                args.adversarial.unwrap_or(n)
-            } else {
-                args.random.unwrap_or(n)
-            };
-            let clock = Instant::now();
-            let peer = |p0: haphe::DVec3, p1: haphe::DVec3| {
-                parry.as_ref().is_some_and(|mesh| mesh.crosses(p0, p1))
-            };
-            let (check, parry_counts) = check_crossings_with_peer(
-                surface,
-                map,
-                kind,
-                n,
-                seed,
-                parry.is_some().then_some(&peer as _),
-            );
-            CrossingRow {
-                check,
-                parry_misses: parry_counts.map(|p| p.misses),
-                parry_leaks: parry_counts.map(|p| p.leaks),
-                seconds: clock.elapsed().as_secs_f64(),
-            }
-        })
-        .collect();
-
-    let n_points = args.points.unwrap_or(n);
-    let clock = Instant::now();
-    let peer = |p: haphe::DVec3| parry.as_ref().is_some_and(|mesh| mesh.contains(p));
-    let (inside_check, parry_disagreements) = check_inside_with_peer(
-        surface,
-        map,
-        n_points,
-        args.seed,
-        parry.is_some().then_some(&peer as _),
-    );
-    let inside = InsideRow {
-        check: inside_check,
-        parry_disagreements,
-        seconds: clock.elapsed().as_secs_f64(),
-    };
+    let crossings = check_segments(args, surface, map, parry.as_ref());
+    let inside = check_points(args, surface, map, parry.as_ref());
     let clock = Instant::now();
 
     // Steps of 0.05–0.5 mm on a 0.2 m object, scaled to this object's size.
@@ -203,10 +161,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
 
     let ticks = args.ticks.unwrap_or(n);
     let proxy = (ticks > 0)
-        .then(|| crate::verify_proxy::check(surface, ticks, args.seed))
+        .then(|| proxy::check(surface, ticks, args.seed))
         .transpose()?;
     let strikes = (args.strikes > 0 && surface.is_solid())
-        .then(|| crate::verify_proxy::strikes(surface, args.strikes, args.seed))
+        .then(|| proxy::strikes(surface, args.strikes, args.seed))
         .transpose()?;
 
     let passed = crossings
@@ -330,74 +288,148 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
         }
     )?;
     if let Some(p) = &r.proxy {
-        writeln!(
-            out,
-            "\nproxy against the brute-force proxy (model scaled by {:.4} to 0.2 m; {:.1} s):\n",
-            p.scale, p.seconds
-        )?;
-        writeln!(
-            out,
-            "| path      | speeds (m/s) | ticks   | in contact | mismatches | largest gap (m) | inside | bad forces |"
-        )?;
-        writeln!(
-            out,
-            "|-----------|--------------|--------:|-----------:|-----------:|----------------:|-------:|-----------:|"
-        )?;
-        for row in &p.rows {
-            let c = &row.check;
-            writeln!(
-                out,
-                "| {:<9} | {:>5}–{:<6} | {:>7} | {:>10} | {:>10} | {:>15.1e} | {:>6} | {:>10} |",
-                row.path,
-                row.speeds_m_s.0,
-                row.speeds_m_s.1,
-                c.ticks,
-                c.contact_ticks,
-                c.mismatches,
-                c.max_deviation_m,
-                c.inside,
-                c.bad_forces
-            )?;
-        }
+        print_proxy(out, p)?;
     }
     if let Some(s) = &r.strikes {
-        let c = &s.check;
-        writeln!(
-            out,
-            "\ndeep strikes (model scaled by {:.4} to 0.2 m, saturation depth {:.1} mm; {:.1} s, {:.2} µs per proxy tick):\n",
-            s.scale,
-            s.saturation_depth_m * 1e3,
-            s.seconds,
-            s.us_per_tick
-        )?;
-        writeln!(
-            out,
-            "{} strikes ({} drawn not run), {} ticks, {} held. Deep ticks, from the one a strike first goes deeper than the saturation depth until the hand stops, must never push the hand on along the strike (above 1e-6 N) nor face the far side. Shallow ticks, from the first touch until then, are the physical range: past a crest the surface pushes the hand on along its normal, as a rigid one does.\n",
-            c.strikes, c.skipped, c.ticks, c.held_ticks
-        )?;
-        writeln!(
-            out,
-            "| ticks | speed m/s | strikes | ticks checked | pushing on | far side | largest push N |\n|---|---|---:|---:|---:|---:|---:|"
-        )?;
-        for (kind, all, by_speed) in [
-            ("deep", &c.deep, &c.deep_by_speed),
-            ("shallow", &c.shallow, &c.shallow_by_speed),
-        ] {
-            let classes = STRIKE_SPEED_CLASSES
-                .windows(2)
-                .map(|w| format!("{}–{}", w[0], w[1]));
-            for (speeds, t) in classes
-                .chain(std::iter::once("all".to_string()))
-                .zip(by_speed.iter().chain(std::iter::once(all)))
-            {
-                writeln!(
-                    out,
-                    "| {kind} | {speeds} | {} | {} | {} | {} | {:.3} |",
-                    t.strikes, t.ticks, t.pushes_on, t.far_side, t.max_push_n
-                )?;
-            }
-        }
+        print_strikes(out, s)?;
     }
     writeln!(out, "\n{}", if r.passed { "PASSED" } else { "FAILED" })?;
     Ok(())
+}
+
+/// The table of the proxy against the brute-force proxy.
+fn print_proxy(out: &mut impl Write, p: &proxy::ProxyReport) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "\nproxy against the brute-force proxy (model scaled by {:.4} to 0.2 m; {:.1} s):\n",
+        p.scale, p.seconds
+    )?;
+    writeln!(
+        out,
+        "| path      | speeds (m/s) | ticks   | in contact | mismatches | largest gap (m) | inside | bad forces |"
+    )?;
+    writeln!(
+        out,
+        "|-----------|--------------|--------:|-----------:|-----------:|----------------:|-------:|-----------:|"
+    )?;
+    for row in &p.rows {
+        let c = &row.check;
+        writeln!(
+            out,
+            "| {:<9} | {:>5}–{:<6} | {:>7} | {:>10} | {:>10} | {:>15.1e} | {:>6} | {:>10} |",
+            row.path,
+            row.speeds_m_s.0,
+            row.speeds_m_s.1,
+            c.ticks,
+            c.contact_ticks,
+            c.mismatches,
+            c.max_deviation_m,
+            c.inside,
+            c.bad_forces
+        )?;
+    }
+    Ok(())
+}
+
+/// The deep strikes: what they check, and the table by kind and speed.
+fn print_strikes(out: &mut impl Write, s: &proxy::StrikeReport) -> std::io::Result<()> {
+    let c = &s.check;
+    writeln!(
+        out,
+        "\ndeep strikes (model scaled by {:.4} to 0.2 m, saturation depth {:.1} mm; {:.1} s, {:.2} µs per proxy tick):\n",
+        s.scale,
+        s.saturation_depth_m * 1e3,
+        s.seconds,
+        s.us_per_tick
+    )?;
+    writeln!(
+        out,
+        "{} strikes ({} drawn not run), {} ticks, {} held. Deep ticks, from the one a strike first goes deeper than the saturation depth until the hand stops, must never push the hand on along the strike (above 1e-6 N) nor face the far side. Shallow ticks, from the first touch until then, are the physical range: past a crest the surface pushes the hand on along its normal, as a rigid one does.\n",
+        c.strikes, c.skipped, c.ticks, c.held_ticks
+    )?;
+    writeln!(
+        out,
+        "| ticks | speed m/s | strikes | ticks checked | pushing on | far side | largest push N |\n|---|---|---:|---:|---:|---:|---:|"
+    )?;
+    for (kind, all, by_speed) in [
+        ("deep", &c.deep, &c.deep_by_speed),
+        ("shallow", &c.shallow, &c.shallow_by_speed),
+    ] {
+        let classes = STRIKE_SPEED_CLASSES
+            .windows(2)
+            .map(|w| format!("{}–{}", w[0], w[1]));
+        for (speeds, t) in classes
+            .chain(std::iter::once("all".to_string()))
+            .zip(by_speed.iter().chain(std::iter::once(all)))
+        {
+            writeln!(
+                out,
+                "| {kind} | {speeds} | {} | {} | {} | {} | {:.3} |",
+                t.strikes, t.ticks, t.pushes_on, t.far_side, t.max_push_n
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// Every segment kind's crossings against brute force (and parry, when built in).
+fn check_segments(
+    args: &Args,
+    surface: &Surface,
+    map: &VoxelMap,
+    parry: Option<&Parry>,
+) -> Vec<CrossingRow> {
+    SegmentKind::ALL
+        .iter()
+        .enumerate()
+        .map(|(k, &kind)| {
+            let seed = args.seed.wrapping_mul(1000).wrapping_add(k as u64);
+            let n = if kind.is_adversarial() {
+                args.adversarial.unwrap_or(args.samples)
+            } else {
+                args.random.unwrap_or(args.samples)
+            };
+            let clock = Instant::now();
+            let peer =
+                |p0: haphe::DVec3, p1: haphe::DVec3| parry.is_some_and(|mesh| mesh.crosses(p0, p1));
+            let (check, parry_counts) = check_crossings_with_peer(
+                surface,
+                map,
+                kind,
+                n,
+                seed,
+                parry.is_some().then_some(&peer as _),
+            );
+            CrossingRow {
+                check,
+                parry_misses: parry_counts.map(|p| p.misses),
+                parry_leaks: parry_counts.map(|p| p.leaks),
+                seconds: clock.elapsed().as_secs_f64(),
+            }
+        })
+        .collect()
+}
+
+/// Inside/outside of random points against winding numbers (and parry, when built in).
+fn check_points(
+    args: &Args,
+    surface: &Surface,
+    map: &VoxelMap,
+    parry: Option<&Parry>,
+) -> InsideRow {
+    let n_points = args.points.unwrap_or(args.samples);
+    let clock = Instant::now();
+    let peer = |p: haphe::DVec3| parry.is_some_and(|mesh| mesh.contains(p));
+    let (inside_check, parry_disagreements) = check_inside_with_peer(
+        surface,
+        map,
+        n_points,
+        args.seed,
+        parry.is_some().then_some(&peer as _),
+    );
+    InsideRow {
+        check: inside_check,
+        parry_disagreements,
+        seconds: clock.elapsed().as_secs_f64(),
+    }
 }

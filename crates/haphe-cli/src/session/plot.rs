@@ -20,7 +20,7 @@ const DEPTH: RGBColor = RGBColor(44, 160, 44);
 pub fn write(path: &Path, title: &str, points: &[PlotPoint]) -> anyhow::Result<()> {
     plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
         .map_err(|_| anyhow!("the embedded DejaVu Sans font is unreadable"))?;
-    crate::files::output::write_png(path, SIZE, |pixels| draw(pixels, title, points))
+    crate::output::write_png(path, SIZE, |pixels| draw(pixels, title, points))
 }
 
 fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {

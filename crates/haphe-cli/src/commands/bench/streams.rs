@@ -160,11 +160,14 @@ impl Streams {
             self.near.len() * STEPS,
             (0.05 * scale, 0.5 * scale),
             (0.5e-3 * scale, 3e-3 * scale),
-            super::methods::TICK_RATE_HZ,
+            TICK_RATE_HZ,
             seed,
         ));
     }
 }
+
+/// The device rate the contact paths are sampled at, Hz.
+pub const TICK_RATE_HZ: f64 = 1e3;
 
 /// `all` cut into chunks of [`STEPS`].
 fn chunked<T: Clone>(all: Vec<T>) -> Vec<Vec<T>> {

@@ -14,7 +14,7 @@ use haphe::scene::{SceneObject, Shape};
 use haphe::servo::ObjectMotion;
 use haphe::servo::scene_file::{ObjectSource, parse_scene};
 
-use crate::load::load;
+use crate::input::mesh::load;
 
 /// One object of a loaded scene file.
 pub struct LoadedObject {
@@ -29,7 +29,7 @@ pub struct LoadedObject {
 /// Reads a scene file and builds every object (shapes shared between objects that name
 /// the same shape and size or the same mesh file).
 pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObject>> {
-    let text = crate::files::input::read_text(path, crate::files::input::SCENE)?;
+    let text = crate::input::files::read_text(path, crate::input::files::SCENE)?;
     let entries = parse_scene(path, &text)?;
     let mut shapes: Vec<(ObjectSource, Arc<Shape>)> = Vec::new();
     let mut out = Vec::with_capacity(entries.len());

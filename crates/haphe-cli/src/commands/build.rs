@@ -6,13 +6,13 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, anyhow};
-use haphe::map::{MapOptions, Provenance, VoxelMap, encode};
+use haphe::map::{Provenance, VoxelMap, encode};
 use haphe::mesh::{ReadOptions, Surface, SurfaceOptions};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::files::input::{self, read_input};
-use crate::load::{load_bytes, weld_mode};
-use crate::validate::parse_units;
+use crate::args::{map_options, parse_units, weld_mode};
+use crate::input::files::{self, read_input};
+use crate::input::mesh::load_bytes;
 
 /// Arguments of `haphe build`.
 #[derive(clap::Args, Debug)]
@@ -36,18 +36,6 @@ pub struct Args {
     budget: Option<usize>,
 }
 
-/// Map options from the command line.
-pub fn map_options(cell_size: Option<f64>, budget_mib: Option<usize>) -> MapOptions {
-    let defaults = MapOptions::default();
-    MapOptions {
-        cell_size_m: cell_size,
-        memory_budget_bytes: budget_mib.map_or(defaults.memory_budget_bytes, |mib| {
-            mib.saturating_mul(1 << 20)
-        }),
-        ..defaults
-    }
-}
-
 /// Runs the command.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
@@ -56,8 +44,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         weld: weld_mode(args.weld_tolerance)?,
         format: None,
     };
-    crate::files::output::check_outputs(&[&args.output], &[&args.file])?;
-    let source = read_input(&args.file, input::MESH)?;
+    crate::output::check_outputs(&[&args.output], &[&args.file])?;
+    let source = read_input(&args.file, files::MESH)?;
     let provenance = Provenance::of(&args.file.display().to_string(), &source);
     let loaded = load_bytes(&args.file, &source, &read).map_err(|e| anyhow!("{e}"))?;
     drop(source);
@@ -94,7 +82,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
 
     let start = Instant::now();
     let bytes = encode(&surface, &map);
-    crate::files::output::write_output(&args.output, |out| Ok(out.write_all(&bytes)?))?;
+    crate::output::write_output(&args.output, |out| Ok(out.write_all(&bytes)?))?;
     let t_write = start.elapsed();
 
     let stats = map.stats();

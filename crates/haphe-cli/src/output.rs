@@ -86,7 +86,7 @@ pub fn check_outputs(outputs: &[&Path], inputs: &[&Path]) -> anyhow::Result<Vec<
                 // Renaming over a device or a pipe would replace it with a file.
                 bail!(
                     "cannot write {shown}: it is {}; outputs are regular files, written whole and renamed into place",
-                    crate::files::input::kind_name(m.file_type())
+                    crate::input::files::kind_name(m.file_type())
                 );
             }
             if identities.contains(&(m.dev(), m.ino())) {

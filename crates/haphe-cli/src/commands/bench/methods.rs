@@ -28,7 +28,8 @@ use parry3d_f64::shape::TriMesh;
 use serde::Serialize;
 
 use super::alloc;
-use super::streams::Streams;
+use super::streams::{Streams, TICK_RATE_HZ};
+use super::structures::BuildCost;
 use super::timing::{Overhead, Summary, time_each, time_empty};
 
 /// A kind of query, timed per query, or a whole operation (build, decode).
@@ -480,5 +481,16 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
     runners
 }
 
-/// The device rate the contact paths are sampled at, Hz.
-pub const TICK_RATE_HZ: f64 = 1e3;
+/// Everything measured on one mesh.
+pub struct MeshResult {
+    /// `SHAPE-SIZE` or the file name.
+    pub name: String,
+    /// The shape name or the file name.
+    pub family: String,
+    /// Triangles of the mesh.
+    pub triangles: usize,
+    /// Build, decode and memory.
+    pub cost: BuildCost,
+    /// The timed query kinds.
+    pub measured: Vec<Measured>,
+}

@@ -1,0 +1,169 @@
+//! The arguments several commands share, their parsers and checks, and the command's
+//! defaults: units and welding, map options, the objects of a session (a mesh file, a
+//! scene file or a built-in shape, and the material of a lone object), the files a
+//! session writes, the mapping of a device's workspace, and the lengths of runs.
+
+use std::path::PathBuf;
+
+use anyhow::{anyhow, bail};
+use haphe::DVec3;
+use haphe::map::MapOptions;
+use haphe::mesh::{Units, Weld};
+use haphe::scene::Material;
+
+use crate::input::model::Model;
+
+/// Default length of a run, seconds.
+pub const DEFAULT_SECONDS: f64 = 5.0;
+
+/// The longest run, seconds (an hour: 3.6 million ticks at 1 kHz, a 400 MB trace).
+pub const MAX_SECONDS: f64 = 3600.0;
+
+/// Length of a run until Ctrl-C, for sizing the plot's sampling only, seconds.
+pub const PLOT_SECONDS: f64 = 60.0;
+
+/// Default overrun budget: deadlines a run may miss before it stops with zero force.
+pub const DEFAULT_OVERRUN_BUDGET: u64 = haphe_devices::DEFAULT_OVERRUN_BUDGET;
+
+/// How a real device's workspace is mapped onto the scene; shared by `haphe run` and
+/// `haphe view`.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct MappingArgs {
+    /// World metres per device metre (default: the device's workspace covers the scene's
+    /// bounds).
+    #[arg(long)]
+    pub scale: Option<f64>,
+    /// The world point the centre of the device's workspace maps to, metres, "x,y,z"
+    /// (default: the centre of the scene's bounds).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point)]
+    pub centre: Option<DVec3>,
+}
+
+impl MappingArgs {
+    /// Checks `--scale`.
+    ///
+    /// # Errors
+    /// A scale that is not positive.
+    pub fn check(&self) -> anyhow::Result<()> {
+        if let Some(s) = self.scale
+            && !(s.is_finite() && s > 0.0)
+        {
+            bail!("--scale must be positive, not {s}");
+        }
+        Ok(())
+    }
+}
+
+pub fn parse_point(s: &str) -> Result<DVec3, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(*x, *y, *z)),
+        _ => Err(format!("expected three finite numbers x,y,z, not {s:?}")),
+    }
+}
+
+/// Parses a `--units` value.
+pub fn parse_units(s: &str) -> Result<Units, String> {
+    s.parse()
+}
+
+/// The weld mode from the command line's `--weld-tolerance` (metres; 0 means exact).
+pub fn weld_mode(tolerance_m: Option<f64>) -> anyhow::Result<Weld> {
+    match tolerance_m {
+        None => Ok(Weld::Exact),
+        Some(0.0) => Ok(Weld::Exact),
+        Some(t) if t.is_finite() && t > 0.0 => Ok(Weld::Tolerance(t)),
+        Some(t) => {
+            bail!("--weld-tolerance must be a non-negative distance in metres, not {t}")
+        }
+    }
+}
+
+/// Map options from the command line.
+pub fn map_options(cell_size: Option<f64>, budget_mib: Option<usize>) -> MapOptions {
+    let defaults = MapOptions::default();
+    MapOptions {
+        cell_size_m: cell_size,
+        memory_budget_bytes: budget_mib.map_or(defaults.memory_budget_bytes, |mib| {
+            mib.saturating_mul(1 << 20)
+        }),
+        ..defaults
+    }
+}
+
+/// Where the objects come from (exactly one of `--mesh`, `--scene`, `--shape`), and the
+/// material of a `--mesh` or `--shape` object.
+#[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape"])))]
+pub struct ModelArgs {
+    /// A mesh file (OBJ, STL, PLY, OFF) placed with the centre of its bounding box at the
+    /// origin.
+    #[arg(long, value_name = "FILE")]
+    pub mesh: Option<PathBuf>,
+    /// A scene file (TOML): objects, poses, materials, motions (see docs/guide.md).
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
+    /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
+    #[arg(long, value_name = "NAME")]
+    pub shape: Option<String>,
+    /// Triangles of the built-in shape.
+    #[arg(long, default_value_t = 20_000)]
+    pub triangles: usize,
+    /// Length unit of the mesh file: m, mm, cm, in, or metres per unit.
+    #[arg(long, default_value = "m", value_parser = parse_units)]
+    pub units: Units,
+    /// Stiffness of a --mesh or --shape object, N/m.
+    #[arg(long, default_value_t = 600.0)]
+    pub stiffness: f64,
+    /// Damping of a --mesh or --shape object, N·s/m.
+    #[arg(long, default_value_t = 1.0)]
+    pub damping: f64,
+    /// Static friction coefficient of a --mesh or --shape object.
+    #[arg(long, default_value_t = 0.3)]
+    pub static_friction: f64,
+    /// Dynamic friction coefficient of a --mesh or --shape object.
+    #[arg(long, default_value_t = 0.2)]
+    pub dynamic_friction: f64,
+}
+
+impl ModelArgs {
+    /// The model to load.
+    pub fn model(&self) -> Model<'_> {
+        Model {
+            scene: self.scene.as_deref(),
+            mesh: self.mesh.as_deref(),
+            shape: self.shape.as_deref(),
+            triangles: self.triangles,
+            units: self.units,
+        }
+    }
+
+    /// The material of a `--mesh` or `--shape` object, checked as a scene file's are.
+    ///
+    /// # Errors
+    /// A value out of its range, named as its option.
+    pub fn material(&self) -> anyhow::Result<Material> {
+        Material {
+            stiffness: self.stiffness,
+            damping: self.damping,
+            static_friction: self.static_friction,
+            dynamic_friction: self.dynamic_friction,
+        }
+        .checked()
+        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))
+    }
+}
+
+/// The files a session writes.
+#[derive(clap::Args, Debug)]
+pub struct OutputArgs {
+    /// Write every tick to this CSV file.
+    #[arg(long, value_name = "FILE.csv")]
+    pub out: Option<PathBuf>,
+    /// Draw force, penetration and the side view of the path to this PNG.
+    #[arg(long, value_name = "FILE.png")]
+    pub plot: Option<PathBuf>,
+}

@@ -1,0 +1,105 @@
+//! `haphe run`: a haptic session with a real device (Force Dimension, OpenHaptics), the
+//! network device, or the simulated hand, on a mesh, a built-in shape or a scene file.
+//! The session itself is `haphe simulate`'s ([`crate::session`]).
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::bail;
+use haphe::DVec3;
+use haphe_devices::UdpOptions;
+
+use crate::args::{DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs};
+use crate::input::model::load_model;
+use crate::session::device::VendorChoice;
+use crate::session::wait::catch_interrupts;
+use crate::session::{DeviceChoice, Session};
+
+/// Arguments of `haphe run`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The device: dhd (Force Dimension), openhaptics (3D Systems Touch), udp:HOST:PORT
+    /// (listen there for a network device), or hand (the simulated hand).
+    #[arg(long, value_name = "SPEC")]
+    device: String,
+    #[command(flatten)]
+    model: ModelArgs,
+    /// Length of the run, seconds (default: until Ctrl-C; 5 s for the simulated hand).
+    #[arg(long)]
+    seconds: Option<f64>,
+    /// Servo rate, Hz (OpenHaptics: its scheduler's rate, 1000 on a Touch).
+    #[arg(long, default_value_t = 1000.0)]
+    rate: f64,
+    #[command(flatten)]
+    mapping: MappingArgs,
+    /// Stop with zero force once the servo has missed this many deadlines.
+    #[arg(long, default_value_t = DEFAULT_OVERRUN_BUDGET)]
+    overrun_budget: u64,
+    /// udp: seconds without a new position before the device faults (zero force, stop).
+    #[arg(long, default_value_t = haphe_devices::UDP_TIMEOUT_S)]
+    udp_timeout: f64,
+    /// udp: the peer's workspace, the half size of a cube centred on its origin, metres.
+    #[arg(long, default_value_t = 0.1)]
+    udp_workspace: f64,
+    /// Keep the normal, time-shared priority instead of asking for FIFO real-time
+    /// priority for haphe's servo thread.
+    #[arg(long)]
+    normal_priority: bool,
+    #[command(flatten)]
+    output: OutputArgs,
+    /// Largest force rendered, N (lowered to the device's maximum).
+    #[arg(long, default_value_t = 3.3)]
+    max_force: f64,
+}
+
+/// Runs `haphe run`.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    // Parsed first: a wrong specification is reported before the scene is built.
+    args.device.parse::<haphe_devices::DeviceKind>()?;
+    args.mapping.check()?;
+    if !(args.udp_timeout.is_finite() && args.udp_timeout > 0.0) {
+        bail!("--udp-timeout must be positive, not {}", args.udp_timeout);
+    }
+    if !(args.udp_workspace.is_finite() && args.udp_workspace > 0.0) {
+        bail!(
+            "--udp-workspace must be positive, not {}",
+            args.udp_workspace
+        );
+    }
+    catch_interrupts()?;
+    let material = args.model.material()?;
+    let started = Instant::now();
+    let (objects, what) = load_model(args.model.model(), material)?;
+    let build_seconds = started.elapsed().as_secs_f64();
+    let h = args.udp_workspace;
+    let choice = VendorChoice {
+        spec: args.device.clone(),
+        udp: UdpOptions {
+            timeout_s: args.udp_timeout,
+            workspace: (DVec3::splat(-h), DVec3::splat(h)),
+            max_force: args.max_force,
+            ..UdpOptions::default()
+        },
+        scale: args.mapping.scale,
+        centre: args.mapping.centre,
+        overrun_budget: Some(args.overrun_budget),
+    };
+    let session = Session {
+        title: format!("haphe run: device {} on {what}", args.device),
+        objects,
+        build_seconds,
+        device: DeviceChoice::Vendor(choice),
+        rate_hz: args.rate,
+        seconds: args.seconds,
+        realtime: true,
+        spin_seconds: None,
+        fifo: !args.normal_priority,
+        standby_core: None,
+        seed: 1,
+        max_force: args.max_force,
+        out: args.output.out.clone(),
+        plot: args.output.plot.clone(),
+    };
+    session.run(&mut std::io::stdout().lock())?;
+    Ok(ExitCode::SUCCESS)
+}

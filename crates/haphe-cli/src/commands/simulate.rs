@@ -1,0 +1,131 @@
+//! `haphe simulate`: a haptic session without hardware — a simulated hand (or a scripted
+//! device, or a replayed trace) on a mesh, a built-in shape or a scene file, ticked by the
+//! servo loop on a virtual clock or on the wall clock; a per-tick CSV trace, a summary and
+//! a plot. The session itself is [`crate::session`]'s.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{anyhow, bail};
+use haphe::scene::check_max_force;
+use haphe::servo::{HandOptions, HipTrace, MAX_RATE_HZ, MIN_RATE_HZ, PathKind};
+
+use crate::args::{ModelArgs, OutputArgs};
+use crate::input::files::{self, read_input};
+use crate::input::model::load_model;
+use crate::output::check_outputs;
+use crate::session::{DeviceChoice, Session};
+
+/// Arguments of `haphe simulate`.
+#[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
+pub struct Args {
+    #[command(flatten)]
+    model: ModelArgs,
+    /// The motion: press, slide, circle, explore or strike (over the top of the objects).
+    #[arg(long, default_value = "explore")]
+    path: PathKind,
+    /// The simulated hand (a mass–spring–damper arm pushed back by the force) follows the
+    /// path (the default).
+    #[arg(long, overrides_with = "no_hand")]
+    hand: bool,
+    /// The device point follows the path exactly, whatever the force.
+    #[arg(long = "no-hand", overrides_with = "hand")]
+    no_hand: bool,
+    /// Replay a recorded device trace, CSV `t,x,y,z` (instead of --path).
+    #[arg(long, value_name = "HIP.csv")]
+    replay: Option<PathBuf>,
+    /// Servo rate, Hz (1 to 40000).
+    #[arg(long, default_value_t = 1000.0)]
+    rate: f64,
+    /// Length of the run, seconds, at most 3600 (default 5, or the length of the replayed
+    /// trace; a replay stops when its trace ends).
+    #[arg(long, allow_negative_numbers = true)]
+    seconds: Option<f64>,
+    /// Run on the wall clock on a real-time thread (default: a virtual clock, as fast as
+    /// possible).
+    #[arg(long)]
+    realtime: bool,
+    /// With --realtime: spin (instead of sleeping) for this last part before each
+    /// deadline, microseconds (default: 200, at most 30 % of the period).
+    #[arg(long, value_name = "US")]
+    spin_us: Option<f64>,
+    /// With --realtime: keep the normal, time-shared priority instead of asking for FIFO
+    /// real-time priority. Linux throttles a real-time thread that never sleeps (by
+    /// default 50 ms in every second); a normal thread may spin the whole period
+    /// (`--spin-us` equal to it) on its own core.
+    #[arg(long)]
+    normal_priority: bool,
+    /// With --realtime: a standby thread pinned to this core ticks in place of the servo
+    /// thread when that one is 20 µs late (its core taken away by the host or another
+    /// thread). It spins the whole period at normal priority: it costs a second core.
+    #[arg(long, value_name = "CORE")]
+    standby_core: Option<usize>,
+    #[command(flatten)]
+    output: OutputArgs,
+    /// Seed of the explore path.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Largest force rendered, N (the simulated device's maximum is 3.3 N).
+    #[arg(long, default_value_t = 3.3)]
+    max_force: f64,
+}
+
+/// Runs `haphe simulate`.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    if !(args.rate.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&args.rate)) {
+        bail!(
+            "--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {}",
+            args.rate
+        );
+    }
+    let outputs: Vec<&Path> = [&args.output.out, &args.output.plot]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    let inputs: Vec<&Path> = [&args.model.mesh, &args.model.scene, &args.replay]
+        .into_iter()
+        .flatten()
+        .map(PathBuf::as_path)
+        .collect();
+    check_outputs(&outputs, &inputs)?;
+    if let Some(core) = args.standby_core {
+        haphe::servo::check_core(core).map_err(|e| anyhow!("--standby-core: {e}"))?;
+    }
+    // The same check as a scene file's materials.
+    let material = args.model.material()?;
+    check_max_force(args.max_force)
+        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
+    let started = Instant::now();
+    let (objects, what) = load_model(args.model.model(), material)?;
+    let build_seconds = started.elapsed().as_secs_f64();
+    let device = if let Some(file) = &args.replay {
+        let name = file.display().to_string();
+        let bytes = read_input(file, files::TRACE)?;
+        DeviceChoice::Replay(HipTrace::read(&name, bytes.as_slice())?)
+    } else if args.no_hand && !args.hand {
+        DeviceChoice::Scripted(args.path)
+    } else {
+        DeviceChoice::Hand(args.path, HandOptions::default())
+    };
+    let session = Session {
+        title: format!("haphe simulate: {} on {what}", device.describe()),
+        objects,
+        build_seconds,
+        device,
+        rate_hz: args.rate,
+        seconds: args.seconds,
+        realtime: args.realtime,
+        spin_seconds: args.spin_us.map(|us| us * 1e-6),
+        fifo: !args.normal_priority,
+        standby_core: args.standby_core,
+        seed: args.seed,
+        max_force: args.max_force,
+        out: args.output.out.clone(),
+        plot: args.output.plot.clone(),
+    };
+    session.run(&mut std::io::stdout().lock())?;
+    Ok(ExitCode::SUCCESS)
+}

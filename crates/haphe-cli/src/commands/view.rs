@@ -1,0 +1,131 @@
+//! `haphe view`: the live 3D view in the browser — a mesh, a built-in shape or a scene
+//! file touched with the mouse (or the simulated hand), or a recorded trace replayed.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+
+use anyhow::{anyhow, bail};
+use haphe::map::MapOptions;
+use haphe::mesh::Units;
+use haphe::mesh::shapes::Catalog;
+use haphe::scene::{Material, ObjectId, Pose, SceneObject};
+use haphe_view::{Model, Source, Trace};
+
+use crate::args::{MappingArgs, parse_units};
+use crate::input::files::{self, read_input};
+use crate::input::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
+use crate::session::device::view_choice;
+use crate::session::live::{HAND_SECONDS, Serve, ViewDevice, live, scene_of, serve};
+
+/// Arguments of `haphe view`.
+#[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("model").args(["mesh", "scene", "shape"])))]
+pub struct Args {
+    /// A mesh file (OBJ, STL, PLY, OFF) placed at the origin.
+    #[arg(long, value_name = "FILE")]
+    mesh: Option<PathBuf>,
+    /// A scene file (TOML): objects, poses, materials, motions.
+    #[arg(long, value_name = "FILE.toml")]
+    scene: Option<PathBuf>,
+    /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
+    #[arg(long, value_name = "NAME")]
+    shape: Option<String>,
+    /// Replay a trace written by `haphe simulate --out` (with --mesh, --shape or --scene
+    /// the objects are drawn too).
+    #[arg(long, value_name = "RUN.csv")]
+    replay: Option<PathBuf>,
+    /// Triangles of the built-in shape.
+    #[arg(long, default_value_t = 20_000)]
+    triangles: usize,
+    /// Length unit of the mesh file: m, mm, cm, in, or metres per unit.
+    #[arg(long, default_value = "m", value_parser = parse_units)]
+    units: Units,
+    /// The device: `mouse` (the pointer moves the device point), `hand` (the simulated
+    /// hand explores the scene), dhd (Force Dimension), openhaptics (3D Systems Touch) or
+    /// udp:HOST:PORT (listen there for a network device), mapped as `haphe run` maps it.
+    #[arg(long, default_value = "mouse", value_name = "SPEC")]
+    device: String,
+    /// Servo rate, Hz.
+    #[arg(long, default_value_t = 1000.0)]
+    rate: f64,
+    /// Length of the run, seconds (default: 60 for `--device hand`, until Ctrl-C for a
+    /// real device).
+    #[arg(long)]
+    seconds: Option<f64>,
+    #[command(flatten)]
+    mapping: MappingArgs,
+    /// Stiffness of a --mesh or --shape object, N/m.
+    #[arg(long, default_value_t = 600.0)]
+    stiffness: f64,
+    /// Static friction coefficient of a --mesh or --shape object.
+    #[arg(long, default_value_t = 0.3)]
+    static_friction: f64,
+    /// Dynamic friction coefficient of a --mesh or --shape object.
+    #[arg(long, default_value_t = 0.2)]
+    dynamic_friction: f64,
+    #[command(flatten)]
+    serve: Serve,
+}
+
+/// Runs `haphe view`.
+pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
+    let map = MapOptions::default();
+    let material = Material {
+        stiffness: args.stiffness,
+        damping: 1.0,
+        static_friction: args.static_friction,
+        dynamic_friction: args.dynamic_friction,
+    };
+    let single = |name: String, shape| {
+        vec![LoadedObject {
+            name,
+            object: SceneObject::new(ObjectId(0), Arc::new(shape), Pose::IDENTITY, material),
+            motion: None,
+        }]
+    };
+    let objects = if let Some(file) = &args.scene {
+        load_scene(file, &map)?
+    } else if let Some(file) = &args.mesh {
+        single(
+            file.display().to_string(),
+            mesh_shape(file, args.units, &map)?,
+        )
+    } else if let Some(name) = &args.shape {
+        let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
+        single(name.clone(), shape_of(which, args.triangles, &map)?)
+    } else if args.replay.is_some() {
+        Vec::new()
+    } else {
+        bail!("say what to show: --mesh FILE, --shape NAME, --scene FILE or --replay RUN.csv");
+    };
+    if let Some(file) = &args.replay {
+        let name = file.display().to_string();
+        // Through the input module, like every command: a size limit, devices refused.
+        let bytes = read_input(file, files::TRACE)?;
+        let trace = Trace::read(&name, bytes.as_slice())?;
+        let (scene, names, motions) = scene_of(objects)?;
+        let model = Model::from_scene(&scene, &names).with_motions(motions);
+        let title = format!("haphe view: replay of {name} ({} ticks)", trace.rows.len());
+        return serve(model, Source::Replay(trace), &title, &args.serve);
+    }
+    let device = match args.device.as_str() {
+        "mouse" => ViewDevice::Mouse,
+        "hand" => ViewDevice::Hand(args.seconds.unwrap_or(HAND_SECONDS)),
+        other => {
+            other.parse::<haphe_devices::DeviceKind>().map_err(|e| {
+                anyhow!("--device {other:?}: {e} (or mouse, the default, for the view)")
+            })?;
+            args.mapping.check()?;
+            ViewDevice::Vendor(view_choice(other, args.mapping), args.seconds)
+        }
+    };
+    let what = args
+        .scene
+        .as_ref()
+        .or(args.mesh.as_ref())
+        .map(|p| p.display().to_string())
+        .or(args.shape.clone())
+        .unwrap_or_default();
+    live(objects, device, args.rate, &what, &args.serve)
+}

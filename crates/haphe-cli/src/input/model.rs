@@ -1,0 +1,74 @@
+//! The objects of a session: a scene file, a mesh file placed at the origin, or a
+//! built-in shape.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use anyhow::anyhow;
+use haphe::map::MapOptions;
+use haphe::mesh::Units;
+use haphe::mesh::shapes::Catalog;
+use haphe::scene::{Material, ObjectId, Pose, SceneObject};
+
+use crate::input::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
+
+/// Where the objects of a run come from: one of a scene file, a mesh file, a built-in shape.
+pub struct Model<'a> {
+    pub scene: Option<&'a Path>,
+    pub mesh: Option<&'a Path>,
+    pub shape: Option<&'a str>,
+    pub triangles: usize,
+    pub units: Units,
+}
+
+/// Loads the objects of a run (a --mesh or --shape object gets `material`), and says
+/// what they are.
+pub fn load_model(
+    model: Model<'_>,
+    material: Material,
+) -> anyhow::Result<(Vec<LoadedObject>, String)> {
+    let map = MapOptions::default();
+    Ok(if let Some(file) = model.scene {
+        (load_scene(file, &map)?, file.display().to_string())
+    } else if let Some(file) = model.mesh {
+        let shape = Arc::new(mesh_shape(file, model.units, &map)?);
+        // The paths explore the workspace around the origin: the mesh is placed there.
+        let (lo, hi) = shape.surface().bounds();
+        let centre = (lo + hi) * 0.5;
+        if centre.length() > 1e-9 {
+            eprintln!(
+                "haphe: {} placed with its centre at the origin (moved by {:.6?} m)",
+                file.display(),
+                (-centre).to_array()
+            );
+        }
+        let o = SceneObject::new(
+            ObjectId(0),
+            shape,
+            Pose::from_translation(-centre),
+            material,
+        );
+        (
+            vec![LoadedObject {
+                name: file.display().to_string(),
+                object: o,
+                motion: None,
+            }],
+            file.display().to_string(),
+        )
+    } else {
+        let name = model.shape.unwrap_or("blob");
+        let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
+        Catalog::check_triangles(model.triangles).map_err(|e| anyhow!("--triangles: {e}"))?;
+        let shape = Arc::new(shape_of(which, model.triangles, &map)?);
+        let o = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, material);
+        (
+            vec![LoadedObject {
+                name: name.to_string(),
+                object: o,
+                motion: None,
+            }],
+            format!("the built-in {name}"),
+        )
+    })
+}

@@ -1,0 +1,75 @@
+//! The device of a session named by a specification (`haphe run`, `haphe view`): how it
+//! was chosen, opened and mapped onto the scene.
+
+use std::io::Write;
+
+use haphe::DVec3;
+use haphe::scene::Scene;
+use haphe::servo::{DeviceMapping, DeviceSpec};
+use haphe_devices::{OpenedDevice, UdpOptions, open_device, workspace_mapping};
+
+/// How `haphe run` chose its device.
+#[derive(Debug, Clone)]
+pub struct VendorChoice {
+    /// The specification.
+    pub spec: String,
+    /// Settings of the network device.
+    pub udp: UdpOptions,
+    /// `--scale`.
+    pub scale: Option<f64>,
+    /// `--centre`.
+    pub centre: Option<DVec3>,
+    /// `--overrun-budget`.
+    pub overrun_budget: Option<u64>,
+}
+
+/// The device choice of `haphe view`: `mapping`, and `haphe run`'s default network
+/// settings and overrun budget.
+#[cfg(feature = "view")]
+pub fn view_choice(spec: &str, mapping: crate::args::MappingArgs) -> VendorChoice {
+    VendorChoice {
+        spec: spec.to_string(),
+        udp: UdpOptions::default(),
+        scale: mapping.scale,
+        centre: mapping.centre,
+        overrun_budget: Some(crate::args::DEFAULT_OVERRUN_BUDGET),
+    }
+}
+
+/// Opens the device of `choice` (for the session).
+pub fn open(choice: &VendorChoice, scene: &Scene, seconds: f64) -> anyhow::Result<OpenedDevice> {
+    Ok(open_device(&choice.spec, scene, seconds, choice.udp)?)
+}
+
+/// The mapping of the run: the device's workspace centred on the scene and scaled to
+/// cover its bounds, unless `--scale` / `--centre` say otherwise. The simulated hand
+/// moves in the world already.
+pub fn mapping(choice: &VendorChoice, spec: &DeviceSpec, scene: &Scene) -> DeviceMapping {
+    if choice.spec == "hand" {
+        return DeviceMapping::IDENTITY;
+    }
+    workspace_mapping(spec, scene, choice.scale, choice.centre)
+}
+
+/// Prints the mapping and what it does to stiffness.
+pub fn print_mapping(
+    out: &mut impl Write,
+    choice: &VendorChoice,
+    m: &DeviceMapping,
+    stiffness: f64,
+) -> std::io::Result<()> {
+    if choice.spec == "hand" {
+        return Ok(());
+    }
+    let c = m.offset();
+    writeln!(
+        out,
+        "mapping: {:.3} world m per device m, device origin at world ({:.4}, {:.4}, {:.4}) m \
+         (set with --scale, --centre); {stiffness:.0} N/m is felt as {:.0} N/m at the device",
+        m.scale(),
+        c.x,
+        c.y,
+        c.z,
+        m.stiffness_at_device(stiffness)
+    )
+}

@@ -1,0 +1,198 @@
+//! A live session in the browser view (`haphe view`, `haphe demo --view`): the scene
+//! served with its device (the mouse, the simulated hand or a real device) until Ctrl-C.
+
+use anyhow::{anyhow, bail};
+use haphe::DVec3;
+use haphe::proxy::ProxyOptions;
+use haphe::scene::Scene;
+use haphe::servo::{
+    Device, DeviceMapping, HandOptions, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind,
+    RealtimeOptions, ServoOptions, SimulatedHand, scene_bounds, scripted_path,
+};
+use haphe_view::{LiveSource, Model, MouseDevice, Source, ViewOptions, ViewServer};
+use std::process::ExitCode;
+
+use super::device::{self, VendorChoice};
+use super::wait;
+use crate::input::scene::LoadedObject;
+
+/// Port the view serves on by default.
+pub const DEFAULT_PORT: u16 = 8417;
+
+/// Length of a `--device hand` run, seconds, unless `--seconds` says.
+pub const HAND_SECONDS: f64 = 60.0;
+
+/// Where the view is served; shared with `haphe demo --view`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Serve {
+    /// TCP port on 127.0.0.1 (0: any free port).
+    #[arg(long, default_value_t = DEFAULT_PORT)]
+    pub port: u16,
+    /// Do not open the browser; print the address only.
+    #[arg(long)]
+    pub no_open: bool,
+}
+
+/// The device of a live view.
+pub enum ViewDevice {
+    /// The pointer moves the device point.
+    Mouse,
+    /// The simulated hand explores the scene for this many seconds.
+    Hand(f64),
+    /// A real device (`dhd`, `openhaptics`, `udp:HOST:PORT`), opened and mapped as `haphe
+    /// run` does, for this many seconds or until Ctrl-C.
+    Vendor(VendorChoice, Option<f64>),
+}
+
+/// Builds the scene of `objects`: the scene, the objects' names and their motions.
+pub fn scene_of(
+    objects: Vec<LoadedObject>,
+) -> anyhow::Result<(Scene, Vec<String>, Vec<ObjectMotion>)> {
+    let mut scene = Scene::local(objects.len() + 4);
+    let mut names = Vec::new();
+    let mut motions = Vec::new();
+    for o in objects {
+        names.push(o.name);
+        motions.extend(o.motion);
+        scene
+            .insert(o.object)
+            .map_err(|(e, _)| anyhow!("cannot add an object: {e}"))?;
+    }
+    Ok((scene, names, motions))
+}
+
+/// Serves a live view of `objects` touched by `device` until Ctrl-C.
+pub fn live(
+    objects: Vec<LoadedObject>,
+    device: ViewDevice,
+    rate_hz: f64,
+    what: &str,
+    serve_options: &Serve,
+) -> anyhow::Result<ExitCode> {
+    if !(rate_hz.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&rate_hz)) {
+        bail!("--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {rate_hz}");
+    }
+    let (scene, names, motions) = scene_of(objects)?;
+    let model = Model::from_scene(&scene, &names);
+    let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
+    let mut mapping = DeviceMapping::IDENTITY;
+    let mut realtime = RealtimeOptions::default();
+    let mut clock = None;
+    let mut report = None;
+    let (device, mouse, seconds, title): (Box<dyn Device>, _, _, _) = match device {
+        ViewDevice::Mouse => {
+            let size = (hi - lo).max_element();
+            let centre = 0.5 * (lo + hi);
+            // Start above the objects, outside them, so that the proxy is placed at once.
+            let start = DVec3::new(centre.x, centre.y, hi.z + 0.1 * size);
+            let (device, handle) =
+                MouseDevice::new(start, lo - DVec3::splat(size), hi + DVec3::splat(size));
+            (
+                Box::new(device),
+                Some(handle),
+                None,
+                format!("haphe view: the mouse on {what}"),
+            )
+        }
+        ViewDevice::Hand(seconds) => {
+            let path = scripted_path(PathKind::Explore, &scene, seconds, 3)?;
+            (
+                Box::new(SimulatedHand::new(path, HandOptions::default())),
+                None,
+                Some(seconds),
+                format!("haphe view: the simulated hand explores {what} for {seconds} s"),
+            )
+        }
+        ViewDevice::Vendor(choice, seconds) => {
+            let opened = device::open(&choice, &scene, seconds.unwrap_or(HAND_SECONDS))?;
+            mapping = device::mapping(&choice, &opened.device.spec(), &scene);
+            println!("device: {}", opened.description);
+            let stiffness = super::stiffest(&scene);
+            device::print_mapping(&mut std::io::stdout(), &choice, &mapping, stiffness)?;
+            realtime.overrun_budget = choice.overrun_budget;
+            clock = opened.clock;
+            report = Some(opened.report);
+            (
+                opened.device,
+                None,
+                seconds,
+                format!("haphe view: device {} on {what}", choice.spec),
+            )
+        }
+    };
+    let source = LiveSource {
+        device,
+        scene,
+        options: ServoOptions {
+            rate_hz,
+            proxy: ProxyOptions::default(),
+            mapping,
+            ..ServoOptions::default()
+        },
+        motions,
+        seconds,
+        realtime,
+        clock,
+    };
+    let code = serve(
+        model,
+        Source::Live {
+            source: Box::new(source),
+            mouse,
+        },
+        &title,
+        serve_options,
+    )?;
+    if let Some(line) = report.and_then(|r| r()) {
+        println!("device: {line}");
+    }
+    Ok(code)
+}
+
+/// Starts the view, opens the browser, serves until Ctrl-C, and prints how the servo ran.
+pub fn serve(
+    model: Model,
+    source: Source,
+    title: &str,
+    serve_options: &Serve,
+) -> anyhow::Result<ExitCode> {
+    wait::catch_interrupts()?;
+    wait::servo_starting();
+    let view = ViewServer::start(
+        model,
+        source,
+        &ViewOptions {
+            port: serve_options.port,
+            title: title.to_string(),
+        },
+    )?;
+    let url = view.url();
+    println!("{title}");
+    if !serve_options.no_open && haphe_view::open_in_browser(&url) {
+        println!("view: {url} (opened in the browser; Ctrl-C stops)");
+    } else {
+        println!("view: {url} (open it in a browser; Ctrl-C stops)");
+    }
+    // Ctrl-C or SIGTERM: the servo is stopped below, and writes zero force first.
+    while !wait::interrupted() {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    if let Some(run) = view.stop()? {
+        let s = run.servo.stats();
+        println!(
+            "servo: {} ticks at {:.0} Hz achieved, compute p50 {:.1} µs, p99 {:.1} µs, max {:.1} µs; {} overruns; {}",
+            s.ticks,
+            s.achieved_rate(),
+            s.compute.quantile(0.5) as f64 * 1e-3,
+            s.compute.quantile(0.99) as f64 * 1e-3,
+            s.compute.max() as f64 * 1e-3,
+            s.overruns,
+            if run.setup.realtime_priority {
+                "real-time priority"
+            } else {
+                "normal priority"
+            }
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
