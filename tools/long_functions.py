@@ -17,6 +17,7 @@ issue 35, acceptance 4).
 
 import argparse
 import os
+import signal
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -185,6 +186,8 @@ def crate_files(src):
 
 
 def main():
+    # Piped into `head`: stop quietly.
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--over", type=int, default=100, help="lines (default 100)")
     parser.add_argument("--check", help="LIB,CLI: the most functions allowed over N lines")
