@@ -106,7 +106,6 @@ mod rest;
 
 pub use constraints::{Constraints, MAX_CONSTRAINTS, Plane, advance_to_plane};
 #[cfg(any(test, feature = "testing"))]
-pub(crate) use deep::Hold;
 pub use deep::{deep_direction, hold_slide, is_deep, saturation_depth};
 pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
 pub use godobject::{

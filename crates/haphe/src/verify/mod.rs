@@ -11,6 +11,8 @@
 //! it on); an application that only renders does not compile it.
 
 mod fixtures;
+mod friction;
+mod hold;
 mod oracle;
 mod paths;
 mod proxy;
@@ -18,13 +20,15 @@ mod samples;
 mod strikes;
 
 pub use fixtures::{one_object_scene, sphere_scene};
+pub use friction::friction_step;
+pub use hold::{HeldContact, hand_deeper_than, saturation_depth_of};
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
 pub use paths::{haptic_path, haptic_path_in_contact};
 pub use proxy::{BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy};
 pub use samples::{SegmentKind, bounds, point_on, points, segments, trajectory};
 pub use strikes::{
-    MAX_STRIKE_ANGLE_DEG, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEED_CLASSES, STRIKE_SPEEDS,
-    StrikeCheck, StrikeTicks, check_strikes, strike_path,
+    MAX_STRIKE_ANGLE_DEG, MIN_DEEP_STRIKE_SHARE, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEED_CLASSES,
+    STRIKE_SPEEDS, StrikeCheck, StrikeTicks, check_strikes, hand_goes_deep, strike_path,
 };
 
 use crate::par::*;

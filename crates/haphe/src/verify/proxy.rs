@@ -4,18 +4,25 @@
 //! no surface walk: every crossing is found by testing every triangle of every object (each
 //! after a slab test against its bounding box, which never changes the answer). The
 //! fast [`Proxy`] must stay within [`PROXY_TOLERANCE_M`] of it at every tick.
+//!
+//! Its deep-penetration hold and its friction are written from the rules' text
+//! ([`super::hold`], [`super::friction`]), apart from the proxy's own code; it shares with
+//! the proxy the god-object's constraint geometry ([`Constraints`], [`Plane`],
+//! [`advance_to_plane`]) and the resting rule.
 
 use glam::DVec3;
 use serde::Serialize;
 
 use std::sync::Arc;
 
+use super::friction::friction_step;
+use super::hold::{HeldContact, hand_deeper_than, saturation_depth_of};
 use super::oracle::TriangleBounds;
 use super::{KEPT_FAILURES, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, Hold, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
-    clamp_to_radius, friction_target, is_deep, rests_on, saturation_depth,
+    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
+    clamp_to_radius, rests_on,
 };
 use crate::query::{Probe, Side, classify_point, nearest_within_brute_force};
 use crate::scene::{Material, Pose, Scene, Shape, Sides};
@@ -46,7 +53,7 @@ pub struct BruteProxy {
     /// The last constraint of the previous tick.
     rest: Option<Rest>,
     /// The contact held beyond the saturation depth.
-    hold: Option<Hold>,
+    hold: Option<HeldContact>,
     /// The device point of the previous tick.
     previous_hip: Option<DVec3>,
 }
@@ -146,7 +153,13 @@ impl BruteProxy {
         self.sticking = sticking;
         self.placed = false;
         self.rest = proxy.rest();
-        self.hold = proxy.hold();
+        self.hold = proxy.hold().map(|h| HeldContact {
+            object: h.object,
+            normal: h.normal_object,
+            entry: h.entry_object,
+            hand: h.hip_object,
+            direction: h.direction_object,
+        });
         self.previous_hip = proxy.previous_hip();
     }
 
@@ -288,26 +301,24 @@ impl BruteProxy {
 
     /// A tick of a holding proxy at `p` (after the carry): while the device point stays
     /// deeper than the saturation depth behind the held plane, constraint steps toward the
-    /// hold's goal, without friction; `None` (and no change) once it is back within it.
-    fn hold_step(&mut self, mut p: DVec3, hip: DVec3, mut hold: Hold) -> Option<DVec3> {
-        let o = &self.objects[hold.object];
-        let depth = saturation_depth(&o.material, self.options.max_force);
-        let d = depth?;
-        if !is_deep(p, hip, hold.normal(&o.pose), depth) {
+    /// hold's goal, without friction, the held plane becoming the one they meet last on
+    /// the held object; `None` (and no change) once it is back within that depth.
+    fn hold_step(&mut self, mut p: DVec3, hip: DVec3, mut hold: HeldContact) -> Option<DVec3> {
+        let o = self.objects.get(hold.object)?;
+        let depth = saturation_depth_of(&o.material, self.options.max_force)?;
+        if !hand_deeper_than(p, hip, hold.normal_at(&o.pose), Some(depth)) {
             return None;
         }
-        let (slide, normal) = hold.targets(&o.pose, p, hip);
-        if slide.distance(p) > self.options.skin {
-            let step = self.steps(p, slide - normal * d, Steps::from(p));
+        if let Some(aim) = hold.aim(&o.pose, p, hip, depth, self.options.skin) {
+            let step = self.steps(p, aim, Steps::from(p));
             p = step.position;
             self.rest = step.rest;
-            if let (Some(plane), Some(r)) = (step.plane, step.rest)
+            if let (Some(plane), Some(_)) = (step.plane, step.rest)
                 && step.object == hold.object
             {
-                let pose = &self.objects[hold.object].pose;
-                hold.triangle = r.triangle;
-                hold.normal_object = pose.vector_to_object(plane.normal);
-                hold.constraints = step.planes.len() as u8;
+                hold.normal = self.objects[hold.object]
+                    .pose
+                    .vector_to_object(plane.normal);
             }
         }
         self.hold = Some(hold);
@@ -362,7 +373,6 @@ impl BruteProxy {
         let step = self.steps(p, hip, from);
         p = step.position;
         let Steps {
-            planes,
             touch_down,
             first,
             object: last_object,
@@ -385,7 +395,7 @@ impl BruteProxy {
             } else {
                 (touch_down, true)
             };
-            let (target, sticking) = friction_target(anchor, p, hip, &material, was);
+            let (target, sticking) = friction_step(anchor, p, hip, &material, was);
             if target != p {
                 p = match self.first_hit(p, target) {
                     None => target,
@@ -399,35 +409,35 @@ impl BruteProxy {
         // Beyond the saturation depth the proxy holds: from where it first met a surface
         // this tick when the hand is that deep behind that surface too, else from here on
         // the next tick.
-        if let (Some(plane), Some(r)) = (last_plane, rest)
-            && is_deep(
+        let motion = previous_hip.map(|q| hip - q);
+        if let (Some(plane), Some(_)) = (last_plane, rest)
+            && hand_deeper_than(
                 p,
                 hip,
                 plane.normal,
-                saturation_depth(&material, self.options.max_force),
+                saturation_depth_of(&material, self.options.max_force),
             )
         {
             if let Some((at, first_plane)) = first {
-                let entry = touch_down;
-                let hold = Hold::begin(
+                let hold = HeldContact::new(
                     &self.objects[at.object].pose,
-                    (at.object, at.triangle, 1),
-                    (entry, first_plane.normal),
+                    at.object,
+                    (touch_down, first_plane.normal),
                     previous_hip.unwrap_or(hip),
-                    (previous_hip, hip),
+                    motion,
                 );
                 let rest = self.rest.replace(at);
-                if let Some(p) = self.hold_step(entry, hip, hold) {
+                if let Some(p) = self.hold_step(touch_down, hip, hold) {
                     return (p, true);
                 }
                 self.rest = rest;
             }
-            self.hold = Some(Hold::begin(
+            self.hold = Some(HeldContact::new(
                 &self.objects[last_object].pose,
-                (last_object, r.triangle, planes.len() as u8),
+                last_object,
                 (p, plane.normal),
                 hip,
-                (previous_hip, hip),
+                motion,
             ));
         }
         self.position = p;

@@ -9,12 +9,23 @@
 //! god-object: a grazing strike slides over the surface, and past a crest a frictionless
 //! surface's normal leans along the strike and pushes the hand on, as a rigid surface
 //! does. Those ticks are counted apart.
+//!
+//! Which ticks are deep is decided from the device's path alone, never from the proxy
+//! under test: the entry is the first crossing of the strike line by brute force (every
+//! triangle), and a tick is deep from the first one where the hand lies inside the solid
+//! (by winding number) farther than the saturation depth from every triangle. At that
+//! depth the hand is deeper than the saturation depth behind any contact plane the
+//! god-object could have reached (its closest feasible point lies on the surface, at least
+//! that far away), so the rule of `docs/deep-penetration.md` has the proxy holding. A proxy
+//! that slid round the object instead (the old bug) therefore lands in the deep class,
+//! where its pushes are counted as failures, whatever penetration it reports.
 
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::proxy::{Proxy, ProxyOptions, saturation_depth};
-use crate::query::{Side, classify_point};
+use super::hold::saturation_depth_of;
+use super::oracle::{BruteCrossing, WindingOracle, distance_to_surface};
+use crate::proxy::{Proxy, ProxyOptions};
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
 
@@ -26,6 +37,15 @@ pub const MAX_STRIKE_ANGLE_DEG: f64 = 70.0;
 
 /// Strike speeds, m/s (drawn log-uniformly).
 pub const STRIKE_SPEEDS: (f64, f64) = (0.5, 10.0);
+
+/// The least share of a family's strikes that must go deeper than the saturation depth
+/// (by the hand's path, [`hand_goes_deep`]) for the family to pass. The deep ticks are the
+/// only ones the check asserts anything of: a family whose strikes stay in the physical
+/// range would pass whatever the hold does, and the strikes drawn here (depths up to
+/// 0.25 m on a 0.2 m model) go that deep in 79–96 % of draws on the models of
+/// `docs/deep-penetration.md`. A drawing that stopped reaching that depth (depths or
+/// speeds scaled down, entries all skipped) falls below half.
+pub const MIN_DEEP_STRIKE_SHARE: f64 = 0.5;
 
 /// How far outside the surface a strike starts, metres.
 const RUN_UP_M: f64 = 0.01;
@@ -72,6 +92,9 @@ pub struct StrikeTicks {
     /// Checked ticks where the proxy's contact plane faces along the strike (the far
     /// side).
     pub far_side: usize,
+    /// Checked ticks where the proxy touched nothing (a proxy that fell through renders no
+    /// force, which would otherwise look clean).
+    pub no_contact: usize,
     /// Largest force along the strike, newtons (0 when there is none).
     pub max_push_n: f64,
 }
@@ -82,6 +105,7 @@ impl StrikeTicks {
         self.ticks += other.ticks;
         self.pushes_on += other.pushes_on;
         self.far_side += other.far_side;
+        self.no_contact += other.no_contact;
         self.max_push_n = self.max_push_n.max(other.max_push_n);
     }
 
@@ -89,42 +113,98 @@ impl StrikeTicks {
     pub fn clean(&self) -> bool {
         self.pushes_on == 0 && self.far_side == 0
     }
+
+    /// Whether every tick was in contact and [`StrikeTicks::clean`]: what a deep tick
+    /// must be.
+    pub fn held_back(&self) -> bool {
+        self.clean() && self.no_contact == 0
+    }
 }
 
 /// The force along the strike and the side of the proxy over strikes on one object: the
-/// ticks from the first touch until the hand stops, split where the strike first goes
-/// deeper than the saturation depth. The *deep* ticks (from that tick on, the proxy holding
-/// or about to) must all be clean. The *shallow* ticks before it are the physical range,
-/// where the proxy is the god-object: a grazing strike slides over the surface, and past a
-/// crest a frictionless surface pushes the hand on along its normal, as a rigid one does.
+/// ticks from the hand passing the entry until it stops, split where the hand first lies
+/// deeper than the saturation depth inside the solid (by the path, [`hand_goes_deep`]).
+/// The *deep* ticks (from that tick on, the proxy holding) must all be in contact and
+/// clean, and at least [`MIN_DEEP_STRIKE_SHARE`] of the strikes must have some. The
+/// *shallow* ticks before it are the physical range, where the proxy is the god-object: a
+/// grazing strike slides over the surface, and past a crest a frictionless surface pushes
+/// the hand on along its normal, as a rigid one does.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StrikeCheck {
     /// Strikes run.
     pub strikes: usize,
     /// Drawn strikes not run: their start was not outside, or the line did not enter the
-    /// object first at the drawn point.
+    /// object first at the drawn point (both by brute force).
     pub skipped: usize,
     /// Ticks run.
     pub ticks: usize,
     /// Ticks where the proxy held (beyond the saturation depth).
     pub held_ticks: usize,
-    /// The ticks from the one a strike first goes deeper than the saturation depth until
-    /// the hand stops (`strikes`: the strikes that went that deep): every one must be
-    /// clean.
+    /// The ticks from the one where the hand first lies deeper than the saturation depth
+    /// inside the solid until the hand stops (`strikes`: the strikes that went that deep):
+    /// every one must be in contact and clean.
     pub deep: StrikeTicks,
-    /// The ticks from the first touch until then (`strikes`: the strikes with such
-    /// ticks): the physical range.
+    /// The ticks from the hand passing the entry until then (`strikes`: the strikes with
+    /// such ticks): the physical range.
     pub shallow: StrikeTicks,
     /// The deep ticks by the strike's speed class ([`STRIKE_SPEED_CLASSES`]).
     pub deep_by_speed: [StrikeTicks; 4],
     /// The shallow ticks by the strike's speed class.
     pub shallow_by_speed: [StrikeTicks; 4],
+    /// The fewest deep strikes the check accepts: [`MIN_DEEP_STRIKE_SHARE`] of the
+    /// strikes run, at least one.
+    pub min_deep_strikes: usize,
     /// Strikes (index, angle in degrees, speed m/s, depth m) with a deep tick that is not
-    /// clean, a few.
+    /// in contact or not clean, a few.
     pub failures: Vec<(usize, f64, f64, f64)>,
     /// Strikes (the same) with a shallow tick pushing on or facing along the strike, a
     /// few.
     pub shallow_pushing: Vec<(usize, f64, f64, f64)>,
+}
+
+impl StrikeCheck {
+    /// Whether enough strikes went deep ([`StrikeCheck::min_deep_strikes`]) and every
+    /// deep tick held the hand back ([`StrikeTicks::held_back`]).
+    pub fn passed(&self) -> bool {
+        self.deep.strikes >= self.min_deep_strikes && self.deep.held_back()
+    }
+}
+
+/// The index of the first of `path`'s points (world frame, consecutive points at most
+/// `step` metres apart) where the hand lies inside object 0 of `scene` farther than
+/// `depth` metres from its surface, by brute force: the winding number and the distance
+/// to every triangle. The signed depth (positive inside) changes by at most `step` per
+/// point, so points that cannot have reached `depth` yet are passed over without a query.
+pub fn hand_goes_deep(
+    scene: &Scene,
+    winding: &WindingOracle,
+    path: &[DVec3],
+    step: f64,
+    depth: f64,
+) -> Option<usize> {
+    let o = scene.objects().first()?;
+    let surface = o.shape.surface();
+    let mut k = 0;
+    while k < path.len() {
+        let p = o.pose.to_object(path[k]);
+        let distance = distance_to_surface(surface, p);
+        let signed = if winding.winding(p) != 0 {
+            distance
+        } else {
+            -distance
+        };
+        if signed > depth {
+            return Some(k);
+        }
+        // Points before `k + jump` are less than `depth - signed` from this one.
+        let jump = if step > 0.0 {
+            ((depth - signed) / step).floor()
+        } else {
+            f64::INFINITY
+        };
+        k = k.saturating_add((jump.min(1e9) as usize).max(1));
+    }
+    None
 }
 
 /// Runs `count` deep strikes drawn with `seed` on object 0 of `scene` (a solid at rest):
@@ -150,6 +230,7 @@ pub fn check_strikes(
         shallow: StrikeTicks::default(),
         deep_by_speed: [StrikeTicks::default(); 4],
         shallow_by_speed: [StrikeTicks::default(); 4],
+        min_deep_strikes: 1,
         failures: Vec::new(),
         shallow_pushing: Vec::new(),
     };
@@ -157,7 +238,9 @@ pub fn check_strikes(
         return check;
     };
     let surface = o.shape.surface();
-    let saturation = saturation_depth(&o.material, options.max_force);
+    let crossing = BruteCrossing::new(surface);
+    let winding = WindingOracle::new(surface);
+    let saturation = saturation_depth_of(&o.material, options.max_force);
     for index in 0..count {
         let t = crate::mesh::TriId(random.index(surface.triangle_count()) as u32);
         let [a, b, c] = surface.corners(t);
@@ -179,20 +262,27 @@ pub fn check_strikes(
         .exp();
         let depth = random.range(0.0, max_depth);
         let start = entry - RUN_UP_M * dir;
-        let enters_here = scene
-            .first_hit(0, start, entry + 1e-4 * dir, 0.0)
-            .is_some_and(|h| h.point.distance(entry) < 1e-7);
-        let outside =
-            classify_point(surface, o.shape.map(), o.pose.to_object(start)).0 == Side::Outside;
+        let (start_object, past_entry) = (
+            o.pose.to_object(start),
+            o.pose.to_object(entry + 1e-4 * dir),
+        );
+        let enters_here = crossing
+            .first_crossing(start_object, past_entry)
+            .is_some_and(|h| o.pose.to_world(h.point).distance(entry) < 1e-7);
+        let outside = winding.winding(start_object) == 0;
         if !(enters_here && outside && tangent != DVec3::ZERO) {
             check.skipped += 1;
             continue;
         }
         check.strikes += 1;
         let (path, last_moving) = strike_path(start, dir, speed, RUN_UP_M + depth, rate_hz);
+        // The hand passes the entry after the run-up; it is deep from `deep_from` on.
+        let step = speed / rate_hz;
+        let entered = (RUN_UP_M / step).floor() as usize;
+        let deep_from = saturation
+            .and_then(|d| hand_goes_deep(scene, &winding, &path[..=last_moving], step, d))
+            .unwrap_or(usize::MAX);
         let mut proxy = Proxy::new(start, options);
-        let mut touched = false;
-        let mut deep = false;
         let mut ticks = [StrikeTicks::default(); 2];
         let mut previous = start;
         for (k, &hip) in path.iter().enumerate() {
@@ -200,21 +290,17 @@ pub fn check_strikes(
             previous = hip;
             check.ticks += 1;
             check.held_ticks += usize::from(out.status.deep_hold);
-            deep |= out.status.deep_hold
-                || out
-                    .contact
-                    .is_some_and(|c| saturation.is_some_and(|d| c.penetration > d));
-            touched |= out.contact.is_some();
-            if !touched || k > last_moving {
+            if k < entered || k > last_moving {
                 continue;
             }
-            let t = &mut ticks[usize::from(deep)];
+            let t = &mut ticks[usize::from(k >= deep_from)];
             t.strikes = 1;
             t.ticks += 1;
             let push = out.force.dot(dir);
             t.max_push_n = t.max_push_n.max(push);
             t.pushes_on += usize::from(push > STRIKE_FORCE_TOLERANCE_N);
             t.far_side += usize::from(out.contact.is_some_and(|c| c.normal.dot(dir) > 0.0));
+            t.no_contact += usize::from(out.contact.is_none());
         }
         let class = STRIKE_SPEED_CLASSES[1..4]
             .iter()
@@ -225,12 +311,14 @@ pub fn check_strikes(
         check.shallow_by_speed[class].add(&shallow);
         check.deep.add(&deep);
         check.deep_by_speed[class].add(&deep);
-        if !deep.clean() && check.failures.len() < super::KEPT_FAILURES {
+        if !deep.held_back() && check.failures.len() < super::KEPT_FAILURES {
             check.failures.push((index, angle, speed, depth));
         }
         if !shallow.clean() && check.shallow_pushing.len() < super::KEPT_FAILURES {
             check.shallow_pushing.push((index, angle, speed, depth));
         }
     }
+    check.min_deep_strikes =
+        ((check.strikes as f64 * MIN_DEEP_STRIKE_SHARE).ceil() as usize).max(1);
     check
 }

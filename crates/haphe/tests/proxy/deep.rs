@@ -6,7 +6,8 @@ use haphe::mesh::shapes::Catalog;
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::Material;
 use haphe::verify::{
-    STRIKE_FORCE_TOLERANCE_N, StrikeCheck, StrikeTicks, check_proxy, check_strikes, strike_path,
+    MIN_DEEP_STRIKE_SHARE, STRIKE_FORCE_TOLERANCE_N, StrikeCheck, StrikeTicks, WindingOracle,
+    check_proxy, check_strikes, hand_goes_deep, strike_path,
 };
 
 use super::{fit_to_hand_size, scene_of, shape, support};
@@ -47,13 +48,20 @@ fn the_sphere_strike_never_pulls_the_hand_on() {
     assert_eq!(check.mismatches, 0, "{check:?}");
 }
 
-/// No tick from the one a strike went deeper than the saturation depth pushed the hand on
-/// or faced the far side.
+/// No tick from the one the hand went deeper than the saturation depth (by its path)
+/// lost contact, pushed the hand on or faced the far side, and at least the stated share
+/// of the strikes went that deep.
 fn assert_holds(name: &str, check: &StrikeCheck) {
-    println!("{name}: {check:?}");
+    println!(
+        "{name}: {} of {} strikes deep (at least {}): {check:?}",
+        check.deep.strikes, check.strikes, check.min_deep_strikes
+    );
     assert!(check.strikes >= 20, "{name}: {check:?}");
-    assert!(check.deep.strikes >= 10, "{name}: {check:?}");
-    assert!(check.deep.clean(), "{name}: {check:?}");
+    assert!(
+        check.min_deep_strikes * 2 >= check.strikes && check.deep.strikes >= check.min_deep_strikes,
+        "{name}: {check:?}"
+    );
+    assert!(check.passed(), "{name}: {check:?}");
 }
 
 /// Deep strikes, straight and oblique (0–70°), 0.5–10 m/s at 1 kHz, to depths up to
@@ -107,6 +115,82 @@ fn fast_proxy_equals_brute_force_along_deep_strikes() {
     }
 }
 
+/// The deep ticks of a strike come from the hand's path alone: on a 0.1 m cube (plane
+/// faces, so the depth of a point inside is its distance to the nearest face, computed
+/// here from the coordinates), the first point of a line that lies deeper than a given
+/// depth is the one [`hand_goes_deep`] finds, for straight and oblique lines, lines that
+/// never go that deep and lines that pass out of the far side.
+#[test]
+fn deep_ticks_are_decided_by_the_hand_path() {
+    let half = 0.05;
+    let scene = scene_of(
+        shape(haphe::mesh::shapes::cuboid(DVec3::splat(half), [2, 2, 2])),
+        Material::default(),
+    );
+    let surface = scene.objects()[0].shape.surface();
+    let winding = WindingOracle::new(surface);
+    let depth_in_cube = |p: DVec3| {
+        let d = DVec3::splat(half) - p.abs();
+        if d.min_element() > 0.0 {
+            d.min_element()
+        } else {
+            -1.0
+        }
+    };
+    let mut examined = 0;
+    let mut found = 0;
+    for (k, (angle, along, depth)) in [
+        (0.0f64, 0.3, 0.0066),
+        (30.0, 0.3, 0.0066),
+        (60.0, 0.3, 0.0066),
+        (70.0, 0.05, 0.0066),
+        (0.0, 0.005, 0.0066),
+        (45.0, 0.3, 0.02),
+        (10.0, 0.3, 0.045),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let dir = DVec3::new(angle.to_radians().sin(), 0.0, -angle.to_radians().cos());
+        let start = DVec3::new(-0.02 + 0.003 * k as f64, 0.01, half + 0.01);
+        let speed = 0.5 + k as f64;
+        let (path, last) = strike_path(start, dir, speed, along, 1e3);
+        let path = &path[..=last];
+        let expected = path.iter().position(|&p| depth_in_cube(p) > depth);
+        let step = speed / 1e3;
+        assert_eq!(
+            hand_goes_deep(&scene, &winding, path, step, depth),
+            expected,
+            "line {k}: {angle}° {along} m to {depth} m"
+        );
+        examined += 1;
+        found += usize::from(expected.is_some());
+    }
+    // Both outcomes were examined: the 5 mm line and the 10° line to 45 mm (the side face
+    // is nearer than 45 mm by the time the top is that far) never go that deep.
+    assert_eq!(examined, 7);
+    assert_eq!(found, 5);
+}
+
+/// A family whose strikes never go deeper than the saturation depth fails, whatever its
+/// proxy did: strikes to 2 mm past the entry (the hand can be no deeper than its distance
+/// from the entry, below the 6.6 mm of the default material) have no deep ticks at all,
+/// so they check nothing of the hold.
+#[test]
+fn a_family_of_shallow_strikes_fails() {
+    let scene = scene_of(
+        shape(Catalog::Sphere.with_triangles(2_000)),
+        Material::default(),
+    );
+    let check = check_strikes(&scene, ProxyOptions::default(), 20, 0.002, 1e3, 5);
+    assert!(check.strikes >= 10, "{check:?}");
+    assert_eq!(check.deep.strikes, 0, "{check:?}");
+    assert_eq!(check.deep.ticks, 0, "{check:?}");
+    assert!(check.shallow.ticks > 0, "{check:?}");
+    assert!(check.min_deep_strikes >= check.strikes / 2, "{check:?}");
+    assert!(!check.passed(), "{check:?}");
+}
+
 /// The closed models of a folder, each scaled to 0.2 m, by file name.
 fn closed_models(dir: &std::path::Path) -> Vec<(String, haphe::mesh::Mesh)> {
     let mut names: Vec<_> = std::fs::read_dir(dir)
@@ -131,11 +215,15 @@ fn closed_models(dir: &std::path::Path) -> Vec<(String, haphe::mesh::Mesh)> {
     models
 }
 
-/// Runs `count` strikes on each closed mesh and asserts that no tick from the one a strike
-/// went deeper than the saturation depth pushes the hand on or faces the far side; prints
+/// Runs `count` strikes on each closed mesh and asserts that at least the stated share of
+/// the family's strikes went deeper than the saturation depth (by the hand's path) and
+/// that no tick from the one a strike went that deep lost contact, pushed the hand on or
+/// faced the far side;
+/// prints
 /// one line of counts per mesh and returns the number of solids.
 fn strike_family(meshes: Vec<(String, haphe::mesh::Mesh)>, count: usize) -> usize {
     let mut solids = 0;
+    let (mut strikes, mut deep_strikes) = (0, 0);
     for (name, mesh) in meshes {
         let shape = shape(mesh);
         if !shape.is_solid() {
@@ -148,13 +236,19 @@ fn strike_family(meshes: Vec<(String, haphe::mesh::Mesh)>, count: usize) -> usiz
         let check = check_strikes(&scene, ProxyOptions::default(), count, 0.25, 1e3, 3);
         let by_speed = |t: &[StrikeTicks; 4]| {
             t.iter()
-                .map(|t| format!("{}/{}/{}", t.strikes, t.pushes_on, t.far_side))
+                .map(|t| {
+                    format!(
+                        "{}/{}/{}/{}",
+                        t.strikes, t.pushes_on, t.far_side, t.no_contact
+                    )
+                })
                 .collect::<Vec<_>>()
                 .join(" ")
         };
         println!(
-            "{name}: {} strikes ({} skipped), {} held ticks, {:.2} µs/tick; deep: {} strikes, \
-             {} ticks, {} pushing on, {} far side, by speed (strikes/pushing/far) {}; \
+            "{name}: {} strikes ({} skipped), {} held ticks, {:.2} µs/tick; deep: {} strikes \
+             (at least {}), {} ticks, {} pushing on, {} far side, {} out of contact, by speed \
+             (strikes/pushing/far/out) {}; \
              shallow (the physical range): {} strikes, {} ticks, {} pushing on (largest \
              {:.2} N), {} far side, by speed {}",
             check.strikes,
@@ -162,9 +256,11 @@ fn strike_family(meshes: Vec<(String, haphe::mesh::Mesh)>, count: usize) -> usiz
             check.held_ticks,
             started.elapsed().as_secs_f64() * 1e6 / check.ticks.max(1) as f64,
             check.deep.strikes,
+            check.min_deep_strikes,
             check.deep.ticks,
             check.deep.pushes_on,
             check.deep.far_side,
+            check.deep.no_contact,
             by_speed(&check.deep_by_speed),
             check.shallow.strikes,
             check.shallow.ticks,
@@ -176,8 +272,19 @@ fn strike_family(meshes: Vec<(String, haphe::mesh::Mesh)>, count: usize) -> usiz
         // Strikes drawn onto a face that lies inside another part (box.STL's overlapping
         // parts: about half) are skipped, since the line meets the outer part first.
         assert!(check.strikes >= count / 3, "{name}: {check:?}");
-        assert!(check.deep.clean(), "{name}: {check:?}");
+        // Every deep tick held the hand back. A thin model (the in-tree cylinder) has few
+        // points farther than the saturation depth from its surface, so the least share of
+        // deep strikes is asked of the family, below.
+        assert!(check.deep.held_back(), "{name}: {check:?}");
+        strikes += check.strikes;
+        deep_strikes += check.deep.strikes;
     }
+    let required = (strikes as f64 * MIN_DEEP_STRIKE_SHARE).ceil() as usize;
+    println!("the family: {deep_strikes} of {strikes} strikes went deep (at least {required})");
+    assert!(
+        strikes > 0 && deep_strikes >= required,
+        "{deep_strikes} of {strikes} strikes went deep, at least {required} required"
+    );
     solids
 }
 
