@@ -14,11 +14,11 @@ use super::oracle::TriangleBounds;
 use super::{KEPT_FAILURES, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, Hold, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
+    Constraints, Hold, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, advance_to_plane,
     clamp_to_radius, friction_target, is_deep, rests_on, saturation_depth,
 };
 use crate::query::{Probe, Side, classify_point, nearest_within_brute_force};
-use crate::scene::{Material, Pose, Scene, Shape, Sides};
+use crate::scene::{Material, Pose, Scene, Shape, Sides, SurfaceRef};
 
 /// Largest distance between the fast proxy and the brute-force one, metres.
 pub const PROXY_TOLERANCE_M: f64 = 1e-9;
@@ -44,7 +44,7 @@ pub struct BruteProxy {
     /// Placed and not ticked yet (see [`Proxy::new`]).
     placed: bool,
     /// The last constraint of the previous tick.
-    rest: Option<Rest>,
+    rest: Option<SurfaceRef>,
     /// The contact held beyond the saturation depth.
     hold: Option<Hold>,
     /// The device point of the previous tick.
@@ -58,11 +58,11 @@ struct Steps {
     /// Where the proxy first stopped at a surface.
     touch_down: Option<DVec3>,
     /// The surface and plane met first.
-    first: Option<(Rest, Plane)>,
+    first: Option<(SurfaceRef, Plane)>,
     /// The object and plane met last.
     object: usize,
     plane: Option<Plane>,
-    rest: Option<Rest>,
+    rest: Option<SurfaceRef>,
 }
 
 impl Steps {
@@ -82,7 +82,7 @@ impl Steps {
     /// Met `h` on `plane` at `p`: the touch-down and the surface met first (if the
     /// first), the object, plane and triangle met last.
     fn met(&mut self, p: DVec3, h: &BruteHit, plane: Plane) {
-        let surface = Rest {
+        let surface = SurfaceRef {
             object: h.object,
             triangle: h.triangle,
         };
@@ -204,7 +204,7 @@ impl BruteProxy {
     }
 
     /// The surface the proxy rests on (see [`Proxy`]'s resting rule).
-    fn resting(&self, rest: Rest, p: DVec3, target: DVec3) -> Option<BruteHit> {
+    fn resting(&self, rest: SurfaceRef, p: DVec3, target: DVec3) -> Option<BruteHit> {
         let o = self.objects.get(rest.object)?;
         let (point, normal) = rests_on(
             o.shape.surface(),
@@ -290,7 +290,7 @@ impl BruteProxy {
     /// deeper than the saturation depth behind the held plane, constraint steps toward the
     /// hold's goal, without friction; `None` (and no change) once it is back within it.
     fn hold_step(&mut self, mut p: DVec3, hip: DVec3, mut hold: Hold) -> Option<DVec3> {
-        let o = &self.objects[hold.object];
+        let o = &self.objects[hold.on.object];
         let depth = saturation_depth(&o.material, self.options.max_force);
         let d = depth?;
         if !is_deep(p, hip, hold.normal(&o.pose), depth) {
@@ -302,10 +302,10 @@ impl BruteProxy {
             p = step.position;
             self.rest = step.rest;
             if let (Some(plane), Some(r)) = (step.plane, step.rest)
-                && step.object == hold.object
+                && step.object == hold.on.object
             {
-                let pose = &self.objects[hold.object].pose;
-                hold.triangle = r.triangle;
+                let pose = &self.objects[hold.on.object].pose;
+                hold.on.triangle = r.triangle;
                 hold.normal_object = pose.vector_to_object(plane.normal);
                 hold.constraints = step.planes.len() as u8;
             }
@@ -328,8 +328,62 @@ impl BruteProxy {
         }
         let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
         let previous_hip = self.previous_hip.replace(hip);
-        // Carry by moving objects.
-        let mut p = self.position;
+        let p = self.carry(self.position);
+        // Beyond the saturation depth of the held plane, the proxy moves by constraint
+        // steps toward the hold's goal, without friction.
+        if let Some(hold) = self.hold.take()
+            && let Some(p) = self.hold_step(p, hip, hold)
+        {
+            return (p, true);
+        }
+        let held = p;
+        let step = self.constrain(p, hip);
+        let p = step.position;
+        self.rest = step.rest;
+        let Some(touch_down) = step.touch_down else {
+            self.position = p;
+            self.in_contact = false;
+            self.sticking = false;
+            return (p, false);
+        };
+        // Friction, with the material of the object met last.
+        let material = self.objects[step.object].material;
+        let p = self.friction((held, touch_down), p, hip, &material);
+        // Beyond the saturation depth the proxy holds: from where it first met a surface
+        // this tick when the hand is that deep behind that surface too, else from here on
+        // the next tick.
+        if let (Some(plane), Some(r)) = (step.plane, step.rest)
+            && is_deep(
+                p,
+                hip,
+                plane.normal,
+                saturation_depth(&material, self.options.max_force),
+            )
+        {
+            if let Some(p) = self.hold_from_touch_down(&step, hip, previous_hip) {
+                return (p, true);
+            }
+            self.hold = Some(Hold::begin(
+                &self.objects[step.object].pose,
+                (
+                    SurfaceRef {
+                        object: step.object,
+                        triangle: r.triangle,
+                    },
+                    step.planes.len() as u8,
+                ),
+                (p, plane.normal),
+                hip,
+                (previous_hip, hip),
+            ));
+        }
+        self.position = p;
+        self.in_contact = true;
+        (p, true)
+    }
+
+    /// The proxy at `p` carried by the objects that moved (in index order).
+    fn carry(&self, mut p: DVec3) -> DVec3 {
         for i in 0..self.objects.len() {
             let o = &self.objects[i];
             if o.pose == o.previous_pose {
@@ -340,15 +394,12 @@ impl BruteProxy {
                 p = advance_to_plane(from, p, &self.plane(&h, from, p));
             }
         }
-        // Beyond the saturation depth of the held plane, the proxy moves by constraint
-        // steps toward the hold's goal, without friction.
-        if let Some(hold) = self.hold.take()
-            && let Some(p) = self.hold_step(p, hip, hold)
-        {
-            return (p, true);
-        }
-        let held = p;
-        // Constraint steps.
+        p
+    }
+
+    /// The constraint steps from `p` toward `hip` (touching first where the proxy was
+    /// just placed on a surface with the hand behind it).
+    fn constrain(&mut self, p: DVec3, hip: DVec3) -> Steps {
         let mut from = Steps::from(p);
         if std::mem::take(&mut self.placed)
             && let Some(h) = self.touching(p)
@@ -359,80 +410,62 @@ impl BruteProxy {
                 from.met(p, &h, plane);
             }
         }
-        let step = self.steps(p, hip, from);
-        p = step.position;
-        let Steps {
-            planes,
-            touch_down,
-            first,
-            object: last_object,
-            plane: last_plane,
-            rest,
-            ..
-        } = step;
-        self.rest = rest;
-        let Some(touch_down) = touch_down else {
-            self.position = p;
-            self.in_contact = false;
-            self.sticking = false;
-            return (p, false);
-        };
-        // Friction, with the material of the object met last.
-        let material = self.objects[last_object].material;
+        self.steps(p, hip, from)
+    }
+
+    /// The proxy at `p` after friction against where it `held` before this tick's steps
+    /// (in contact before) or where it touched down this tick.
+    fn friction(
+        &mut self,
+        (held, touch_down): (DVec3, DVec3),
+        p: DVec3,
+        hip: DVec3,
+        material: &Material,
+    ) -> DVec3 {
         if material.static_friction > 0.0 {
             let (anchor, was) = if self.in_contact {
                 (held, self.sticking)
             } else {
                 (touch_down, true)
             };
-            let (target, sticking) = friction_target(anchor, p, hip, &material, was);
-            if target != p {
-                p = match self.first_hit(p, target) {
-                    None => target,
-                    Some(h) => advance_to_plane(p, target, &self.plane(&h, p, target)),
-                };
-            }
+            let (target, sticking) = friction_target(anchor, p, hip, material, was);
             self.sticking = sticking;
-        } else {
-            self.sticking = false;
-        }
-        // Beyond the saturation depth the proxy holds: from where it first met a surface
-        // this tick when the hand is that deep behind that surface too, else from here on
-        // the next tick.
-        if let (Some(plane), Some(r)) = (last_plane, rest)
-            && is_deep(
-                p,
-                hip,
-                plane.normal,
-                saturation_depth(&material, self.options.max_force),
-            )
-        {
-            if let Some((at, first_plane)) = first {
-                let entry = touch_down;
-                let hold = Hold::begin(
-                    &self.objects[at.object].pose,
-                    (at.object, at.triangle, 1),
-                    (entry, first_plane.normal),
-                    previous_hip.unwrap_or(hip),
-                    (previous_hip, hip),
-                );
-                let rest = self.rest.replace(at);
-                if let Some(p) = self.hold_step(entry, hip, hold) {
-                    return (p, true);
-                }
-                self.rest = rest;
+            if target == p {
+                return p;
             }
-            self.hold = Some(Hold::begin(
-                &self.objects[last_object].pose,
-                (last_object, r.triangle, planes.len() as u8),
-                (p, plane.normal),
-                hip,
-                (previous_hip, hip),
-            ));
+            return match self.first_hit(p, target) {
+                None => target,
+                Some(h) => advance_to_plane(p, target, &self.plane(&h, p, target)),
+            };
         }
-        self.position = p;
-        self.in_contact = true;
-        (p, true)
+        self.sticking = false;
+        p
+    }
+
+    /// The hold begun where the proxy first met a surface this tick (`step`'s touch-down),
+    /// when the hand is deep behind that surface too: its first tick. `None` (and no
+    /// change) otherwise.
+    fn hold_from_touch_down(
+        &mut self,
+        step: &Steps,
+        hip: DVec3,
+        previous_hip: Option<DVec3>,
+    ) -> Option<DVec3> {
+        let (at, first_plane) = step.first?;
+        let entry = step.touch_down?;
+        let hold = Hold::begin(
+            &self.objects[at.object].pose,
+            (at, 1),
+            (entry, first_plane.normal),
+            previous_hip.unwrap_or(hip),
+            (previous_hip, hip),
+        );
+        let rest = self.rest.replace(at);
+        let p = self.hold_step(entry, hip, hold);
+        if p.is_none() {
+            self.rest = rest;
+        }
+        p
     }
 }
 

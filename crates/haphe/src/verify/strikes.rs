@@ -16,7 +16,7 @@ use serde::Serialize;
 use crate::proxy::{Proxy, ProxyOptions, saturation_depth};
 use crate::query::{Side, classify_point};
 use crate::rng::SplitMix64;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneObject};
 
 /// Largest force along the strike direction a check accepts, newtons (rounding).
 pub const STRIKE_FORCE_TOLERANCE_N: f64 = 1e-6;
@@ -159,6 +159,54 @@ pub fn check_strikes(
     let surface = o.shape.surface();
     let saturation = saturation_depth(&o.material, options.max_force);
     for index in 0..count {
+        let strike = Strike::draw(&mut random, o, max_depth);
+        let start = strike.start();
+        let enters_here = scene
+            .first_hit(0, start, strike.entry + 1e-4 * strike.dir, 0.0)
+            .is_some_and(|h| h.point.distance(strike.entry) < 1e-7);
+        let outside =
+            classify_point(surface, o.shape.map(), o.pose.to_object(start)).0 == Side::Outside;
+        if !(enters_here && outside && strike.tangent != DVec3::ZERO) {
+            check.skipped += 1;
+            continue;
+        }
+        check.strikes += 1;
+        let [shallow, deep] = run_strike(scene, options, &strike, rate_hz, saturation, &mut check);
+        let class = STRIKE_SPEED_CLASSES[1..4]
+            .iter()
+            .take_while(|&&edge| strike.speed >= edge)
+            .count();
+        check.shallow.add(&shallow);
+        check.shallow_by_speed[class].add(&shallow);
+        check.deep.add(&deep);
+        check.deep_by_speed[class].add(&deep);
+        let drawn = (index, strike.angle, strike.speed, strike.depth);
+        if !deep.clean() && check.failures.len() < super::KEPT_FAILURES {
+            check.failures.push(drawn);
+        }
+        if !shallow.clean() && check.shallow_pushing.len() < super::KEPT_FAILURES {
+            check.shallow_pushing.push(drawn);
+        }
+    }
+    check
+}
+
+/// One strike drawn at random: where it enters (world frame), its unit direction and the
+/// tangent it leans toward, its angle from the inward normal (degrees), speed (m/s) and
+/// depth past the entry (metres).
+struct Strike {
+    entry: DVec3,
+    dir: DVec3,
+    tangent: DVec3,
+    angle: f64,
+    speed: f64,
+    depth: f64,
+}
+
+impl Strike {
+    /// A strike on object `o`, drawn with `random`, at most `max_depth` deep.
+    fn draw(random: &mut SplitMix64, o: &SceneObject, max_depth: f64) -> Strike {
+        let surface = o.shape.surface();
         let t = crate::mesh::TriId(random.index(surface.triangle_count()) as u32);
         let [a, b, c] = surface.corners(t);
         let (u, v) = (random.range(0.05, 0.9), random.range(0.05, 0.9));
@@ -178,59 +226,60 @@ pub fn check_strikes(
             + random.next_unit() * (STRIKE_SPEEDS.1 / STRIKE_SPEEDS.0).ln())
         .exp();
         let depth = random.range(0.0, max_depth);
-        let start = entry - RUN_UP_M * dir;
-        let enters_here = scene
-            .first_hit(0, start, entry + 1e-4 * dir, 0.0)
-            .is_some_and(|h| h.point.distance(entry) < 1e-7);
-        let outside =
-            classify_point(surface, o.shape.map(), o.pose.to_object(start)).0 == Side::Outside;
-        if !(enters_here && outside && tangent != DVec3::ZERO) {
-            check.skipped += 1;
-            continue;
-        }
-        check.strikes += 1;
-        let (path, last_moving) = strike_path(start, dir, speed, RUN_UP_M + depth, rate_hz);
-        let mut proxy = Proxy::new(start, options);
-        let mut touched = false;
-        let mut deep = false;
-        let mut ticks = [StrikeTicks::default(); 2];
-        let mut previous = start;
-        for (k, &hip) in path.iter().enumerate() {
-            let out = proxy.tick(scene, hip, (hip - previous) * rate_hz);
-            previous = hip;
-            check.ticks += 1;
-            check.held_ticks += usize::from(out.status.deep_hold);
-            deep |= out.status.deep_hold
-                || out
-                    .contact
-                    .is_some_and(|c| saturation.is_some_and(|d| c.penetration > d));
-            touched |= out.contact.is_some();
-            if !touched || k > last_moving {
-                continue;
-            }
-            let t = &mut ticks[usize::from(deep)];
-            t.strikes = 1;
-            t.ticks += 1;
-            let push = out.force.dot(dir);
-            t.max_push_n = t.max_push_n.max(push);
-            t.pushes_on += usize::from(push > STRIKE_FORCE_TOLERANCE_N);
-            t.far_side += usize::from(out.contact.is_some_and(|c| c.normal.dot(dir) > 0.0));
-        }
-        let class = STRIKE_SPEED_CLASSES[1..4]
-            .iter()
-            .take_while(|&&edge| speed >= edge)
-            .count();
-        let [shallow, deep] = ticks;
-        check.shallow.add(&shallow);
-        check.shallow_by_speed[class].add(&shallow);
-        check.deep.add(&deep);
-        check.deep_by_speed[class].add(&deep);
-        if !deep.clean() && check.failures.len() < super::KEPT_FAILURES {
-            check.failures.push((index, angle, speed, depth));
-        }
-        if !shallow.clean() && check.shallow_pushing.len() < super::KEPT_FAILURES {
-            check.shallow_pushing.push((index, angle, speed, depth));
+        Strike {
+            entry,
+            dir,
+            tangent,
+            angle,
+            speed,
+            depth,
         }
     }
-    check
+
+    /// Where the hand starts, a run-up before the entry.
+    fn start(&self) -> DVec3 {
+        self.entry - RUN_UP_M * self.dir
+    }
+}
+
+/// Runs one strike at `rate_hz` with a new proxy, counting its ticks in `check`; returns
+/// its moving ticks in contact before and after it went deeper than `saturation`.
+fn run_strike(
+    scene: &Scene,
+    options: ProxyOptions,
+    strike: &Strike,
+    rate_hz: f64,
+    saturation: Option<f64>,
+    check: &mut StrikeCheck,
+) -> [StrikeTicks; 2] {
+    let (start, dir) = (strike.start(), strike.dir);
+    let (path, last_moving) =
+        strike_path(start, dir, strike.speed, RUN_UP_M + strike.depth, rate_hz);
+    let mut proxy = Proxy::new(start, options);
+    let mut touched = false;
+    let mut deep = false;
+    let mut ticks = [StrikeTicks::default(); 2];
+    let mut previous = start;
+    for (k, &hip) in path.iter().enumerate() {
+        let out = proxy.tick(scene, hip, (hip - previous) * rate_hz);
+        previous = hip;
+        check.ticks += 1;
+        check.held_ticks += usize::from(out.status.deep_hold);
+        deep |= out.status.deep_hold
+            || out
+                .contact
+                .is_some_and(|c| saturation.is_some_and(|d| c.penetration > d));
+        touched |= out.contact.is_some();
+        if !touched || k > last_moving {
+            continue;
+        }
+        let t = &mut ticks[usize::from(deep)];
+        t.strikes = 1;
+        t.ticks += 1;
+        let push = out.force.dot(dir);
+        t.max_push_n = t.max_push_n.max(push);
+        t.pushes_on += usize::from(push > STRIKE_FORCE_TOLERANCE_N);
+        t.far_side += usize::from(out.contact.is_some_and(|c| c.normal.dot(dir) > 0.0));
+    }
+    ticks
 }
