@@ -172,7 +172,7 @@ fn the_binned_winding_oracle_equals_the_generalised_winding_number() {
             if haphe::verify::distance_to_surface(&surface, p) < 1e-6 {
                 continue;
             }
-            let plain = haphe::query::winding_number(&surface, p).round() as i64;
+            let plain = haphe::mesh::winding_number(&surface, p).round() as i64;
             assert_eq!(oracle.winding(p), plain, "{shape} at {p}");
         }
     }

@@ -3,9 +3,9 @@
 use crate::par::*;
 use glam::DVec3;
 
-use super::bricks::{BRICK_CELLS, brick_dims, brick_of, local_of};
 use super::build::PROGRESS_BINNED;
 use super::grid::{Grid, OVERLAP_TOLERANCE_REL, cell_centre_units, cell_tester};
+use super::voxel_map::{BRICK_CELLS, brick_dims, brick_of, local_of};
 use crate::mesh::Surface;
 
 /// Extra width, in cells, of the slabs used to find candidate cells for a triangle,

@@ -5,13 +5,13 @@
 use crate::par::*;
 
 use super::bin::{bin_triangles, sort_by_cell};
-use super::bricks::{
-    BRICK_BITS, BRICK_CELLS, BrickBits, MASK_WORDS, VoxelMap, brick_dims, uniform_entry,
-};
 use super::cell_size::SizeModel;
 use super::clearance::compute_clearance;
 use super::fill::flood_fill;
 use super::grid::Grid;
+use super::voxel_map::{
+    BRICK_BITS, BRICK_CELLS, BrickBits, MASK_WORDS, VoxelMap, brick_dims, uniform_entry,
+};
 use super::{CellSizeRule, CellState, MapError, MapOptions};
 use crate::mesh::Surface;
 

@@ -4,8 +4,8 @@
 use crate::par::*;
 use glam::DVec3;
 
-use super::bricks::{BRICK_SIDE, MAX_BRICKS, NIBBLE_BYTES, brick_dims};
 use super::grid::Grid;
+use super::voxel_map::{BRICK_SIDE, MAX_BRICKS, NIBBLE_BYTES, brick_dims};
 use super::{CellSizeRule, MapError};
 use crate::mesh::{Surface, TriId};
 

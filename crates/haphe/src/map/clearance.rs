@@ -6,11 +6,11 @@
 use crate::par::*;
 
 use super::MAX_CLEARANCE;
-use super::bricks::{
+use super::fill::{COLUMN_X0, COLUMN_X7, FACES, step};
+use super::voxel_map::{
     BRICK_BITS, BRICK_SIDE, BrickBits, MASK_WORDS, NIBBLE_BYTES, UNIFORM, VoxelMap, brick_coords,
     brick_of, entry_state, graded_entry, uniform_entry,
 };
-use super::fill::{COLUMN_X0, COLUMN_X7, FACES, step};
 
 /// No neighbour slot.
 const NO_SLOT: u32 = u32::MAX;
@@ -41,11 +41,82 @@ enum Target {
 ///
 /// Deterministic; parallel over bricks within each step.
 pub(crate) fn compute_clearance(map: &mut VoxelMap) {
+    let work = WorkSet::of(map);
+    let steps = count_steps(map, &work);
+    store(map, &work, &steps);
+}
+
+/// Marks of the work set: next to a detailed brick (`TOUCHING`), or within reach of one.
+const TOUCHING: u32 = 1;
+const NEAR: u32 = 2;
+
+/// The bricks whose cells' clearances are computed: those within
+/// `⌈(MAX_CLEARANCE − 1) / 8⌉` bricks of a detailed brick, in brick order.
+struct WorkSet {
+    /// The slot of every brick in the set (`NO_SLOT` for a brick outside it).
+    slot_of: Vec<u32>,
+    /// The brick of every slot.
+    slots: Vec<usize>,
+    /// Where each slot's clearances go.
+    targets: Vec<Target>,
+    /// How many of the set's uniform bricks become graded.
+    graded_count: usize,
+    /// The slots of each slot's six face neighbours (`NO_SLOT` outside the set), in the
+    /// order of [`FACES`].
+    neighbours: Vec<[u32; 6]>,
+}
+
+impl WorkSet {
+    fn of(map: &VoxelMap) -> WorkSet {
+        let bdims = map.brick_dims;
+        let mark = near_marks(map);
+        let mut slot_of = vec![NO_SLOT; map.bricks.len()];
+        let mut slots: Vec<usize> = Vec::new();
+        let mut targets: Vec<Target> = Vec::new();
+        let mut graded_count = 0usize;
+        for (b, &m) in mark.iter().enumerate() {
+            if m == 0 {
+                continue;
+            }
+            slot_of[b] = slots.len() as u32;
+            slots.push(b);
+            let entry = map.bricks[b];
+            targets.push(if entry & UNIFORM == 0 {
+                Target::Detailed(entry as usize)
+            } else if m & TOUCHING != 0 {
+                graded_count += 1;
+                Target::Graded(graded_count - 1)
+            } else {
+                Target::Uniform
+            });
+        }
+        drop(mark);
+        let neighbours: Vec<[u32; 6]> = slots
+            .par_iter()
+            .map(|&b| {
+                let bc = brick_coords(b, bdims);
+                FACES.map(|(axis, up)| {
+                    step(bc, axis, up, bdims)
+                        .map(|n| slot_of[brick_of(n.map(|x| x << BRICK_BITS), bdims)])
+                        .unwrap_or(NO_SLOT)
+                })
+            })
+            .collect();
+        WorkSet {
+            slot_of,
+            slots,
+            targets,
+            graded_count,
+            neighbours,
+        }
+    }
+}
+
+/// Every brick's mark: `TOUCHING | NEAR` next to a detailed brick, `NEAR` within the work
+/// set's reach of one, else 0.
+fn near_marks(map: &VoxelMap) -> Vec<u32> {
     let bdims = map.brick_dims;
     let reach = i64::from((MAX_CLEARANCE.max(1) - 1).div_ceil(BRICK_SIDE as u8)).max(1);
-    // The work set, in brick order; `TOUCHING` marks bricks next to a detailed brick.
-    const TOUCHING: u32 = 1;
-    const NEAR: u32 = 2;
     let mut mark = vec![0u32; map.bricks.len()];
     for (b, &entry) in map.bricks.iter().enumerate() {
         if entry & UNIFORM != 0 {
@@ -65,44 +136,26 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
             }
         }
     }
-    let mut slot_of = vec![NO_SLOT; map.bricks.len()];
-    let mut slots: Vec<usize> = Vec::new();
-    let mut targets: Vec<Target> = Vec::new();
-    let mut graded_count = 0usize;
-    for (b, &m) in mark.iter().enumerate() {
-        if m == 0 {
-            continue;
-        }
-        slot_of[b] = slots.len() as u32;
-        slots.push(b);
-        let entry = map.bricks[b];
-        targets.push(if entry & UNIFORM == 0 {
-            Target::Detailed(entry as usize)
-        } else if m & TOUCHING != 0 {
-            graded_count += 1;
-            Target::Graded(graded_count - 1)
-        } else {
-            Target::Uniform
-        });
-    }
-    drop(mark);
-    let neighbours: Vec<[u32; 6]> = slots
-        .par_iter()
-        .map(|&b| {
-            let bc = brick_coords(b, bdims);
-            FACES.map(|(axis, up)| {
-                step(bc, axis, up, bdims)
-                    .map(|n| slot_of[brick_of(n.map(|x| x << BRICK_BITS), bdims)])
-                    .unwrap_or(NO_SLOT)
-            })
-        })
-        .collect();
+    mark
+}
 
+/// The dilation steps' counts: for the detailed and graded slots (`counted`), each cell's
+/// number of steps outside `D_k` (`counts`); for every slot, the number of steps with the
+/// whole brick outside (`empty_steps`).
+struct Steps {
+    counted: Vec<usize>,
+    counts: Vec<Counter>,
+    empty_steps: Vec<u8>,
+}
+
+/// Dilates the surface cells `MAX_CLEARANCE − 1` times over the work set, counting.
+fn count_steps(map: &VoxelMap, work: &WorkSet) -> Steps {
+    let (targets, neighbours) = (&work.targets, &work.neighbours);
     // D_0: the surface cells. A cell's clearance is the number of steps k in
     // 0..MAX_CLEARANCE with the cell not yet in D_k: counted per cell, in four bit planes,
     // for detailed and graded bricks; for the other bricks only their smallest clearance
     // is kept, the number of steps with the whole brick still outside D_k.
-    let mut current: Vec<BrickBits> = vec![[0; MASK_WORDS]; slots.len()];
+    let mut current: Vec<BrickBits> = vec![[0; MASK_WORDS]; work.slots.len()];
     for (s, target) in targets.iter().enumerate() {
         if let Target::Detailed(d) = *target
             && let Some(surface) = map.surface_bits.get(d)
@@ -110,7 +163,7 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
             current[s] = *surface;
         }
     }
-    let counted: Vec<usize> = (0..slots.len())
+    let counted: Vec<usize> = (0..work.slots.len())
         .filter(|&s| !matches!(targets[s], Target::Uniform))
         .collect();
     let mut counts: Vec<Counter> = counted
@@ -131,9 +184,9 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
     let mut along_y = current.clone();
     let mut next = current.clone();
     for _ in 1..MAX_CLEARANCE {
-        dilate(&current, &mut along_x, &neighbours, 0);
-        dilate(&along_x, &mut along_y, &neighbours, 1);
-        dilate(&along_y, &mut next, &neighbours, 2);
+        dilate(&current, &mut along_x, neighbours, 0);
+        dilate(&along_x, &mut along_y, neighbours, 1);
+        dilate(&along_y, &mut next, neighbours, 2);
         counts
             .par_iter_mut()
             .zip(counted.par_iter())
@@ -148,11 +201,21 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
             .for_each(|(steps, &o)| *steps += u8::from(o == Occupancy::Empty));
         std::mem::swap(&mut current, &mut next);
     }
-    drop((current, next, along_x, along_y));
+    Steps {
+        counted,
+        counts,
+        empty_steps,
+    }
+}
 
+/// Stores the counted clearances in the map: the nibbles of detailed and graded bricks,
+/// the reach of the other uniform bricks.
+fn store(map: &mut VoxelMap, work: &WorkSet, steps: &Steps) {
+    let (targets, slot_of) = (&work.targets, &work.slot_of);
+    let bdims = map.brick_dims;
     let detailed_count = map.detailed_count();
-    let mut clearances = vec![0; (detailed_count + graded_count) * NIBBLE_BYTES];
-    for (&s, counter) in counted.iter().zip(&counts) {
+    let mut clearances = vec![0; (detailed_count + work.graded_count) * NIBBLE_BYTES];
+    for (&s, counter) in steps.counted.iter().zip(&steps.counts) {
         let brick = match targets[s] {
             Target::Detailed(d) => d,
             Target::Graded(g) => detailed_count + g,
@@ -166,20 +229,37 @@ pub(crate) fn compute_clearance(map: &mut VoxelMap) {
     let distances = brick_distances(&map.bricks, bdims);
     let mut bricks = map.bricks.take_vec();
     for (b, entry) in bricks.iter_mut().enumerate() {
-        if *entry & UNIFORM == 0 {
-            continue;
+        if *entry & UNIFORM != 0 {
+            let slot = slot_of[b] as usize;
+            *entry = uniform_clearance(
+                *entry,
+                distances[b],
+                targets.get(slot),
+                steps.empty_steps.get(slot),
+                detailed_count,
+            );
         }
-        let state = entry_state(*entry);
-        let slot = slot_of[b] as usize;
-        // Cells of bricks `D` bricks apart are at least `8 (D − 1) + 1` cells apart.
-        let far = (u32::from(distances[b]).saturating_sub(1) << BRICK_BITS) + 1;
-        *entry = match (targets.get(slot), empty_steps.get(slot)) {
-            (Some(Target::Graded(g)), _) => graded_entry(state, (detailed_count + g) as u32),
-            (Some(_), Some(&steps)) => uniform_entry(state, u32::from(steps.min(MAX_CLEARANCE))),
-            _ => uniform_entry(state, far.max(u32::from(MAX_CLEARANCE))),
-        };
     }
     map.bricks = bricks.into();
+}
+
+/// The entry of a uniform brick `distance` bricks from the nearest detailed one, with its
+/// work-set target and steps (`None` outside the set).
+fn uniform_clearance(
+    entry: u32,
+    distance: u16,
+    target: Option<&Target>,
+    empty_steps: Option<&u8>,
+    detailed_count: usize,
+) -> u32 {
+    let state = entry_state(entry);
+    // Cells of bricks `D` bricks apart are at least `8 (D − 1) + 1` cells apart.
+    let far = (u32::from(distance).saturating_sub(1) << BRICK_BITS) + 1;
+    match (target, empty_steps) {
+        (Some(Target::Graded(g)), _) => graded_entry(state, (detailed_count + g) as u32),
+        (Some(_), Some(&steps)) => uniform_entry(state, u32::from(steps.min(MAX_CLEARANCE))),
+        _ => uniform_entry(state, far.max(u32::from(MAX_CLEARANCE))),
+    }
 }
 
 /// The Chebyshev distance, in bricks, from every brick to the nearest detailed one (0 for

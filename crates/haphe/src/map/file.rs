@@ -41,13 +41,15 @@ use crate::par::*;
 use bytemuck::Pod;
 use glam::DVec3;
 
-use super::bricks::{BrickBits, MASK_WORDS, VoxelMap};
 use super::file_error::{MapFileError, invalid};
 use super::params::{MapParams, map_params_bytes, parse_map_params};
 use super::provenance::Provenance;
 use super::validate::{check_map, check_surface};
+use super::voxel_map::{BrickBits, MASK_WORDS, VoxelMap};
 use crate::array::{Array, MapBytes};
-use crate::mesh::{MeshReport, OwnedSurfaceParts, Surface, SurfaceParts, TriFrame};
+use crate::mesh::{
+    MeshReport, OwnedSurfaceParts, Surface, SurfaceParts, SurfacePartsRef, TriFrame,
+};
 
 /// The first eight bytes of a map file.
 pub const MAGIC: [u8; 8] = *b"HAPHEMAP";
@@ -74,7 +76,7 @@ const CHECKSUM_CHUNK_BYTES: usize = 4 << 20;
 
 /// Whether `head`, the first bytes of a file of `len` bytes (at least the first 64 when the
 /// file has them), is the header of a map file, even a damaged one: at least five of the
-/// eight bytes of [`MAGIC`] in place, or the rest of a map header intact (the section
+/// eight magic bytes (`HAPHEMAP`) in place, or the rest of a map header intact (the section
 /// count, the file's length and the reserved zeros). A mesh file never passes by chance:
 /// its first bytes are text or an STL header, and no STL has this section count, its own
 /// length and 32 zero bytes at these offsets.
@@ -202,32 +204,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
         .provenance()
         .map(|p| serde_json::to_vec(p).unwrap_or_default())
         .unwrap_or_default();
-    let lengths = [
-        report.len(),
-        parts.vertices.len() * 24,
-        parts.triangles.len() * 12,
-        parts.neighbours.len() * 12,
-        parts.frames.len() * 96,
-        parts.corner_normals.len() * 36,
-        parts.fan_start.len() * 4,
-        parts.fan_triangles.len() * 4,
-        parts.source.len() * 4,
-        params.len(),
-        map.bricks.len() * 4,
-        map.surface_bits.len() * 64,
-        map.inside_bits.len() * 64,
-        map.overlap_bricks.len() * 4,
-        map.overlap_bits.len() * 64,
-        map.surface_before.len() * 16,
-        map.surface_first.len() * 4,
-        map.clearances.len(),
-        map.triangle_start.len() * 4,
-        map.triangle_refs.len() * 4,
-        map.slabs.len() * 4,
-        map.brick_slabs.len() * 4,
-        map.region_slabs.len() * 8,
-        provenance.len(),
-    ];
+    let lengths = section_lengths(&parts, map, [report.len(), params.len(), provenance.len()]);
     let table_end = HEADER_BYTES + SECTIONS.len() * TABLE_ENTRY_BYTES;
     let mut offsets = [0usize; SECTIONS.len()];
     let mut at = table_end.next_multiple_of(SECTION_ALIGN);
@@ -238,22 +215,7 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     let total = at;
 
     let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(&MAGIC);
-    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-    out.extend_from_slice(&(SECTIONS.len() as u32).to_le_bytes());
-    out.extend_from_slice(&(total as u64).to_le_bytes());
-    out.resize(HEADER_BYTES, 0);
-    for (kind, (&(_, elem), (&offset, &len))) in SECTIONS
-        .iter()
-        .zip(offsets.iter().zip(&lengths))
-        .enumerate()
-    {
-        out.extend_from_slice(&(kind as u32).to_le_bytes());
-        out.extend_from_slice(&(elem as u32).to_le_bytes());
-        out.extend_from_slice(&(offset as u64).to_le_bytes());
-        out.extend_from_slice(&(len as u64).to_le_bytes());
-        out.extend_from_slice(&0u64.to_le_bytes());
-    }
+    write_header(&mut out, &offsets, &lengths, total);
     let mut section = 0;
     let mut start = |out: &mut Vec<u8>| {
         out.resize(offsets[section], 0);
@@ -311,6 +273,100 @@ pub fn encode(surface: &Surface, map: &VoxelMap) -> Vec<u8> {
     let checksum = checksum(&out);
     out[CHECKSUM_AT..HEADER_BYTES].copy_from_slice(&checksum.to_le_bytes());
     out
+}
+
+/// The byte length of every section of the file of `parts` and `map`, with the lengths
+/// of the report, the map parameters and the provenance, already serialised.
+fn section_lengths(
+    parts: &SurfacePartsRef<'_>,
+    map: &VoxelMap,
+    [report, params, provenance]: [usize; 3],
+) -> [usize; SECTIONS.len()] {
+    [
+        report,
+        parts.vertices.len() * 24,
+        parts.triangles.len() * 12,
+        parts.neighbours.len() * 12,
+        parts.frames.len() * 96,
+        parts.corner_normals.len() * 36,
+        parts.fan_start.len() * 4,
+        parts.fan_triangles.len() * 4,
+        parts.source.len() * 4,
+        params,
+        map.bricks.len() * 4,
+        map.surface_bits.len() * 64,
+        map.inside_bits.len() * 64,
+        map.overlap_bricks.len() * 4,
+        map.overlap_bits.len() * 64,
+        map.surface_before.len() * 16,
+        map.surface_first.len() * 4,
+        map.clearances.len(),
+        map.triangle_start.len() * 4,
+        map.triangle_refs.len() * 4,
+        map.slabs.len() * 4,
+        map.brick_slabs.len() * 4,
+        map.region_slabs.len() * 8,
+        provenance,
+    ]
+}
+
+/// Writes the header and the section table of a file of `total` bytes whose sections lie
+/// at `offsets` with `lengths` (the checksum field left zero).
+fn write_header(
+    out: &mut Vec<u8>,
+    offsets: &[usize; SECTIONS.len()],
+    lengths: &[usize; SECTIONS.len()],
+    total: usize,
+) {
+    out.extend_from_slice(&MAGIC);
+    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    out.extend_from_slice(&(SECTIONS.len() as u32).to_le_bytes());
+    out.extend_from_slice(&(total as u64).to_le_bytes());
+    out.resize(HEADER_BYTES, 0);
+    for (kind, (&(_, elem), (&offset, &len))) in
+        SECTIONS.iter().zip(offsets.iter().zip(lengths)).enumerate()
+    {
+        out.extend_from_slice(&(kind as u32).to_le_bytes());
+        out.extend_from_slice(&(elem as u32).to_le_bytes());
+        out.extend_from_slice(&(offset as u64).to_le_bytes());
+        out.extend_from_slice(&(len as u64).to_le_bytes());
+        out.extend_from_slice(&0u64.to_le_bytes());
+    }
+}
+
+/// The checks of a file's header: magic, version, size (neither truncated nor followed by
+/// more bytes) and checksum.
+fn check_header(bytes: &[u8]) -> Result<(), MapFileError> {
+    let found = bytes.len() as u64;
+    let header = bytes.get(..HEADER_BYTES).ok_or(MapFileError::Truncated {
+        expected: HEADER_BYTES as u64,
+        found,
+    })?;
+    let mut magic = [0u8; 8];
+    magic.copy_from_slice(&header[..8]);
+    if magic != MAGIC {
+        return Err(MapFileError::WrongMagic { found: magic });
+    }
+    let version = u32_at(header, 8);
+    if version != FORMAT_VERSION {
+        return Err(MapFileError::UnsupportedVersion {
+            found: version,
+            supported: FORMAT_VERSION,
+        });
+    }
+    let expected = u64_at(header, 16);
+    if found < expected {
+        return Err(MapFileError::Truncated { expected, found });
+    }
+    if found > expected {
+        return Err(MapFileError::TrailingBytes { expected, found });
+    }
+    let stored = u64_at(header, CHECKSUM_AT);
+    let computed = checksum(bytes);
+    if stored != computed {
+        return Err(MapFileError::ChecksumMismatch { stored, computed });
+    }
+    Ok(())
 }
 
 /// The checksum of a file: XXH3-64 of the header without its checksum field followed by
@@ -391,36 +447,7 @@ pub fn decode(bytes: &[u8]) -> Result<(Surface, VoxelMap), MapFileError> {
 /// ```
 pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileError> {
     let bytes = file.as_slice();
-    let found = bytes.len() as u64;
-    let header = bytes.get(..HEADER_BYTES).ok_or(MapFileError::Truncated {
-        expected: HEADER_BYTES as u64,
-        found,
-    })?;
-    let mut magic = [0u8; 8];
-    magic.copy_from_slice(&header[..8]);
-    if magic != MAGIC {
-        return Err(MapFileError::WrongMagic { found: magic });
-    }
-    let version = u32_at(header, 8);
-    if version != FORMAT_VERSION {
-        return Err(MapFileError::UnsupportedVersion {
-            found: version,
-            supported: FORMAT_VERSION,
-        });
-    }
-    let expected = u64_at(header, 16);
-    if found < expected {
-        return Err(MapFileError::Truncated { expected, found });
-    }
-    if found > expected {
-        return Err(MapFileError::TrailingBytes { expected, found });
-    }
-    let stored = u64_at(header, CHECKSUM_AT);
-    let computed = checksum(bytes);
-    if stored != computed {
-        return Err(MapFileError::ChecksumMismatch { stored, computed });
-    }
-
+    check_header(bytes)?;
     let sections = section_ranges(bytes)?;
     let [
         report,
@@ -468,7 +495,7 @@ pub fn decode_in_place(file: &MapBytes) -> Result<(Surface, VoxelMap), MapFileEr
     let params = parse_map_params(&bytes[params])?;
     let mut map = VoxelMap {
         grid: params.grid,
-        brick_dims: super::bricks::brick_dims(params.grid.dims()),
+        brick_dims: super::voxel_map::brick_dims(params.grid.dims()),
         bricks: array::<u32, u32>(file, bricks),
         free_bricks: Vec::new(),
         free_regions: Default::default(),

@@ -6,7 +6,7 @@ use super::file::CHECKSUM_AT;
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum MapFileError {
-    /// The file does not start with [`MAGIC`](super::MAGIC): not a haphe map file.
+    /// The file does not start with the magic bytes `HAPHEMAP`: not a haphe map file.
     #[error("not a haphe map file: it starts with {found:?}, not \"HAPHEMAP\"", found = String::from_utf8_lossy(found))]
     WrongMagic {
         /// The first eight bytes.

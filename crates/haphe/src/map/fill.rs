@@ -10,7 +10,7 @@
 use std::collections::BTreeMap;
 
 use super::CellState;
-use super::bricks::{
+use super::voxel_map::{
     BRICK_BITS, BrickBits, MASK_WORDS, UNIFORM, UNIFORM_STATE_SHIFT, VoxelMap, brick_coords,
     brick_of, cell_in_brick, entry_state, in_grid_bits, uniform_entry,
 };
@@ -42,33 +42,11 @@ const VISITED: u32 = UNIFORM | (2 << UNIFORM_STATE_SHIFT);
 pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
     let bdims = map.brick_dims;
     let dims = map.grid.dims();
-    // Free (non-surface, in-grid) cells of each detailed brick.
-    let mut available: Vec<BrickBits> = vec![[0; MASK_WORDS]; map.detailed_count()];
-    for (b, &entry) in map.bricks.iter().enumerate() {
-        if entry & UNIFORM == 0
-            && let (Some(free), Some(surface)) = (
-                available.get_mut(entry as usize),
-                map.surface_bits.get(entry as usize),
-            )
-        {
-            let in_grid = in_grid_bits(brick_coords(b, bdims), dims);
-            for z in 0..MASK_WORDS {
-                free[z] = in_grid[z] & !surface[z];
-            }
-        }
-    }
+    let available = free_cells(map);
     // The entries and inside masks change all through the flood: taken out as vectors
     // and put back at the end.
     let mut bricks = map.bricks.take_vec();
-    // The top-level index of each detailed brick (those entries never change here).
-    let mut top_of_detailed = vec![0usize; map.detailed_count()];
-    for (b, &entry) in bricks.iter().enumerate() {
-        if entry & UNIFORM == 0
-            && let Some(top) = top_of_detailed.get_mut(entry as usize)
-        {
-            *top = b;
-        }
-    }
+    let top_of_detailed = top_of_detailed(&bricks, map.detailed_count());
     // Inside cells whose winding number is not 1, by top-level brick.
     let mut overlap: BTreeMap<usize, BrickBits> = BTreeMap::new();
     let mut inside_bits = map.inside_bits.take_vec();
@@ -141,6 +119,51 @@ pub(crate) fn flood_fill(map: &mut VoxelMap, surface: &Surface) {
             }
         }
     }
+    store(map, bricks, inside_bits, overlap);
+}
+
+/// The free (non-surface, in-grid) cells of each detailed brick.
+fn free_cells(map: &VoxelMap) -> Vec<BrickBits> {
+    let bdims = map.brick_dims;
+    let dims = map.grid.dims();
+    let mut available: Vec<BrickBits> = vec![[0; MASK_WORDS]; map.detailed_count()];
+    for (b, &entry) in map.bricks.iter().enumerate() {
+        if entry & UNIFORM == 0
+            && let (Some(free), Some(surface)) = (
+                available.get_mut(entry as usize),
+                map.surface_bits.get(entry as usize),
+            )
+        {
+            let in_grid = in_grid_bits(brick_coords(b, bdims), dims);
+            for z in 0..MASK_WORDS {
+                free[z] = in_grid[z] & !surface[z];
+            }
+        }
+    }
+    available
+}
+
+/// The top-level index of each of the `detailed` detailed bricks among `bricks` (those
+/// entries never change in the flood).
+fn top_of_detailed(bricks: &[u32], detailed: usize) -> Vec<usize> {
+    let mut top_of_detailed = vec![0usize; detailed];
+    for (b, &entry) in bricks.iter().enumerate() {
+        if entry & UNIFORM == 0
+            && let Some(top) = top_of_detailed.get_mut(entry as usize)
+        {
+            *top = b;
+        }
+    }
+    top_of_detailed
+}
+
+/// Puts the flood's results back in the map: the regions still marked visited are inside.
+fn store(
+    map: &mut VoxelMap,
+    mut bricks: Vec<u32>,
+    inside_bits: Vec<BrickBits>,
+    overlap: BTreeMap<usize, BrickBits>,
+) {
     for entry in &mut bricks {
         if *entry == VISITED {
             *entry = uniform_entry(CellState::Inside, 0);

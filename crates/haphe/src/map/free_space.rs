@@ -19,10 +19,10 @@
 //! triangles lie (`map/slabs.rs`, saved with the map).
 
 use super::VoxelMap;
-use super::bricks::{
+use super::clearance::chebyshev_distances;
+use super::voxel_map::{
     BRICK_BITS, BRICK_SIDE, BrickBits, GRADED, UNIFORM, UNIFORM_PAYLOAD, brick_of, has, local_of,
 };
-use super::clearance::chebyshev_distances;
 
 /// How far around a brick with top-level `entry`, in bricks, no brick holds a surface
 /// cell (0 for a detailed brick): 1 for a graded brick (it touches a detailed one);
@@ -342,7 +342,7 @@ mod tests {
     /// free exactly when no cell of it is a surface cell (brute force over the block).
     #[test]
     fn free_blocks_hold_no_surface_cell() {
-        use crate::map::bricks::BRICK_CELLS;
+        use crate::map::voxel_map::BRICK_CELLS;
         use crate::rng::SplitMix64;
         let mut random = SplitMix64::new(11);
         let mut free = 0;

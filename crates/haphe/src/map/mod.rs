@@ -8,8 +8,8 @@
 //! on every side, in the object frame. Each cell is [`CellState::Outside`],
 //! [`CellState::Inside`] or [`CellState::Surface`]:
 //!
-//! - a **surface** cell lists every triangle that overlaps it ([`overlap_triangle_box`],
-//!   with cells enlarged by [`OVERLAP_TOLERANCE_REL`] so that rounding in a query's cell
+//! - a **surface** cell lists every triangle that overlaps it (a triangle–box test, with
+//!   cells enlarged by a relative tolerance so that rounding in a query's cell
 //!   walk never misses a triangle at a cell border), so a query finds its candidate
 //!   triangles in constant time;
 //! - the other cells are classified by a **flood fill** from the padding (reached means
@@ -22,7 +22,7 @@
 //!   farther away also bound that distance by whole bricks ([`VoxelMap::reach`]), so a long
 //!   segment crosses empty space in a few strides.
 //!
-//! A query finds the cells a segment passes with [`Grid::walk`] (a 3D-DDA) and the
+//! A query finds the cells a segment passes with a 3D-DDA and the
 //! candidate triangles of each with [`VoxelMap::triangles_in`], in constant time per cell.
 //!
 //! Storage is sparse ([`VoxelMap`]): bricks of 8×8×8 cells, uniform bricks far from the
@@ -39,7 +39,6 @@
 //! budget. [`VoxelMap::stats`] reports what was chosen and why.
 
 mod bin;
-mod bricks;
 mod build;
 mod cast;
 mod cell_size;
@@ -55,21 +54,28 @@ mod params;
 mod provenance;
 mod slabs;
 mod validate;
+mod voxel_map;
 mod walk;
 
 pub use crate::array::MapBytes;
-use bricks::BRICK_SIDE;
-pub use bricks::{MAX_BRICKS, MapStats, VoxelMap};
 pub(crate) use cast::{CellPart, Found};
-pub use file::{FORMAT_VERSION, MAGIC, decode, decode_in_place, encode, looks_like_map};
+pub(crate) use cells::CellBox;
+pub use file::{FORMAT_VERSION, decode, decode_in_place, encode, looks_like_map};
 pub use file_error::MapFileError;
 use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
+#[doc(hidden)]
+pub use grid::OVERLAP_TOLERANCE_REL;
 #[cfg(any(test, feature = "testing"))]
 pub(crate) use grid::clip_to_box;
-pub(crate) use grid::floor_to_int;
-pub use grid::{Grid, MAX_CELLS_PER_AXIS, OVERLAP_TOLERANCE_REL};
+pub use grid::{Grid, MAX_CELLS_PER_AXIS};
+#[doc(hidden)]
 pub use overlap::overlap_triangle_box;
-pub use provenance::{MAX_SOURCE_NAME_BYTES, Provenance};
+#[doc(hidden)]
+pub use provenance::MAX_SOURCE_NAME_BYTES;
+pub use provenance::Provenance;
+use voxel_map::BRICK_SIDE;
+pub use voxel_map::{MAX_BRICKS, MapStats, VoxelMap};
+#[doc(hidden)]
 pub use walk::{CellStep, CellWalk};
 
 /// Largest clearance a cell stores, in cells. Cells within 15 cells of the surface store

@@ -3,10 +3,10 @@
 
 use glam::DVec3;
 
-use super::bricks::{BRICK_SIDE, MAX_BRICKS, brick_dims};
 use super::file::u64_at;
 use super::file_error::invalid;
 use super::grid::Grid;
+use super::voxel_map::{BRICK_SIDE, MAX_BRICKS, brick_dims};
 use super::{CellSizeRule, MAX_CLEARANCE, MapFileError, VoxelMap};
 
 /// The map's scalar parameters, as stored in the "map parameters" section.

@@ -35,8 +35,8 @@ use crate::par::*;
 use glam::{DMat3, DVec3};
 
 use super::VoxelMap;
-use super::bricks::{BRICK_SIDE, UNIFORM, brick_coords, cell_in_brick};
 use super::free_space::{REGION_SIDE, region_dims};
+use super::voxel_map::{BRICK_SIDE, UNIFORM, brick_coords, cell_in_brick};
 use crate::mesh::{Surface, TriId};
 
 /// Half the range of a slab's bounds, in sides of its block (a cell or a brick) from the

@@ -1,11 +1,11 @@
 //! The checks a loaded file passes before its surface and map are trusted: every invariant
 //! that a query relies on to index arrays, and the canonical layout the build produces.
 
-use super::bricks::{
+use super::file_error::invalid;
+use super::voxel_map::{
     BRICK_CELLS, BrickBits, GRADED, MASK_WORDS, MAX_REACH, NIBBLE_BYTES, UNIFORM, UNIFORM_PAYLOAD,
     UNIFORM_STATE_SHIFT, VoxelMap, brick_coords, cell_in_brick, entry_state, in_grid_bits,
 };
-use super::file_error::invalid;
 use super::{CellState, MapFileError};
 use crate::mesh::{NONE, OwnedSurfaceParts, Surface, Usability};
 
@@ -29,9 +29,16 @@ fn first_non_finite<F: Copy + Into<f64>>(values: &[F], width: usize) -> Option<u
 
 /// The invariants of [`Surface`] that later stages index with.
 pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
+    check_triangles(p)?;
+    check_frames(p)?;
+    check_fans(p)?;
+    check_source_and_report(p)
+}
+
+/// The vertices, the triangles' vertex indices and the neighbours (linked both ways).
+fn check_triangles(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
     // The arrays as plain slices once (a loaded array is a view; see `crate::array`).
     let (triangles, neighbours): (&[[u32; 3]], &[[u32; 3]]) = (&p.triangles, &p.neighbours);
-    let (fan_start, fan_triangles): (&[u32], &[u32]) = (&p.fan_start, &p.fan_triangles);
     let (v, t) = (p.vertices.len(), triangles.len());
     if t == 0 || t >= NONE as usize || v >= NONE as usize {
         return Err(invalid(
@@ -72,6 +79,12 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             }
         }
     }
+    Ok(())
+}
+
+/// One finite frame and one row of finite corner normals per triangle.
+fn check_frames(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
+    let t = p.triangles.len();
     if p.frames.len() != t {
         return Err(invalid(
             "frames",
@@ -96,7 +109,15 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             format!("triangle {i} has a non-finite normal"),
         ));
     }
-    let starts = fan_start;
+    Ok(())
+}
+
+/// The vertex fans: one start per vertex and one past the last, non-decreasing, each fan
+/// listing only triangles with a corner at its vertex.
+fn check_fans(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
+    let triangles: &[[u32; 3]] = &p.triangles;
+    let (starts, fan_triangles): (&[u32], &[u32]) = (&p.fan_start, &p.fan_triangles);
+    let v = p.vertices.len();
     if starts.len() != v + 1
         || starts.first() != Some(&0)
         || starts.last().map(|&x| x as usize) != Some(fan_triangles.len())
@@ -129,6 +150,12 @@ pub(crate) fn check_surface(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
             }
         }
     }
+    Ok(())
+}
+
+/// The source triangles (in range) and the report (describing this surface, usable).
+fn check_source_and_report(p: &OwnedSurfaceParts) -> Result<(), MapFileError> {
+    let (v, t) = (p.vertices.len(), p.triangles.len());
     // Only for what the surface reports (a face's index in the file), never to index an
     // array: range-checked, as the frames are, not proven a permutation.
     let source: &[u32] = &p.source;

@@ -85,6 +85,7 @@ impl Grid {
     ///     .collect();
     /// assert_eq!(cells, [[0, 0, 0], [1, 0, 0], [1, 1, 0], [2, 1, 0]]);
     /// ```
+    #[doc(hidden)]
     pub fn walk(&self, p0: DVec3, p1: DVec3) -> CellWalk {
         let dims = self.dims().map(i64::from);
         let empty = CellWalk {

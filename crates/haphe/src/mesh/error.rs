@@ -28,24 +28,24 @@ pub enum Place {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct GltfPlace {
     /// The scene.
-    pub scene: Option<usize>,
+    pub scene: Option<u32>,
     /// The node.
-    pub node: Option<usize>,
+    pub node: Option<u32>,
     /// The mesh.
-    pub mesh: Option<usize>,
+    pub mesh: Option<u32>,
     /// The primitive, within its mesh.
-    pub primitive: Option<usize>,
+    pub primitive: Option<u32>,
     /// The accessor, and what it holds (`POSITION`, `indices`, ...).
-    pub accessor: Option<(usize, &'static str)>,
+    pub accessor: Option<(u32, &'static str)>,
     /// The buffer view.
-    pub buffer_view: Option<usize>,
+    pub buffer_view: Option<u32>,
     /// The buffer.
-    pub buffer: Option<usize>,
+    pub buffer: Option<u32>,
 }
 
 impl fmt::Display for GltfPlace {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let named = |list: [(&str, Option<usize>); 2]| {
+        let named = |list: [(&str, Option<u32>); 2]| {
             list.into_iter()
                 .filter_map(|(name, index)| index.map(|i| format!("{name} {i}")))
                 .collect::<Vec<_>>()

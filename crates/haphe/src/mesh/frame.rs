@@ -12,7 +12,7 @@ use glam::DVec3;
 ///
 /// Invariant: for a non-degenerate triangle `dual_b · (b − a) = 1`, `dual_b · (c − a) = 0`,
 /// `dual_c · (b − a) = 0`, `dual_c · (c − a) = 1`, both duals lie in the plane, and `normal`
-/// has unit length. A degenerate (zero-area) triangle (see [`is_degenerate_triangle`]) has all three vectors zero, so its
+/// has unit length. A degenerate (zero-area) triangle (see [`TriFrame::is_degenerate`]) has all three vectors zero, so its
 /// coordinates come out as `(1, 0, 0)` and it is never taken as a hit.
 #[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C)]

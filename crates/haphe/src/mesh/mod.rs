@@ -18,20 +18,21 @@ mod frame;
 mod ids;
 mod normals;
 mod order;
-pub mod read;
-mod report;
+mod read;
+pub mod report;
 pub mod shapes;
 mod topology;
 mod weld;
 mod winding;
 
 pub use error::{GltfPlace, Place, ReadError, ReadErrorKind};
-pub use frame::{
-    DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT, TriFrame, is_degenerate_triangle,
-    relative_height,
-};
+pub use frame::TriFrame;
+#[doc(hidden)]
+pub use frame::relative_height;
+pub(crate) use frame::{DEGENERATE_MAX_RELATIVE_HEIGHT, is_degenerate_triangle};
 pub use ids::{NONE, TriId, VertId};
-pub use normals::DEFAULT_CREASE_ANGLE_RAD;
+#[doc(hidden)]
+pub use read::gltf::MAX_TRIANGLES as GLTF_MAX_TRIANGLES;
 pub use read::gltf::{
     GltfNode, GltfNodeSummary, GltfScene, GltfSummary, NoSideCars, Resolve, SkippedPrimitive,
     SkippedSummary, read_gltf,
@@ -40,11 +41,13 @@ pub use read::{
     Format, ReadMesh, ReadOptions, Units, read_mesh, read_mesh_resolving, read_mesh_with_stats,
     read_unwelded, read_unwelded_with,
 };
-pub use report::{ComponentReport, Defects, EdgeUse, MeshReport, ReportText, Usability};
-pub(crate) use topology::{OwnedSurfaceParts, SurfaceParts};
+pub use report::{MeshReport, Usability};
+pub(crate) use topology::{OwnedSurfaceParts, SurfaceParts, SurfacePartsRef};
 pub use topology::{Surface, SurfaceError, SurfaceOptions};
 pub use weld::{Weld, WeldStats, weld};
-pub use winding::{solid_angle, winding_number};
+#[doc(hidden)]
+pub use winding::solid_angle;
+pub use winding::winding_number;
 
 use glam::DVec3;
 

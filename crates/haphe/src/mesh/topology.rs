@@ -24,7 +24,7 @@ pub struct SurfaceOptions {
 }
 
 impl Default for SurfaceOptions {
-    /// The default crease angle, spatial order.
+    /// The default crease angle (π/6, 30°), spatial order.
     fn default() -> Self {
         SurfaceOptions {
             crease_angle_rad: DEFAULT_CREASE_ANGLE_RAD,

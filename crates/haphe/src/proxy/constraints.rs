@@ -126,11 +126,6 @@ impl Constraints {
         true
     }
 
-    /// The most recently touched plane.
-    pub fn last(&self) -> Option<&Plane> {
-        self.planes().last()
-    }
-
     /// The point closest to `goal` on the free side of every plane (within `tolerance`
     /// metres), world frame: the exact solution of that small quadratic program, found by
     /// trying the goal, its projection onto each plane, onto each pair's line and onto the

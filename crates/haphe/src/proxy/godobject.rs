@@ -3,15 +3,13 @@
 
 use glam::DVec3;
 
-use super::constraints::{Constraints, Plane, advance_to_plane};
-use super::deep::{Hold, is_deep, saturation_depth};
+use super::constrain::{Start, Sweep, constrain};
 use super::force::{contact_force, friction_target};
-use super::meet::{carry, first_hit_all, hit_plane, move_checked, touching_any};
+use super::hold::{Hold, is_deep, saturation_depth};
+use super::meet::{carry, move_checked};
 use super::near::NearCache;
 use super::output::{Contact, TickOutput, TickStatus};
-use super::rest::{Rest, rest_hit};
-use crate::mesh::TriId;
-use crate::scene::{Hit, Material, Scene, others_box};
+use crate::scene::{Hit, Material, Scene, SurfaceRef, others_box};
 
 /// How far a probe reaches beyond the ends of a move, as a fraction of the skin: far
 /// above the rounding of coordinates (about 1e-16 m per metre), well inside the skin, so a
@@ -58,18 +56,20 @@ impl ProxyOptions {
         self.skin * 1e-3
     }
 
-    /// How far crossing tests reach beyond a move, metres (a quarter of
-    /// the skin; see [`Probe`](crate::query::Probe)).
+    /// How far crossing tests reach beyond the ends of a move, metres: a quarter of the
+    /// skin.
     pub fn probe_reach(&self) -> f64 {
         self.skin * PROBE_REACH_OF_SKIN
     }
 }
 
-/// What the proxy remembers from its last contact (coherence: the next walk starts here).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct LastContact {
-    pub(super) object: usize,
-    pub(super) triangle: TriId,
+/// The device on one tick: its point (metres, world frame, pulled into the workspace), its
+/// velocity (m/s) and its point on the previous tick.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Hand {
+    pub(super) hip: DVec3,
+    pub(super) velocity: DVec3,
+    pub(super) previous: Option<DVec3>,
 }
 
 /// The haptic proxy of one point device.
@@ -90,13 +90,16 @@ pub(super) struct LastContact {
 pub struct Proxy {
     pub(super) position: DVec3,
     pub(super) options: ProxyOptions,
-    pub(super) last: Option<LastContact>,
-    /// The last constraint of the previous tick (see [`Rest`]).
-    pub(super) rest: Option<Rest>,
+    /// The contact triangle of the previous tick, under the proxy (the next walk starts
+    /// there).
+    pub(super) under: Option<SurfaceRef>,
+    /// The last constraint of the previous tick: the surface the proxy rests on (see
+    /// `rest.rs`).
+    pub(super) rest: Option<SurfaceRef>,
     pub(super) sticking: bool,
     /// Placed (by [`Proxy::new`] or [`Proxy::reset`]) and not ticked yet.
     pub(super) placed: bool,
-    /// The contact held beyond the saturation depth (see [`super::deep`]).
+    /// The contact held beyond the saturation depth (see [`super::hold`]).
     pub(super) hold: Option<Hold>,
     /// The objects near the proxy, kept from tick to tick (see [`NearCache`]).
     pub(super) near: NearCache,
@@ -119,7 +122,7 @@ impl Proxy {
                 DVec3::ZERO
             },
             options,
-            last: None,
+            under: None,
             rest: None,
             sticking: false,
             placed: true,
@@ -147,7 +150,7 @@ impl Proxy {
     /// The last constraint of the previous tick, which the next tick keeps while the
     /// device point stays behind it (for the oracles).
     #[cfg(any(test, feature = "testing"))]
-    pub(crate) fn rest(&self) -> Option<Rest> {
+    pub(crate) fn rest(&self) -> Option<SurfaceRef> {
         self.rest
     }
 
@@ -191,79 +194,124 @@ impl Proxy {
     /// A non-finite input leaves the proxy where it was and gives zero force.
     pub fn tick(&mut self, scene: &Scene, hip: DVec3, velocity: DVec3) -> TickOutput {
         let mut status = TickStatus::default();
+        let Some(hand) = self.accept(hip, velocity, &mut status) else {
+            return self.output(self.position, DVec3::ZERO, None, status);
+        };
+        self.follow_removals(scene);
+        // 1. Carry: objects that moved push the proxy.
+        let carried = carry(scene, &mut self.near, self.position, &self.options);
+        // 5. Deep penetration, begun on an earlier tick: while the hand stays that deep,
+        // the hold stands for steps 2 to 4.
+        let held = self
+            .hold
+            .take()
+            .and_then(|hold| self.hold_tick(scene, carried, &hand, hold, status));
+        if let Some(out) = held {
+            return out;
+        }
+        // 2. Constrain: the god-object's steps toward the device point.
+        let start = Start {
+            placed: std::mem::take(&mut self.placed),
+            rest: self.rest,
+            under: self.under,
+        };
+        let sweep = constrain(
+            (scene, &mut self.near),
+            carried,
+            hand.hip,
+            start,
+            &self.options,
+            &mut status,
+        );
+        self.rest = sweep.last_hit.map(|(hit, _)| hit.surface());
+        let Some((hit, plane)) = sweep.last_hit else {
+            self.under = None;
+            self.sticking = false;
+            return self.output(sweep.position, DVec3::ZERO, None, status);
+        };
+        let material = scene.objects()[hit.object].material;
+        // 3. Friction.
+        let p = self.friction(
+            scene,
+            (&hit, &material),
+            (carried, &sweep),
+            hand.hip,
+            &mut status,
+        );
+        // 4. Contact and force.
+        let on = (hit.surface(), plane.normal, sweep.planes.len() as u8);
+        let (contact, force) = self.contact_and_force(scene, on, p, &hand, &material, &mut status);
+        // 5. Deep penetration: the hold begins.
+        let out = self.output(p, force, contact, status);
+        self.hold_if_deep(scene, &sweep, (&hit, plane.normal, &material), &hand, out)
+    }
+
+    /// The device point pulled into the workspace, with the tick's velocity and the
+    /// previous device point; `None` (and the proxy's contact forgotten) for a non-finite
+    /// input.
+    #[inline]
+    fn accept(&mut self, hip: DVec3, velocity: DVec3, status: &mut TickStatus) -> Option<Hand> {
         if !hip.is_finite() || !velocity.is_finite() {
             status.input_rejected = true;
-            self.last = None;
+            self.under = None;
             self.rest = None;
             self.sticking = false;
             self.hold = None;
             self.previous_hip = None;
-            return TickOutput {
-                proxy: self.position,
-                force: DVec3::ZERO,
-                contact: None,
-                status,
-            };
+            return None;
         }
         let (hip, clamped) = clamp_to_radius(hip, self.options.workspace_radius);
         status.input_clamped = clamped;
-        let previous_hip = self.previous_hip.replace(hip);
-        self.follow_removals(scene);
-
-        let mut p = carry(scene, &mut self.near, self.position, &self.options);
-        if let Some(hold) = self.hold.take()
-            && let Some(out) = self.hold_tick(scene, p, hip, velocity, hold, status)
-        {
-            return out;
-        }
-        let held = p;
-        let placed = std::mem::take(&mut self.placed);
-        let under = self.last.map(|l| (l.object, l.triangle));
-        let sweep = constrain(
-            (scene, &mut self.near),
-            p,
+        let previous = self.previous_hip.replace(hip);
+        Some(Hand {
             hip,
-            placed,
-            (self.rest, under),
-            &self.options,
-            &mut status,
-        );
-        p = sweep.position;
-        self.rest = sweep.last_hit.map(|(hit, _)| Rest {
-            object: hit.object,
-            triangle: hit.triangle,
-        });
+            velocity,
+            previous,
+        })
+    }
 
-        let Some((hit, plane)) = sweep.last_hit else {
-            self.position = p;
-            self.last = None;
-            self.sticking = false;
-            return TickOutput {
-                proxy: p,
-                force: DVec3::ZERO,
-                contact: None,
-                status,
-            };
-        };
-        let object = &scene.objects()[hit.object];
-        let material: Material = object.material;
+    /// The tick's output with the proxy at `p` (where it stays).
+    #[inline]
+    pub(super) fn output(
+        &mut self,
+        p: DVec3,
+        force: DVec3,
+        contact: Option<Contact>,
+        status: TickStatus,
+    ) -> TickOutput {
+        self.position = p;
+        TickOutput {
+            proxy: p,
+            force,
+            contact,
+            status,
+        }
+    }
 
-        // Friction: against where the proxy rested, or where it touched down this tick.
+    /// Step 3: with friction on the material of `hit`, the proxy at `p` stays where it
+    /// rested (`held`, after the carry) or touched down this tick while the tangential
+    /// force is inside the static cone, else slips to the edge of the dynamic cone (a move
+    /// tested for crossings too).
+    #[inline]
+    fn friction(
+        &mut self,
+        scene: &Scene,
+        (hit, material): (&Hit, &Material),
+        (held, sweep): (DVec3, &Sweep),
+        hip: DVec3,
+        status: &mut TickStatus,
+    ) -> DVec3 {
+        let mut p = sweep.position;
         if material.static_friction > 0.0 {
-            let (anchor, was_sticking) = match self.last {
+            let (anchor, was_sticking) = match self.under {
                 Some(_) => (held, self.sticking),
                 None => (sweep.touch_down, true),
             };
-            let (target, sticking) = friction_target(anchor, p, hip, &material, was_sticking);
-            let (lo, hi) = others_box(p, target, self.options.probe_reach());
-            p = if scene.clear_move_among(
-                self.near.get(scene, lo, hi),
-                hit.object,
-                hit.triangle,
-                p,
-                target,
-                self.options.probe_reach(),
-            ) {
+            let (target, sticking) = friction_target(anchor, p, hip, material, was_sticking);
+            let reach = self.options.probe_reach();
+            let (lo, hi) = others_box(p, target, reach);
+            let near = self.near.get(scene, lo, hi);
+            p = if scene.clear_move(near, hit.surface(), p, target, reach) {
                 status.cleared = true;
                 target
             } else {
@@ -275,62 +323,72 @@ impl Proxy {
         }
         status.sticking = self.sticking;
         status.in_contact = true;
+        p
+    }
 
-        let contact = contact_at(
-            scene,
-            (hit.object, hit.triangle),
-            p,
-            hip,
-            (plane.normal, sweep.planes.len() as u8),
-            &mut status,
-        );
+    /// Step 4: the contact of the proxy at `p` on the surface `on` (with the contact
+    /// plane's unit normal and the number of active planes), found by walking from there,
+    /// and the force toward the proxy, shaded and clamped.
+    #[inline]
+    fn contact_and_force(
+        &mut self,
+        scene: &Scene,
+        on: (SurfaceRef, DVec3, u8),
+        p: DVec3,
+        hand: &Hand,
+        material: &Material,
+        status: &mut TickStatus,
+    ) -> (Option<Contact>, DVec3) {
+        let (surface, normal, planes) = on;
+        let contact = contact_at(scene, surface, p, hand.hip, (normal, planes), status);
         let (force, force_clamped) = contact_force(
             p,
-            hip,
-            velocity,
+            hand.hip,
+            hand.velocity,
             contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
-            &material,
+            material,
             self.options.max_force,
         );
         status.force_clamped = force_clamped;
-        self.position = p;
-        self.last = contact.map(|c| LastContact {
-            object: c.object,
-            triangle: c.triangle,
-        });
-        // Beyond the saturation depth the proxy holds: from where it first met the surface
-        // this tick, or (where the hand is not that deep behind that surface) from here,
-        // on the next tick.
-        if is_deep(
-            p,
-            hip,
-            plane.normal,
-            saturation_depth(&material, self.options.max_force),
-        ) {
-            let clamped = status.input_clamped;
-            if let Some(out) =
-                self.hold_from_touch_down(scene, &sweep, (hip, velocity), previous_hip, clamped)
-            {
-                return out;
-            }
-            self.hold = Some(Hold::begin(
-                &object.pose,
-                (
-                    hit.object,
-                    contact.map_or(hit.triangle, |c| c.triangle),
-                    sweep.planes.len() as u8,
-                ),
-                (p, plane.normal),
-                hip,
-                (previous_hip, hip),
-            ));
+        self.under = contact.map(|c| c.surface());
+        (contact, force)
+    }
+
+    /// Step 5: beyond the saturation depth the proxy holds: from where it first met the
+    /// surface this tick (this tick is then the hold's first, replacing `out`), or, where
+    /// the hand is not that deep behind that surface, from here on the next tick.
+    #[inline]
+    fn hold_if_deep(
+        &mut self,
+        scene: &Scene,
+        sweep: &Sweep,
+        (hit, normal, material): (&Hit, DVec3, &Material),
+        hand: &Hand,
+        out: TickOutput,
+    ) -> TickOutput {
+        let depth = saturation_depth(material, self.options.max_force);
+        if !is_deep(out.proxy, hand.hip, normal, depth) {
+            return out;
         }
-        TickOutput {
-            proxy: p,
-            force,
-            contact,
-            status,
+        let clamped = out.status.input_clamped;
+        if let Some(held) = self.hold_from_touch_down(scene, sweep, hand, clamped) {
+            return held;
         }
+        let on = SurfaceRef {
+            object: hit.object,
+            triangle: out.contact.map_or(hit.triangle, |c| c.triangle),
+        };
+        let pose = &scene.objects()[hit.object].pose;
+        let planes = sweep.planes.len() as u8;
+        let motion = (hand.previous, hand.hip);
+        self.hold = Some(Hold::begin(
+            pose,
+            (on, planes),
+            (out.proxy, normal),
+            hand.hip,
+            motion,
+        ));
+        out
     }
 }
 
@@ -339,14 +397,15 @@ impl Proxy {
 /// active planes; `None` where the walk finds no triangle.
 pub(super) fn contact_at(
     scene: &Scene,
-    (object, triangle): (usize, TriId),
+    on: SurfaceRef,
     p: DVec3,
     hip: DVec3,
     (normal, constraints): (DVec3, u8),
     status: &mut TickStatus,
 ) -> Option<Contact> {
+    let object = on.object;
     let id = scene.objects()[object].id;
-    scene.surface_point(object, triangle, p).map(|(s, walk)| {
+    scene.surface_point(on, p).map(|(s, walk)| {
         status.walk_cap_hit = walk == crate::query::WalkStatus::BoundHit;
         let side = if s.face_normal.dot(normal) >= 0.0 {
             1.0
@@ -392,146 +451,6 @@ pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
         (scaled.normalize() * radius, true)
     } else {
         (p, false)
-    }
-}
-
-/// The result of the constraint steps of one tick.
-pub(super) struct Sweep {
-    pub(super) position: DVec3,
-    /// Where the proxy first stopped at a surface this tick.
-    pub(super) touch_down: DVec3,
-    pub(super) planes: Constraints,
-    /// The first surface met this tick (object, triangle); its plane is the first of
-    /// `planes`.
-    pub(super) first_hit: Option<(usize, TriId)>,
-    /// The last surface met, and its plane.
-    pub(super) last_hit: Option<(Hit, Plane)>,
-}
-
-/// The god-object's constraint steps: aim at the point closest to `hip` on the free side
-/// of the active planes, move toward it, and on a crossing stop at the touched triangle's
-/// plane (moved out by `skin`) and add it. `rest` is the surface the proxy rested on,
-/// `under` the contact triangle of the last tick, under the proxy (object, triangle).
-pub(super) fn constrain(
-    (scene, near): (&Scene, &mut NearCache),
-    mut p: DVec3,
-    hip: DVec3,
-    placed: bool,
-    (rest, under): (Option<Rest>, Option<(usize, TriId)>),
-    options: &ProxyOptions,
-    status: &mut TickStatus,
-) -> Sweep {
-    let mut planes = Constraints::NONE;
-    let mut last_hit = None;
-    let mut touch_down = p;
-    // A proxy placed on a surface (within a probe's reach) touches it when the device
-    // point lies behind its plane, as if it had come to rest there.
-    if placed && let Some(hit) = touching_any(scene, near, p, options.probe_reach()) {
-        let plane = hit_plane(&hit, p, hip, options);
-        if plane.height(hip) < 0.0 {
-            planes.push(plane);
-            last_hit = Some((hit, plane));
-        }
-    }
-    let mut first_hit = last_hit.map(|(h, _): (Hit, Plane)| (h.object, h.triangle));
-    let mut finished = false;
-    for _ in 0..MAX_PROXY_STEPS {
-        let Some(target) = planes.closest_feasible(hip, options.plane_tolerance()) else {
-            status.wedged = true;
-            finished = true;
-            break;
-        };
-        if target == p {
-            finished = true;
-            break;
-        }
-        // The first leg of a tick keeps the surface the proxy rests on when the device
-        // point is still behind it (no search along that leg: the proxy does not move).
-        let resting = match rest {
-            Some(r) if planes.is_empty() => {
-                rest_hit(scene, r.object, r.triangle, p, target, options.skin)
-            }
-            _ => None,
-        };
-        // A leg that stays in the clear zone of the surface last met (or rested on)
-        // meets nothing and ends touching nothing: the searches would find nothing.
-        let slid_on = last_hit
-            .map(|(h, _)| (h.object, h.triangle))
-            .or(rest.map(|r| (r.object, r.triangle)));
-        let others = others_box(p, target, options.probe_reach());
-        if resting.is_none()
-            && let Some((object, triangle)) = slid_on
-            && scene.clear_move_among(
-                near.get(scene, others.0, others.1),
-                object,
-                triangle,
-                p,
-                target,
-                options.probe_reach(),
-            )
-        {
-            status.cleared = true;
-            p = target;
-            finished = true;
-            break;
-        }
-        // A first leg into the surface under the proxy, where its neighbourhood is convex,
-        // meets that triangle first: shown without the search (the same hit).
-        let shown = match under {
-            Some((object, triangle)) if planes.is_empty() && resting.is_none() => scene
-                .first_hit_shown(
-                    near.get(scene, others.0, others.1),
-                    object,
-                    triangle,
-                    p,
-                    target,
-                    options.probe_reach(),
-                ),
-            _ => None,
-        };
-        let (hit, plane) = match resting
-            .or(shown)
-            .or_else(|| first_hit_all(scene, near, p, target, options.probe_reach()))
-        {
-            Some(hit) => {
-                let plane = hit_plane(&hit, p, target, options);
-                p = advance_to_plane(p, target, &plane);
-                (hit, plane)
-            }
-            None => match touching_any(scene, near, target, options.probe_reach()) {
-                // A free move that ends on a surface (or within a probe's reach of it,
-                // moving along it) touches it: its plane becomes a constraint, so that the
-                // proxy never rests where the next probe could start on the surface.
-                Some(hit) => {
-                    let plane = hit_plane(&hit, p, target, options);
-                    p = target;
-                    (hit, plane)
-                }
-                None => {
-                    p = target;
-                    finished = true;
-                    break;
-                }
-            },
-        };
-        if last_hit.is_none() {
-            touch_down = p;
-            first_hit = Some((hit.object, hit.triangle));
-        }
-        last_hit = Some((hit, plane));
-        if !planes.push(plane) {
-            finished = true;
-            status.step_cap_hit = true;
-            break;
-        }
-    }
-    status.step_cap_hit |= !finished;
-    Sweep {
-        position: p,
-        touch_down,
-        planes,
-        first_hit,
-        last_hit,
     }
 }
 

@@ -8,7 +8,7 @@ use glam::DVec3;
 use super::constraints::{Plane, advance_to_plane};
 use super::godobject::{Proxy, ProxyOptions};
 use super::near::{NearCache, search_box};
-use crate::scene::{Hit, Scene};
+use crate::scene::{Hit, Scene, SurfaceRef};
 
 /// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
 /// object index. Only the objects near the segment are tested (see [`NearCache`]).
@@ -135,7 +135,7 @@ impl Proxy {
     /// object. A proxy moved to another scene forgets them all.
     ///
     /// # Real-time
-    /// No allocation; at most [`REMOVALS_KEPT`](crate::scene::REMOVALS_KEPT) steps per
+    /// No allocation; at most `REMOVALS_KEPT` (`scene/removals.rs`) steps per
     /// index (a proxy that missed more forgets them).
     pub(super) fn follow_removals(&mut self, scene: &Scene) {
         let log = scene.removals();
@@ -147,16 +147,16 @@ impl Proxy {
             return;
         }
         let follow = |i: usize| (seen.0 == now.0).then(|| log.follow(seen.1, i)).flatten();
-        self.last = self.last.and_then(|mut l| {
-            l.object = follow(l.object)?;
-            Some(l)
-        });
-        self.rest = self.rest.and_then(|mut r| {
-            r.object = follow(r.object)?;
-            Some(r)
-        });
+        let follow_ref = |s: SurfaceRef| {
+            follow(s.object).map(|object| SurfaceRef {
+                object,
+                triangle: s.triangle,
+            })
+        };
+        self.under = self.under.and_then(follow_ref);
+        self.rest = self.rest.and_then(follow_ref);
         self.hold = self.hold.and_then(|mut h| {
-            h.object = follow(h.object)?;
+            h.on = follow_ref(h.on)?;
             Some(h)
         });
     }

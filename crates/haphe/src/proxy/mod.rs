@@ -36,16 +36,16 @@
 //!    hair in front of it; every later leg is tested as above).
 //!
 //!    A leg that stays in the *clear zone* of the triangle last met or rested on
-//!    ([`Scene::clear_move`](crate::scene::Scene::clear_move)) is known to meet nothing
+//!    (`Scene::clear_move`) is known to meet nothing
 //!    and to end farther than a probe's reach from every surface, so its searches are
 //!    skipped; the result is the one they would give.
 //! 3. **Friction.** In contact, with friction, the proxy stays where it rested while the
 //!    tangential force is inside the static friction cone, and otherwise slips to the
-//!    edge of the dynamic cone ([`friction_target`]); that last move is tested for
+//!    edge of the dynamic cone; that last move is tested for
 //!    crossings too.
 //! 4. **Contact and force.** The surface point under the proxy is found by walking from
 //!    the last triangle touched; the force is the spring–damper toward the proxy with
-//!    force shading, clamped ([`contact_force`]).
+//!    force shading, clamped.
 //! 5. **Deep penetration.** When the tick ends with the device point deeper than the
 //!    *saturation depth* `max_force / stiffness` behind the contact plane (where the spring
 //!    alone reaches the device's maximum force; [`saturation_depth`]), the proxy *holds*
@@ -89,13 +89,13 @@
 //! (outside every object) and says so in the status. The force is finite and never above
 //! [`ProxyOptions::max_force`].
 //!
-//! The constraint steps and the friction rule are plain functions ([`Constraints`],
-//! [`advance_to_plane`], [`friction_target`], [`contact_force`]) so that a brute-force
-//! proxy in the tests, which tests every triangle of every object, runs the same
-//! semantics as the fast one.
+//! The constraint steps and the friction rule are plain crate-private functions
+//! (`constraints.rs`, `force.rs`) so that the brute-force proxy of `verify` (feature
+//! `testing`), which tests every triangle of every object, runs the same semantics as the
+//! fast one.
 
+mod constrain;
 mod constraints;
-mod deep;
 mod force;
 mod godobject;
 mod hold;
@@ -104,13 +104,15 @@ mod near;
 mod output;
 mod rest;
 
-pub use constraints::{Constraints, MAX_CONSTRAINTS, Plane, advance_to_plane};
-#[cfg(any(test, feature = "testing"))]
-pub use deep::{deep_direction, hold_slide, is_deep, saturation_depth};
-pub use force::{MIN_MAX_FORCE, contact_force, friction_target};
-pub use godobject::{
-    DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions, clamp_to_radius,
-};
+pub use constraints::MAX_CONSTRAINTS;
+pub use force::MIN_MAX_FORCE;
+pub use godobject::{DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions};
+pub use hold::saturation_depth;
 pub use output::{Contact, TickOutput, TickStatus};
+// The god-object's geometric steps, which the brute-force proxy of `verify` runs too.
 #[cfg(any(test, feature = "testing"))]
-pub(crate) use rest::{Rest, rests_on};
+pub(crate) use {
+    constraints::{Constraints, Plane, advance_to_plane},
+    godobject::clamp_to_radius,
+    rest::rests_on,
+};

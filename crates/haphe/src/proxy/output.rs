@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use crate::mesh::TriId;
-use crate::scene::ObjectId;
+use crate::scene::{ObjectId, SurfaceRef};
 
 /// Where and how the proxy touches an object, world frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,6 +33,17 @@ pub struct Contact {
     pub constraints: u8,
 }
 
+impl Contact {
+    /// The object and triangle touched.
+    #[inline]
+    pub(crate) fn surface(&self) -> SurfaceRef {
+        SurfaceRef {
+            object: self.object,
+            triangle: self.triangle,
+        }
+    }
+}
+
 /// How a tick went: flags a servo loop can count and log off the servo thread.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct TickStatus {
@@ -55,9 +66,9 @@ pub struct TickStatus {
     pub wedged: bool,
     /// The contact walk reached its cap; the contact point is the best found.
     pub walk_cap_hit: bool,
-    /// A move of the proxy was shown clear by the zone of the triangle it slides on
-    /// ([`Scene::clear_move`](crate::scene::Scene::clear_move)), so its crossing and
-    /// touching searches were skipped (the result is the same).
+    /// A move of the proxy was shown clear by the clear zone of the triangle it slides on
+    /// (see [`crate::proxy`], "Constrain"), so its crossing and touching searches were
+    /// skipped (the result is the same).
     pub cleared: bool,
     /// The device point is deeper than the saturation depth (`max_force / stiffness`)
     /// behind the contact plane: the proxy holds where it was, on the same contact (see

@@ -6,19 +6,12 @@ use glam::DVec3;
 
 use super::constraints::Plane;
 use crate::mesh::{Surface, TriId};
-use crate::scene::{Hit, Pose, Scene, Sides};
+use crate::scene::{Hit, Pose, Scene, Sides, SurfaceRef};
 
 /// How far beyond its constraint plane (as a fraction of the skin) a resting proxy may
 /// lie: the rounding of the projection that put it there, which can land a hair in front.
 /// The first leg then moves it onto the plane.
 pub(crate) const REST_TOLERANCE_OF_SKIN: f64 = 1e-3;
-
-/// The object (index in the scene) and triangle of the last constraint of a tick.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Rest {
-    pub object: usize,
-    pub triangle: TriId,
-}
 
 /// Whether the proxy at `from` (world frame) still rests on `triangle` of the object at
 /// `pose` with `surface` when the device point is at `to`: `from` lies on the free side
@@ -70,18 +63,20 @@ pub(crate) fn rests_on(
     (plane.height(from) <= skin * REST_TOLERANCE_OF_SKIN).then_some((point, normal))
 }
 
-/// Triangle `triangle` of object `i` of `scene` as the surface the proxy at `from` still
-/// rests on with the device point at `to` ([`rests_on`] in that object's frame), as a
-/// [`Hit`] at the start of the move (`t = 0`). `None` when it is not, or when `i` is out of
-/// range.
+/// The triangle `rest` as the surface the proxy at `from` still rests on with the device
+/// point at `to` ([`rests_on`] in its object's frame), as a [`Hit`] at the start of the
+/// move (`t = 0`). `None` when it is not, or when its object is out of range.
 pub(crate) fn rest_hit(
     scene: &Scene,
-    i: usize,
-    triangle: TriId,
+    rest: SurfaceRef,
     from: DVec3,
     to: DVec3,
     skin: f64,
 ) -> Option<Hit> {
+    let SurfaceRef {
+        object: i,
+        triangle,
+    } = rest;
     let o = scene.objects().get(i)?;
     let one_sided = o.sides == Sides::Front;
     let (point, normal) = rests_on(

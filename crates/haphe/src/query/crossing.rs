@@ -143,8 +143,8 @@ impl Tested {
 /// fetched together before they are tested. It never reads the clearances of free cells,
 /// which are cold when the segment comes from far away.
 ///
-/// A segment longer than [`LONG_SEGMENT_FACTOR`] times the diagonal of the surface's
-/// bounding box (a million times: 200 km for a 20 cm object) that reaches the box is
+/// A segment longer than a million times the diagonal of the surface's bounding box
+/// (`LONG_SEGMENT_FACTOR`: 200 km for a 20 cm object) that reaches the box is
 /// answered by testing every triangle, as the brute force does: along such a segment the
 /// walk's parameters cannot place the cells' boundaries exactly.
 ///
@@ -152,7 +152,7 @@ impl Tested {
 /// No allocation (a list of 32 and, only when more triangles are met, a 1 KiB table on
 /// the stack), no lock, no panic; visits at most
 /// the grid's `dims[0] + dims[1] + dims[2]` cells (or, for a segment longer than
-/// [`LONG_SEGMENT_FACTOR`] times the object, tests every triangle once). Non-finite input
+/// a million times the object, tests every triangle once). Non-finite input
 /// gives `None`.
 pub fn first_crossing(surface: &Surface, map: &VoxelMap, p0: DVec3, p1: DVec3) -> Option<Crossing> {
     first_crossing_where(surface, map, p0, p1, |_| true)

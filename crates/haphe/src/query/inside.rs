@@ -25,7 +25,7 @@ pub enum SideStatus {
     Cell,
     /// By counting signed crossings to a nearby cell of known winding number.
     Counted,
-    /// No cell of known winding number within [`MAX_SEARCH_RING`] or too many triangles on
+    /// No cell of known winding number within 4 cells (`MAX_SEARCH_RING`) or too many triangles on
     /// the way: the answer is the best guess (the nearest known cell's state; with none,
     /// inside when the cell borders an [overlap cell](VoxelMap::is_overlap)).
     BoundHit,
@@ -76,9 +76,9 @@ pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, Sid
     if !surface.is_solid() {
         return (Side::Outside, SideStatus::Cell);
     }
-    let Some((known, state)) = nearest_known_cell(map, cell) else {
+    let Some((known, state)) = map.nearest_known_cell(cell, MAX_SEARCH_RING) else {
         // No cell of known winding near: inside if the cell borders where parts overlap.
-        let guess = if next_to_overlap(map, cell) {
+        let guess = if map.borders_overlap(cell) {
             Side::Inside
         } else {
             Side::Outside
@@ -98,8 +98,8 @@ pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, Sid
     // one per part it enters.
     let mut winding = known_winding;
     let margin = super::crossing::plane_margin(map);
-    for visit in map.grid().walk(p, target) {
-        for &t in map.triangles_in(visit.cell) {
+    map.cast_segment(p, target, false, |part| {
+        for &t in part.triangles {
             if tested.insert(t)
                 && !super::crossing::cannot_cross(surface, t, p, target, margin)
                 && let Some(hit) = intersect_segment_triangle(&segment, surface.corners(TriId(t)))
@@ -107,7 +107,8 @@ pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, Sid
                 winding += if hit.entering { -1 } else { 1 };
             }
         }
-    }
+        None
+    });
     if tested.overflowed() {
         return (known_side, SideStatus::BoundHit);
     }
@@ -117,85 +118,4 @@ pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, Sid
         Side::Outside
     };
     (side, SideStatus::Counted)
-}
-
-/// Whether cell `n` has a known winding number: not a surface cell, nor an overlap cell.
-#[inline]
-fn known(map: &VoxelMap, n: [u32; 3]) -> Option<CellState> {
-    match map.state(n) {
-        CellState::Surface => None,
-        CellState::Inside if map.is_overlap(n) => None,
-        state => Some(state),
-    }
-}
-
-/// Whether a face neighbour of `cell` is an [overlap cell](VoxelMap::is_overlap).
-fn next_to_overlap(map: &VoxelMap, cell: [u32; 3]) -> bool {
-    let dims = map.grid().dims();
-    [
-        (0, false),
-        (1, false),
-        (2, false),
-        (0, true),
-        (1, true),
-        (2, true),
-    ]
-    .into_iter()
-    .any(|(axis, up)| {
-        let mut n = cell;
-        n[axis] = if up {
-            cell[axis]
-                .saturating_add(1)
-                .min(dims[axis].saturating_sub(1))
-        } else {
-            cell[axis].saturating_sub(1)
-        };
-        map.is_overlap(n)
-    })
-}
-
-/// The nearest cell (by Chebyshev ring, then by index order) of known winding number: not
-/// a surface cell nor an [overlap cell](VoxelMap::is_overlap).
-fn nearest_known_cell(map: &VoxelMap, cell: [u32; 3]) -> Option<([u32; 3], CellState)> {
-    let dims = map.grid().dims().map(i64::from);
-    let c = cell.map(i64::from);
-    // The six face neighbours first, in the order the ring below visits them: the nearest
-    // cells of the first ring, so the first known one is what the whole ring would give.
-    for (axis, step) in [(0, -1), (1, -1), (2, -1), (2, 1), (1, 1), (0, 1)] {
-        let mut n = c;
-        n[axis] += step;
-        if (0..dims[axis]).contains(&n[axis]) {
-            let n = n.map(|x| x as u32);
-            if let Some(state) = known(map, n) {
-                return Some((n, state));
-            }
-        }
-    }
-    for r in 1..=MAX_SEARCH_RING as i64 {
-        let mut best: Option<([u32; 3], CellState, i64)> = None;
-        for dx in -r..=r {
-            for dy in -r..=r {
-                for dz in -r..=r {
-                    if dx.abs().max(dy.abs()).max(dz.abs()) != r {
-                        continue;
-                    }
-                    let n = [c[0] + dx, c[1] + dy, c[2] + dz];
-                    if (0..3).any(|k| n[k] < 0 || n[k] >= dims[k]) {
-                        continue;
-                    }
-                    let n = n.map(|x| x as u32);
-                    let distance2 = dx * dx + dy * dy + dz * dz;
-                    if best.is_none_or(|(_, _, d)| distance2 < d)
-                        && let Some(state) = known(map, n)
-                    {
-                        best = Some((n, state, distance2));
-                    }
-                }
-            }
-        }
-        if let Some((n, state, _)) = best {
-            return Some((n, state));
-        }
-    }
-    None
 }

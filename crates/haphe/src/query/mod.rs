@@ -18,7 +18,7 @@ mod probe;
 mod segment_triangle;
 mod self_intersect;
 mod triangle_triangle;
-mod validation;
+pub mod validation;
 mod walk;
 mod zone;
 
@@ -36,27 +36,40 @@ pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64
     (above | below).any()
 }
 
-pub use crate::mesh::winding_number;
 pub(crate) use closest::distance_to_segment;
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
-pub use crossing::{
-    Crossing, LONG_SEGMENT_FACTOR, all_crossings_brute_force, first_crossing,
-    first_crossing_brute_force, first_crossing_brute_force_where, first_crossing_where,
-};
-pub use inside::{MAX_SEARCH_RING, Side, SideStatus, classify_point};
-pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within, nearest_within_brute_force};
-pub use probe::Probe;
+pub use crossing::{Crossing, first_crossing};
+pub use inside::{Side, SideStatus, classify_point};
+pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within};
+pub(crate) use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
-pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 pub use self_intersect::{
-    SELF_INTERSECTION_BUDGET_MIN, SELF_INTERSECTION_BUDGET_PER_TRIANGLE, SelfIntersections,
-    self_intersection_budget, self_intersections,
+    SELF_INTERSECTION_BUDGET_PER_TRIANGLE, SelfIntersections, self_intersection_budget,
+    self_intersections,
 };
+pub use validation::Validation;
+pub use walk::{MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, walk_to_nearest};
+
+// The kernels and oracles the tests, benches and fuzz targets compare against, and the
+// clear zones a scene computes for the proxy: public for them, not part of the documented
+// interface.
+#[doc(hidden)]
+pub use crossing::{
+    LONG_SEGMENT_FACTOR, all_crossings_brute_force, first_crossing_brute_force,
+    first_crossing_brute_force_where, first_crossing_where,
+};
+#[doc(hidden)]
+pub use inside::MAX_SEARCH_RING;
+#[doc(hidden)]
+pub use near::nearest_within_brute_force;
+#[doc(hidden)]
+pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
+#[doc(hidden)]
+pub use self_intersect::SELF_INTERSECTION_BUDGET_MIN;
+#[doc(hidden)]
 pub use triangle_triangle::intersect_triangle_triangle;
-pub use validation::{Validation, ValidationError, ValidationRecord, WeldRecord};
-pub use walk::{
-    MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, nearest_point_brute_force,
-    walk_to_nearest,
-};
+#[doc(hidden)]
+pub use walk::nearest_point_brute_force;
+#[doc(hidden)]
 pub use zone::{ClearZone, MAX_ZONE_CELLS, ZONE_SPREAD};
 pub(crate) use zone::{zone_from_bits, zone_height};

@@ -4,8 +4,7 @@
 use glam::DVec3;
 
 use super::closest::{ClosestPoint, closest_point_triangle};
-use crate::map::VoxelMap;
-use crate::map::floor_to_int;
+use crate::map::{CellBox, VoxelMap};
 use crate::mesh::{Surface, TriId};
 
 /// A triangle within the searched radius of a point.
@@ -47,37 +46,19 @@ pub fn nearest_within(
     {
         return None;
     }
+    // The cells the cube overlaps, no farther than one cell from `p`'s.
     let grid = map.grid();
-    let (centre, low, high) = (
-        grid.to_grid(p),
-        grid.to_grid(p - DVec3::splat(radius)),
-        grid.to_grid(p + DVec3::splat(radius)),
-    );
-    let dims = grid.dims();
-    let mut range = [[0u32; 2]; 3];
-    for axis in 0..3 {
-        let c = floor_to_int(centre[axis]);
-        let lo = floor_to_int(low[axis]).max(c.saturating_sub(1)).max(0);
-        let hi = floor_to_int(high[axis])
-            .min(c.saturating_add(1))
-            .min(i64::from(dims[axis]) - 1);
-        if lo > hi {
-            return None;
-        }
-        range[axis] = [lo as u32, hi as u32];
-    }
+    let r = DVec3::splat(radius);
+    let cells = CellBox::around(grid, p - r, p + r).intersect(CellBox::around(grid, p, p).grown(1));
+    map.clip_cells(cells)?;
     let mut best = None;
     // A triangle within `radius` of `p` reaches into the cube, so it is listed in a cell
     // the cube overlaps (the cell lists are conservative).
-    for x in range[0][0]..=range[0][1] {
-        for y in range[1][0]..=range[1][1] {
-            for z in range[2][0]..=range[2][1] {
-                for &t in map.triangles_in([x, y, z]) {
-                    consider(surface, TriId(t), p, radius, &mut best);
-                }
-            }
+    map.visit_cells(cells, |_, triangles| {
+        for &t in triangles {
+            consider(surface, TriId(t), p, radius, &mut best);
         }
-    }
+    });
     best
 }
 

@@ -49,7 +49,7 @@ pub const SELF_INTERSECTION_BUDGET_PER_TRIANGLE: usize = 256;
 
 /// The most candidate pairs [`self_intersections`] tests on a surface of `triangles`
 /// triangles: [`SELF_INTERSECTION_BUDGET_PER_TRIANGLE`] per triangle, and at least
-/// [`SELF_INTERSECTION_BUDGET_MIN`].
+/// 2²¹ (`SELF_INTERSECTION_BUDGET_MIN`).
 pub fn self_intersection_budget(triangles: usize) -> usize {
     triangles
         .saturating_mul(SELF_INTERSECTION_BUDGET_PER_TRIANGLE)
@@ -72,62 +72,13 @@ pub fn self_intersection_budget(triangles: usize) -> usize {
 /// cells stops there, with [`SelfIntersections::complete`] false.
 pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersections {
     let triangles = surface.triangles();
-    // Coincident triangles, in O(n log n): a run of equal sorted corner triples.
-    let mut keyed: Vec<([u32; 3], u32)> = triangles
-        .par_iter()
-        .enumerate()
-        .map(|(t, corners)| {
-            let mut key = *corners;
-            key.sort_unstable();
-            (key, t as u32)
-        })
-        .collect();
-    keyed.par_sort_unstable();
-    let mut is_copy = vec![false; triangles.len()];
-    // How many triangles each representative stands for (1 for most).
-    let mut copies = vec![1u32; triangles.len()];
-    let mut coincident = 0usize;
-    for run in keyed.chunk_by(|a, b| a.0 == b.0) {
-        let k = run.len();
-        if k < 2 {
-            continue;
-        }
-        coincident += k * (k - 1) / 2;
-        copies[run[0].1 as usize] = k as u32;
-        for &(_, t) in &run[1..] {
-            is_copy[t as usize] = true;
-        }
-    }
+    let Coincident {
+        is_copy,
+        copies,
+        coincident,
+    } = Coincident::of(triangles);
     // Candidate pairs, cell by cell, within the budget.
-    let budget = self_intersection_budget(triangles.len());
-    let mut lists: Vec<Vec<u32>> = Vec::new();
-    let mut planned = 0usize;
-    let mut complete = true;
-    for list in map.surface_cell_triangles() {
-        let list: Vec<u32> = list
-            .iter()
-            .copied()
-            .filter(|&t| !is_copy[t as usize])
-            .collect();
-        let pairs = list.len() * list.len().saturating_sub(1) / 2;
-        if planned + pairs > budget {
-            // The part of this cell the budget allows: the pairs of its first `k`
-            // triangles, `k (k - 1) / 2` of them.
-            let room = budget - planned;
-            let k = (((8 * room + 1) as f64).sqrt() as usize)
-                .div_ceil(2)
-                .min(list.len());
-            let k = (0..=k)
-                .rev()
-                .find(|k| k * k.saturating_sub(1) / 2 <= room)
-                .unwrap_or(0);
-            lists.push(list[..k].to_vec());
-            complete = false;
-            break;
-        }
-        planned += pairs;
-        lists.push(list);
-    }
+    let (lists, complete) = cell_lists(map, &is_copy, self_intersection_budget(triangles.len()));
     let mut candidates: Vec<u64> = lists
         .par_iter()
         .flat_map_iter(|list| {
@@ -172,6 +123,87 @@ pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersection
         coincident,
         complete,
     }
+}
+
+/// The coincident triangles (the same three corners) of a surface: one of each group
+/// stands for the others.
+struct Coincident {
+    /// Whether a triangle is a copy of a lower one.
+    is_copy: Vec<bool>,
+    /// How many triangles each representative stands for (1 for most).
+    copies: Vec<u32>,
+    /// The number of coincident pairs.
+    coincident: usize,
+}
+
+impl Coincident {
+    /// Found in O(n log n): a run of equal sorted corner triples.
+    fn of(triangles: &[[u32; 3]]) -> Coincident {
+        let mut keyed: Vec<([u32; 3], u32)> = triangles
+            .par_iter()
+            .enumerate()
+            .map(|(t, corners)| {
+                let mut key = *corners;
+                key.sort_unstable();
+                (key, t as u32)
+            })
+            .collect();
+        keyed.par_sort_unstable();
+        let mut is_copy = vec![false; triangles.len()];
+        // How many triangles each representative stands for (1 for most).
+        let mut copies = vec![1u32; triangles.len()];
+        let mut coincident = 0usize;
+        for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+            let k = run.len();
+            if k < 2 {
+                continue;
+            }
+            coincident += k * (k - 1) / 2;
+            copies[run[0].1 as usize] = k as u32;
+            for &(_, t) in &run[1..] {
+                is_copy[t as usize] = true;
+            }
+        }
+        Coincident {
+            is_copy,
+            copies,
+            coincident,
+        }
+    }
+}
+
+/// The triangle lists of the map's surface cells without the copies, as many as `budget`
+/// candidate pairs allow (the last one cut), and whether they are all there.
+fn cell_lists(map: &VoxelMap, is_copy: &[bool], budget: usize) -> (Vec<Vec<u32>>, bool) {
+    let mut lists: Vec<Vec<u32>> = Vec::new();
+    let mut planned = 0usize;
+    let mut complete = true;
+    for list in map.surface_cell_triangles() {
+        let list: Vec<u32> = list
+            .iter()
+            .copied()
+            .filter(|&t| !is_copy[t as usize])
+            .collect();
+        let pairs = list.len() * list.len().saturating_sub(1) / 2;
+        if planned + pairs > budget {
+            // The part of this cell the budget allows: the pairs of its first `k`
+            // triangles, `k (k - 1) / 2` of them.
+            let room = budget - planned;
+            let k = (((8 * room + 1) as f64).sqrt() as usize)
+                .div_ceil(2)
+                .min(list.len());
+            let k = (0..=k)
+                .rev()
+                .find(|k| k * k.saturating_sub(1) / 2 <= room)
+                .unwrap_or(0);
+            lists.push(list[..k].to_vec());
+            complete = false;
+            break;
+        }
+        planned += pairs;
+        lists.push(list);
+    }
+    (lists, complete)
 }
 
 /// Relative margin of [`clearly_apart`]: a corner must be farther than this fraction of the

@@ -12,7 +12,7 @@
 use glam::DVec3;
 
 use super::behind::{AxisPlane, lies_behind};
-use crate::map::{VoxelMap, floor_to_int};
+use crate::map::{CellBox, VoxelMap};
 use crate::mesh::{Surface, TriFrame, TriId};
 
 /// How far a zone spreads beyond its triangle, in barycentric weight: its footprint holds
@@ -87,100 +87,22 @@ impl ClearZone {
         if frame.is_degenerate() || !(height > 0.0 && height.is_finite()) {
             return ClearZone::NONE;
         }
-        let corners = surface.corners(t);
-        let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
-        let scale = 1.0 + 3.0 * ZONE_SPREAD;
-        let spread = corners.map(|v| centroid + scale * (v - centroid));
-        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        for v in spread {
-            for lift in [-height, height] {
-                let x = v + lift * frame.normal;
-                (lo, hi) = (lo.min(x), hi.max(x));
-            }
-        }
-        // The zone, grown by its height (what other triangles keep from it) and a little
-        // for the rounding of the cell lookup.
-        let grow = height * (1.0 + ZONE_ROUNDING);
-        let (lo, hi) = (lo - DVec3::splat(grow), hi + DVec3::splat(grow));
-        let (glo, ghi) = (grid.to_grid(lo), grid.to_grid(hi));
-        let dims = grid.dims();
-        let mut range = [[0u32; 2]; 3];
-        let mut cells = 1u64;
-        for axis in 0..3 {
-            let a = floor_to_int(glo[axis]).max(0);
-            let b = floor_to_int(ghi[axis]).min(i64::from(dims[axis]) - 1);
-            if a > b {
-                // The zone lies beyond the grid, where there is no triangle at all.
-                return ClearZone {
-                    front: 0.0,
-                    back: 0.0,
-                    height: round_down(height),
-                    below: true,
-                };
-            }
-            range[axis] = [a as u32, b as u32];
-            cells *= (b - a + 1) as u64;
-        }
-        if cells > MAX_ZONE_CELLS {
+        let reach = Reach::of(frame, surface.corners(t), height);
+        let Some(cells) = map.clip_cells(CellBox::around(grid, reach.lo, reach.hi)) else {
+            // The zone lies beyond the grid, where there is no triangle at all.
+            return ClearZone {
+                front: 0.0,
+                back: 0.0,
+                height: round_down(height),
+                below: true,
+            };
+        };
+        if cells.count() > MAX_ZONE_CELLS {
             return ClearZone::NONE;
         }
-        // Only the cells that meet the grown zone matter: it lies within `2·height` of the
-        // plane and within `height` of the spread triangle's edges (in its plane).
-        let mut sides = [(DVec3::ZERO, 0.0); 4];
-        sides[0] = (frame.normal, 0.0);
-        for i in 0..3 {
-            let edge = spread[(i + 2) % 3] - spread[(i + 1) % 3];
-            let out = edge.cross(frame.normal).normalize_or_zero();
-            sides[i + 1] = (out, out.dot(spread[(i + 1) % 3] - frame.origin));
-        }
-        let half = 0.5 * grid.cell_size();
-        let meets = |c: [u32; 3]| {
-            let centre = grid.cell_centre(c) - frame.origin;
-            let (n, _) = sides[0];
-            let within_slab = n.dot(centre).abs() - half * n.abs().element_sum() <= 2.0 * grow;
-            within_slab
-                && sides[1..]
-                    .iter()
-                    .all(|&(m, at)| m.dot(centre) - at - half * m.abs().element_sum() <= grow)
-        };
-        let (mut front, mut back) = (0.0f64, 0.0f64);
-        let mut below = true;
-        let own = surface.triangle(t);
-        let axis_plane = AxisPlane::of(corners, frame.normal);
-        let (triangles, vertices) = (surface.triangles(), surface.vertices());
-        // Triangles already measured (a triangle is listed in every cell it overlaps):
-        // a small open-addressed set on the stack; when it is full, measuring again is
-        // merely slower.
-        let mut seen = [u32::MAX; SEEN_SLOTS];
-        for x in range[0][0]..=range[0][1] {
-            for y in range[1][0]..=range[1][1] {
-                for z in range[2][0]..=range[2][1] {
-                    if !meets([x, y, z]) {
-                        continue;
-                    }
-                    for &u in map.triangles_in([x, y, z]) {
-                        if u == t.0 || !first_sight(&mut seen, u) {
-                            continue;
-                        }
-                        let ids = triangles[u as usize];
-                        let corners = ids.map(|v| vertices[v as usize]);
-                        let heights = corners.map(|p| frame.height(p));
-                        below = below
-                            && lies_behind(frame, own, axis_plane.as_ref(), ids, corners, heights);
-                        for h in heights {
-                            if h > front {
-                                front = h;
-                            }
-                            if -h > back {
-                                back = -h;
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        let (front, back, below) = measure(surface, map, t, &reach, cells);
         // The rounding of those heights: a few ulps of the zone's extent.
-        let slack = ZONE_ROUNDING * (hi - lo).max_element();
+        let slack = ZONE_ROUNDING * (reach.hi - reach.lo).max_element();
         ClearZone {
             front: round_up(front + slack),
             back: round_up(back + slack),
@@ -248,6 +170,103 @@ impl ClearZone {
 #[inline]
 fn in_footprint(w: [f64; 3]) -> bool {
     w.iter().all(|&w| w >= -ZONE_SPREAD)
+}
+
+/// The box of a zone grown by its height (what other triangles keep from it) and a little
+/// for the rounding of the cell lookup, and the planes that bound it.
+struct Reach {
+    lo: DVec3,
+    hi: DVec3,
+    /// The zone's height, grown by the rounding.
+    grow: f64,
+    /// The triangle's unit normal, and the outward unit normals of the spread triangle's
+    /// edges (in its plane) with their offsets from the frame's origin.
+    sides: [(DVec3, f64); 4],
+}
+
+impl Reach {
+    /// The reach of the zone of height `height` over the triangle of `frame` with `corners`:
+    /// the triangle spread by [`ZONE_SPREAD`], lifted by `±height` along its normal.
+    fn of(frame: &TriFrame, corners: [DVec3; 3], height: f64) -> Reach {
+        let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
+        let scale = 1.0 + 3.0 * ZONE_SPREAD;
+        let spread = corners.map(|v| centroid + scale * (v - centroid));
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for v in spread {
+            for lift in [-height, height] {
+                let x = v + lift * frame.normal;
+                (lo, hi) = (lo.min(x), hi.max(x));
+            }
+        }
+        let grow = height * (1.0 + ZONE_ROUNDING);
+        let mut sides = [(frame.normal, 0.0); 4];
+        for i in 0..3 {
+            let edge = spread[(i + 2) % 3] - spread[(i + 1) % 3];
+            let out = edge.cross(frame.normal).normalize_or_zero();
+            sides[i + 1] = (out, out.dot(spread[(i + 1) % 3] - frame.origin));
+        }
+        Reach {
+            lo: lo - DVec3::splat(grow),
+            hi: hi + DVec3::splat(grow),
+            grow,
+            sides,
+        }
+    }
+
+    /// Whether the cell of `grid` whose centre lies at `centre` from the frame's origin
+    /// (half a side `half`) meets the grown zone: within `2·height` of the plane and within
+    /// `height` of the spread triangle's edges (in its plane). Only those cells matter.
+    #[inline]
+    fn meets(&self, centre: DVec3, half: f64) -> bool {
+        let (n, _) = self.sides[0];
+        let within_slab = n.dot(centre).abs() - half * n.abs().element_sum() <= 2.0 * self.grow;
+        within_slab
+            && self.sides[1..]
+                .iter()
+                .all(|&(m, at)| m.dot(centre) - at - half * m.abs().element_sum() <= self.grow)
+    }
+}
+
+/// How far the triangles other than `t` that `map` lists in the `cells` meeting `reach`
+/// rise above `t`'s plane and sink behind it (metres, not yet rounded), and whether they
+/// all lie behind it (see [`ClearZone::below`]).
+fn measure(
+    surface: &Surface,
+    map: &VoxelMap,
+    t: TriId,
+    reach: &Reach,
+    cells: CellBox,
+) -> (f64, f64, bool) {
+    let frame = surface.frame(t);
+    let grid = map.grid();
+    let half = 0.5 * grid.cell_size();
+    let (mut front, mut back) = (0.0f64, 0.0f64);
+    let mut below = true;
+    let own = surface.triangle(t);
+    let axis_plane = AxisPlane::of(surface.corners(t), frame.normal);
+    let (triangles, vertices) = (surface.triangles(), surface.vertices());
+    // Triangles already measured (a triangle is listed in every cell it overlaps): a small
+    // open-addressed set on the stack; when it is full, measuring again is merely slower.
+    let mut seen = [u32::MAX; SEEN_SLOTS];
+    map.visit_cells(cells, |cell, listed| {
+        if !reach.meets(grid.cell_centre(cell) - frame.origin, half) {
+            return;
+        }
+        for &u in listed {
+            if u == t.0 || !first_sight(&mut seen, u) {
+                continue;
+            }
+            let ids = triangles[u as usize];
+            let corners = ids.map(|v| vertices[v as usize]);
+            let heights = corners.map(|p| frame.height(p));
+            below = below && lies_behind(frame, own, axis_plane.as_ref(), ids, corners, heights);
+            for h in heights {
+                front = front.max(h);
+                back = back.max(-h);
+            }
+        }
+    });
+    (front, back, below)
 }
 
 /// The largest coordinate distance of `p` from the origin of `frame`, metres.

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::{BOUND_SLACK, Hit, Near, Scene, SceneObject, Sides};
+use super::{BOUND_SLACK, Hit, Near, Scene, SceneObject, Sides, SurfaceRef};
 use crate::mesh::TriId;
 use crate::query::{
     ClearZone, Probe, Segment, crossing_from_hit, distance_to_segment, triangle_hit,
@@ -18,38 +18,29 @@ const INSIDE_WEIGHT: f64 = 1e-6;
 impl Scene {
     /// Whether the proxy move `from → to` (world frame) provably meets no surface of any
     /// object, with every probe of it reaching `reach` metres: both ends lie in the
-    /// [`ClearZone`] of `triangle` of object `i` (the surface the proxy slides on), and
-    /// every other object's bounding sphere is farther than `reach` from the move. Then
-    /// [`Scene::first_hit`] finds nothing for any object and [`Scene::touching`] finds
-    /// nothing at `to`, so a tick may skip both searches.
-    /// `false` whenever that is not shown (including `i` or `triangle` out of range).
+    /// [`ClearZone`] of the triangle `on` (the surface the proxy slides on), and every
+    /// other object's bounding sphere is farther than `reach` from the move (the others
+    /// taken from `near`, a superset of those whose bounding sphere comes within
+    /// [`others_box`] of the move). Then [`Scene::first_hit`] finds nothing for any object
+    /// and [`Scene::touching`] finds nothing at `to`, so a tick may skip both searches.
+    /// `false` whenever that is not shown (including `on` out of range).
     ///
     /// # Real-time
-    /// One zone (computed on the triangle's first use, see [`Shape::clear_zone`](super::Shape::clear_zone)), two
-    /// frame changes, one sphere test per other object; no allocation, no panic.
-    pub fn clear_move(
-        &self,
-        i: usize,
-        triangle: TriId,
-        from: DVec3,
-        to: DVec3,
-        reach: f64,
-    ) -> bool {
-        let (lo, hi) = others_box(from, to, reach);
-        self.clear_move_among(&self.near(lo, hi), i, triangle, from, to, reach)
-    }
-
-    /// [`Scene::clear_move`] with the other objects taken from `near`, a superset of those
-    /// whose bounding sphere comes within [`others_box`] of the move.
-    pub(crate) fn clear_move_among(
+    /// One zone (computed on the triangle's first use, see
+    /// [`Shape::clear_zone`](super::Shape::clear_zone)), two frame changes, one sphere test
+    /// per other object; no allocation, no panic.
+    pub(crate) fn clear_move(
         &self,
         near: &Near,
-        i: usize,
-        triangle: TriId,
+        on: SurfaceRef,
         from: DVec3,
         to: DVec3,
         reach: f64,
     ) -> bool {
+        let SurfaceRef {
+            object: i,
+            triangle,
+        } = on;
         let Some((o, zone)) = self.zone_of(i, triangle) else {
             return false;
         };
@@ -78,12 +69,15 @@ impl Scene {
     pub(crate) fn first_hit_shown(
         &self,
         near: &Near,
-        i: usize,
-        triangle: TriId,
+        under: SurfaceRef,
         from: DVec3,
         to: DVec3,
         reach: f64,
     ) -> Option<Hit> {
+        let SurfaceRef {
+            object: i,
+            triangle,
+        } = under;
         let (o, zone) = self.zone_of(i, triangle)?;
         let surface = o.shape.surface();
         if !zone.below || !self.others_beyond(near, i, from, to, reach) {
@@ -213,7 +207,16 @@ mod tests {
                 let (from, to) = (pose.to_world(from), pose.to_world(to));
                 let reach = 0.25 * skin;
                 legs += 1;
-                if let Some(hit) = scene.first_hit_shown(&Near::ALL, 0, t, from, to, reach) {
+                if let Some(hit) = scene.first_hit_shown(
+                    &Near::ALL,
+                    SurfaceRef {
+                        object: 0,
+                        triangle: t,
+                    },
+                    from,
+                    to,
+                    reach,
+                ) {
                     shown += 1;
                     assert_eq!(
                         Some(hit),
@@ -245,22 +248,58 @@ mod tests {
         let (from, to) = (on + normal * 1e-6, on - normal * 2e-3);
         assert!(
             scene
-                .first_hit_shown(&Near::ALL, 0, t, from, to, 2.5e-7)
+                .first_hit_shown(
+                    &Near::ALL,
+                    SurfaceRef {
+                        object: 0,
+                        triangle: t
+                    },
+                    from,
+                    to,
+                    2.5e-7
+                )
                 .is_some()
         );
         assert!(
             scene
-                .first_hit_shown(&Near::ALL, 0, TriId(1 << 30), from, to, 2.5e-7)
+                .first_hit_shown(
+                    &Near::ALL,
+                    SurfaceRef {
+                        object: 0,
+                        triangle: TriId(1 << 30)
+                    },
+                    from,
+                    to,
+                    2.5e-7
+                )
                 .is_none()
         );
         assert!(
             scene
-                .first_hit_shown(&Near::ALL, 3, t, from, to, 2.5e-7)
+                .first_hit_shown(
+                    &Near::ALL,
+                    SurfaceRef {
+                        object: 3,
+                        triangle: t
+                    },
+                    from,
+                    to,
+                    2.5e-7
+                )
                 .is_none()
         );
         assert!(
             scene
-                .first_hit_shown(&Near::ALL, 0, t, to, from, 2.5e-7)
+                .first_hit_shown(
+                    &Near::ALL,
+                    SurfaceRef {
+                        object: 0,
+                        triangle: t
+                    },
+                    to,
+                    from,
+                    2.5e-7
+                )
                 .is_none()
         );
         let shape = Arc::clone(&scene.objects()[0].shape);
@@ -272,7 +311,16 @@ mod tests {
         );
         assert!(
             scene
-                .first_hit_shown(&Near::ALL, 0, t, from, to, 2.5e-7)
+                .first_hit_shown(
+                    &Near::ALL,
+                    SurfaceRef {
+                        object: 0,
+                        triangle: t
+                    },
+                    from,
+                    to,
+                    2.5e-7
+                )
                 .is_none()
         );
     }

@@ -42,7 +42,6 @@ pub use invalid::{InvalidValue, MAX_FORCE_LIMIT_N, check_max_force};
 pub use material::Material;
 pub use moves::ObjectKey;
 pub use pose::Pose;
-pub use removals::REMOVALS_KEPT;
 pub use shape::Shape;
 
 use std::sync::Arc;
@@ -124,9 +123,20 @@ impl SceneObject {
     }
 }
 
+/// A triangle of one of a scene's objects: the object's index in [`Scene::objects`] and
+/// the triangle. What the proxy keeps from tick to tick (the surface it rests on, the
+/// contact under it, the contact it holds) and what a hit met.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct SurfaceRef {
+    /// Index of the object in the scene.
+    pub object: usize,
+    /// The triangle, in the object's surface.
+    pub triangle: TriId,
+}
+
 /// Where a path first meets an object's surface, world frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Hit {
+pub(crate) struct Hit {
     /// Parameter along the move, `≥ 0`: a crossing within a probe's reach behind the start
     /// counts as 0, one within reach past the end exceeds 1 (see [`Probe`]).
     pub t: f64,
@@ -143,6 +153,15 @@ pub struct Hit {
 }
 
 impl Hit {
+    /// The triangle met.
+    #[inline]
+    pub(crate) fn surface(&self) -> SurfaceRef {
+        SurfaceRef {
+            object: self.object,
+            triangle: self.triangle,
+        }
+    }
+
     /// The hit of object `i` at `pose` for `crossing`, found by the probe `probe` (object
     /// frame crossing, world frame hit).
     fn of_crossing(i: usize, pose: &Pose, probe: &Probe, crossing: &Crossing) -> Hit {
@@ -363,7 +382,7 @@ impl Scene {
     ///
     /// # Real-time
     /// A bounding-sphere test, then [`first_crossing_where`] in the object frame.
-    pub fn first_hit(&self, i: usize, from: DVec3, to: DVec3, reach: f64) -> Option<Hit> {
+    pub(crate) fn first_hit(&self, i: usize, from: DVec3, to: DVec3, reach: f64) -> Option<Hit> {
         let o = self.objects.get(i)?;
         let shape = &*o.shape;
         let one_sided = o.sides == Sides::Front;
@@ -388,7 +407,7 @@ impl Scene {
     ///
     /// # Real-time
     /// A bounding-sphere test, then [`nearest_within`] in the object frame.
-    pub fn touching(&self, i: usize, p: DVec3, radius: f64) -> Option<Hit> {
+    pub(crate) fn touching(&self, i: usize, p: DVec3, radius: f64) -> Option<Hit> {
         let o = self.objects.get(i)?;
         let shape = &*o.shape;
         let centre = o.pose.to_world(shape.bound_centre());
@@ -411,24 +430,24 @@ impl Scene {
     /// Where the world point `p` was, relative to object `i`, at the previous tick,
     /// expressed at the object's current pose: `pose · previous_pose⁻¹ · p`. Equal to `p`
     /// for an object at rest (or out of range).
-    pub fn previous_relative(&self, i: usize, p: DVec3) -> DVec3 {
+    pub(crate) fn previous_relative(&self, i: usize, p: DVec3) -> DVec3 {
         match self.objects.get(i) {
             Some(o) if o.moved() => o.pose.to_world(o.previous_pose.to_object(p)),
             _ => p,
         }
     }
 
-    /// The locally nearest surface point of object `i` to the world point `p`, walking
-    /// from triangle `start` (see [`walk_to_nearest`]); point and normals in the world
-    /// frame. `None` when `i` is out of range.
-    pub fn surface_point(
+    /// The locally nearest surface point to the world point `p` of the object of `start`,
+    /// walking from its triangle (see [`walk_to_nearest`]); point and normals in the world
+    /// frame. `None` when the object is out of range.
+    pub(crate) fn surface_point(
         &self,
-        i: usize,
-        start: TriId,
+        start: SurfaceRef,
         p: DVec3,
     ) -> Option<(SurfacePoint, WalkStatus)> {
-        let o = self.objects.get(i)?;
-        let (mut s, status) = walk_to_nearest(o.shape.surface(), start, o.pose.to_object(p));
+        let o = self.objects.get(start.object)?;
+        let (mut s, status) =
+            walk_to_nearest(o.shape.surface(), start.triangle, o.pose.to_object(p));
         s.point = o.pose.to_world(s.point);
         s.face_normal = o.pose.vector_to_world(s.face_normal);
         s.shading_normal = o.pose.vector_to_world(s.shading_normal);

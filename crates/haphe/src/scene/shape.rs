@@ -93,6 +93,7 @@ impl Shape {
     /// call for a triangle computes it ([`ClearZone::of`]: at most
     /// [`MAX_ZONE_CELLS`](crate::query::MAX_ZONE_CELLS) cells read). Two threads computing
     /// the same zone at once store the same value.
+    #[doc(hidden)]
     #[inline]
     pub fn clear_zone(&self, t: TriId) -> ClearZone {
         let Some(slot) = self.zones.get(t.index()) else {

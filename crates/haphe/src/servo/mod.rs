@@ -82,18 +82,19 @@ pub use device::{
     Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
 };
 pub use realtime::{
-    DEFAULT_SPIN_FRACTION, DEFAULT_SPIN_S, DeviceClock, FIFO_PRIORITY, Interference,
-    RealtimeOptions, RealtimeRun, RealtimeSetup, STANDBY_GRACE_S, ServoLoop, StandbyReport,
-    check_core,
+    DeviceClock, Interference, RealtimeOptions, RealtimeRun, RealtimeSetup, ServoLoop,
+    StandbyReport, check_core,
 };
+#[doc(hidden)]
+pub use simulated::simulated_spec;
 pub use simulated::{
-    HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, PathKind, ReplayDevice, SLIDE_SPEED,
-    STRIKE_SPEED, ScriptedDevice, SimulatedHand, TraceError, Trajectory, TrajectoryError,
-    scene_bounds, scripted_path, simulated_spec, surface_below,
+    HandOptions, HipTrace, PathKind, ReplayDevice, ScriptedDevice, SimulatedHand, TraceError,
+    Trajectory, TrajectoryError, scene_bounds, scripted_path,
 };
+#[doc(hidden)]
+pub use tick::MAX_MOTION_AMPLITUDE;
 pub use tick::{
-    Histogram, MAX_MOTION_AMPLITUDE, MAX_MOTION_FREQUENCY, MAX_MOTION_RATE, MAX_MOTION_SPEED,
-    MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions, StopReason,
-    TickStats,
+    Histogram, MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions,
+    StopReason, TickStats,
 };
 pub use trace::{CSV_HEADER, Phase, STATUS_NAMES, TickRecord, write_csv_header};

@@ -201,51 +201,7 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
         let line = line_of(text, spanned.span().start);
         let place = format!("{file}: object {} (line {line})", i + 1);
         let spec = spanned.get_ref();
-        let (source, name) = match (&spec.shape, &spec.mesh) {
-            (Some(_), Some(_)) => bail!("{place}: give either `shape` or `mesh`, not both"),
-            (None, None) => bail!(
-                "{place}: give `shape = \"blob\"` (or another built-in shape) or `mesh = \"FILE\"`"
-            ),
-            (Some(shape), None) => {
-                if spec.units.is_some() {
-                    bail!("{place}: `units` applies to a mesh file, not to a built-in shape");
-                }
-                let which: Catalog = match shape.parse() {
-                    Ok(which) => which,
-                    Err(e) => bail!("{place}: shape {shape:?}: {e}"),
-                };
-                let n = spec.triangles.unwrap_or(DEFAULT_TRIANGLES);
-                if let Err(e) = Catalog::check_triangles(n) {
-                    bail!("{place}: {e}");
-                }
-                (
-                    ObjectSource::Shape {
-                        which,
-                        triangles: n,
-                    },
-                    shape.clone(),
-                )
-            }
-            (None, Some(mesh)) => {
-                if spec.triangles.is_some() {
-                    bail!("{place}: `triangles` applies to a built-in shape, not to a mesh file");
-                }
-                let units = match &spec.units {
-                    Some(u) => match u.parse::<Units>() {
-                        Ok(units) => units,
-                        Err(e) => bail!("{place}: units {u:?}: {e}"),
-                    },
-                    None => Units::Metres,
-                };
-                (
-                    ObjectSource::Mesh {
-                        path: base.join(mesh),
-                        units,
-                    },
-                    mesh.display().to_string(),
-                )
-            }
-        };
+        let (source, name) = object_source(spec, base, &place)?;
         for (what, v) in [("position", spec.position), ("rotation", spec.rotation)] {
             if v.iter().any(|x| !x.is_finite()) {
                 bail!("{place}: `{what}` must be finite");
@@ -273,25 +229,7 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
             bail!("{place}: more than {MAX_OBJECTS} objects in the scene");
         }
         let first = spec.id.unwrap_or(out.len() as u32);
-        let motion = match &spec.motion {
-            None => None,
-            Some(MotionSpec::Linear { velocity }) => Some(Motion::Linear {
-                velocity: vec3(*velocity),
-            }),
-            Some(MotionSpec::Oscillating {
-                amplitude,
-                frequency,
-            }) => Some(Motion::Oscillating {
-                amplitude: vec3(*amplitude),
-                frequency: *frequency,
-            }),
-            Some(MotionSpec::Rotating { axis, rate }) => Some(Motion::Rotating {
-                axis: vec3(*axis),
-                rate: *rate,
-            }),
-        }
-        .map(|motion| motion.checked().map_err(|e| fail(format!("{place}: {e}"))))
-        .transpose()?;
+        let motion = motion_of(spec, &place)?;
         for copy in copies {
             let Some(id) = first.checked_add(copy.index).map(ObjectId) else {
                 bail!("{place}: the ids of the grid's copies pass {}", u32::MAX);
@@ -316,6 +254,83 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
         }
     }
     Ok(out)
+}
+
+/// Where object `spec` comes from (a built-in shape or a mesh file, relative to `base`)
+/// and the name it gets by default; `place` names it in messages.
+fn object_source(
+    spec: &ObjectSpec,
+    base: &Path,
+    place: &str,
+) -> Result<(ObjectSource, String), SceneFileError> {
+    Ok(match (&spec.shape, &spec.mesh) {
+        (Some(_), Some(_)) => bail!("{place}: give either `shape` or `mesh`, not both"),
+        (None, None) => bail!(
+            "{place}: give `shape = \"blob\"` (or another built-in shape) or `mesh = \"FILE\"`"
+        ),
+        (Some(shape), None) => {
+            if spec.units.is_some() {
+                bail!("{place}: `units` applies to a mesh file, not to a built-in shape");
+            }
+            let which: Catalog = match shape.parse() {
+                Ok(which) => which,
+                Err(e) => bail!("{place}: shape {shape:?}: {e}"),
+            };
+            let n = spec.triangles.unwrap_or(DEFAULT_TRIANGLES);
+            if let Err(e) = Catalog::check_triangles(n) {
+                bail!("{place}: {e}");
+            }
+            (
+                ObjectSource::Shape {
+                    which,
+                    triangles: n,
+                },
+                shape.clone(),
+            )
+        }
+        (None, Some(mesh)) => {
+            if spec.triangles.is_some() {
+                bail!("{place}: `triangles` applies to a built-in shape, not to a mesh file");
+            }
+            let units = match &spec.units {
+                Some(u) => match u.parse::<Units>() {
+                    Ok(units) => units,
+                    Err(e) => bail!("{place}: units {u:?}: {e}"),
+                },
+                None => Units::Metres,
+            };
+            (
+                ObjectSource::Mesh {
+                    path: base.join(mesh),
+                    units,
+                },
+                mesh.display().to_string(),
+            )
+        }
+    })
+}
+
+/// The checked motion of object `spec`, if it has one; `place` names it in messages.
+fn motion_of(spec: &ObjectSpec, place: &str) -> Result<Option<Motion>, SceneFileError> {
+    match &spec.motion {
+        None => None,
+        Some(MotionSpec::Linear { velocity }) => Some(Motion::Linear {
+            velocity: vec3(*velocity),
+        }),
+        Some(MotionSpec::Oscillating {
+            amplitude,
+            frequency,
+        }) => Some(Motion::Oscillating {
+            amplitude: vec3(*amplitude),
+            frequency: *frequency,
+        }),
+        Some(MotionSpec::Rotating { axis, rate }) => Some(Motion::Rotating {
+            axis: vec3(*axis),
+            rate: *rate,
+        }),
+    }
+    .map(|motion| motion.checked().map_err(|e| fail(format!("{place}: {e}"))))
+    .transpose()
 }
 
 #[cfg(test)]

@@ -21,11 +21,11 @@ use super::oracle::TriangleBounds;
 use super::{KEPT_FAILURES, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Rest, advance_to_plane,
-    clamp_to_radius, rests_on,
+    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, advance_to_plane, clamp_to_radius,
+    rests_on,
 };
 use crate::query::{Probe, Side, classify_point, nearest_within_brute_force};
-use crate::scene::{Material, Pose, Scene, Shape, Sides};
+use crate::scene::{Material, Pose, Scene, Shape, Sides, SurfaceRef};
 
 /// Largest distance between the fast proxy and the brute-force one, metres.
 pub const PROXY_TOLERANCE_M: f64 = 1e-9;
@@ -51,7 +51,7 @@ pub struct BruteProxy {
     /// Placed and not ticked yet (see [`Proxy::new`]).
     placed: bool,
     /// The last constraint of the previous tick.
-    rest: Option<Rest>,
+    rest: Option<SurfaceRef>,
     /// The contact held beyond the saturation depth.
     hold: Option<HeldContact>,
     /// The device point of the previous tick.
@@ -65,11 +65,11 @@ struct Steps {
     /// Where the proxy first stopped at a surface.
     touch_down: Option<DVec3>,
     /// The surface and plane met first.
-    first: Option<(Rest, Plane)>,
+    first: Option<(SurfaceRef, Plane)>,
     /// The object and plane met last.
     object: usize,
     plane: Option<Plane>,
-    rest: Option<Rest>,
+    rest: Option<SurfaceRef>,
 }
 
 impl Steps {
@@ -89,7 +89,7 @@ impl Steps {
     /// Met `h` on `plane` at `p`: the touch-down and the surface met first (if the
     /// first), the object, plane and triangle met last.
     fn met(&mut self, p: DVec3, h: &BruteHit, plane: Plane) {
-        let surface = Rest {
+        let surface = SurfaceRef {
             object: h.object,
             triangle: h.triangle,
         };
@@ -154,7 +154,7 @@ impl BruteProxy {
         self.placed = false;
         self.rest = proxy.rest();
         self.hold = proxy.hold().map(|h| HeldContact {
-            object: h.object,
+            object: h.on.object,
             normal: h.normal_object,
             entry: h.entry_object,
             hand: h.hip_object,
@@ -217,7 +217,7 @@ impl BruteProxy {
     }
 
     /// The surface the proxy rests on (see [`Proxy`]'s resting rule).
-    fn resting(&self, rest: Rest, p: DVec3, target: DVec3) -> Option<BruteHit> {
+    fn resting(&self, rest: SurfaceRef, p: DVec3, target: DVec3) -> Option<BruteHit> {
         let o = self.objects.get(rest.object)?;
         let (point, normal) = rests_on(
             o.shape.surface(),

@@ -177,7 +177,7 @@ fn absurd_counts_are_refused_before_allocating() {
         format!(
             "many.glb: header: too large: the scene's nodes place {placed} triangles, more than \
              the limit of {}",
-            haphe::mesh::read::gltf::MAX_TRIANGLES
+            haphe::mesh::GLTF_MAX_TRIANGLES
         )
     );
 }

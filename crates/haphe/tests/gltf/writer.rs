@@ -46,7 +46,7 @@ impl Writer {
 
     /// A buffer view over `bytes`, appended to the buffer at a 4-byte boundary.
     pub fn view(&mut self, bytes: &[u8], stride: Option<usize>) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let mut view =
@@ -159,11 +159,11 @@ impl Writer {
 /// A `.glb` of a JSON document and a BIN chunk.
 pub fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     let mut json = serde_json::to_vec(doc).expect("json");
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let length = 12 + 8 + json.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };

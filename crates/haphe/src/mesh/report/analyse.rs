@@ -29,22 +29,7 @@ pub(crate) fn analyse_with_edges(mesh: &Mesh) -> (MeshReport, EdgeTable) {
     let tris = &mesh.triangles;
     // Measure relative to the box centre, so signed volumes of far-away meshes keep digits.
     let (lo, hi) = mesh.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
-    let centre = 0.5 * (lo + hi);
-    let measures: Vec<TriMeasure> = (0..tris.len())
-        .into_par_iter()
-        .map(|t| {
-            let [a, b, c] = mesh.corners(t).map(|p| p - centre);
-            TriMeasure {
-                area: 0.5 * (b - a).cross(c - a).length(),
-                volume: a.dot(b.cross(c)) / 6.0,
-                relative_height: if has_distinct_corners(&tris[t]) {
-                    relative_height(a, b, c)
-                } else {
-                    0.0
-                },
-            }
-        })
-        .collect();
+    let measures = measure(mesh, 0.5 * (lo + hi));
 
     let mut defects = Defects::default();
     for (t, m) in measures.iter().enumerate() {
@@ -56,35 +41,11 @@ pub(crate) fn analyse_with_edges(mesh: &Mesh) -> (MeshReport, EdgeTable) {
     }
 
     let table = EdgeTable::build(tris);
-    let mut edges = 0;
-    // Triangles joined by any shared edge (components) ...
-    let mut component_parent: Vec<u32> = (0..tris.len() as u32).collect();
-    // ... and corners `3·t + i` joined across manifold edges around their shared vertex
-    // (fans: a vertex with more than one fan is non-manifold).
-    let mut corner_parent: Vec<u32> = (0..3 * tris.len() as u32).collect();
-    for group in table.groups() {
-        edges += 1;
-        let edge = group[0].vertices();
-        for pair in group.windows(2) {
-            union(&mut component_parent, pair[0].tri, pair[1].tri);
-        }
-        match group {
-            [_] => defects.boundary_edges.push(edge),
-            [h0, h1] => {
-                if h0.forward == h1.forward {
-                    defects.orientation_conflicts.push(edge_use(edge, group));
-                }
-                for v in edge {
-                    union(
-                        &mut corner_parent,
-                        corner_of(tris, h0.tri, v),
-                        corner_of(tris, h1.tri, v),
-                    );
-                }
-            }
-            _ => defects.nonmanifold_edges.push(edge_use(edge, group)),
-        }
-    }
+    let Joined {
+        edges,
+        mut component_parent,
+        mut corner_parent,
+    } = join_edges(tris, &table, &mut defects);
     defects.nonmanifold_vertices =
         nonmanifold_vertices(tris, &mut corner_parent, mesh.vertices.len());
     defects.duplicate_faces = duplicate_faces(tris, &table);
@@ -107,19 +68,7 @@ pub(crate) fn analyse_with_edges(mesh: &Mesh) -> (MeshReport, EdgeTable) {
 
     let closed = defects.boundary_edges.is_empty() && defects.nonmanifold_edges.is_empty();
     let oriented = defects.orientation_conflicts.is_empty();
-    let has_area = defects.degenerate_triangles.len() < tris.len();
-    let usable_as = if !has_area {
-        Usability::Unusable
-    } else if closed
-        && oriented
-        && defects.nonmanifold_vertices.is_empty()
-        && defects.inverted_components.is_empty()
-        && defects.duplicate_faces.is_empty()
-    {
-        Usability::Solid
-    } else {
-        Usability::Surface
-    };
+    let usable_as = usability(&defects, tris.len(), closed && oriented);
     let genus = component_list
         .iter()
         .filter_map(|c| c.genus)
@@ -149,6 +98,89 @@ pub(crate) fn analyse_with_edges(mesh: &Mesh) -> (MeshReport, EdgeTable) {
         defects,
     };
     (report, table)
+}
+
+/// The measures of every triangle, relative to `centre`.
+fn measure(mesh: &Mesh, centre: DVec3) -> Vec<TriMeasure> {
+    let tris = &mesh.triangles;
+    (0..tris.len())
+        .into_par_iter()
+        .map(|t| {
+            let [a, b, c] = mesh.corners(t).map(|p| p - centre);
+            TriMeasure {
+                area: 0.5 * (b - a).cross(c - a).length(),
+                volume: a.dot(b.cross(c)) / 6.0,
+                relative_height: if has_distinct_corners(&tris[t]) {
+                    relative_height(a, b, c)
+                } else {
+                    0.0
+                },
+            }
+        })
+        .collect()
+}
+
+/// What the edges join: the number of distinct edges, the triangles joined by any shared
+/// edge (union–find parents of the components), and the corners `3·t + i` joined across
+/// manifold edges around their shared vertex (fans: a vertex with more than one fan is
+/// non-manifold).
+struct Joined {
+    edges: usize,
+    component_parent: Vec<u32>,
+    corner_parent: Vec<u32>,
+}
+
+/// Joins the triangles and corners across the edges of `table`, recording boundary,
+/// non-manifold and conflicting edges in `defects`.
+fn join_edges(tris: &[[u32; 3]], table: &EdgeTable, defects: &mut Defects) -> Joined {
+    let mut edges = 0;
+    let mut component_parent: Vec<u32> = (0..tris.len() as u32).collect();
+    let mut corner_parent: Vec<u32> = (0..3 * tris.len() as u32).collect();
+    for group in table.groups() {
+        edges += 1;
+        let edge = group[0].vertices();
+        for pair in group.windows(2) {
+            union(&mut component_parent, pair[0].tri, pair[1].tri);
+        }
+        match group {
+            [_] => defects.boundary_edges.push(edge),
+            [h0, h1] => {
+                if h0.forward == h1.forward {
+                    defects.orientation_conflicts.push(edge_use(edge, group));
+                }
+                for v in edge {
+                    union(
+                        &mut corner_parent,
+                        corner_of(tris, h0.tri, v),
+                        corner_of(tris, h1.tri, v),
+                    );
+                }
+            }
+            _ => defects.nonmanifold_edges.push(edge_use(edge, group)),
+        }
+    }
+    Joined {
+        edges,
+        component_parent,
+        corner_parent,
+    }
+}
+
+/// What haphe can do with a mesh of `triangles` triangles with `defects`, closed and
+/// consistently oriented or not.
+fn usability(defects: &Defects, triangles: usize, closed_and_oriented: bool) -> Usability {
+    let has_area = defects.degenerate_triangles.len() < triangles;
+    if !has_area {
+        Usability::Unusable
+    } else if closed_and_oriented
+        && defects.nonmanifold_vertices.is_empty()
+        && defects.inverted_components.is_empty()
+        && defects.duplicate_faces.is_empty()
+    {
+        Usability::Solid
+    } else {
+        Usability::Surface
+    }
 }
 
 fn edge_use(edge: [u32; 2], group: &[HalfEdge]) -> EdgeUse {

@@ -7,7 +7,7 @@ mod standby;
 
 pub use external::DeviceClock;
 pub use interference::Interference;
-pub use standby::{STANDBY_GRACE_S, StandbyReport};
+pub use standby::StandbyReport;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -24,7 +24,7 @@ use standby::with_standby;
 
 /// Longest part of a period spun before a deadline (instead of sleeping), seconds: the
 /// operating system's wake-up is often late by tens of microseconds, so the last part is
-/// spun. At high rates the default is [`DEFAULT_SPIN_FRACTION`] of the period instead.
+/// spun. At high rates the default is `DEFAULT_SPIN_FRACTION` of the period instead.
 pub const DEFAULT_SPIN_S: f64 = 200e-6;
 
 /// Default spin at high rates, as a fraction of the period. A real-time thread that never
@@ -49,14 +49,14 @@ pub struct RealtimeOptions {
     /// the least work; pinning is skipped when there is a single core).
     pub core: Option<usize>,
     /// Spin (instead of sleeping) for this last part before each deadline, seconds.
-    /// `None`: [`DEFAULT_SPIN_S`], at most [`DEFAULT_SPIN_FRACTION`] of the period.
+    /// `None`: 200 µs, at most 30 % of the period.
     pub spin_seconds: Option<f64>,
     /// Capacity of the record ring to the reading thread, ticks; records that find it
     /// full are dropped and counted.
     pub record_capacity: usize,
     /// Run a standby thread pinned to this core, which ticks in place of the servo
     /// thread when that one has not started a tick
-    /// [`STANDBY_GRACE_S`](super::STANDBY_GRACE_S) after its deadline (its core was taken
+    /// 20 µs after its deadline (its core was taken
     /// away: host steal time on a virtual machine, or a preemption). The standby spins the
     /// whole period at normal priority, so it costs a second core; `None` (the default):
     /// no standby. A core the servo thread is pinned to gets no standby (said in

@@ -1,7 +1,7 @@
 //! The standby servo thread (see
 //! [`RealtimeOptions::standby_core`](super::RealtimeOptions::standby_core)): a second
 //! thread, pinned to another core, that runs a tick in place of the servo thread when that
-//! one has not started it [`STANDBY_GRACE_S`] after its deadline. On a shared machine the servo
+//! one has not started it 20 µs (`STANDBY_GRACE_S`) after its deadline. On a shared machine the servo
 //! thread's core is sometimes taken away for a while (host steal time on a virtual
 //! machine, a preemption); the other core is seldom taken at the same moment.
 //!
@@ -22,7 +22,7 @@ use crate::servo::device::Device;
 /// [`RealtimeOptions::standby_core`](super::RealtimeOptions::standby_core)) takes it,
 /// seconds: far above the servo thread's own lateness when it runs (under a microsecond at
 /// the median when it spins), far below a period at 10 kHz.
-pub const STANDBY_GRACE_S: f64 = 20e-6;
+const STANDBY_GRACE_S: f64 = 20e-6;
 
 /// What the standby thread of a run did (see
 /// [`RealtimeOptions::standby_core`](super::RealtimeOptions::standby_core)).
@@ -79,7 +79,7 @@ impl<D: Device> Shared<D> {
 }
 
 /// The loop of the servo thread and of a standby thread pinned to `core` that ticks in
-/// its place when it is late by [`STANDBY_GRACE_S`]. Returns the run and what the
+/// its place when it is late by 20 µs (`STANDBY_GRACE_S`). Returns the run and what the
 /// standby did.
 pub(super) fn with_standby<D: Device>(
     run: Run<D>,

@@ -11,8 +11,5 @@ mod trajectory;
 
 pub use hand::{HandOptions, SimulatedHand};
 pub use replay::{HipTrace, ReplayDevice, TraceError};
-pub use scripted::{
-    HOVER_M, PRESS_DEPTH_M, PathKind, SLIDE_SPEED, STRIKE_SPEED, ScriptedDevice, scene_bounds,
-    scripted_path, simulated_spec, surface_below,
-};
+pub use scripted::{PathKind, ScriptedDevice, scene_bounds, scripted_path, simulated_spec};
 pub use trajectory::{Trajectory, TrajectoryError};

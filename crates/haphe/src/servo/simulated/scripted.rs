@@ -15,13 +15,13 @@ use crate::servo::device::{DeviceFault, DeviceSpec};
 /// How far below the surface a pressing target goes, metres: with the simulated hand's
 /// default spring (300 N/m) against a 500 N/m surface it settles about 2.3 mm deep, a
 /// light press of about 1.1 N.
-pub const PRESS_DEPTH_M: f64 = 0.006;
+const PRESS_DEPTH_M: f64 = 0.006;
 /// Height of the hovering start point above the highest object, metres.
-pub const HOVER_M: f64 = 0.03;
+const HOVER_M: f64 = 0.03;
 /// Speed of a strike, m/s: a fast tap.
-pub const STRIKE_SPEED: f64 = 1.5;
+const STRIKE_SPEED: f64 = 1.5;
 /// Speed of a slide along a surface, m/s.
-pub const SLIDE_SPEED: f64 = 0.05;
+const SLIDE_SPEED: f64 = 0.05;
 /// [`PathKind::Explore`] strokes over random objects of a scene of at most this many
 /// objects; a larger scene is explored on its first object only, hovering just above it (a
 /// user exploring one object of many, at the speeds of a hand).
@@ -34,17 +34,17 @@ pub const EXPLORE_ANY_MAX_OBJECTS: usize = 16;
 #[non_exhaustive]
 pub enum PathKind {
     /// Come down onto the top of the first object (its highest point near the middle),
-    /// press [`PRESS_DEPTH_M`] into it, hold, lift.
+    /// press 6 mm into it, hold, lift.
     Press,
     /// Press into the top of the first object and slide across it along `x` at
-    /// [`SLIDE_SPEED`], following its height, then lift.
+    /// 5 cm/s, following its height, then lift.
     Slide,
     /// Press into the top of the first object and draw circles on it.
     Circle,
     /// Random strokes on the tops of all objects, one a second: move over the scene to
     /// the next stroke, come down, slide, lift (deterministic for a seed).
     Explore,
-    /// Hit the top of the first object at [`STRIKE_SPEED`] aiming 4 cm below its surface,
+    /// Hit the top of the first object at 1.5 m/s aiming 4 cm below its surface,
     /// hold, lift.
     Strike,
 }
@@ -104,7 +104,7 @@ pub fn scene_bounds(scene: &Scene) -> Option<(DVec3, DVec3)> {
 
 /// The highest surface point of the scene under `(x, y)`, metres, world frame: the first
 /// crossing of a vertical segment from above every object down to below them.
-pub fn surface_below(scene: &Scene, x: f64, y: f64) -> Option<DVec3> {
+fn surface_below(scene: &Scene, x: f64, y: f64) -> Option<DVec3> {
     let (lo, hi) = scene_bounds(scene)?;
     let top = DVec3::new(x, y, hi.z + 1.0);
     let bottom = DVec3::new(x, y, lo.z - 1.0);
@@ -161,140 +161,200 @@ pub fn scripted_path(
     let first = &scene.objects()[0];
     let c = first.pose.to_world(first.shape.bound_centre());
     let r = first.shape.bound_radius();
-    let hover_z = hi.z + HOVER_M;
-    let top_at = |x: f64, y: f64| surface_below(scene, x, y).unwrap_or(DVec3::new(x, y, c.z));
-    let top = highest_point(scene, c, r).unwrap_or(DVec3::new(c.x, c.y, c.z));
-    let above = |p: DVec3| DVec3::new(p.x, p.y, hover_z);
-    let under = |p: DVec3, depth: f64| p - DVec3::Z * depth;
-    let t = seconds;
-    let keys: Vec<(f64, DVec3)> = match kind {
-        PathKind::Press => vec![
-            (0.0, above(top)),
+    let layout = Layout {
+        scene,
+        c,
+        r,
+        top: highest_point(scene, c, r).unwrap_or(DVec3::new(c.x, c.y, c.z)),
+        hover_z: hi.z + HOVER_M,
+        t: seconds,
+    };
+    let keys = match kind {
+        PathKind::Press => layout.press(),
+        PathKind::Slide => layout.slide(),
+        PathKind::Circle => layout.circle(),
+        PathKind::Explore => layout.explore(seed),
+        PathKind::Strike => layout.strike(),
+    };
+    Trajectory::from_keys(&keys)
+}
+
+/// What a scripted path is laid out over: the scene, the centre `c` and radius `r` of its
+/// first object's bounding sphere, the `top` of that object, the height the hand hovers
+/// at (`hover_z`) and the path's duration `t`, seconds. Each path is a list of key
+/// points (time, world point).
+struct Layout<'a> {
+    scene: &'a Scene,
+    c: DVec3,
+    r: f64,
+    top: DVec3,
+    hover_z: f64,
+    t: f64,
+}
+
+/// `p` moved down by `depth` metres.
+fn under(p: DVec3, depth: f64) -> DVec3 {
+    p - DVec3::Z * depth
+}
+
+impl Layout<'_> {
+    /// The highest surface point under `(x, y)` (at the first object's centre height
+    /// where there is none).
+    fn top_at(&self, x: f64, y: f64) -> DVec3 {
+        surface_below(self.scene, x, y).unwrap_or(DVec3::new(x, y, self.c.z))
+    }
+
+    /// `p` lifted to the hovering height.
+    fn above(&self, p: DVec3) -> DVec3 {
+        DVec3::new(p.x, p.y, self.hover_z)
+    }
+
+    fn press(&self) -> Vec<(f64, DVec3)> {
+        let (top, t) = (self.top, self.t);
+        vec![
+            (0.0, self.above(top)),
             (0.3 * t, top + DVec3::Z * 0.002),
             (0.45 * t, under(top, PRESS_DEPTH_M)),
             (0.8 * t, under(top, PRESS_DEPTH_M)),
-            (t, above(top)),
-        ],
-        PathKind::Slide => {
-            let half = (0.5 * r).min(0.5 * SLIDE_SPEED * 0.6 * t);
-            let (x0, x1) = (c.x - half, c.x + half);
-            let start = top_at(x0, c.y);
-            let mut keys = vec![
-                (0.0, above(start)),
-                (0.15 * t, start + DVec3::Z * 0.002),
-                (0.2 * t, under(start, PRESS_DEPTH_M)),
-            ];
-            let n = 16;
-            for k in 1..=n {
-                let s = f64::from(k) / f64::from(n);
-                let x = x0 + s * (x1 - x0);
-                keys.push((0.2 * t + s * 0.6 * t, under(top_at(x, c.y), PRESS_DEPTH_M)));
-            }
-            let end = keys[keys.len() - 1].1;
-            keys.push((0.9 * t, end + DVec3::Z * (PRESS_DEPTH_M + 0.002)));
-            keys.push((t, above(end)));
-            keys
+            (t, self.above(top)),
+        ]
+    }
+
+    fn slide(&self) -> Vec<(f64, DVec3)> {
+        let (c, t) = (self.c, self.t);
+        let half = (0.5 * self.r).min(0.5 * SLIDE_SPEED * 0.6 * t);
+        let (x0, x1) = (c.x - half, c.x + half);
+        let start = self.top_at(x0, c.y);
+        let mut keys = vec![
+            (0.0, self.above(start)),
+            (0.15 * t, start + DVec3::Z * 0.002),
+            (0.2 * t, under(start, PRESS_DEPTH_M)),
+        ];
+        let n = 16;
+        for k in 1..=n {
+            let s = f64::from(k) / f64::from(n);
+            let x = x0 + s * (x1 - x0);
+            keys.push((
+                0.2 * t + s * 0.6 * t,
+                under(self.top_at(x, c.y), PRESS_DEPTH_M),
+            ));
         }
-        PathKind::Circle => {
-            let radius = 0.5 * r;
-            let on = |a: f64| {
-                let (x, y) = (c.x + radius * a.cos(), c.y + radius * a.sin());
-                under(top_at(x, y), PRESS_DEPTH_M)
+        let end = keys[keys.len() - 1].1;
+        keys.push((0.9 * t, end + DVec3::Z * (PRESS_DEPTH_M + 0.002)));
+        keys.push((t, self.above(end)));
+        keys
+    }
+
+    fn circle(&self) -> Vec<(f64, DVec3)> {
+        let (c, t) = (self.c, self.t);
+        let radius = 0.5 * self.r;
+        let on = |a: f64| {
+            let (x, y) = (c.x + radius * a.cos(), c.y + radius * a.sin());
+            under(self.top_at(x, y), PRESS_DEPTH_M)
+        };
+        let start = on(0.0);
+        let mut keys = vec![(0.0, self.above(start)), (0.1 * t, under(start, -0.002))];
+        keys.push((0.15 * t, start));
+        let turns = 2.0;
+        let n = 64;
+        for k in 1..=n {
+            let s = f64::from(k) / f64::from(n);
+            keys.push((
+                0.15 * t + s * 0.7 * t,
+                on(s * turns * std::f64::consts::TAU),
+            ));
+        }
+        let end = keys[keys.len() - 1].1;
+        keys.push((t, self.above(end)));
+        keys
+    }
+
+    fn explore(&self, seed: u64) -> Vec<(f64, DVec3)> {
+        let (scene, c, r, t) = (self.scene, self.c, self.r, self.t);
+        let first = &scene.objects()[0];
+        let mut rng = SplitMix64::new(seed);
+        let strokes = (t / 1.0).round().max(1.0) as usize;
+        let dt = t / strokes as f64;
+        // One object of many: its own surface under the hand, hovering over its own
+        // bounding sphere.
+        let one = scene.objects().len() > EXPLORE_ANY_MAX_OBJECTS;
+        let own_top = |x: f64, y: f64| {
+            let (top, bottom) = (
+                DVec3::new(x, y, c.z + r + 1.0),
+                DVec3::new(x, y, c.z - r - 1.0),
+            );
+            scene
+                .first_hit(0, top, bottom, 0.0)
+                .map_or(DVec3::new(x, y, c.z), |h| h.point)
+        };
+        let surface = |x: f64, y: f64| {
+            if one {
+                own_top(x, y)
+            } else {
+                self.top_at(x, y)
+            }
+        };
+        let above = |p: DVec3| {
+            if one {
+                DVec3::new(p.x, p.y, c.z + r + HOVER_M)
+            } else {
+                self.above(p)
+            }
+        };
+        let mut keys = Vec::new();
+        for s in 0..strokes {
+            let o = if one {
+                first
+            } else {
+                &scene.objects()[rng.index(scene.objects().len())]
             };
-            let start = on(0.0);
-            let mut keys = vec![(0.0, above(start)), (0.1 * t, under(start, -0.002))];
-            keys.push((0.15 * t, start));
-            let turns = 2.0;
-            let n = 64;
-            for k in 1..=n {
-                let s = f64::from(k) / f64::from(n);
-                keys.push((
-                    0.15 * t + s * 0.7 * t,
-                    on(s * turns * std::f64::consts::TAU),
-                ));
-            }
-            let end = keys[keys.len() - 1].1;
-            keys.push((t, above(end)));
-            keys
-        }
-        PathKind::Explore => {
-            let mut rng = SplitMix64::new(seed);
-            let strokes = (seconds / 1.0).round().max(1.0) as usize;
-            let dt = t / strokes as f64;
-            // One object of many: its own surface under the hand, hovering over its own
-            // bounding sphere.
-            let one = scene.objects().len() > EXPLORE_ANY_MAX_OBJECTS;
-            let own_top = |x: f64, y: f64| {
-                let (top, bottom) = (
-                    DVec3::new(x, y, c.z + r + 1.0),
-                    DVec3::new(x, y, c.z - r - 1.0),
+            let oc = o.pose.to_world(o.shape.bound_centre());
+            let reach = 0.6 * o.shape.bound_radius();
+            let mut pick = || {
+                let (x, y) = (
+                    oc.x + rng.range(-reach, reach),
+                    oc.y + rng.range(-reach, reach),
                 );
-                scene
-                    .first_hit(0, top, bottom, 0.0)
-                    .map_or(DVec3::new(x, y, c.z), |h| h.point)
+                surface(x, y)
             };
-            let surface = |x: f64, y: f64| if one { own_top(x, y) } else { top_at(x, y) };
-            let above = |p: DVec3| {
-                if one {
-                    DVec3::new(p.x, p.y, c.z + r + HOVER_M)
-                } else {
-                    above(p)
-                }
-            };
-            let mut keys = Vec::new();
-            for s in 0..strokes {
-                let o = if one {
-                    first
-                } else {
-                    &scene.objects()[rng.index(scene.objects().len())]
-                };
-                let oc = o.pose.to_world(o.shape.bound_centre());
-                let reach = 0.6 * o.shape.bound_radius();
-                let mut pick = || {
-                    let (x, y) = (
-                        oc.x + rng.range(-reach, reach),
-                        oc.y + rng.range(-reach, reach),
-                    );
-                    surface(x, y)
-                };
-                let (a, b) = (pick(), pick());
-                let depth = PRESS_DEPTH_M * rng.range(0.3, 1.5);
-                let t0 = s as f64 * dt;
-                // Over the top of everything to the next stroke, then straight down.
-                // The path starts hovering over the first stroke.
-                keys.push((if s == 0 { 0.0 } else { t0 + 0.1 * dt }, above(a)));
-                keys.push((t0 + 0.25 * dt, a + DVec3::Z * 0.003));
-                keys.push((t0 + 0.35 * dt, under(a, depth)));
-                for k in 1..=6 {
-                    let f = f64::from(k) / 6.0;
-                    let p = a.lerp(b, f);
-                    keys.push((t0 + (0.35 + 0.45 * f) * dt, under(surface(p.x, p.y), depth)));
-                }
-                keys.push((t0 + 0.9 * dt, b + DVec3::Z * 0.01));
+            let (a, b) = (pick(), pick());
+            let depth = PRESS_DEPTH_M * rng.range(0.3, 1.5);
+            let t0 = s as f64 * dt;
+            // Over the top of everything to the next stroke, then straight down.
+            // The path starts hovering over the first stroke.
+            keys.push((if s == 0 { 0.0 } else { t0 + 0.1 * dt }, above(a)));
+            keys.push((t0 + 0.25 * dt, a + DVec3::Z * 0.003));
+            keys.push((t0 + 0.35 * dt, under(a, depth)));
+            for k in 1..=6 {
+                let f = f64::from(k) / 6.0;
+                let p = a.lerp(b, f);
+                keys.push((t0 + (0.35 + 0.45 * f) * dt, under(surface(p.x, p.y), depth)));
             }
-            // End lifted off the last stroke.
-            let last = keys[keys.len() - 1].1;
-            keys.push((t, last + DVec3::Z * 0.02));
-            keys
+            keys.push((t0 + 0.9 * dt, b + DVec3::Z * 0.01));
         }
-        PathKind::Strike => {
-            // Constant speed from 4 cm above the surface to 4 cm below it.
-            let start = top + DVec3::Z * 0.04;
-            let end = top - DVec3::Z * 0.04;
-            let t0 = 0.3 * t;
-            let travel = start.distance(end) / STRIKE_SPEED;
-            let mut keys = vec![(0.0, above(top).max(start)), (t0, start)];
-            let n = 8;
-            for k in 1..=n {
-                let s = f64::from(k) / f64::from(n);
-                keys.push((t0 + s * travel, start.lerp(end, s)));
-            }
-            keys.push((0.75 * t, end));
-            keys.push((t, above(top).max(start)));
-            keys
+        // End lifted off the last stroke.
+        let last = keys[keys.len() - 1].1;
+        keys.push((t, last + DVec3::Z * 0.02));
+        keys
+    }
+
+    fn strike(&self) -> Vec<(f64, DVec3)> {
+        let (top, t) = (self.top, self.t);
+        // Constant speed from 4 cm above the surface to 4 cm below it.
+        let start = top + DVec3::Z * 0.04;
+        let end = top - DVec3::Z * 0.04;
+        let t0 = 0.3 * t;
+        let travel = start.distance(end) / STRIKE_SPEED;
+        let mut keys = vec![(0.0, self.above(top).max(start)), (t0, start)];
+        let n = 8;
+        for k in 1..=n {
+            let s = f64::from(k) / f64::from(n);
+            keys.push((t0 + s * travel, start.lerp(end, s)));
         }
-    };
-    Trajectory::from_keys(&keys)
+        keys.push((0.75 * t, end));
+        keys.push((t, self.above(top).max(start)));
+        keys
+    }
 }
 
 /// A device whose end point follows a path exactly, whatever force it is given: a
@@ -311,7 +371,7 @@ pub struct ScriptedDevice {
 
 impl ScriptedDevice {
     /// A device following `path` (device frame), with the simulated device specification
-    /// ([`simulated_spec`]).
+    /// (`simulated_spec`).
     pub fn new(path: Trajectory) -> ScriptedDevice {
         ScriptedDevice {
             path,

@@ -5,10 +5,7 @@
 mod motion;
 mod stats;
 
-pub use motion::{
-    MAX_MOTION_AMPLITUDE, MAX_MOTION_FREQUENCY, MAX_MOTION_RATE, MAX_MOTION_SPEED, Motion,
-    ObjectMotion,
-};
+pub use motion::{MAX_MOTION_AMPLITUDE, Motion, ObjectMotion};
 pub use stats::{Histogram, TickStats};
 
 use std::time::Instant;

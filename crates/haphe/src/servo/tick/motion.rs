@@ -50,9 +50,9 @@ pub const MAX_MOTION_FREQUENCY: f64 = 500.0;
 pub const MAX_MOTION_RATE: f64 = 1000.0;
 
 impl Motion {
-    /// Checks the motion's numbers: finite, within [`MAX_MOTION_SPEED`],
-    /// [`MAX_MOTION_AMPLITUDE`], [`MAX_MOTION_FREQUENCY`] and [`MAX_MOTION_RATE`], and a
-    /// rotation axis of non-zero length. Scene files and code use this one check.
+    /// Checks the motion's numbers: finite, at most 100 m/s, 100 m of amplitude, 500 Hz
+    /// and 1000 rad/s (`MAX_MOTION_SPEED`, `MAX_MOTION_AMPLITUDE`, `MAX_MOTION_FREQUENCY`,
+    /// `MAX_MOTION_RATE`), and a rotation axis of non-zero length. Scene files and code use this one check.
     ///
     /// # Errors
     /// An [`InvalidValue`] naming the first value that is not usable.

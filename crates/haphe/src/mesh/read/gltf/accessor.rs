@@ -5,7 +5,7 @@ use gltf::json;
 use gltf::json::accessor::{ComponentType, Type};
 use gltf::json::validation::Checked;
 
-use super::{GltfPlace, MAX_DECODED_ELEMENTS, MAX_UNBACKED_ELEMENTS, place};
+use super::{GltfPlace, MAX_DECODED_ELEMENTS, MAX_UNBACKED_ELEMENTS, ix, place};
 use crate::mesh::ReadErrorKind;
 
 /// What an accessor must hold to be read as one kind of data.
@@ -101,7 +101,7 @@ struct View<'b> {
 impl<'a> Accessors<'a> {
     fn view(&self, index: usize, at: GltfPlace) -> Result<View<'a>, ReadErrorKind> {
         let at = GltfPlace {
-            buffer_view: Some(index),
+            buffer_view: Some(ix(index)),
             ..at
         };
         let invalid = |message: String| ReadErrorKind::Invalid {
@@ -178,7 +178,7 @@ impl<'a> Accessors<'a> {
         at: GltfPlace,
     ) -> Result<Vec<f64>, ReadErrorKind> {
         let at = GltfPlace {
-            accessor: Some((index, expect.what)),
+            accessor: Some((ix(index), expect.what)),
             ..at
         };
         let invalid = |message: String| ReadErrorKind::Invalid {

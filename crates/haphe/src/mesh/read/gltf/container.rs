@@ -5,7 +5,7 @@
 use base64::Engine;
 use gltf::json;
 
-use super::place;
+use super::{ix, place};
 use crate::mesh::{GltfPlace, Place, ReadErrorKind};
 
 /// The first four bytes of a binary glTF (`.glb`) file.
@@ -225,7 +225,7 @@ pub(super) fn load_buffers(
             continue;
         }
         let at = place(GltfPlace {
-            buffer: Some(index),
+            buffer: Some(ix(index)),
             ..GltfPlace::default()
         });
         let byte_length = buffer.byte_length.0;

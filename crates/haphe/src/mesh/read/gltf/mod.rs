@@ -70,6 +70,12 @@ const APPEARANCE_EXTENSIONS: &[&str] = &[
 /// Required extensions that haphe reads.
 const READ_EXTENSIONS: &[&str] = &["KHR_mesh_quantization"];
 
+/// An index of the file's arrays as a place names it (an index beyond `u32::MAX`, which
+/// no array of a file within the size limits has, is named as `u32::MAX`).
+fn ix(index: usize) -> u32 {
+    u32::try_from(index).unwrap_or(u32::MAX)
+}
+
 fn place(at: GltfPlace) -> Place {
     Place::Gltf(at)
 }

@@ -5,7 +5,7 @@
 use glam::{DAffine3, DMat4, DQuat, DVec3};
 use gltf::json;
 
-use super::{GltfPlace, place};
+use super::{GltfPlace, ix, place};
 use crate::mesh::ReadErrorKind;
 
 /// A node of the default scene that holds a mesh, placed in the world.
@@ -17,7 +17,7 @@ pub(super) struct Placed {
 
 fn node_place(node: usize) -> GltfPlace {
     GltfPlace {
-        node: Some(node),
+        node: Some(ix(node)),
         ..GltfPlace::default()
     }
 }
@@ -185,7 +185,7 @@ pub(super) fn placed_nodes(
     let roots: Vec<usize> = match scene {
         Some(s) => {
             let at = GltfPlace {
-                scene: Some(s),
+                scene: Some(ix(s)),
                 ..GltfPlace::default()
             };
             let Some(scene) = root.scenes.get(s) else {

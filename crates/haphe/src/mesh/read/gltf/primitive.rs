@@ -7,7 +7,7 @@ use gltf::json::mesh::{Mode, Semantic};
 use gltf::json::validation::Checked;
 
 use super::accessor::{Accessors, INDICES, POSITIONS};
-use super::{GltfPlace, SkippedPrimitive, place};
+use super::{GltfPlace, SkippedPrimitive, ix, place};
 use crate::mesh::{Mesh, ReadErrorKind};
 
 /// The extension name of Draco-compressed primitives.
@@ -76,8 +76,8 @@ pub(super) fn read_mesh(
     let mut out = Mesh::default();
     for (p, primitive) in mesh.primitives.iter().enumerate() {
         let at = GltfPlace {
-            mesh: Some(index),
-            primitive: Some(p),
+            mesh: Some(ix(index)),
+            primitive: Some(ix(p)),
             ..GltfPlace::default()
         };
         let invalid = |message: String| ReadErrorKind::Invalid {
@@ -136,7 +136,7 @@ pub(super) fn read_mesh(
         if let Some(e) = positions.iter().position(|v| !v.is_finite()) {
             return Err(ReadErrorKind::Invalid {
                 at: place(GltfPlace {
-                    accessor: Some((position, "POSITION")),
+                    accessor: Some((ix(position), "POSITION")),
                     ..at
                 }),
                 message: format!("element {}: a coordinate is NaN or infinite", e / 3),
@@ -159,7 +159,7 @@ pub(super) fn read_mesh(
                     if v as usize >= vertex_count {
                         return Err(ReadErrorKind::IndexOutOfRange {
                             at: place(GltfPlace {
-                                accessor: Some((indices, "indices")),
+                                accessor: Some((ix(indices), "indices")),
                                 ..at
                             }),
                             index: i64::from(v),

@@ -20,11 +20,12 @@
 //! saturation depth of the held plane — the hand has come back out toward the side of
 //! entry.
 
+mod tick;
+
 use glam::DVec3;
 
 use super::force::MIN_MAX_FORCE;
-use crate::mesh::TriId;
-use crate::scene::{Material, Pose};
+use crate::scene::{Material, Pose, SurfaceRef};
 
 /// The saturation depth of `material` with a device of `max_force` newtons, metres: the
 /// penetration at which the spring alone reaches the maximum force. `None` where no force
@@ -50,13 +51,12 @@ pub fn is_deep(proxy: DVec3, hip: DVec3, normal: DVec3, depth: Option<f64>) -> b
     depth.is_some_and(|d| (proxy - hip).dot(normal) > d)
 }
 
-/// The contact a holding proxy keeps: its object, the triangle under it, the contact
+/// The contact a holding proxy keeps: its object and the triangle under it, the contact
 /// plane's normal in the object's frame (so that it turns with a moving object) and the
 /// number of planes that were active.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Hold {
-    pub object: usize,
-    pub triangle: TriId,
+    pub on: SurfaceRef,
     pub normal_object: DVec3,
     pub constraints: u8,
     /// Where the proxy was when the hold began (the entry), object frame.
@@ -68,7 +68,7 @@ pub(crate) struct Hold {
 }
 
 impl Hold {
-    /// A hold on `triangle` of object `object`, at `pose`, with `constraints` planes
+    /// A hold on the triangle `on` of an object at `pose`, with `constraints` planes
     /// active: it begins with the proxy at `entry` on the contact plane of unit `normal`,
     /// the hand at `hip_entry`, and the direction the hand went deep in taken from its
     /// motion `previous → hip` ([`deep_direction`]). World frame in; the hold keeps them in
@@ -76,14 +76,13 @@ impl Hold {
     #[inline]
     pub fn begin(
         pose: &Pose,
-        (object, triangle, constraints): (usize, TriId, u8),
+        (on, constraints): (SurfaceRef, u8),
         (entry, normal): (DVec3, DVec3),
         hip_entry: DVec3,
         (previous, hip): (Option<DVec3>, DVec3),
     ) -> Hold {
         Hold {
-            object,
-            triangle,
+            on,
             normal_object: pose.vector_to_object(normal),
             constraints,
             entry_object: pose.to_object(entry),

@@ -1,0 +1,191 @@
+//! Step 2 of a tick, the god-object's constraint steps: aim at the point closest to the
+//! device point on the free side of the active planes, move toward it, and on meeting a
+//! surface stop at its plane (moved out by the skin) and add that plane.
+
+use glam::DVec3;
+
+use super::constraints::{Constraints, Plane, advance_to_plane};
+use super::godobject::{MAX_PROXY_STEPS, ProxyOptions};
+use super::meet::{first_hit_all, hit_plane, touching_any};
+use super::near::NearCache;
+use super::output::TickStatus;
+use super::rest::rest_hit;
+use crate::scene::{Hit, Scene, SurfaceRef, others_box};
+
+/// What a tick's constraint steps start from, besides the proxy and the device point.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Start {
+    /// The proxy was just placed ([`Proxy::new`](super::Proxy::new),
+    /// [`Proxy::reset`](super::Proxy::reset)): it touches a surface within a probe's reach
+    /// when the device point lies behind it.
+    pub(super) placed: bool,
+    /// The surface the proxy rests on: the last constraint of the previous tick.
+    pub(super) rest: Option<SurfaceRef>,
+    /// The contact triangle of the previous tick, under the proxy.
+    pub(super) under: Option<SurfaceRef>,
+}
+
+/// The result of the constraint steps of one tick.
+pub(super) struct Sweep {
+    pub(super) position: DVec3,
+    /// Where the proxy first stopped at a surface this tick.
+    pub(super) touch_down: DVec3,
+    pub(super) planes: Constraints,
+    /// The first surface met this tick; its plane is the first of `planes`.
+    pub(super) first_hit: Option<SurfaceRef>,
+    /// The last surface met, and its plane.
+    pub(super) last_hit: Option<(Hit, Plane)>,
+}
+
+impl Sweep {
+    /// No surface met yet, the proxy at `p`.
+    fn at(p: DVec3) -> Sweep {
+        Sweep {
+            position: p,
+            touch_down: p,
+            planes: Constraints::NONE,
+            first_hit: None,
+            last_hit: None,
+        }
+    }
+
+    /// Met `hit` on `plane`, the proxy now at `position`; `false` when the plane is one
+    /// too many.
+    fn met(&mut self, hit: Hit, plane: Plane, position: DVec3) -> bool {
+        self.position = position;
+        if self.last_hit.is_none() {
+            self.touch_down = position;
+            self.first_hit = Some(hit.surface());
+        }
+        self.last_hit = Some((hit, plane));
+        self.planes.push(plane)
+    }
+}
+
+/// What one leg of the constraint steps came to.
+enum Leg {
+    /// The move stands and meets nothing (shown by a clear zone or by the searches): the
+    /// proxy reached its target.
+    Free {
+        /// Shown by the clear zone of the surface last met, without the searches.
+        cleared: bool,
+    },
+    /// The move met (or ended touching) a surface: the proxy stopped at `position`, and the
+    /// plane becomes a constraint.
+    Met(Hit, Plane, DVec3),
+}
+
+/// The god-object's steps of one tick over `scene` (the objects near the proxy kept in
+/// `near`), from `p` toward `hip`: at most [`MAX_PROXY_STEPS`] legs, each toward the point
+/// closest to `hip` on the free side of the planes met so far.
+pub(super) fn constrain(
+    (scene, near): (&Scene, &mut NearCache),
+    p: DVec3,
+    hip: DVec3,
+    start: Start,
+    options: &ProxyOptions,
+    status: &mut TickStatus,
+) -> Sweep {
+    let mut sweep = Sweep::at(p);
+    if start.placed {
+        touch_where_placed(scene, near, &mut sweep, hip, options);
+    }
+    for _ in 0..MAX_PROXY_STEPS {
+        let Some(target) = sweep
+            .planes
+            .closest_feasible(hip, options.plane_tolerance())
+        else {
+            status.wedged = true;
+            return sweep;
+        };
+        if target == sweep.position {
+            return sweep;
+        }
+        match leg((scene, &mut *near), &sweep, target, start, options) {
+            Leg::Free { cleared } => {
+                status.cleared |= cleared;
+                sweep.position = target;
+                return sweep;
+            }
+            Leg::Met(hit, plane, position) => {
+                if !sweep.met(hit, plane, position) {
+                    status.step_cap_hit = true;
+                    return sweep;
+                }
+            }
+        }
+    }
+    status.step_cap_hit = true;
+    sweep
+}
+
+/// A proxy placed on a surface (within a probe's reach) touches it when the device point
+/// lies behind its plane, as if it had come to rest there.
+fn touch_where_placed(
+    scene: &Scene,
+    near: &mut NearCache,
+    sweep: &mut Sweep,
+    hip: DVec3,
+    options: &ProxyOptions,
+) {
+    let p = sweep.position;
+    if let Some(hit) = touching_any(scene, near, p, options.probe_reach()) {
+        let plane = hit_plane(&hit, p, hip, options);
+        if plane.height(hip) < 0.0 {
+            sweep.met(hit, plane, p);
+        }
+    }
+}
+
+/// One leg from the sweep's position toward `target`, found by the first of these that
+/// answers: the surface the proxy rests on (first leg), the clear zone of the surface last
+/// met or rested on, the convex surface under the proxy (first leg), the crossing search,
+/// the touching search at `target`.
+fn leg(
+    (scene, near): (&Scene, &mut NearCache),
+    sweep: &Sweep,
+    target: DVec3,
+    start: Start,
+    options: &ProxyOptions,
+) -> Leg {
+    let (p, reach) = (sweep.position, options.probe_reach());
+    let first_leg = sweep.planes.is_empty();
+    // The first leg of a tick keeps the surface the proxy rests on when the device point
+    // is still behind it (no search along that leg: the proxy does not move).
+    let resting = match start.rest {
+        Some(r) if first_leg => rest_hit(scene, r, p, target, options.skin),
+        _ => None,
+    };
+    // A leg that stays in the clear zone of the surface last met (or rested on) meets
+    // nothing and ends touching nothing: the searches would find nothing.
+    let slid_on = sweep.last_hit.map(|(h, _)| h.surface()).or(start.rest);
+    let others = others_box(p, target, reach);
+    if resting.is_none()
+        && let Some(on) = slid_on
+        && scene.clear_move(near.get(scene, others.0, others.1), on, p, target, reach)
+    {
+        return Leg::Free { cleared: true };
+    }
+    // A first leg into the surface under the proxy, where its neighbourhood is convex,
+    // meets that triangle first: shown without the search (the same hit).
+    let shown = match start.under {
+        Some(under) if first_leg && resting.is_none() => {
+            scene.first_hit_shown(near.get(scene, others.0, others.1), under, p, target, reach)
+        }
+        _ => None,
+    };
+    if let Some(hit) = resting
+        .or(shown)
+        .or_else(|| first_hit_all(scene, near, p, target, reach))
+    {
+        let plane = hit_plane(&hit, p, target, options);
+        return Leg::Met(hit, plane, advance_to_plane(p, target, &plane));
+    }
+    // A free move that ends on a surface (or within a probe's reach of it, moving along
+    // it) touches it: its plane becomes a constraint, so that the proxy never rests where
+    // the next probe could start on the surface.
+    match touching_any(scene, near, target, reach) {
+        Some(hit) => Leg::Met(hit, hit_plane(&hit, p, target, options), target),
+        None => Leg::Free { cleared: false },
+    }
+}
