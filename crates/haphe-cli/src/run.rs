@@ -8,9 +8,9 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use anyhow::{Context, bail};
+use anyhow::{Context, anyhow, bail};
 use haphe::DVec3;
-use haphe::scene::Scene;
+use haphe::scene::{Param, Scene};
 use haphe::servo::{Device, DeviceMapping, DeviceSpec, RealtimeRun, ServoLoop, TickRecord};
 use haphe_devices::{OpenedDevice, UdpOptions, list_devices, open_device, workspace_mapping};
 
@@ -74,15 +74,20 @@ pub struct MappingArgs {
 }
 
 impl MappingArgs {
-    /// Checks `--scale`.
+    /// Checks `--scale` and `--centre` against the library's table of domains.
     ///
     /// # Errors
-    /// A scale that is not positive.
+    /// A value outside its domain, named as its flag.
     pub fn check(&self) -> anyhow::Result<()> {
-        if let Some(s) = self.scale
-            && !(s.is_finite() && s > 0.0)
-        {
-            bail!("--scale must be positive, not {s}");
+        if let Some(s) = self.scale {
+            Param::Scale
+                .check(s)
+                .map_err(|e| anyhow!("{}", e.named("--scale")))?;
+        }
+        if let Some(c) = self.centre {
+            Param::Centre
+                .check_vector(c.to_array())
+                .map_err(|e| anyhow!("{}", e.named("--centre")))?;
         }
         Ok(())
     }
@@ -179,6 +184,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     }
     catch_interrupts()?;
     let material = args.model.material()?;
+    crate::simulate::proxy_options(args.max_force)?;
     let started = Instant::now();
     let (objects, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();
@@ -223,11 +229,25 @@ pub fn open(choice: &VendorChoice, scene: &Scene, seconds: f64) -> anyhow::Resul
 /// The mapping of the run: the device's workspace centred on the scene and scaled to
 /// cover its bounds, unless `--scale` / `--centre` say otherwise. The simulated hand
 /// moves in the world already.
-pub fn mapping(choice: &VendorChoice, spec: &DeviceSpec, scene: &Scene) -> DeviceMapping {
+///
+/// # Errors
+/// A scale or centre outside its domain, named as its flag.
+pub fn mapping(
+    choice: &VendorChoice,
+    spec: &DeviceSpec,
+    scene: &Scene,
+) -> anyhow::Result<DeviceMapping> {
     if choice.spec == "hand" {
-        return DeviceMapping::IDENTITY;
+        return Ok(DeviceMapping::IDENTITY);
     }
-    workspace_mapping(spec, scene, choice.scale, choice.centre)
+    workspace_mapping(spec, scene, choice.scale, choice.centre).map_err(|e| {
+        let flag = if e.param() == Param::Scale {
+            "--scale"
+        } else {
+            "--centre"
+        };
+        anyhow!("{}", e.named(flag))
+    })
 }
 
 /// Prints the mapping and what it does to stiffness.

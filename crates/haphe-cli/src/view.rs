@@ -101,12 +101,12 @@ pub enum ViewDevice {
 /// Runs `haphe view`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let map = MapOptions::default();
-    let material = Material {
-        stiffness: args.stiffness,
-        damping: 1.0,
-        static_friction: args.static_friction,
-        dynamic_friction: args.dynamic_friction,
-    };
+    let material = crate::simulate::args::material_of_flags(
+        args.stiffness,
+        1.0,
+        args.static_friction,
+        args.dynamic_friction,
+    )?;
     let single = |name: String, shape| {
         vec![LoadedObject {
             name,
@@ -183,9 +183,7 @@ pub fn live(
     what: &str,
     serve_options: &Serve,
 ) -> anyhow::Result<ExitCode> {
-    if !(rate_hz.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&rate_hz)) {
-        bail!("--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {rate_hz}");
-    }
+    let options = ServoOptions::new(rate_hz).map_err(|e| anyhow!("{}", e.named("--rate")))?;
     let (scene, names, motions) = scene_of(objects)?;
     let model = Model::from_scene(&scene, &names);
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
@@ -219,15 +217,15 @@ pub fn live(
         }
         ViewDevice::Vendor(choice, seconds) => {
             let opened = crate::run::open(&choice, &scene, seconds.unwrap_or(HAND_SECONDS))?;
-            mapping = crate::run::mapping(&choice, &opened.device.spec(), &scene);
+            mapping = crate::run::mapping(&choice, &opened.device.spec(), &scene)?;
             println!("device: {}", opened.description);
             let stiffness = scene
                 .objects()
                 .iter()
-                .map(|o| o.material.stiffness)
+                .map(|o| o.material.stiffness())
                 .fold(0.0, f64::max);
             crate::run::print_mapping(&mut std::io::stdout(), &choice, &mapping, stiffness)?;
-            realtime.overrun_budget = choice.overrun_budget;
+            realtime = realtime.with_overrun_budget(choice.overrun_budget);
             clock = opened.clock;
             report = Some(opened.report);
             (
@@ -241,12 +239,7 @@ pub fn live(
     let source = LiveSource {
         device,
         scene,
-        options: ServoOptions {
-            rate_hz,
-            proxy: ProxyOptions::default(),
-            mapping,
-            ..ServoOptions::default()
-        },
+        options: options.with_mapping(mapping),
         motions,
         seconds,
         realtime,

@@ -62,15 +62,32 @@ impl ModelArgs {
     /// # Errors
     /// A value out of its range, named as its option.
     pub fn material(&self) -> anyhow::Result<Material> {
-        Material {
-            stiffness: self.stiffness,
-            damping: self.damping,
-            static_friction: self.static_friction,
-            dynamic_friction: self.dynamic_friction,
-        }
-        .checked()
-        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))
+        material_of_flags(
+            self.stiffness,
+            self.damping,
+            self.static_friction,
+            self.dynamic_friction,
+        )
     }
+}
+
+/// The material of the flags `--stiffness`, `--damping`, `--static-friction` and
+/// `--dynamic-friction`, checked by the library's table of domains.
+///
+/// # Errors
+/// A value outside its domain, named as its flag.
+pub fn material_of_flags(
+    stiffness: f64,
+    damping: f64,
+    static_friction: f64,
+    dynamic_friction: f64,
+) -> anyhow::Result<Material> {
+    Material::builder()
+        .stiffness(stiffness)
+        .damping(damping)
+        .friction(static_friction, dynamic_friction)
+        .build()
+        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))
 }
 
 /// The files a session writes.

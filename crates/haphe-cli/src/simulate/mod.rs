@@ -3,7 +3,7 @@
 //! servo loop on a virtual clock or on the wall clock; a per-tick CSV trace, a summary and
 //! a plot.
 
-mod args;
+pub(crate) mod args;
 pub mod plot;
 pub mod summary;
 
@@ -18,11 +18,11 @@ use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Catalog;
 use haphe::proxy::ProxyOptions;
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, check_max_force};
+use haphe::scene::{Material, ObjectId, Param, Pose, Scene, SceneObject};
 use haphe::servo::{
-    Device, HandOptions, HipTrace, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind,
-    RealtimeOptions, ReplayDevice, ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand,
-    StopReason, TickRecord, scripted_path, write_csv_header,
+    Device, HandOptions, HipTrace, ObjectMotion, PathKind, RealtimeOptions, ReplayDevice,
+    ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand, StopReason, TickRecord,
+    scripted_path, write_csv_header,
 };
 
 use crate::files::input::{self, read_input};
@@ -89,12 +89,8 @@ pub struct Args {
 
 /// Runs `haphe simulate`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    if !(args.rate.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&args.rate)) {
-        bail!(
-            "--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {}",
-            args.rate
-        );
-    }
+    // The library's table of domains checks every number, named as its flag.
+    ServoOptions::new(args.rate).map_err(|e| anyhow!("{}", e.named("--rate")))?;
     let outputs: Vec<&Path> = [&args.output.out, &args.output.plot]
         .into_iter()
         .flatten()
@@ -111,8 +107,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     }
     // The same check as a scene file's materials.
     let material = args.model.material()?;
-    check_max_force(args.max_force)
-        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
+    proxy_options(args.max_force)?;
+    spin(args.spin_us)?;
     let started = Instant::now();
     let (objects, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();
@@ -143,6 +139,34 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The proxy's options with the maximum force of `--max-force`.
+///
+/// # Errors
+/// A force outside its domain, named as its flag.
+pub fn proxy_options(max_force: f64) -> anyhow::Result<ProxyOptions> {
+    ProxyOptions::default()
+        .with_max_force(max_force)
+        .map_err(|e| anyhow!("{}", e.named("--max-force")))
+}
+
+/// The real-time options with the spin of `--spin-us`, microseconds.
+///
+/// # Errors
+/// A spin outside its domain, named as its flag (in microseconds).
+fn spin(spin_us: Option<f64>) -> anyhow::Result<RealtimeOptions> {
+    RealtimeOptions::default()
+        .with_spin_seconds(spin_us.map(|us| us * 1e-6))
+        .map_err(|_| {
+            let domain = Param::SpinSeconds.domain();
+            anyhow!(
+                "--spin-us must be a finite number from {} to {} µs, not {}",
+                domain.low * 1e6,
+                domain.high * 1e6,
+                spin_us.unwrap_or_default()
+            )
+        })
 }
 
 /// Where the objects of a run come from: one of a scene file, a mesh file, a built-in shape.
@@ -178,7 +202,8 @@ pub fn load_model(
         let o = SceneObject::new(
             ObjectId(0),
             shape,
-            Pose::from_translation(-centre),
+            Pose::from_translation(-centre)
+                .map_err(|e| anyhow!("{}: placing it at the origin: {e}", file.display()))?,
             material,
         );
         (
@@ -309,9 +334,9 @@ impl Session {
                 o.name,
                 o.object.id.0,
                 o.object.shape.surface().triangles().len(),
-                o.object.material.stiffness,
-                o.object.material.static_friction,
-                o.object.material.dynamic_friction
+                o.object.material.stiffness(),
+                o.object.material.static_friction(),
+                o.object.material.dynamic_friction()
             ));
             motions.extend(o.motion);
             scene
@@ -358,26 +383,21 @@ impl Session {
             }
         };
         let mapping = match &vendor {
-            Some((choice, ..)) => crate::run::mapping(choice, &device.spec(), &scene),
+            Some((choice, ..)) => crate::run::mapping(choice, &device.spec(), &scene)?,
             None => haphe::servo::DeviceMapping::IDENTITY,
         };
-        let options = ServoOptions {
-            rate_hz: self.rate_hz,
-            proxy: ProxyOptions {
-                max_force: self.max_force,
-                ..ProxyOptions::default()
-            },
-            mapping,
-            ..ServoOptions::default()
-        };
+        let options = ServoOptions::new(self.rate_hz)
+            .map_err(|e| anyhow!("{}", e.named("--rate")))?
+            .with_proxy(proxy_options(self.max_force)?)
+            .with_mapping(mapping);
         let stiffness = scene
             .objects()
             .iter()
-            .map(|o| o.material.stiffness)
+            .map(|o| o.material.stiffness())
             .fold(0.0, f64::max);
         let mut servo = Servo::new(device, scene, options)?;
         servo.set_motions(motions);
-        let max_force = servo.options().proxy.max_force;
+        let max_force = servo.options().proxy().max_force();
 
         writeln!(out, "{}", self.title)?;
         writeln!(
@@ -413,15 +433,13 @@ impl Session {
         };
         let mut report = None;
         let (stats, stop, setup, interference, standby, dropped) = if realtime {
-            let mut options = RealtimeOptions {
-                spin_seconds: self.spin_seconds,
-                realtime_priority: self.fifo,
-                standby_core: self.standby_core,
-                ..RealtimeOptions::default()
-            };
+            let mut options = RealtimeOptions::default()
+                .with_spin_seconds(self.spin_seconds)?
+                .with_realtime_priority(self.fifo)
+                .with_standby_core(self.standby_core);
             let mut clock = None;
             if let Some((choice, _, c, r)) = vendor {
-                options.overrun_budget = choice.overrun_budget;
+                options = options.with_overrun_budget(choice.overrun_budget);
                 clock = c;
                 report = Some(r);
                 if limit.is_none() {

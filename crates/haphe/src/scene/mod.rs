@@ -27,6 +27,7 @@
 
 mod broad;
 mod clear;
+mod domain;
 mod handoff;
 mod invalid;
 mod material;
@@ -35,9 +36,12 @@ mod pose;
 mod removals;
 mod shape;
 
+pub use domain::{
+    ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M, Domain, DomainKind, Param,
+};
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
-pub use invalid::{InvalidValue, MAX_FORCE_LIMIT_N, check_max_force};
-pub use material::Material;
+pub use invalid::ParamError;
+pub use material::{Material, MaterialBuilder};
 pub use moves::ObjectKey;
 pub use pose::Pose;
 pub use removals::REMOVALS_KEPT;
@@ -105,7 +109,7 @@ impl SceneObject {
             shape,
             pose,
             previous_pose: pose,
-            material: material.sanitised(),
+            material,
             sides,
         }
     }
@@ -298,7 +302,7 @@ impl Scene {
     /// Changes the material of the object named `id`. `false` when there is no such object.
     pub fn set_material(&mut self, id: ObjectId, material: Material) -> bool {
         self.index_of(id)
-            .map(|i| self.objects[i].material = material.sanitised())
+            .map(|i| self.objects[i].material = material)
             .is_some()
     }
 
