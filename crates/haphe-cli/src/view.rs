@@ -10,11 +10,10 @@ use haphe::DVec3;
 use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Catalog;
-use haphe::proxy::ProxyOptions;
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject};
+use haphe::scene::{ObjectId, Pose, Scene, SceneObject};
 use haphe::servo::{
-    Device, DeviceMapping, HandOptions, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind,
-    RealtimeOptions, ServoOptions, SimulatedHand, scene_bounds, scripted_path,
+    Device, DeviceMapping, HandOptions, ObjectMotion, PathKind, RealtimeOptions, ServoOptions,
+    SimulatedHand, scene_bounds, scripted_path,
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
 
