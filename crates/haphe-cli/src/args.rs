@@ -13,6 +13,9 @@ use haphe::scene::Material;
 
 use crate::input::model::Model;
 
+/// Largest force rendered unless `--max-force` says, N: the library's default.
+pub const DEFAULT_MAX_FORCE_N: f64 = haphe::scene::DEFAULT_MAX_FORCE_N;
+
 /// Default length of a run, seconds.
 pub const DEFAULT_SECONDS: f64 = 5.0;
 
@@ -116,16 +119,16 @@ pub struct ModelArgs {
     #[arg(long, default_value = "m", value_parser = parse_units)]
     pub units: Units,
     /// Stiffness of a --mesh or --shape object, N/m.
-    #[arg(long, default_value_t = 600.0)]
+    #[arg(long, default_value_t = Material::DEFAULT.stiffness)]
     pub stiffness: f64,
     /// Damping of a --mesh or --shape object, N·s/m.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = Material::DEFAULT.damping)]
     pub damping: f64,
     /// Static friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.3)]
+    #[arg(long, default_value_t = Material::DEFAULT.static_friction)]
     pub static_friction: f64,
     /// Dynamic friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = Material::DEFAULT.dynamic_friction)]
     pub dynamic_friction: f64,
 }
 

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use haphe::DVec3;
 use haphe::map::MapOptions;
-use haphe::mesh::{Mesh, Surface, SurfaceOptions, read_mesh_with_stats};
+use haphe::mesh::Mesh;
 use haphe::query::{
     Side, classify_point, first_crossing, first_crossing_brute_force, nearest_within,
 };
@@ -35,16 +35,6 @@ pub struct Shape {
 
 /// An `(N, 3)` array of points handed to Python.
 type Points<'py> = Bound<'py, numpy::PyArray2<f64>>;
-
-/// Builds the surface and map of `mesh`; errors are prefixed with `name`.
-fn build(name: &str, mesh: Mesh) -> Result<scene::Shape, String> {
-    let surface =
-        Surface::new(mesh, &SurfaceOptions::default()).map_err(|e| format!("{name}: {e}"))?;
-    let shape =
-        scene::Shape::build(surface, &MapOptions::default()).map_err(|e| format!("{name}: {e}"))?;
-    shape.prepare_clear_zones();
-    Ok(shape)
-}
 
 /// The rows of an `(N, 3)` array as points.
 fn points(a: &ArrayView2<'_, f64>) -> impl Iterator<Item = DVec3> {
@@ -85,11 +75,7 @@ impl Shape {
         let bytes = read_bytes(&path)?;
         let name = path.display().to_string();
         let inner = py
-            .detach(|| {
-                let loaded =
-                    read_mesh_with_stats(&name, &bytes, &options).map_err(|e| e.to_string())?;
-                build(&name, loaded.mesh)
-            })
+            .detach(|| scene::Shape::read(&name, &bytes, &options, &MapOptions::default()))
             .map_err(|e| haphe_error("", e))?;
         Ok(Shape {
             inner: Arc::new(inner),
@@ -149,7 +135,7 @@ impl Shape {
         let name = "arrays".to_owned();
         let (mesh, _) = haphe::mesh::weld(&mesh, haphe::mesh::Weld::Exact);
         let inner = py
-            .detach(|| build(&name, mesh))
+            .detach(|| scene::Shape::from_mesh(&name, mesh, &MapOptions::default()))
             .map_err(|e| haphe_error("", e))?;
         Ok(Shape {
             inner: Arc::new(inner),
@@ -166,11 +152,7 @@ impl Shape {
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Shape> {
         let (surface, map) = load_map(&path)?;
         let name = path.display().to_string();
-        let inner = py.detach(|| {
-            let shape = scene::Shape::new(surface, map);
-            shape.prepare_clear_zones();
-            shape
-        });
+        let inner = py.detach(|| scene::Shape::new(surface, map).with_clear_zones());
         Ok(Shape {
             inner: Arc::new(inner),
             name,

@@ -139,7 +139,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         fifo: true,
         standby_core: None,
         seed: 3,
-        max_force: 3.3,
+        max_force: crate::args::DEFAULT_MAX_FORCE_N,
         out: args.out.clone(),
         plot: Some(args.plot.clone()),
     };

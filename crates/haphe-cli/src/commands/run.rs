@@ -9,7 +9,9 @@ use anyhow::bail;
 use haphe::DVec3;
 use haphe_devices::UdpOptions;
 
-use crate::args::{DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs};
+use crate::args::{
+    DEFAULT_MAX_FORCE_N, DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs,
+};
 use crate::input::model::load_model;
 use crate::session::device::VendorChoice;
 use crate::session::wait::catch_interrupts;
@@ -48,7 +50,7 @@ pub struct Args {
     #[command(flatten)]
     output: OutputArgs,
     /// Largest force rendered, N (lowered to the device's maximum).
-    #[arg(long, default_value_t = 3.3)]
+    #[arg(long, default_value_t = DEFAULT_MAX_FORCE_N)]
     max_force: f64,
 }
 

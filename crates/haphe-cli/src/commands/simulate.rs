@@ -11,7 +11,7 @@ use anyhow::{anyhow, bail};
 use haphe::scene::check_max_force;
 use haphe::servo::{HandOptions, HipTrace, MAX_RATE_HZ, MIN_RATE_HZ, PathKind};
 
-use crate::args::{ModelArgs, OutputArgs};
+use crate::args::{DEFAULT_MAX_FORCE_N, ModelArgs, OutputArgs};
 use crate::input::files::{self, read_input};
 use crate::input::model::load_model;
 use crate::output::check_outputs;
@@ -67,8 +67,8 @@ pub struct Args {
     /// Seed of the explore path.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Largest force rendered, N (the simulated device's maximum is 3.3 N).
-    #[arg(long, default_value_t = 3.3)]
+    /// Largest force rendered, N (the simulated device's maximum is the default).
+    #[arg(long, default_value_t = DEFAULT_MAX_FORCE_N)]
     max_force: f64,
 }
 

@@ -56,13 +56,13 @@ pub struct Args {
     #[command(flatten)]
     mapping: MappingArgs,
     /// Stiffness of a --mesh or --shape object, N/m.
-    #[arg(long, default_value_t = 600.0)]
+    #[arg(long, default_value_t = Material::DEFAULT.stiffness)]
     stiffness: f64,
     /// Static friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.3)]
+    #[arg(long, default_value_t = Material::DEFAULT.static_friction)]
     static_friction: f64,
     /// Dynamic friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = Material::DEFAULT.dynamic_friction)]
     dynamic_friction: f64,
     #[command(flatten)]
     serve: Serve,
@@ -73,7 +73,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let map = MapOptions::default();
     let material = Material {
         stiffness: args.stiffness,
-        damping: 1.0,
+        damping: Material::DEFAULT.damping,
         static_friction: args.static_friction,
         dynamic_friction: args.dynamic_friction,
     };

@@ -37,11 +37,11 @@ mod shape;
 
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
 pub use invalid::{InvalidValue, MAX_FORCE_LIMIT_N, check_max_force};
-pub use material::Material;
+pub use material::{DEFAULT_MAX_FORCE_N, Material};
 pub use moves::ObjectKey;
 pub use pose::Pose;
 pub use removals::REMOVALS_KEPT;
-pub use shape::Shape;
+pub use shape::{Shape, ShapeError};
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};

@@ -87,13 +87,14 @@ pub use realtime::{
     check_core,
 };
 pub use simulated::{
-    HOVER_M, HandOptions, HipTrace, PRESS_DEPTH_M, PathKind, ReplayDevice, SLIDE_SPEED,
-    STRIKE_SPEED, ScriptedDevice, SimulatedHand, TraceError, Trajectory, TrajectoryError,
-    scene_bounds, scripted_path, simulated_spec, surface_below,
+    HOVER_M, HandOptions, PRESS_DEPTH_M, PathKind, ReplayDevice, SLIDE_SPEED, STRIKE_SPEED,
+    ScriptedDevice, SimulatedHand, Trajectory, TrajectoryError, scene_bounds, scripted_path,
+    simulated_spec, surface_below,
 };
 pub use tick::{
     Histogram, MAX_MOTION_AMPLITUDE, MAX_MOTION_FREQUENCY, MAX_MOTION_RATE, MAX_MOTION_SPEED,
     MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions, StopReason,
     TickStats,
 };
+pub use trace::read::{HipTrace, TickTrace, TraceError, TraceRow};
 pub use trace::{CSV_HEADER, Phase, STATUS_NAMES, TickRecord, write_csv_header};

@@ -10,7 +10,7 @@ mod scripted;
 mod trajectory;
 
 pub use hand::{HandOptions, SimulatedHand};
-pub use replay::{HipTrace, ReplayDevice, TraceError};
+pub use replay::ReplayDevice;
 pub use scripted::{
     HOVER_M, PRESS_DEPTH_M, PathKind, SLIDE_SPEED, STRIKE_SPEED, ScriptedDevice, scene_bounds,
     scripted_path, simulated_spec, surface_below,
