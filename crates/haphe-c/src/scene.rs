@@ -226,8 +226,8 @@ pub extern "C" fn haphe_default_max_force() -> f64 {
 }
 
 /// A new proxy at `position` (3 doubles, metres; null: the origin), rendering at most
-/// `max_force` newtons. (`haphe_default_max_force()` unless the device says otherwise). On success `*out` is owned by the caller: free it with
-/// `haphe_proxy_free`.
+/// `max_force` newtons (`haphe_default_max_force()` unless the device says otherwise).
+/// On success `*out` is owned by the caller: free it with `haphe_proxy_free`.
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_proxy_new(
     position: *const f64,
