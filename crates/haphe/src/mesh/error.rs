@@ -16,8 +16,52 @@ pub enum Place {
     Vertex(usize),
     /// A triangle strip (an entry of a PLY `tristrips` element), counted from 0.
     Strip(usize),
-    /// The file header (STL's 84 bytes, PLY's header, OFF's first line).
+    /// The file header (STL's 84 bytes, PLY's header, OFF's first line, glTF's JSON).
     Header,
+    /// An object of a glTF file: a node, mesh, primitive, accessor or buffer.
+    Gltf(GltfPlace),
+}
+
+/// Where in a glTF file a problem is: the objects on the way to it, each by its index in
+/// the file's arrays (counted from 0). Shown as, for example,
+/// `node 3, mesh 1, primitive 0, accessor 5 (POSITION)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct GltfPlace {
+    /// The scene.
+    pub scene: Option<usize>,
+    /// The node.
+    pub node: Option<usize>,
+    /// The mesh.
+    pub mesh: Option<usize>,
+    /// The primitive, within its mesh.
+    pub primitive: Option<usize>,
+    /// The accessor, and what it holds (`POSITION`, `indices`, ...).
+    pub accessor: Option<(usize, &'static str)>,
+    /// The buffer view.
+    pub buffer_view: Option<usize>,
+    /// The buffer.
+    pub buffer: Option<usize>,
+}
+
+impl fmt::Display for GltfPlace {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let named = |list: [(&str, Option<usize>); 2]| {
+            list.into_iter()
+                .filter_map(|(name, index)| index.map(|i| format!("{name} {i}")))
+                .collect::<Vec<_>>()
+        };
+        let parts: Vec<String> = named([("scene", self.scene), ("node", self.node)])
+            .into_iter()
+            .chain(named([("mesh", self.mesh), ("primitive", self.primitive)]))
+            .chain(self.accessor.map(|(i, what)| format!("accessor {i} ({what})")))
+            .chain(named([("buffer view", self.buffer_view), ("buffer", self.buffer)]))
+            .collect();
+        if parts.is_empty() {
+            f.write_str("document")
+        } else {
+            f.write_str(&parts.join(", "))
+        }
+    }
 }
 
 impl fmt::Display for Place {
@@ -29,6 +73,7 @@ impl fmt::Display for Place {
             Place::Vertex(n) => write!(f, "vertex {n}"),
             Place::Strip(n) => write!(f, "triangle strip {n}"),
             Place::Header => f.write_str("header"),
+            Place::Gltf(place) => place.fmt(f),
         }
     }
 }
@@ -41,7 +86,7 @@ pub enum ReadErrorKind {
     #[error("the file is empty")]
     Empty,
     /// The content is not one of the supported formats.
-    #[error("not a mesh file haphe can read (OBJ, STL, PLY or OFF): {reason}")]
+    #[error("not a mesh file haphe can read (OBJ, STL, PLY, OFF or glTF): {reason}")]
     UnknownFormat {
         /// Why detection failed.
         reason: String,
@@ -121,6 +166,34 @@ pub enum ReadErrorKind {
         face: usize,
         /// Its corners.
         corners: usize,
+    },
+    /// A reference, count or layout the format forbids (an accessor reaching past its
+    /// buffer, a node graph with a cycle, an index to an object that does not exist).
+    #[error("{at}: {message}")]
+    Invalid {
+        /// Where.
+        at: Place,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file needs something haphe does not read (a required glTF extension, such as
+    /// Draco compression).
+    #[error("{at}: {message}")]
+    Unsupported {
+        /// Where.
+        at: Place,
+        /// What is needed, by name, and what to do instead.
+        message: String,
+    },
+    /// A file the mesh file refers to (a glTF side-car buffer) could not be read.
+    #[error("{at}: cannot read the file '{uri}' it refers to: {message}")]
+    MissingResource {
+        /// Where the reference is.
+        at: Place,
+        /// The reference, as written in the file.
+        uri: String,
+        /// Why it could not be read.
+        message: String,
     },
     /// More vertices or faces than haphe's 32-bit indices hold.
     #[error("{at}: too large: {message}")]

@@ -5,7 +5,7 @@
 //!                                   └──Surface::new──▶ Surface (neighbours, fans, frames, normals)
 //! ```
 //!
-//! - [`read_mesh`] turns the bytes of an OBJ, STL, PLY or OFF file into a [`Mesh`]: polygons
+//! - [`read_mesh`] turns the bytes of an OBJ, STL, PLY, OFF or glTF file into a [`Mesh`]: polygons
 //!   are triangulated, coordinates scaled to metres ([`Units`]) and duplicate vertices welded
 //!   ([`Weld`]). Bad input gives a [`ReadError`] naming the file and the place.
 //! - [`MeshReport::of`] lists every defect of a mesh with where it is.
@@ -25,15 +25,20 @@ mod topology;
 mod weld;
 mod winding;
 
-pub use error::{Place, ReadError, ReadErrorKind};
+pub use error::{GltfPlace, Place, ReadError, ReadErrorKind};
 pub use frame::{
     DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT, TriFrame, is_degenerate_triangle,
     relative_height,
 };
 pub use ids::{NONE, TriId, VertId};
 pub use normals::DEFAULT_CREASE_ANGLE_RAD;
+pub use read::gltf::{
+    GltfNode, GltfNodeSummary, GltfScene, GltfSummary, NoSideCars, Resolve, SkippedPrimitive,
+    SkippedSummary, read_gltf,
+};
 pub use read::{
-    Format, ReadMesh, ReadOptions, Units, read_mesh, read_mesh_with_stats, read_unwelded,
+    Format, ReadMesh, ReadOptions, Units, read_mesh, read_mesh_resolving, read_mesh_with_stats,
+    read_unwelded, read_unwelded_with,
 };
 pub use report::{ComponentReport, Defects, EdgeUse, MeshReport, ReportText, Usability};
 pub(crate) use topology::{OwnedSurfaceParts, SurfaceParts};

@@ -27,6 +27,7 @@
 
 mod broad;
 mod clear;
+mod gltf;
 mod handoff;
 mod invalid;
 mod material;
@@ -35,6 +36,7 @@ mod pose;
 mod removals;
 mod shape;
 
+pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
 pub use invalid::{InvalidValue, MAX_FORCE_LIMIT_N, check_max_force};
 pub use material::Material;

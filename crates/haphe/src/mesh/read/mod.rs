@@ -1,9 +1,12 @@
-//! Readers: OBJ, STL (ASCII and binary), PLY (ASCII and binary) and OFF, from bytes.
+//! Readers: OBJ, STL (ASCII and binary), PLY (ASCII and binary), OFF and glTF 2.0 (`.gltf`
+//! and `.glb`), from bytes.
 //!
 //! [`read_mesh`] detects the format from the content (the file name is only a hint),
 //! triangulates polygons, scales to metres and welds duplicate vertices. Every error names
-//! the file and the place ([`ReadError`]).
+//! the file and the place ([`ReadError`]). A glTF file is read as its default scene
+//! flattened into one mesh in world coordinates; [`read_gltf`] keeps its nodes apart.
 
+pub mod gltf;
 mod obj;
 mod off;
 mod ply;
@@ -13,6 +16,7 @@ mod text;
 
 use std::str::FromStr;
 
+use self::gltf::{NoSideCars, Resolve};
 use super::{Mesh, ReadError, ReadErrorKind, Weld, WeldStats, weld};
 
 /// A mesh file format.
@@ -27,6 +31,9 @@ pub enum Format {
     Ply,
     /// Object File Format (text), with or without counts on the `OFF` line.
     Off,
+    /// glTF 2.0: a `.gltf` (JSON) or a `.glb` (binary), its default scene flattened into
+    /// one mesh in world coordinates ([`gltf`]).
+    Gltf,
 }
 
 impl Format {
@@ -41,6 +48,9 @@ impl Format {
         let text_start = skip_ascii_whitespace(bytes);
         if text_start.is_empty() {
             return Err(ReadErrorKind::Empty);
+        }
+        if bytes.starts_with(self::gltf::GLB_MAGIC) || gltf_json(text_start, name) {
+            return Ok(Format::Gltf);
         }
         if stl::looks_binary(bytes) || starts_with_word(text_start, b"solid") {
             return Ok(Format::Stl);
@@ -60,14 +70,26 @@ impl Format {
             "stl" => Ok(Format::Stl),
             "ply" => Ok(Format::Ply),
             "off" => Ok(Format::Off),
+            "gltf" | "glb" => Ok(Format::Gltf),
             _ if obj::looks_like_obj(bytes) => Ok(Format::Obj),
             _ => Err(ReadErrorKind::UnknownFormat {
                 reason: format!(
-                    "no STL, PLY or OFF signature and no OBJ statements (extension '{extension}')"
+                    "no STL, PLY, OFF or glTF signature and no OBJ statements (extension '{extension}')"
                 ),
             }),
         }
     }
+}
+
+/// Whether the text is a glTF JSON document: an object that names its `asset` (every
+/// glTF has one) near the start, or any JSON object in a file named `.gltf`.
+fn gltf_json(text: &[u8], name: &str) -> bool {
+    const LOOK_AHEAD_BYTES: usize = 1 << 16;
+    text.starts_with(b"{")
+        && (name.to_ascii_lowercase().ends_with(".gltf")
+            || text[..text.len().min(LOOK_AHEAD_BYTES)]
+                .windows(7)
+                .any(|w| w == b"\"asset\""))
 }
 
 /// Whether the text starts with an OFF keyword: `OFF` with optional prefixes (`ST`, `C`,
@@ -226,6 +248,20 @@ pub fn read_mesh_with_stats(
     bytes: &[u8],
     options: &ReadOptions,
 ) -> Result<ReadMesh, ReadError> {
+    read_mesh_resolving(file, bytes, options, &mut NoSideCars)
+}
+
+/// Like [`read_mesh_with_stats`], fetching the side-car files a `.gltf` refers to through
+/// `resolver` (what a front end that read the file from a path uses).
+///
+/// # Errors
+/// As [`read_mesh_with_stats`], and a side-car file the resolver cannot fetch.
+pub fn read_mesh_resolving(
+    file: &str,
+    bytes: &[u8],
+    options: &ReadOptions,
+    resolver: &mut dyn Resolve,
+) -> Result<ReadMesh, ReadError> {
     let format = match options.format {
         Some(f) => f,
         None => Format::detect(file, bytes).map_err(|kind| ReadError {
@@ -237,7 +273,7 @@ pub fn read_mesh_with_stats(
         format: Some(format),
         ..*options
     };
-    let raw = read_unwelded(file, bytes, &options)?;
+    let raw = read_unwelded_with(file, bytes, &options, resolver)?;
     let (mesh, weld) = weld(&raw, options.weld);
     Ok(ReadMesh { mesh, format, weld })
 }
@@ -248,6 +284,20 @@ pub fn read_mesh_with_stats(
 /// # Errors
 /// As [`read_mesh`].
 pub fn read_unwelded(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<Mesh, ReadError> {
+    read_unwelded_with(file, bytes, options, &mut NoSideCars)
+}
+
+/// Like [`read_unwelded`], fetching the side-car files a `.gltf` refers to through
+/// `resolver` (the other formats need none).
+///
+/// # Errors
+/// As [`read_mesh`], and a side-car file the resolver cannot fetch.
+pub fn read_unwelded_with(
+    file: &str,
+    bytes: &[u8],
+    options: &ReadOptions,
+    resolver: &mut dyn Resolve,
+) -> Result<Mesh, ReadError> {
     let fail = |kind| ReadError {
         file: file.to_owned(),
         kind,
@@ -269,6 +319,13 @@ pub fn read_unwelded(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<
         Format::Stl => stl::read_stl(bytes),
         Format::Ply => ply::read_ply(bytes),
         Format::Off => off::read_off(bytes),
+        Format::Gltf => {
+            // Scaled to metres by the reader (translations too); weld as for the others.
+            let scene = self::gltf::read_gltf(file, bytes, options.units, resolver)?;
+            let mesh = scene.flatten();
+            mesh.check_indices_and_finite().map_err(fail)?;
+            return Ok(mesh);
+        }
     }
     .map_err(fail)?;
     if mesh.triangles.is_empty() {

@@ -1,0 +1,369 @@
+//! glTF 2.0 (`.gltf` and `.glb`), from bytes.
+//!
+//! [`read_gltf`] reads the default scene: the meshes its nodes use, each in its own frame,
+//! and the nodes that place them, with their world transforms (matrices or translation,
+//! rotation and scale, nested). [`GltfScene::flatten`] puts every placed mesh into one mesh
+//! in world coordinates, which is what [`read_mesh`](super::read_mesh) returns for a glTF
+//! file; a scene keeps one object per node (see `scene::gltf_objects`).
+//!
+//! - Triangles, triangle strips and triangle fans are read; points and lines are skipped
+//!   and listed in [`GltfScene::skipped`].
+//! - Indices of any unsigned type; positions as floats, or as (normalised) integers of
+//!   `KHR_mesh_quantization`; sparse accessors.
+//! - Buffers come from the `.glb`'s binary chunk, `data:` URIs, or side-car files that the
+//!   caller fetches through a [`Resolve`]: the reader opens no files.
+//! - A file that requires an extension haphe does not read is refused, by the extension's
+//!   name (`KHR_draco_mesh_compression` among them); extensions that change only how a
+//!   surface looks (materials, textures) are ignored.
+//!
+//! The JSON is parsed by the `gltf` crate's document types; everything read from the
+//! buffers is checked here (ranges, counts, indices), and counts are held to limits before
+//! anything is allocated ([`MAX_TRIANGLES`]).
+
+mod accessor;
+mod container;
+mod nodes;
+mod primitive;
+mod summary;
+
+pub use container::{NoSideCars, Resolve};
+pub use summary::{GltfNodeSummary, GltfSummary, SkippedSummary};
+pub(crate) use container::GLB_MAGIC;
+
+use glam::DAffine3;
+use gltf::json;
+
+use crate::mesh::{GltfPlace, Mesh, Place, ReadError, ReadErrorKind, Units};
+
+/// The most triangles the default scene may place (counting a mesh once per node that
+/// uses it): a file over this is refused before its triangles are made.
+pub const MAX_TRIANGLES: usize = 1 << 24;
+/// The most accessor elements read from a file's buffers, all accessors together (one
+/// element is one position or one index).
+pub(crate) const MAX_DECODED_ELEMENTS: u64 = 1 << 26;
+/// The most accessor elements without a buffer view (zeros, or sparse substitutions over
+/// zeros), all accessors together: such a count is backed by no data.
+pub(crate) const MAX_UNBACKED_ELEMENTS: u64 = 1 << 20;
+
+/// Required extensions that change only how a surface looks, which haphe may ignore.
+const APPEARANCE_EXTENSIONS: &[&str] = &[
+    "KHR_materials_anisotropy",
+    "KHR_materials_clearcoat",
+    "KHR_materials_diffuse_transmission",
+    "KHR_materials_dispersion",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_iridescence",
+    "KHR_materials_pbrSpecularGlossiness",
+    "KHR_materials_sheen",
+    "KHR_materials_specular",
+    "KHR_materials_transmission",
+    "KHR_materials_unlit",
+    "KHR_materials_variants",
+    "KHR_materials_volume",
+    "KHR_texture_basisu",
+    "KHR_texture_transform",
+    "EXT_texture_webp",
+    "EXT_texture_avif",
+];
+
+/// Required extensions that haphe reads.
+const READ_EXTENSIONS: &[&str] = &["KHR_mesh_quantization"];
+
+fn place(at: GltfPlace) -> Place {
+    Place::Gltf(at)
+}
+
+/// A node of the default scene that holds a mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GltfNode {
+    /// The node's index in the file.
+    pub index: usize,
+    /// The node's name, if it has one.
+    pub name: Option<String>,
+    /// The index of its mesh in the file (in [`GltfScene::meshes`]).
+    pub mesh: usize,
+    /// Its mesh's name, if it has one.
+    pub mesh_name: Option<String>,
+    /// `world_from_node`: the product of the transforms from the scene's root down to this
+    /// node (metres; any affine map, scale and shear included).
+    pub world_from_node: DAffine3,
+    /// The node's `extras` as JSON text, else its mesh's, if either has some.
+    pub extras: Option<String>,
+}
+
+impl GltfNode {
+    /// Whether the node's world transform mirrors (a negative determinant): its triangles
+    /// are turned over when placed, so that they keep facing outwards.
+    pub fn mirrors(&self) -> bool {
+        self.world_from_node.matrix3.determinant() < 0.0
+    }
+
+    /// The node's name for reports: its own, else its mesh's, else `node N`.
+    pub fn label(&self) -> String {
+        self.name
+            .clone()
+            .or_else(|| self.mesh_name.clone())
+            .unwrap_or_else(|| format!("node {}", self.index))
+    }
+}
+
+/// A primitive that was not read because it draws points or lines.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SkippedPrimitive {
+    /// The mesh.
+    pub mesh: usize,
+    /// The primitive within the mesh.
+    pub primitive: usize,
+    /// Its mode: `POINTS`, `LINES`, `LINE_LOOP` or `LINE_STRIP`.
+    pub mode: &'static str,
+}
+
+/// The default scene of a glTF file, read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GltfScene {
+    /// The scene read: the file's `scene`, else its first; `None` for a file without
+    /// scenes, whose root nodes are read.
+    pub scene: Option<usize>,
+    /// The meshes by their index in the file: the ones the scene's nodes use, each in its
+    /// own frame, in metres, not welded (`None` for the others).
+    pub meshes: Vec<Option<Mesh>>,
+    /// The scene's nodes that hold a mesh, depth first, in the order the file lists them.
+    pub nodes: Vec<GltfNode>,
+    /// The primitives of those meshes that draw points or lines, not read.
+    pub skipped: Vec<SkippedPrimitive>,
+}
+
+impl GltfScene {
+    /// The mesh of `node`, in its own frame.
+    pub fn mesh_of(&self, node: &GltfNode) -> &Mesh {
+        static EMPTY: Mesh = Mesh {
+            vertices: Vec::new(),
+            triangles: Vec::new(),
+        };
+        self.meshes
+            .get(node.mesh)
+            .and_then(Option::as_ref)
+            .unwrap_or(&EMPTY)
+    }
+
+    /// The mesh of `node` placed in the world (metres, world frame), its triangles turned
+    /// over when the node's transform mirrors.
+    pub fn placed(&self, node: &GltfNode) -> Mesh {
+        let mut out = Mesh::default();
+        self.place_into(node, &mut out);
+        out
+    }
+
+    fn place_into(&self, node: &GltfNode, out: &mut Mesh) {
+        let mesh = self.mesh_of(node);
+        let base = out.vertices.len() as u32;
+        out.vertices.extend(
+            mesh.vertices
+                .iter()
+                .map(|&p| node.world_from_node.transform_point3(p)),
+        );
+        let mirrors = node.mirrors();
+        out.triangles.extend(mesh.triangles.iter().map(|&[a, b, c]| {
+            if mirrors {
+                [base + a, base + c, base + b]
+            } else {
+                [base + a, base + b, base + c]
+            }
+        }));
+    }
+
+    /// Every node's mesh placed in the world, as one mesh (world frame, not welded).
+    pub fn flatten(&self) -> Mesh {
+        let (vertices, triangles) = self.nodes.iter().fold((0, 0), |(v, t), node| {
+            let mesh = self.mesh_of(node);
+            (v + mesh.vertices.len(), t + mesh.triangles.len())
+        });
+        let mut out = Mesh {
+            vertices: Vec::with_capacity(vertices),
+            triangles: Vec::with_capacity(triangles),
+        };
+        for node in &self.nodes {
+            self.place_into(node, &mut out);
+        }
+        out
+    }
+
+    /// How many triangles the scene places (a mesh counted once per node using it).
+    pub fn placed_triangles(&self) -> usize {
+        self.nodes
+            .iter()
+            .map(|n| self.mesh_of(n).triangles.len())
+            .sum()
+    }
+}
+
+/// Refuses a file that requires an extension haphe does not read, by its name.
+fn check_required_extensions(root: &json::Root) -> Result<(), ReadErrorKind> {
+    for name in &root.extensions_required {
+        if READ_EXTENSIONS.contains(&name.as_str())
+            || APPEARANCE_EXTENSIONS.contains(&name.as_str())
+        {
+            continue;
+        }
+        let message = if name == primitive::DRACO {
+            format!(
+                "the file requires {name} (Draco-compressed geometry), which haphe does not \
+                 decode; export the file without Draco compression"
+            )
+        } else {
+            format!("the file requires the extension {name}, which haphe does not read")
+        };
+        return Err(ReadErrorKind::Unsupported {
+            at: Place::Header,
+            message,
+        });
+    }
+    Ok(())
+}
+
+/// Which buffers the accessors of `meshes` (marked `true`) read from. References that do
+/// not exist are left for the accessor reader to report with their place.
+fn needed_buffers(root: &json::Root, meshes: &[bool]) -> Vec<bool> {
+    let mut needed = vec![false; root.buffers.len()];
+    let mut mark_view = |view: usize| {
+        if let Some(v) = root.buffer_views.get(view) {
+            if let Some(slot) = needed.get_mut(v.buffer.value()) {
+                *slot = true;
+            }
+        }
+    };
+    let used = root
+        .meshes
+        .iter()
+        .zip(meshes)
+        .filter(|(_, used)| **used)
+        .flat_map(|(mesh, _)| &mesh.primitives);
+    for primitive in used {
+        let accessors = primitive.attributes.values().chain(&primitive.indices);
+        for accessor in accessors.filter_map(|a| root.accessors.get(a.value())) {
+            if let Some(view) = accessor.buffer_view {
+                mark_view(view.value());
+            }
+            if let Some(sparse) = &accessor.sparse {
+                mark_view(sparse.indices.buffer_view.value());
+                mark_view(sparse.values.buffer_view.value());
+            }
+        }
+    }
+    needed
+}
+
+fn extras_text(extras: &json::extras::Extras) -> Option<String> {
+    extras.as_ref().map(|raw| raw.get().to_owned())
+}
+
+/// Reads the default scene of a glTF 2.0 file (`.gltf` or `.glb`) from its bytes; side-car
+/// buffers are fetched through `resolver`. `units` scales the file's numbers to metres
+/// (glTF's unit is the metre, the default).
+///
+/// # Errors
+/// A [`ReadError`] naming `file` and the place (scene, node, mesh, primitive, accessor,
+/// buffer view, buffer): JSON that is not a glTF document, a required extension haphe does
+/// not read, a buffer shorter than its `byteLength` or a side-car file that cannot be had,
+/// an accessor reaching past its buffer, an index out of range, a node graph that is not a
+/// forest (two parents, a cycle), a transform that is not finite, counts over the limits
+/// ([`MAX_TRIANGLES`]), or no triangles at all.
+pub fn read_gltf(
+    file: &str,
+    bytes: &[u8],
+    units: Units,
+    resolver: &mut dyn Resolve,
+) -> Result<GltfScene, ReadError> {
+    read(bytes, units, resolver).map_err(|kind| ReadError {
+        file: file.to_owned(),
+        kind,
+    })
+}
+
+fn read(bytes: &[u8], units: Units, resolver: &mut dyn Resolve) -> Result<GltfScene, ReadErrorKind> {
+    let scale = units.metres_per_unit();
+    if !(scale.is_finite() && scale > 0.0) {
+        return Err(ReadErrorKind::Syntax {
+            at: Place::Header,
+            message: format!("the unit factor {scale} is not a positive finite number"),
+        });
+    }
+    let container = container::open(bytes)?;
+    let root = &container.root;
+    check_required_extensions(root)?;
+    let (scene, placed) = nodes::placed_nodes(root)?;
+    let mut used = vec![false; root.meshes.len()];
+    for p in &placed {
+        used[p.mesh] = true;
+    }
+    let data = container::load_buffers(&container, &needed_buffers(root, &used), resolver)?;
+    let mut accessors = accessor::Accessors {
+        root,
+        buffers: &data,
+        decoded: 0,
+        unbacked: 0,
+    };
+    let mut skipped = Vec::new();
+    let mut meshes: Vec<Option<Mesh>> = vec![None; root.meshes.len()];
+    for (index, slot) in meshes.iter_mut().enumerate() {
+        if used[index] {
+            let mut mesh = primitive::read_mesh(&mut accessors, index, &mut skipped)?;
+            if scale != 1.0 {
+                for p in &mut mesh.vertices {
+                    *p *= scale;
+                }
+            }
+            *slot = Some(mesh);
+        }
+    }
+    let nodes: Vec<GltfNode> = placed
+        .into_iter()
+        .map(|p| {
+            let node = &root.nodes[p.node];
+            let mesh = &root.meshes[p.mesh];
+            let mut world_from_node = p.world_from_node;
+            world_from_node.translation *= scale;
+            GltfNode {
+                index: p.node,
+                name: node.name.clone(),
+                mesh: p.mesh,
+                mesh_name: mesh.name.clone(),
+                world_from_node,
+                extras: extras_text(&node.extras).or_else(|| extras_text(&mesh.extras)),
+            }
+        })
+        .collect();
+    let out = GltfScene {
+        scene,
+        meshes,
+        nodes,
+        skipped,
+    };
+    let triangles = out.placed_triangles();
+    if triangles > MAX_TRIANGLES {
+        return Err(ReadErrorKind::TooLarge {
+            at: Place::Header,
+            message: format!(
+                "the scene's nodes place {triangles} triangles, more than the limit of \
+                 {MAX_TRIANGLES}"
+            ),
+        });
+    }
+    if triangles == 0 && !out.skipped.is_empty() {
+        return Err(ReadErrorKind::Invalid {
+            at: Place::Header,
+            message: format!(
+                "no triangles: the scene's meshes draw only points or lines ({} primitives \
+                 skipped)",
+                out.skipped.len()
+            ),
+        });
+    }
+    if triangles == 0 {
+        return Err(ReadErrorKind::NoFaces {
+            vertices: out.meshes.iter().flatten().map(|m| m.vertices.len()).sum(),
+        });
+    }
+    Ok(out)
+}

@@ -1,0 +1,244 @@
+//! A glTF mesh's triangles: every triangle primitive (triangles, strips, fans) in the
+//! mesh's own frame; points and lines are set aside and reported.
+
+use glam::DVec3;
+use gltf::json;
+use gltf::json::mesh::{Mode, Semantic};
+use gltf::json::validation::Checked;
+
+use super::accessor::{Accessors, INDICES, POSITIONS};
+use super::{GltfPlace, SkippedPrimitive, place};
+use crate::mesh::{Mesh, ReadErrorKind};
+
+/// The extension name of Draco-compressed primitives.
+pub(super) const DRACO: &str = "KHR_draco_mesh_compression";
+
+/// The glTF name of a primitive mode.
+fn mode_name(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Points => "POINTS",
+        Mode::Lines => "LINES",
+        Mode::LineLoop => "LINE_LOOP",
+        Mode::LineStrip => "LINE_STRIP",
+        Mode::Triangles => "TRIANGLES",
+        Mode::TriangleStrip => "TRIANGLE_STRIP",
+        Mode::TriangleFan => "TRIANGLE_FAN",
+    }
+}
+
+/// The triangles a primitive's vertex sequence draws in `mode`, as the glTF specification
+/// defines them: strips alternate their winding, fans turn about the first vertex.
+/// Triangles of a strip or fan that repeat a vertex are dropped (strips are joined by
+/// such degenerate triangles); a plain triangle list is kept as written.
+fn assemble(mode: Mode, sequence: &[u32], out: &mut Vec<[u32; 3]>) {
+    match mode {
+        Mode::Triangles => out.extend(sequence.chunks_exact(3).map(|t| [t[0], t[1], t[2]])),
+        Mode::TriangleStrip => out.extend(
+            sequence
+                .windows(3)
+                .enumerate()
+                .map(|(i, w)| {
+                    if i % 2 == 0 {
+                        [w[0], w[1], w[2]]
+                    } else {
+                        [w[1], w[0], w[2]]
+                    }
+                })
+                .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]),
+        ),
+        Mode::TriangleFan => {
+            if let Some((&first, rest)) = sequence.split_first() {
+                out.extend(
+                    rest.windows(2)
+                        .map(|w| [w[0], w[1], first])
+                        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]),
+                );
+            }
+        }
+        Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => {}
+    }
+}
+
+/// Mesh `index` of the file: the triangles of all its triangle primitives, in its own
+/// frame, only the vertices they use kept.
+///
+/// # Errors
+/// Naming the mesh, primitive and accessor: an unknown mode, a primitive without
+/// `POSITION`, a Draco-compressed primitive with no uncompressed data, a bad accessor, an
+/// index past the positions.
+pub(super) fn read_mesh(
+    accessors: &mut Accessors<'_>,
+    index: usize,
+    skipped: &mut Vec<SkippedPrimitive>,
+) -> Result<Mesh, ReadErrorKind> {
+    let root: &json::Root = accessors.root;
+    let mesh = &root.meshes[index];
+    let mut out = Mesh::default();
+    for (p, primitive) in mesh.primitives.iter().enumerate() {
+        let at = GltfPlace {
+            mesh: Some(index),
+            primitive: Some(p),
+            ..GltfPlace::default()
+        };
+        let invalid = |message: String| ReadErrorKind::Invalid {
+            at: place(at),
+            message,
+        };
+        let Checked::Valid(mode) = primitive.mode else {
+            return Err(invalid("its mode is not one glTF defines".to_owned()));
+        };
+        if matches!(
+            mode,
+            Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
+        ) {
+            skipped.push(SkippedPrimitive {
+                mesh: index,
+                primitive: p,
+                mode: mode_name(mode),
+            });
+            continue;
+        }
+        let Some(position) = primitive
+            .attributes
+            .get(&Checked::Valid(Semantic::Positions))
+            .map(|a| a.value())
+        else {
+            return Err(invalid(
+                "a triangle primitive without a POSITION attribute".to_owned(),
+            ));
+        };
+        let draco = primitive
+            .extensions
+            .as_ref()
+            .is_some_and(|e| e.others.contains_key(DRACO));
+        if draco && !accessors.has_view(position) {
+            return Err(ReadErrorKind::Unsupported {
+                at: place(at),
+                message: format!(
+                    "the primitive is compressed with {DRACO} (Draco), which haphe does not \
+                     decode; export the file without Draco compression"
+                ),
+            });
+        }
+        let positions = accessors.read(position, &POSITIONS, at)?;
+        let vertex_count = positions.len() / 3;
+        let base = out.vertices.len();
+        let too_large = |message: String| ReadErrorKind::TooLarge {
+            at: place(at),
+            message,
+        };
+        if base + vertex_count > u32::MAX as usize {
+            return Err(too_large(format!(
+                "{} vertices in the mesh, more than 32-bit indices hold",
+                base + vertex_count
+            )));
+        }
+        if let Some(e) = positions.iter().position(|v| !v.is_finite()) {
+            return Err(ReadErrorKind::Invalid {
+                at: place(GltfPlace {
+                    accessor: Some((position, "POSITION")),
+                    ..at
+                }),
+                message: format!("element {}: a coordinate is NaN or infinite", e / 3),
+            });
+        }
+        out.vertices.extend(
+            positions
+                .chunks_exact(3)
+                .map(|c| DVec3::new(c[0], c[1], c[2])),
+        );
+        let sequence: Vec<u32> = match primitive.indices {
+            None => (0..vertex_count as u32).collect(),
+            Some(indices) => {
+                let indices = indices.value();
+                let values = accessors.read(indices, &INDICES, at)?;
+                let mut sequence = Vec::with_capacity(values.len());
+                for v in values {
+                    // Read from unsigned integers of at most 32 bits: exact.
+                    let v = v as u32;
+                    if v as usize >= vertex_count {
+                        return Err(ReadErrorKind::IndexOutOfRange {
+                            at: place(GltfPlace {
+                                accessor: Some((indices, "indices")),
+                                ..at
+                            }),
+                            index: i64::from(v),
+                            count: vertex_count,
+                        });
+                    }
+                    sequence.push(base as u32 + v);
+                }
+                sequence
+            }
+        };
+        assemble(mode, &sequence, &mut out.triangles);
+    }
+    Ok(compact(out))
+}
+
+/// `mesh` with only the vertices its triangles use, in the order first used.
+fn compact(mesh: Mesh) -> Mesh {
+    let mut new_index = vec![u32::MAX; mesh.vertices.len()];
+    let mut vertices = Vec::new();
+    let triangles = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            t.map(|v| {
+                let slot = &mut new_index[v as usize];
+                if *slot == u32::MAX {
+                    *slot = vertices.len() as u32;
+                    vertices.push(mesh.vertices[v as usize]);
+                }
+                *slot
+            })
+        })
+        .collect();
+    Mesh {
+        vertices,
+        triangles,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Whether two triangles are the same up to a rotation of their corners (the same
+    /// triangle with the same winding).
+    fn same_winding(a: [u32; 3], b: [u32; 3]) -> bool {
+        (0..3).any(|r| [a[r], a[(r + 1) % 3], a[(r + 2) % 3]] == b)
+    }
+
+    #[test]
+    fn strips_alternate_and_fans_turn_about_the_first_vertex() {
+        let v: Vec<u32> = (10..16).collect();
+        let mut strip = Vec::new();
+        assemble(Mode::TriangleStrip, &v, &mut strip);
+        // The specification: p_i = {v_i, v_(i+(1+i%2)), v_(i+(2-i%2))}.
+        let spec: Vec<[u32; 3]> = (0..v.len() - 2)
+            .map(|i| [v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]])
+            .collect();
+        assert_eq!(strip.len(), spec.len());
+        for (mine, theirs) in strip.iter().zip(&spec) {
+            assert!(same_winding(*mine, *theirs), "{mine:?} {theirs:?}");
+        }
+        let mut fan = Vec::new();
+        assemble(Mode::TriangleFan, &v, &mut fan);
+        // p_i = {v_(i+1), v_(i+2), v_0}.
+        let spec: Vec<[u32; 3]> = (0..v.len() - 2)
+            .map(|i| [v[i + 1], v[i + 2], v[0]])
+            .collect();
+        assert_eq!(fan, spec);
+    }
+
+    #[test]
+    fn degenerate_strip_joins_are_dropped() {
+        let mut strip = Vec::new();
+        // Two strips (0 1 2) and (3 4 5) joined by repeating 2 and 3.
+        assemble(Mode::TriangleStrip, &[0, 1, 2, 2, 3, 3, 4, 5], &mut strip);
+        assert!(strip.iter().all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
+        // (0 1 2) and (3 4 5); the four joining triangles each repeat a vertex.
+        assert_eq!(strip.len(), 2);
+    }
+}
