@@ -4,7 +4,10 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use crate::input::files::{self, read_input};
-use haphe::mesh::{Format, Mesh, ReadError, ReadOptions, WeldStats, read_unwelded, weld};
+use haphe::mesh::{
+    Format, GltfSummary, Mesh, ReadError, ReadOptions, Resolve, WeldStats, read_gltf,
+    read_unwelded, weld,
+};
 
 /// A mesh read from a file, with what it took.
 pub struct Loaded {
@@ -16,6 +19,27 @@ pub struct Loaded {
     pub weld: WeldStats,
     /// Time to parse and weld.
     pub elapsed: Duration,
+    /// For a glTF file: its scene's nodes (triangles, transform, closed) and the
+    /// primitives skipped.
+    pub gltf: Option<GltfSummary>,
+}
+
+/// The side-car files of the glTF file at a path (its `.bin` buffers), read from its
+/// folder once each, within the mesh file limit.
+pub struct SideCars<'a>(pub &'a Path);
+
+impl Resolve for SideCars<'_> {
+    fn resolve(&mut self, uri: &str, byte_length: u64) -> Result<Vec<u8>, String> {
+        if byte_length > files::MESH.bytes {
+            return Err(format!(
+                "the buffer declares {byte_length} bytes, more than the {} limit of {} bytes",
+                files::MESH.what,
+                files::MESH.bytes
+            ));
+        }
+        let folder = self.0.parent().unwrap_or(Path::new("."));
+        read_input(&folder.join(uri), files::MESH).map_err(|e| format!("{e:#}"))
+    }
 }
 
 /// Why a file could not be loaded.
@@ -71,12 +95,27 @@ pub fn load_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<Lo
         format: Some(format),
         ..*options
     };
-    let raw = read_unwelded(&name, bytes, &options).map_err(LoadFailure::Read)?;
+    let (raw, gltf) = if format == Format::Gltf {
+        let scene = read_gltf(&name, bytes, options.units, &mut SideCars(path))
+            .map_err(LoadFailure::Read)?;
+        let mesh = scene.flatten();
+        mesh.check_indices_and_finite().map_err(|kind| {
+            LoadFailure::Read(ReadError {
+                file: name.clone(),
+                kind,
+            })
+        })?;
+        (mesh, Some(scene.summary(options.weld)))
+    } else {
+        let raw = read_unwelded(&name, bytes, &options).map_err(LoadFailure::Read)?;
+        (raw, None)
+    };
     let (mesh, weld) = weld(&raw, options.weld);
     Ok(Loaded {
         mesh,
         format,
         weld,
         elapsed: start.elapsed(),
+        gltf,
     })
 }
