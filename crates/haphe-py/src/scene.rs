@@ -127,16 +127,17 @@ impl Scene {
         let name = path.display().to_string();
         let objects = py
             .detach(|| {
-                let read = haphe::mesh::read_gltf(
-                    &name,
-                    &bytes,
-                    options.units,
-                    &mut Folder::of(&path),
-                )
-                .map_err(|e| e.to_string())?;
+                let read =
+                    haphe::mesh::read_gltf(&name, &bytes, options.units, &mut Folder::of(&path))
+                        .map_err(|e| e.to_string())?;
                 let objects = hs::gltf_objects(&read).map_err(|e| format!("{name}: {e}"))?;
                 objects
-                    .build(options.weld, &haphe::map::MapOptions::default(), material, 0)
+                    .build(
+                        options.weld,
+                        &haphe::map::MapOptions::default(),
+                        material,
+                        0,
+                    )
                     .map_err(|e| format!("{name}: {e}"))
             })
             .map_err(|e| haphe_error("", e))?;

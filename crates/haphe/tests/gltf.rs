@@ -14,8 +14,8 @@ mod writer;
 use haphe::DVec3;
 use haphe::glam::{DAffine3, DQuat};
 use haphe::mesh::{
-    Format, GltfScene, Mesh, MeshReport, NoSideCars, ReadOptions, Usability, Units, read_gltf,
-    read_mesh, read_unwelded, read_unwelded_with, weld, Weld,
+    Format, GltfScene, Mesh, MeshReport, NoSideCars, ReadOptions, Units, Usability, Weld,
+    read_gltf, read_mesh, read_unwelded, read_unwelded_with, weld,
 };
 use serde_json::json;
 use writer::{UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT, Writer, khronos_box};
@@ -61,17 +61,29 @@ fn the_khronos_box_is_a_closed_solid_of_volume_one() {
     let from_glb = read_unwelded("Box.glb", &glb, &options).unwrap_or_else(|e| panic!("{e}"));
     let from_gltf = read_unwelded_with("Box.gltf", &gltf, &options, &mut files)
         .unwrap_or_else(|e| panic!("{e}"));
-    let embedded = read_unwelded("Box.gltf", &w.gltf_embedded(), &options)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let embedded =
+        read_unwelded("Box.gltf", &w.gltf_embedded(), &options).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(from_glb, from_gltf);
     assert_eq!(from_glb, embedded);
     // 24 split vertices as in the file, 12 triangles.
-    assert_eq!((from_glb.vertices.len(), from_glb.triangles.len()), (24, 12));
+    assert_eq!(
+        (from_glb.vertices.len(), from_glb.triangles.len()),
+        (24, 12)
+    );
     let (welded, _) = weld(&from_glb, Weld::Exact);
-    assert_eq!(welded.vertices.len(), 8, "welded by position to the cube's 8 corners");
+    assert_eq!(
+        welded.vertices.len(),
+        8,
+        "welded by position to the cube's 8 corners"
+    );
     let report = MeshReport::of(&welded);
     assert!(report.closed, "{:?}", report.problems());
-    assert_eq!(report.usable_as, Usability::Solid, "{:?}", report.problems());
+    assert_eq!(
+        report.usable_as,
+        Usability::Solid,
+        "{:?}",
+        report.problems()
+    );
     let volume = report.volume.expect("a solid has a volume");
     assert!((volume - 1.0).abs() < 1e-12, "volume {volume}");
     assert!((signed_volume(&welded) - 1.0).abs() < 1e-12);
@@ -107,16 +119,25 @@ fn strips_fans_and_lists_of_every_index_type_read_the_same_triangles() {
     expected_list.root(json!({"mesh": m}));
     let expected = triangle_set(&scene_of(&expected_list.glb()).flatten());
     // (mode, index sequence) drawing the same two counter-clockwise triangles.
-    let cases: [(u32, &[u32]); 3] = [(4, &[0, 1, 2, 0, 2, 3]), (5, &[1, 2, 0, 3]), (6, &[0, 1, 2, 3])];
+    let cases: [(u32, &[u32]); 3] = [
+        (4, &[0, 1, 2, 0, 2, 3]),
+        (5, &[1, 2, 0, 3]),
+        (6, &[0, 1, 2, 3]),
+    ];
     for (mode, sequence) in cases {
         for component_type in [UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT] {
             let mut w = Writer::new();
             let position = w.positions(&SQUARE);
             let indices = w.indices(sequence, component_type);
-            let mesh = w.mesh(json!([{"attributes": {"POSITION": position}, "indices": indices, "mode": mode}]));
+            let mesh = w.mesh(
+                json!([{"attributes": {"POSITION": position}, "indices": indices, "mode": mode}]),
+            );
             w.root(json!({"mesh": mesh}));
             let got = triangle_set(&scene_of(&w.glb()).flatten());
-            assert_eq!(got, expected, "mode {mode}, component type {component_type}");
+            assert_eq!(
+                got, expected,
+                "mode {mode}, component type {component_type}"
+            );
         }
     }
     // Without indices, the vertices in order.
@@ -141,8 +162,15 @@ fn points_and_lines_are_skipped_and_listed() {
     ]));
     w.root(json!({"mesh": mesh}));
     let scene = scene_of(&w.glb());
-    let skipped: Vec<(usize, &str)> = scene.skipped.iter().map(|s| (s.primitive, s.mode)).collect();
-    assert_eq!(skipped, vec![(0, "POINTS"), (2, "LINES"), (3, "LINE_STRIP")]);
+    let skipped: Vec<(usize, &str)> = scene
+        .skipped
+        .iter()
+        .map(|s| (s.primitive, s.mode))
+        .collect();
+    assert_eq!(
+        skipped,
+        vec![(0, "POINTS"), (2, "LINES"), (3, "LINE_STRIP")]
+    );
     assert_eq!(scene.flatten().triangles.len(), 1);
 
     // Only lines: no triangles, said plainly.
@@ -167,23 +195,37 @@ fn quantized_positions_are_read_as_the_extension_says() {
         (
             writer::SHORT,
             true,
-            raw_shorts.iter().flatten().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>(),
+            raw_shorts
+                .iter()
+                .flatten()
+                .flat_map(|v| v.to_le_bytes())
+                .collect::<Vec<u8>>(),
             raw_shorts.map(|p| p.map(|c| f64::from(c) / 32767.0)),
         ),
         (
             UNSIGNED_BYTE,
             false,
             // Each element padded to 4 bytes, as vertex attributes must be.
-            raw_bytes.iter().flat_map(|p| [p[0], p[1], p[2], 0]).collect(),
+            raw_bytes
+                .iter()
+                .flat_map(|p| [p[0], p[1], p[2], 0])
+                .collect(),
             raw_bytes.map(|p| p.map(f64::from)),
         ),
     ] {
         let mut w = Writer::new();
-        let stride = if component_type == UNSIGNED_BYTE { Some(4) } else { Some(8) };
+        let stride = if component_type == UNSIGNED_BYTE {
+            Some(4)
+        } else {
+            Some(8)
+        };
         let bytes: Vec<u8> = if component_type == UNSIGNED_BYTE {
             bytes
         } else {
-            bytes.chunks(6).flat_map(|c| [c, &[0, 0]].concat()).collect()
+            bytes
+                .chunks(6)
+                .flat_map(|c| [c, &[0, 0]].concat())
+                .collect()
         };
         let view = w.view(&bytes, stride);
         let position = w.accessor(json!({
@@ -196,7 +238,10 @@ fn quantized_positions_are_read_as_the_extension_says() {
         w.doc["extensionsRequired"] = json!(["KHR_mesh_quantization"]);
         let mesh = scene_of(&w.glb()).flatten();
         let got: Vec<DVec3> = mesh.vertices.clone();
-        let want: Vec<DVec3> = expected.iter().map(|p| DVec3::from_array(*p) * 2.0).collect();
+        let want: Vec<DVec3> = expected
+            .iter()
+            .map(|p| DVec3::from_array(*p) * 2.0)
+            .collect();
         assert_eq!(got, want, "component type {component_type}");
     }
 }
@@ -256,6 +301,7 @@ fn a_file_without_scenes_reads_its_root_nodes() {
     let scene = scene_of(&w.glb());
     assert_eq!(scene.scene, None);
     assert_eq!(scene.nodes.len(), 1);
-    let by_matrix = DAffine3::from_cols_array(&[1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0]);
+    let by_matrix =
+        DAffine3::from_cols_array(&[1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0]);
     assert_eq!(scene.nodes[0].world_from_node, by_matrix);
 }

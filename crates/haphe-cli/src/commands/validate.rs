@@ -194,10 +194,15 @@ fn print_text(
 /// The nodes of a glTF file's scene: each one's mesh, triangles, closedness and world
 /// transform; then the primitives skipped.
 fn print_gltf(out: &mut impl Write, gltf: &GltfSummary) -> std::io::Result<()> {
-    let scene = gltf
-        .scene
-        .map_or_else(|| "no scene, root nodes".to_owned(), |s| format!("scene {s}"));
-    writeln!(out, "  glTF {scene}: {} node(s) with a mesh", gltf.nodes.len())?;
+    let scene = gltf.scene.map_or_else(
+        || "no scene, root nodes".to_owned(),
+        |s| format!("scene {s}"),
+    );
+    writeln!(
+        out,
+        "  glTF {scene}: {} node(s) with a mesh",
+        gltf.nodes.len()
+    )?;
     for n in &gltf.nodes {
         let [x, y, z, w] = n.rotation;
         let angle = 2.0 * w.clamp(-1.0, 1.0).acos().to_degrees();

@@ -53,8 +53,14 @@ impl fmt::Display for GltfPlace {
         let parts: Vec<String> = named([("scene", self.scene), ("node", self.node)])
             .into_iter()
             .chain(named([("mesh", self.mesh), ("primitive", self.primitive)]))
-            .chain(self.accessor.map(|(i, what)| format!("accessor {i} ({what})")))
-            .chain(named([("buffer view", self.buffer_view), ("buffer", self.buffer)]))
+            .chain(
+                self.accessor
+                    .map(|(i, what)| format!("accessor {i} ({what})")),
+            )
+            .chain(named([
+                ("buffer view", self.buffer_view),
+                ("buffer", self.buffer),
+            ]))
             .collect();
         if parts.is_empty() {
             f.write_str("document")

@@ -22,7 +22,9 @@ use crate::mesh::{GltfNode, GltfScene, Mesh, Surface, SurfaceOptions, Weld, weld
 #[non_exhaustive]
 pub enum GltfSceneError {
     /// The node's world transform squashes its mesh flat (a zero scale).
-    #[error("node {node} ('{name}'): its world transform is singular (a zero scale), so its mesh has no volume to touch")]
+    #[error(
+        "node {node} ('{name}'): its world transform is singular (a zero scale), so its mesh has no volume to touch"
+    )]
     Singular {
         /// The node's index in the file.
         node: usize,
@@ -154,7 +156,13 @@ fn split_rotation(linear: DMat3) -> Option<(DQuat, DMat3, [i64; 10])> {
     let q1 = (c1 - q0 * q0.dot(c1)).normalize();
     let rotation = DMat3::from_cols(q0, q1, q0.cross(q1));
     let baked = rotation.transpose() * linear;
-    let exponent = baked.abs().to_cols_array().iter().fold(0.0f64, |m, &v| m.max(v)).log2().floor() as i32;
+    let exponent = baked
+        .abs()
+        .to_cols_array()
+        .iter()
+        .fold(0.0f64, |m, &v| m.max(v))
+        .log2()
+        .floor() as i32;
     let step = 2f64.powi(exponent - BAKE_ROUNDING_BITS);
     let mut key = [0i64; 10];
     key[9] = i64::from(exponent);
@@ -190,8 +198,7 @@ fn material_of(node: &GltfNode) -> Result<Option<Material>, GltfSceneError> {
     let Some(text) = &node.extras else {
         return Ok(None);
     };
-    let Ok(serde_json::Value::Object(map)) = serde_json::from_str::<serde_json::Value>(text)
-    else {
+    let Ok(serde_json::Value::Object(map)) = serde_json::from_str::<serde_json::Value>(text) else {
         return Ok(None);
     };
     let number = |field: &'static str| -> Result<Option<f64>, GltfSceneError> {
@@ -303,7 +310,11 @@ mod tests {
         for t in transforms {
             let (rotation, baked, _) = split_rotation(t.matrix3).expect("regular");
             let rebuilt = DMat3::from_quat(rotation) * baked;
-            assert!(rebuilt.abs_diff_eq(t.matrix3, 1e-12), "{rebuilt} {}", t.matrix3);
+            assert!(
+                rebuilt.abs_diff_eq(t.matrix3, 1e-12),
+                "{rebuilt} {}",
+                t.matrix3
+            );
             // Upper triangular: what is baked has no rotation left in it.
             assert!(baked.x_axis.y.abs() < 1e-12 && baked.x_axis.z.abs() < 1e-12);
             assert!(baked.y_axis.z.abs() < 1e-12);

@@ -46,7 +46,14 @@ fn an_index_out_of_range_is_named() {
     let mesh = w.mesh(json!([{"attributes": {"POSITION": position}, "indices": indices}]));
     w.root(json!({"mesh": mesh}));
     let (kind, message) = error_of("tri.glb", &w.glb(), &mut Files::default());
-    assert!(matches!(kind, ReadErrorKind::IndexOutOfRange { index: 3, count: 3, .. }));
+    assert!(matches!(
+        kind,
+        ReadErrorKind::IndexOutOfRange {
+            index: 3,
+            count: 3,
+            ..
+        }
+    ));
     assert_eq!(
         message,
         "tri.glb: mesh 0, primitive 0, accessor 1 (indices): vertex index 3 is out of range \
@@ -88,7 +95,10 @@ fn a_buffer_shorter_than_its_byte_length_is_named() {
 fn a_missing_side_car_file_is_named() {
     let (text, _) = khronos_box().gltf_with_side_car("Box0.bin");
     let (kind, message) = error_of("Box.gltf", &text, &mut Files::default());
-    assert!(matches!(kind, ReadErrorKind::MissingResource { .. }), "{kind:?}");
+    assert!(
+        matches!(kind, ReadErrorKind::MissingResource { .. }),
+        "{kind:?}"
+    );
     assert_eq!(
         message,
         "Box.gltf: buffer 0: cannot read the file 'Box0.bin' it refers to: No such file or directory"
@@ -108,7 +118,10 @@ fn a_cycle_in_the_node_graph_is_named() {
         "box.glb: node 0: a cycle in the node graph: node 1 → node 0 → node 1 (each the parent of the next)"
     );
     let message = box_error(|w| w.doc["nodes"][1]["children"] = json!([1]));
-    assert_eq!(message, "box.glb: node 1: a cycle in the node graph: the node is its own child");
+    assert_eq!(
+        message,
+        "box.glb: node 1: a cycle in the node graph: the node is its own child"
+    );
     // Two parents: a graph that would place a node twice.
     let message = box_error(|w| {
         w.node(json!({"children": [1]}));
@@ -123,10 +136,16 @@ fn a_cycle_in_the_node_graph_is_named() {
 fn absurd_counts_are_refused_before_allocating() {
     // A count far beyond the data.
     let message = box_error(|w| w.doc["accessors"][2]["count"] = json!(4_000_000_000u64));
-    assert!(message.contains("4000000000 elements of 12 bytes"), "{message}");
+    assert!(
+        message.contains("4000000000 elements of 12 bytes"),
+        "{message}"
+    );
     // A count with no data behind it at all (zeros).
     let message = box_error(|w| {
-        w.doc["accessors"][0].as_object_mut().expect("object").remove("bufferView");
+        w.doc["accessors"][0]
+            .as_object_mut()
+            .expect("object")
+            .remove("bufferView");
         w.doc["accessors"][0]["count"] = json!(1u64 << 40);
     });
     assert!(
@@ -142,7 +161,16 @@ fn absurd_counts_are_refused_before_allocating() {
         w.root(json!({"mesh": mesh}));
     }
     let (kind, message) = error_of("many.glb", &w.glb(), &mut Files::default());
-    assert!(matches!(kind, ReadErrorKind::TooLarge { at: Place::Header, .. }), "{kind:?}");
+    assert!(
+        matches!(
+            kind,
+            ReadErrorKind::TooLarge {
+                at: Place::Header,
+                ..
+            }
+        ),
+        "{kind:?}"
+    );
     let placed = 65 * (1usize << 18);
     assert_eq!(
         message,
@@ -156,7 +184,8 @@ fn absurd_counts_are_refused_before_allocating() {
 
 #[test]
 fn required_extensions_haphe_does_not_read_are_refused_by_name() {
-    let message = box_error(|w| w.doc["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]));
+    let message =
+        box_error(|w| w.doc["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]));
     assert_eq!(
         message,
         "box.glb: header: the file requires KHR_draco_mesh_compression (Draco-compressed \
@@ -170,7 +199,10 @@ fn required_extensions_haphe_does_not_read_are_refused_by_name() {
     );
     // Draco used, not required, with no uncompressed fallback for the positions.
     let message = box_error(|w| {
-        w.doc["accessors"][2].as_object_mut().expect("object").remove("bufferView");
+        w.doc["accessors"][2]
+            .as_object_mut()
+            .expect("object")
+            .remove("bufferView");
         w.doc["meshes"][0]["primitives"][0]["extensions"] =
             json!({"KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}});
         w.doc["extensionsUsed"] = json!(["KHR_draco_mesh_compression"]);
@@ -192,7 +224,10 @@ fn urls_and_broken_containers_are_refused() {
     doc["buffers"] = json!([{"byteLength": w.bin.len(), "uri": "https://example.com/Box0.bin"}]);
     let text = serde_json::to_vec(&doc).expect("json");
     let (kind, _) = error_of("Box.gltf", &text, &mut Files::default());
-    assert!(matches!(kind, ReadErrorKind::Unsupported { .. }), "{kind:?}");
+    assert!(
+        matches!(kind, ReadErrorKind::Unsupported { .. }),
+        "{kind:?}"
+    );
     // A .glb whose header claims more bytes than there are.
     let mut bytes = w.glb();
     bytes.truncate(bytes.len() - 10);
@@ -202,7 +237,16 @@ fn urls_and_broken_containers_are_refused() {
     let (kind, _) = error_of("box.glb", b"glTF\x02\0\0\0", &mut Files::default());
     assert!(matches!(kind, ReadErrorKind::Truncated { .. }), "{kind:?}");
     let (kind, message) = error_of("x.gltf", b"{\"meshes\": []}", &mut Files::default());
-    assert!(matches!(kind, ReadErrorKind::Syntax { at: Place::Line(1), .. }), "{kind:?}");
+    assert!(
+        matches!(
+            kind,
+            ReadErrorKind::Syntax {
+                at: Place::Line(1),
+                ..
+            }
+        ),
+        "{kind:?}"
+    );
     assert!(message.contains("asset"), "{message}");
 }
 
@@ -233,7 +277,8 @@ fn references_to_objects_that_do_not_exist_are_named() {
     }
     // A POSITION accessor that does not exist: the `gltf` crate's own validation would
     // index out of bounds here; haphe does not run it.
-    let message = box_error(|w| w.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(99));
+    let message =
+        box_error(|w| w.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(99));
     assert_eq!(
         message,
         "box.glb: mesh 0, primitive 0, accessor 99 (POSITION): the accessor does not exist (the file has 3 accessors)"

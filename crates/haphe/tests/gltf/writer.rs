@@ -9,7 +9,6 @@ use haphe::mesh::Resolve;
 use serde_json::{Value, json};
 
 pub const FLOAT: u32 = 5126;
-pub const BYTE: u32 = 5120;
 pub const UNSIGNED_BYTE: u32 = 5121;
 pub const SHORT: u32 = 5122;
 pub const UNSIGNED_SHORT: u32 = 5123;
@@ -50,7 +49,8 @@ impl Writer {
         while self.bin.len() % 4 != 0 {
             self.bin.push(0);
         }
-        let mut view = json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
+        let mut view =
+            json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
         if let Some(s) = stride {
             view["byteStride"] = json!(s);
         }
@@ -64,10 +64,18 @@ impl Writer {
 
     /// Float positions in a view of their own, with the `min` and `max` glTF asks for.
     pub fn positions(&mut self, points: &[[f32; 3]]) -> usize {
-        let bytes: Vec<u8> = points.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
+        let bytes: Vec<u8> = points
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
         let view = self.view(&bytes, None);
-        let min: Vec<f32> = (0..3).map(|k| points.iter().map(|p| p[k]).fold(f32::MAX, f32::min)).collect();
-        let max: Vec<f32> = (0..3).map(|k| points.iter().map(|p| p[k]).fold(f32::MIN, f32::max)).collect();
+        let min: Vec<f32> = (0..3)
+            .map(|k| points.iter().map(|p| p[k]).fold(f32::MAX, f32::min))
+            .collect();
+        let max: Vec<f32> = (0..3)
+            .map(|k| points.iter().map(|p| p[k]).fold(f32::MIN, f32::max))
+            .collect();
         self.accessor(json!({
             "bufferView": view, "componentType": FLOAT, "count": points.len(), "type": "VEC3",
             "min": min, "max": max,
@@ -110,7 +118,10 @@ impl Writer {
     /// A node listed as a root of the default scene.
     pub fn root(&mut self, node: Value) -> usize {
         let n = self.node(node);
-        self.doc["scenes"][0]["nodes"].as_array_mut().expect("nodes").push(json!(n));
+        self.doc["scenes"][0]["nodes"]
+            .as_array_mut()
+            .expect("nodes")
+            .push(json!(n));
         n
     }
 

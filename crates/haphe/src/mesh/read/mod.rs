@@ -49,7 +49,7 @@ impl Format {
         if text_start.is_empty() {
             return Err(ReadErrorKind::Empty);
         }
-        if bytes.starts_with(self::gltf::GLB_MAGIC) || gltf_json(text_start, name) {
+        if bytes.starts_with(gltf::GLB_MAGIC) || gltf_json(text_start, name) {
             return Ok(Format::Gltf);
         }
         if stl::looks_binary(bytes) || starts_with_word(text_start, b"solid") {
@@ -321,7 +321,7 @@ pub fn read_unwelded_with(
         Format::Off => off::read_off(bytes),
         Format::Gltf => {
             // Scaled to metres by the reader (translations too); weld as for the others.
-            let scene = self::gltf::read_gltf(file, bytes, options.units, resolver)?;
+            let scene = gltf::read_gltf(file, bytes, options.units, resolver)?;
             let mesh = scene.flatten();
             mesh.check_indices_and_finite().map_err(fail)?;
             return Ok(mesh);

@@ -83,10 +83,7 @@ fn component(bytes: &[u8], at: usize, c: ComponentType, normalized: bool) -> f64
             f64::from(u32::from_le_bytes([b(0), b(1), b(2), b(3)])),
             4_294_967_295.0,
         ),
-        ComponentType::F32 => (
-            f64::from(f32::from_le_bytes([b(0), b(1), b(2), b(3)])),
-            1.0,
-        ),
+        ComponentType::F32 => (f64::from(f32::from_le_bytes([b(0), b(1), b(2), b(3)])), 1.0),
     };
     if normalized && c != ComponentType::F32 {
         (value / scale).max(-1.0)
@@ -114,7 +111,7 @@ impl<'a> Accessors<'a> {
         let views = &self.root.buffer_views;
         let view = views.get(index).ok_or_else(|| {
             invalid(format!(
-                "the buffer view does not exist (the file has {})",
+                "the buffer view does not exist (the file has {} buffer views)",
                 views.len()
             ))
         })?;
@@ -125,7 +122,7 @@ impl<'a> Accessors<'a> {
             .and_then(Option::as_deref)
             .ok_or_else(|| {
                 invalid(format!(
-                    "buffer {buffer} does not exist (the file has {})",
+                    "buffer {buffer} does not exist (the file has {} buffers)",
                     self.root.buffers.len()
                 ))
             })?;
@@ -191,7 +188,7 @@ impl<'a> Accessors<'a> {
         let accessors = &self.root.accessors;
         let accessor = accessors.get(index).ok_or_else(|| {
             invalid(format!(
-                "the accessor does not exist (the file has {})",
+                "the accessor does not exist (the file has {} accessors)",
                 accessors.len()
             ))
         })?;
@@ -210,7 +207,11 @@ impl<'a> Accessors<'a> {
         let c = match accessor.component_type {
             Checked::Valid(c) if expect.components.contains(&c.0) => c.0,
             Checked::Valid(c) => {
-                let allowed: Vec<_> = expect.components.iter().map(|&c| component_name(c)).collect();
+                let allowed: Vec<_> = expect
+                    .components
+                    .iter()
+                    .map(|&c| component_name(c))
+                    .collect();
                 return Err(invalid(format!(
                     "{} cannot have {} components (it may have {})",
                     expect.what,
@@ -243,13 +244,11 @@ impl<'a> Accessors<'a> {
                     )));
                 }
                 let offset = accessor.byte_offset.map_or(0, |o| o.0);
-                let needed = count
-                    .checked_sub(1)
-                    .map_or(Some(0), |last| {
-                        last.checked_mul(stride as u64)
-                            .and_then(|b| b.checked_add(offset))
-                            .and_then(|b| b.checked_add(element as u64))
-                    });
+                let needed = count.checked_sub(1).map_or(Some(0), |last| {
+                    last.checked_mul(stride as u64)
+                        .and_then(|b| b.checked_add(offset))
+                        .and_then(|b| b.checked_add(element as u64))
+                });
                 match needed {
                     Some(n) if n <= view.bytes.len() as u64 => {}
                     _ => {
@@ -304,12 +303,16 @@ impl<'a> Accessors<'a> {
         let index_type = match sparse.indices.component_type {
             Checked::Valid(t) => t.0,
             Checked::Invalid => {
-                return Err(invalid("sparse: the indices' componentType is not valid".into()));
+                return Err(invalid(
+                    "sparse: the indices' componentType is not valid".into(),
+                ));
             }
         };
         let section = |this: &Self, view: usize, offset: u64, each: usize, what: &str| {
             let bytes = this.view(view, at)?.bytes;
-            let needed = n.checked_mul(each as u64).and_then(|b| b.checked_add(offset));
+            let needed = n
+                .checked_mul(each as u64)
+                .and_then(|b| b.checked_add(offset));
             match needed {
                 Some(end) if end <= bytes.len() as u64 => Ok(&bytes[offset as usize..]),
                 _ => Err(invalid(format!(

@@ -36,9 +36,11 @@ pub struct NoSideCars;
 
 impl Resolve for NoSideCars {
     fn resolve(&mut self, _uri: &str, _byte_length: u64) -> Result<Vec<u8>, String> {
-        Err("the glTF was given as bytes alone, with no folder to read side-car files \
+        Err(
+            "the glTF was given as bytes alone, with no folder to read side-car files \
              from; read it from its path, or use a .glb"
-            .to_owned())
+                .to_owned(),
+        )
     }
 }
 
@@ -213,7 +215,7 @@ fn percent_decoded(uri: &str) -> Result<String, String> {
 pub(super) fn load_buffers(
     container: &Container<'_>,
     needed: &[bool],
-    resolver: &mut dyn super::Resolve,
+    resolver: &mut dyn Resolve,
 ) -> Result<Vec<Option<Vec<u8>>>, ReadErrorKind> {
     let buffers = &container.root.buffers;
     let mut out = Vec::with_capacity(buffers.len());
@@ -296,7 +298,10 @@ mod tests {
 
     #[test]
     fn schemes_are_told_from_file_names() {
-        assert_eq!(scheme("data:application/octet-stream;base64,AAAA"), Some("data"));
+        assert_eq!(
+            scheme("data:application/octet-stream;base64,AAAA"),
+            Some("data")
+        );
         assert_eq!(scheme("https://example.com/a.bin"), Some("https"));
         assert_eq!(scheme("box.bin"), None);
         assert_eq!(scheme("a b:c.bin"), None);
@@ -314,7 +319,10 @@ mod tests {
             data_uri("data:application/octet-stream;base64,AQID"),
             Ok(vec![1, 2, 3])
         );
-        assert_eq!(data_uri("data:application/gltf-buffer;base64,AQI"), Ok(vec![1, 2]));
+        assert_eq!(
+            data_uri("data:application/gltf-buffer;base64,AQI"),
+            Ok(vec![1, 2])
+        );
         assert!(data_uri("data:text/plain,hello").is_err());
     }
 }

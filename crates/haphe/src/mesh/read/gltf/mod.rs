@@ -26,9 +26,9 @@ mod nodes;
 mod primitive;
 mod summary;
 
+pub(crate) use container::GLB_MAGIC;
 pub use container::{NoSideCars, Resolve};
 pub use summary::{GltfNodeSummary, GltfSummary, SkippedSummary};
-pub(crate) use container::GLB_MAGIC;
 
 use glam::DAffine3;
 use gltf::json;
@@ -164,13 +164,14 @@ impl GltfScene {
                 .map(|&p| node.world_from_node.transform_point3(p)),
         );
         let mirrors = node.mirrors();
-        out.triangles.extend(mesh.triangles.iter().map(|&[a, b, c]| {
-            if mirrors {
-                [base + a, base + c, base + b]
-            } else {
-                [base + a, base + b, base + c]
-            }
-        }));
+        out.triangles
+            .extend(mesh.triangles.iter().map(|&[a, b, c]| {
+                if mirrors {
+                    [base + a, base + c, base + b]
+                } else {
+                    [base + a, base + b, base + c]
+                }
+            }));
     }
 
     /// Every node's mesh placed in the world, as one mesh (world frame, not welded).
@@ -281,7 +282,11 @@ pub fn read_gltf(
     })
 }
 
-fn read(bytes: &[u8], units: Units, resolver: &mut dyn Resolve) -> Result<GltfScene, ReadErrorKind> {
+fn read(
+    bytes: &[u8],
+    units: Units,
+    resolver: &mut dyn Resolve,
+) -> Result<GltfScene, ReadErrorKind> {
     let scale = units.metres_per_unit();
     if !(scale.is_finite() && scale > 0.0) {
         return Err(ReadErrorKind::Syntax {

@@ -85,8 +85,11 @@ fn check_acyclic(parent: &[Option<usize>]) -> Result<(), ReadErrorKind> {
                     // `n` is on the path: the cycle is the path from `n` on, each node a
                     // child of the next.
                     let from = path.iter().position(|&m| m == n).unwrap_or(0);
-                    let mut cycle: Vec<String> =
-                        path[from..].iter().rev().map(|m| format!("node {m}")).collect();
+                    let mut cycle: Vec<String> = path[from..]
+                        .iter()
+                        .rev()
+                        .map(|m| format!("node {m}"))
+                        .collect();
                     cycle.push(format!("node {}", path[path.len() - 1]));
                     return Err(invalid(
                         node_place(n),

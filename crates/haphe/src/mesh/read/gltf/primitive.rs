@@ -237,7 +237,11 @@ mod tests {
         let mut strip = Vec::new();
         // Two strips (0 1 2) and (3 4 5) joined by repeating 2 and 3.
         assemble(Mode::TriangleStrip, &[0, 1, 2, 2, 3, 3, 4, 5], &mut strip);
-        assert!(strip.iter().all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
+        assert!(
+            strip
+                .iter()
+                .all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        );
         // (0 1 2) and (3 4 5); the four joining triangles each repeat a vertex.
         assert_eq!(strip.len(), 2);
     }

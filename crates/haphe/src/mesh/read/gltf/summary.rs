@@ -77,17 +77,18 @@ impl GltfScene {
             .iter()
             .map(|node| {
                 let mesh = self.mesh_of(node);
-                let is_closed = *closed[node.mesh].get_or_insert_with(|| {
-                    MeshReport::of(&weld(mesh, weld_mode).0).closed
-                });
+                let is_closed = *closed[node.mesh]
+                    .get_or_insert_with(|| MeshReport::of(&weld(mesh, weld_mode).0).closed);
                 let t = node.world_from_node;
                 let (scale, rotation, translation) = t.to_scale_rotation_translation();
-                let rebuilt = glam::DAffine3::from_scale_rotation_translation(
-                    scale,
-                    rotation,
-                    translation,
-                );
-                let size = t.matrix3.abs().to_cols_array().iter().fold(0.0f64, |m, &v| m.max(v));
+                let rebuilt =
+                    glam::DAffine3::from_scale_rotation_translation(scale, rotation, translation);
+                let size = t
+                    .matrix3
+                    .abs()
+                    .to_cols_array()
+                    .iter()
+                    .fold(0.0f64, |m, &v| m.max(v));
                 GltfNodeSummary {
                     node: node.index,
                     name: node.label(),
@@ -97,9 +98,10 @@ impl GltfScene {
                     translation: translation.to_array(),
                     rotation: rotation.to_array(),
                     scale: scale.to_array(),
-                    exact_trs: rebuilt
-                        .matrix3
-                        .abs_diff_eq(t.matrix3, TRS_REBUILD_RELATIVE * size.max(f64::MIN_POSITIVE)),
+                    exact_trs: rebuilt.matrix3.abs_diff_eq(
+                        t.matrix3,
+                        TRS_REBUILD_RELATIVE * size.max(f64::MIN_POSITIVE),
+                    ),
                 }
             })
             .collect();
