@@ -149,7 +149,10 @@ fn split_rotation(linear: DMat3) -> Option<(DQuat, DMat3, [i64; 10])> {
     let scale = c0.length().max(c1.length()).max(linear.z_axis.length());
     // Relative to the columns' lengths: a determinant this small is a flattened mesh.
     const SINGULAR_RELATIVE: f64 = 1e-12;
-    if !(scale > 0.0) || linear.determinant().abs() <= SINGULAR_RELATIVE * scale.powi(3) {
+    if scale.is_nan()
+        || scale <= 0.0
+        || linear.determinant().abs() <= SINGULAR_RELATIVE * scale.powi(3)
+    {
         return None;
     }
     let q0 = c0.normalize();
