@@ -228,10 +228,10 @@ fn check_required_extensions(root: &json::Root) -> Result<(), ReadErrorKind> {
 fn needed_buffers(root: &json::Root, meshes: &[bool]) -> Vec<bool> {
     let mut needed = vec![false; root.buffers.len()];
     let mut mark_view = |view: usize| {
-        if let Some(v) = root.buffer_views.get(view) {
-            if let Some(slot) = needed.get_mut(v.buffer.value()) {
-                *slot = true;
-            }
+        if let Some(v) = root.buffer_views.get(view)
+            && let Some(slot) = needed.get_mut(v.buffer.value())
+        {
+            *slot = true;
         }
     };
     let used = root
