@@ -82,7 +82,10 @@ pub(super) fn carry(
         return p;
     }
     let moved = scene.moved_indices();
-    let Some(shift) = scene.moved_shift().filter(|_| !moved.is_empty()) else {
+    if moved.is_empty() {
+        return p;
+    }
+    let Some(shift) = scene.moved_shift() else {
         for &i in moved {
             carry_one(i as usize, &mut p);
         }

@@ -6,15 +6,20 @@ use glam::DVec3;
 use crate::scene::{Near, Scene};
 
 /// Least growth of a remembered box, metres, so that a hand moving slowly keeps the same
-/// candidates over many ticks (a tenth of a millimetre: a tick's travel at 1 m/s and
-/// 10 kHz).
-const FAT: f64 = 1e-4;
+/// candidates over many ticks (a millimetre: a tick's travel at 1 m/s and 1 kHz).
+const FAT: f64 = 1e-3;
+
+/// Growth of a remembered box in multiples of the size of the search that made it, so that
+/// a hand moving steadily keeps the same candidates for several ticks: the broad phase's
+/// cells are at least as large as the objects in them, so a box a few steps larger rarely
+/// holds more candidates, while a query costs far more than a tick's other bookkeeping.
+const GROWTH: f64 = 8.0;
 
 /// The candidate objects of the proxy's searches: a [`Near`] set for a box, kept while the
 /// scene's broad phase is unchanged (same scene, no object changed cell) and every search
 /// lies in the box. A search outside the box asks the broad phase again, for its own box
-/// grown by its size (at least [`FAT`]), so that the next searches of the tick and of the
-/// following ticks fall inside.
+/// grown by [`GROWTH`] times its size (at least [`FAT`]), so that the next searches of the
+/// tick and of the following ticks fall inside.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct NearCache {
     near: Near,
@@ -64,14 +69,13 @@ impl NearCache {
         let key = Some(scene.broad_epoch());
         let inside = self.key == key && lo.cmpge(self.lo).all() && hi.cmple(self.hi).all();
         if !inside {
-            let grow = DVec3::splat((hi - lo).max_element().max(FAT));
+            let grow = DVec3::splat(((hi - lo).max_element() * GROWTH).max(FAT));
             let (mut l, mut h) = (lo - grow, hi + grow);
-            let mut near = scene.near(l, h);
-            if near.all() {
+            scene.near_into(l, h, &mut self.near);
+            if self.near.all() {
                 (l, h) = (lo, hi);
-                near = scene.near(l, h);
+                scene.near_into(l, h, &mut self.near);
             }
-            self.near = near;
             (self.lo, self.hi) = (l, h);
             self.key = (l.is_finite() && h.is_finite()).then_some(key).flatten();
         }

@@ -120,6 +120,8 @@ pub(crate) struct Broad {
     heads: Box<[u32]>,
     huge_head: u32,
     counts: [u32; LEVELS],
+    /// Bit `l` set when level `l` holds an object (its count is not 0).
+    occupied: u64,
 }
 
 /// The objects a query found, in increasing index order, or the whole scene.
@@ -192,6 +194,7 @@ impl Broad {
             heads: vec![NONE; buckets].into_boxed_slice(),
             huge_head: NONE,
             counts: [0; LEVELS],
+            occupied: 0,
         }
     }
 
@@ -224,6 +227,7 @@ impl Broad {
         *self.head_mut(&c) = i;
         if c.level != HUGE {
             self.counts[c.level as usize] += 1;
+            self.occupied |= 1 << c.level;
         }
     }
 
@@ -240,6 +244,9 @@ impl Broad {
         }
         if c.level != HUGE {
             self.counts[c.level as usize] -= 1;
+            if self.counts[c.level as usize] == 0 {
+                self.occupied &= !(1 << c.level);
+            }
         }
     }
 
@@ -338,39 +345,47 @@ impl Broad {
     /// No allocation; at most `MAX_CELLS_PER_LEVEL` cells per occupied level, and
     /// [`NEAR_CAPACITY`] objects kept.
     pub(crate) fn query(&self, lo: DVec3, hi: DVec3) -> Near {
-        let mut near = Near {
-            idx: [0; NEAR_CAPACITY],
-            len: 0,
-            all: false,
-        };
+        let mut near = Near::ALL;
+        self.query_into(lo, hi, &mut near);
+        near
+    }
+
+    /// [`Broad::query`] written into `near` (no set of [`NEAR_CAPACITY`] indices made and
+    /// copied: the servo tick's way).
+    pub(crate) fn query_into(&self, lo: DVec3, hi: DVec3, near: &mut Near) {
+        near.len = 0;
+        near.all = false;
         if !(lo.is_finite() && hi.is_finite()) {
-            return Near::ALL;
+            near.all = true;
+            return;
         }
         // The rounding of coordinates far from the origin.
         let slack = 1e-9 * lo.abs().max(hi.abs()).max_element().max(1.0);
-        for level in 0..LEVELS {
-            if self.counts[level] == 0 {
-                continue;
-            }
+        // The occupied levels, lowest first.
+        let mut levels = self.occupied;
+        while levels != 0 {
+            let level = levels.trailing_zeros() as usize;
+            levels &= levels - 1;
             let h = edge(level);
-            // A sphere reaches at most `h` beyond its cell.
+            // A sphere reaches at most `h` beyond its cell. Multiplying by the inverse of
+            // a power of two is exact: the same as dividing by `h`.
             let ext = DVec3::splat(h * (1.0 + 1e-6) + slack);
-            let a = ((lo - ext) / h).floor();
-            let b = ((hi + ext) / h).floor();
-            let span = b - a + DVec3::ONE;
-            if a.abs().max_element() > MAX_COORD + 2.0
-                || b.abs().max_element() > MAX_COORD + 2.0
-                || span.x * span.y * span.z > MAX_CELLS_PER_LEVEL as f64
+            let a = floor(((lo - ext) * inverse_edge(level)).to_array());
+            let b = floor(((hi + ext) * inverse_edge(level)).to_array());
+            let span = [0, 1, 2].map(|j| b[j] - a[j] + 1.0);
+            if a.iter().chain(&b).any(|k| k.abs() > MAX_COORD + 2.0)
+                || span[0] * span[1] * span[2] > MAX_CELLS_PER_LEVEL as f64
             {
-                return Near::ALL;
+                near.all = true;
+                return;
             }
-            let (a, b) = (a.as_i64vec3(), b.as_i64vec3());
-            for x in a.x..=b.x {
-                for y in a.y..=b.y {
-                    for z in a.z..=b.z {
+            let (a, b) = (a.map(|k| k as i32), b.map(|k| k as i32));
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
                         let c = Cell {
                             level: level as u8,
-                            k: [x as i32, y as i32, z as i32],
+                            k: [x, y, z],
                         };
                         let mut i = self.heads[self.bucket(&c)];
                         while i != NONE {
@@ -388,12 +403,24 @@ impl Broad {
             near.push(i);
             i = self.next[i as usize];
         }
-        if near.all {
-            return Near::ALL;
+        if !near.all {
+            near.idx[..near.len].sort_unstable();
         }
-        near.idx[..near.len].sort_unstable();
-        near
     }
+}
+
+/// `x.floor()` for each of `x` (finite), without a call into the C library: exact, as
+/// every `f64` of magnitude at least 2^52 is an integer.
+#[inline]
+fn floor(x: [f64; 3]) -> [f64; 3] {
+    x.map(|x| {
+        if x.abs() < 4_503_599_627_370_496.0 {
+            let t = x as i64 as f64;
+            if t > x { t - 1.0 } else { t }
+        } else {
+            x
+        }
+    })
 }
 
 #[cfg(test)]
@@ -416,6 +443,23 @@ mod tests {
         assert_eq!(inverse_edge(17), 8.0);
         for x in [-2.5, -2.0, -0.1, 0.0, 0.3, 1.0, 7.9, 1e9] {
             assert_eq!(floor_i32(x), x.floor() as i32, "{x}");
+        }
+        let xs = [
+            -1e300,
+            -4503599627370497.0,
+            -4503599627370495.5,
+            -2.5,
+            -1e-300,
+            0.0,
+            1.0f64.next_down(),
+            (-2.0f64).next_up(),
+            3.5,
+            4503599627370495.5,
+            9007199254740994.0,
+            f64::MAX,
+        ];
+        for x in xs {
+            assert_eq!(floor([x; 3]), [x.floor(); 3], "{x}");
         }
     }
 

@@ -333,6 +333,11 @@ impl Scene {
         self.broad.query(lo, hi)
     }
 
+    /// [`Scene::near`] written into `near`.
+    pub(crate) fn near_into(&self, lo: DVec3, hi: DVec3, near: &mut Near) {
+        self.broad.query_into(lo, hi, near);
+    }
+
     /// The last removals, so that indices kept from one tick to the next can follow them.
     pub(crate) fn removals(&self) -> &RemovalLog {
         &self.removals
