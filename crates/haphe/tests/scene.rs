@@ -38,6 +38,15 @@ fn edits_from_another_thread() {
             contacts += u64::from(out.contact.is_some());
             ticks += 1;
         }
+        // Edits sent before `done` was set may still wait (a loaded machine can leave the
+        // servo no turn between the last send and `done`): apply them before counting.
+        loop {
+            let more = scene.begin_tick();
+            if more == 0 {
+                break;
+            }
+            applied += more;
+        }
         (ticks, contacts, applied, scene)
     });
     let mut returned = 0;
