@@ -40,12 +40,7 @@ fuzz_target!(|bytes: &[u8]| {
         return;
     };
     let friction = f64::from(bytes[2]) / 255.0;
-    let material = Material {
-        stiffness: 500.0,
-        damping: 1.0,
-        static_friction: friction,
-        dynamic_friction: 0.6 * friction,
-    };
+    let material = Material::builder().stiffness(500.0).damping(1.0).friction(friction, 0.6 * friction).build().expect("a valid material");
     let mut scene = Scene::local(1);
     let object = SceneObject::new(ObjectId(0), Arc::new(shape), Pose::IDENTITY, material);
     if scene.insert(object).is_err() {
@@ -68,12 +63,12 @@ fuzz_target!(|bytes: &[u8]| {
             out.proxy.distance(b) <= PROXY_TOLERANCE_M && out.contact.is_some() == b_contact,
             "{which}: fast {out:?}, brute {b} ({b_contact})"
         );
-        assert!(out.force.is_finite() && out.force.length() <= options.max_force * (1.0 + 1e-12));
+        assert!(out.force.is_finite() && out.force.length() <= options.max_force() * (1.0 + 1e-12));
         if o.shape.is_solid()
             && classify_point(o.shape.surface(), o.shape.map(), out.proxy).0 == Side::Inside
         {
             assert!(
-                distance_to_surface(o.shape.surface(), out.proxy) <= options.skin,
+                distance_to_surface(o.shape.surface(), out.proxy) <= options.skin(),
                 "{which}: proxy inside at {}",
                 out.proxy
             );

@@ -22,7 +22,7 @@ fuzz_target!(|bytes: &[u8]| {
     assert!(!entries.is_empty() && entries.len() <= MAX_OBJECTS);
     for (i, entry) in entries.iter().enumerate() {
         assert!(entry.pose.translation().is_finite() && entry.pose.rotation().is_finite());
-        assert_eq!(entry.material.checked(), Ok(entry.material));
+        assert_eq!(entry.material.to_builder().build(), Ok(entry.material));
         if let Some(motion) = &entry.motion {
             assert_eq!(motion.id, entry.id);
             assert!(motion.motion.checked().is_ok());

@@ -4,13 +4,16 @@ use std::cell::RefCell;
 use std::ffi::{CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
+use haphe_lib::scene::ParamError;
+
 /// What a call did. `HAPHE_STATUS_OK` is 0; on any other status `haphe_last_error()` says why.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum HapheStatus {
     /// Done.
     Ok = 0,
-    /// An argument is null, out of range or not finite.
+    /// An argument is null, out of range or not finite (a parameter outside its domain in
+    /// the library's table: the message names it, its value and its domain).
     InvalidArgument = 1,
     /// A file could not be read or written.
     Io = 2,
@@ -35,6 +38,14 @@ impl Failure {
     /// An [`HapheStatus::InvalidArgument`] failure.
     pub fn argument(message: impl Into<String>) -> Failure {
         Failure(HapheStatus::InvalidArgument, message.into())
+    }
+}
+
+/// A value refused by the library's table of domains: [`HapheStatus::InvalidArgument`],
+/// the message naming the parameter, the value and its domain.
+impl From<ParamError> for Failure {
+    fn from(e: ParamError) -> Failure {
+        Failure::argument(e.to_string())
     }
 }
 

@@ -2,8 +2,8 @@
 
 use haphe_lib::DVec3;
 use haphe_lib::glam::DQuat;
-use haphe_lib::proxy::{DEFAULT_SKIN, Proxy, ProxyOptions};
-use haphe_lib::scene::{Material, ObjectId, Pose, Scene, SceneObject};
+use haphe_lib::proxy::{Proxy, ProxyOptions};
+use haphe_lib::scene::{Material, ObjectId, Param, Pose, Scene, SceneObject};
 
 use crate::error::{Failure, HapheStatus, guard};
 use crate::shape::{HapheShape, shape};
@@ -64,40 +64,25 @@ pub(crate) fn scene_mut<'a>(s: *mut HapheScene) -> Result<&'a mut HapheScene, Fa
     unsafe { s.as_mut() }.ok_or_else(|| Failure::argument("scene is null"))
 }
 
-/// Three doubles at `p`, checked finite; `default` when `p` is null.
-pub(crate) fn vec3(what: &str, p: *const f64, default: DVec3) -> Result<DVec3, Failure> {
+/// Three doubles at `p`; `default` when `p` is null.
+fn vec3(p: *const f64, default: DVec3) -> DVec3 {
     if p.is_null() {
-        return Ok(default);
+        return default;
     }
     // SAFETY: a non-null `p` points to 3 readable doubles (documented).
-    let v = DVec3::from_array(unsafe { *p.cast::<[f64; 3]>() });
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(Failure::argument(format!(
-            "{what} {:?} is not finite",
-            v.to_array()
-        )))
-    }
+    DVec3::from_array(unsafe { *p.cast::<[f64; 3]>() })
 }
 
-/// A rotation from a quaternion `x, y, z, w` at `q`; the identity when `q` is null.
-fn rotation(q: *const f64) -> Result<DQuat, Failure> {
-    if q.is_null() {
-        return Ok(DQuat::IDENTITY);
-    }
-    // SAFETY: a non-null `q` points to 4 readable doubles (documented).
-    let [x, y, z, w] = unsafe { *q.cast::<[f64; 4]>() };
-    let q = DQuat::from_xyzw(x, y, z, w);
-    let norm = q.length();
-    if norm.is_finite() && norm > 0.0 {
-        Ok(q / norm)
+/// A pose from a position (3 doubles, null: the origin) and a quaternion `x, y, z, w`
+/// (null: the identity), checked by the library's table of domains.
+fn pose(position: *const f64, rotation: *const f64) -> Result<Pose, Failure> {
+    let rotation = if rotation.is_null() {
+        DQuat::IDENTITY
     } else {
-        Err(Failure::argument(format!(
-            "the rotation {:?} is not a quaternion",
-            [x, y, z, w]
-        )))
-    }
+        // SAFETY: a non-null `rotation` points to 4 readable doubles (documented).
+        DQuat::from_array(unsafe { *rotation.cast::<[f64; 4]>() })
+    };
+    Ok(Pose::new(rotation, vec3(position, DVec3::ZERO))?)
 }
 
 /// Writes a new handle to `out`.
@@ -148,7 +133,11 @@ pub extern "C" fn haphe_scene_free(scene: *mut HapheScene) {
 /// turned by the quaternion `rotation` (x, y, z, w, object to world; null: none), with
 /// `material` (null: 500 N/m, no damping, no friction). The scene keeps its own reference
 /// to the shape (the caller may free its handle). `*id` (may be null) receives the
-/// object's id. Errors: `HAPHE_STATUS_FULL` at capacity, `HAPHE_STATUS_INVALID_ARGUMENT`.
+/// object's id. Errors: `HAPHE_STATUS_FULL` at capacity, `HAPHE_STATUS_INVALID_ARGUMENT`
+/// (`haphe_last_error()` names the parameter outside its domain in the library's table:
+/// a stiffness above 0 and at most 1e6 N/m, damping 0 to 1000 N·s/m, friction 0 to 10
+/// with the dynamic at most the static, a position at most 1e9 m from the origin, a
+/// quaternion of non-zero length).
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_scene_add(
     scene: *mut HapheScene,
@@ -161,19 +150,15 @@ pub extern "C" fn haphe_scene_add(
     guard(|| {
         let sc = scene_mut(scene)?;
         let sh = self::shape(shape)?;
-        let pose = Pose::new(
-            self::rotation(rotation)?,
-            vec3("position", position, DVec3::ZERO)?,
-        );
+        let pose = pose(position, rotation)?;
         // SAFETY: a non-null `material` points to a readable HapheMaterial (documented).
         let material = match unsafe { material.as_ref() } {
             None => Material::default(),
-            Some(m) => Material {
-                stiffness: m.stiffness,
-                damping: m.damping,
-                static_friction: m.static_friction,
-                dynamic_friction: m.dynamic_friction,
-            },
+            Some(m) => Material::builder()
+                .stiffness(m.stiffness)
+                .damping(m.damping)
+                .friction(m.static_friction, m.dynamic_friction)
+                .build()?,
         };
         let object_id = ObjectId(sc.next_id);
         sc.inner
@@ -195,7 +180,8 @@ pub extern "C" fn haphe_scene_add(
 
 /// Moves object `id` to `position` (metres) turned by `rotation` (x, y, z, w; null: none);
 /// the motion is rendered at the next tick. Allocates nothing. Errors:
-/// `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id.
+/// `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id or a position or rotation outside its
+/// domain (named by `haphe_last_error()`).
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_scene_set_pose(
     scene: *mut HapheScene,
@@ -205,10 +191,7 @@ pub extern "C" fn haphe_scene_set_pose(
 ) -> HapheStatus {
     guard(|| {
         let sc = scene_mut(scene)?;
-        let pose = Pose::new(
-            self::rotation(rotation)?,
-            vec3("position", position, DVec3::ZERO)?,
-        );
+        let pose = pose(position, rotation)?;
         if sc.inner.set_pose(ObjectId(id), pose) {
             Ok(())
         } else {
@@ -219,7 +202,8 @@ pub extern "C" fn haphe_scene_set_pose(
 
 /// A new proxy at `position` (3 doubles, metres; null: the origin), rendering at most
 /// `max_force` newtons. On success `*out` is owned by the caller: free it with
-/// `haphe_proxy_free`.
+/// `haphe_proxy_free`. Errors: `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()`
+/// naming `max_force` (above 0, at most 100 N) or `position`.
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_proxy_new(
     position: *const f64,
@@ -227,12 +211,10 @@ pub extern "C" fn haphe_proxy_new(
     out: *mut *mut HapheProxy,
 ) -> HapheStatus {
     guard(|| {
-        let options = ProxyOptions {
-            skin: DEFAULT_SKIN,
-            max_force,
-            ..ProxyOptions::default()
-        };
-        let p = vec3("position", position, DVec3::ZERO)?;
+        let options = ProxyOptions::default().with_max_force(max_force)?;
+        let p = DVec3::from_array(
+            Param::Position.check_vector(vec3(position, DVec3::ZERO).to_array())?,
+        );
         give(
             "proxy",
             out,

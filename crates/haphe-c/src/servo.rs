@@ -83,7 +83,8 @@ fn record(r: &TickRecord) -> HapheTickRecord {
 /// Safe start: no force until the device point is outside every solid, then a 50 ms ramp.
 /// `*ticks` (may be null) receives the number of ticks run. The scene is only read.
 /// Errors: `HAPHE_STATUS_DEVICE` (unknown device, or one that faulted),
-/// `HAPHE_STATUS_INVALID_ARGUMENT`.
+/// `HAPHE_STATUS_INVALID_ARGUMENT` (`rate_hz` outside 1 to 40000 Hz, named by
+/// `haphe_last_error()`; `seconds` not positive).
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_run(
     scene: *mut HapheScene,
@@ -99,6 +100,8 @@ pub extern "C" fn haphe_run(
         let sc = scene_mut(scene)?;
         let device = text("device", device)?;
         let path = text("path", path)?;
+        // The library's table of domains checks the rate.
+        let options = ServoOptions::new(rate_hz)?;
         if !(seconds.is_finite() && seconds > 0.0 && seconds * rate_hz <= 1e9) {
             return Err(Failure::argument(format!(
                 "seconds {seconds} must be positive"
@@ -111,10 +114,6 @@ pub extern "C" fn haphe_run(
             let _ = world.insert(o.clone());
         }
         let dev = open_device(device, path, &world, seconds)?;
-        let options = ServoOptions {
-            rate_hz,
-            ..ServoOptions::default()
-        };
         let mut servo = Servo::new(dev, world, options)
             .map_err(|e| Failure(HapheStatus::Device, e.to_string()))?;
         let mut count = 0u64;

@@ -9,7 +9,9 @@ use anyhow::{anyhow, bail};
 use haphe::DVec3;
 use haphe::map::MapOptions;
 use haphe::mesh::{Units, Weld};
-use haphe::scene::Material;
+use haphe::proxy::ProxyOptions;
+use haphe::scene::{Material, Param};
+use haphe::servo::RealtimeOptions;
 
 use crate::input::model::Model;
 
@@ -40,15 +42,20 @@ pub struct MappingArgs {
 }
 
 impl MappingArgs {
-    /// Checks `--scale`.
+    /// Checks `--scale` and `--centre` against the library's table of domains.
     ///
     /// # Errors
-    /// A scale that is not positive.
+    /// A value outside its domain, named as its flag.
     pub fn check(&self) -> anyhow::Result<()> {
-        if let Some(s) = self.scale
-            && !(s.is_finite() && s > 0.0)
-        {
-            bail!("--scale must be positive, not {s}");
+        if let Some(s) = self.scale {
+            Param::Scale
+                .check(s)
+                .map_err(|e| anyhow!("{}", e.named("--scale")))?;
+        }
+        if let Some(c) = self.centre {
+            Param::Centre
+                .check_vector(c.to_array())
+                .map_err(|e| anyhow!("{}", e.named("--centre")))?;
         }
         Ok(())
     }
@@ -146,15 +153,60 @@ impl ModelArgs {
     /// # Errors
     /// A value out of its range, named as its option.
     pub fn material(&self) -> anyhow::Result<Material> {
-        Material {
-            stiffness: self.stiffness,
-            damping: self.damping,
-            static_friction: self.static_friction,
-            dynamic_friction: self.dynamic_friction,
-        }
-        .checked()
-        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))
+        material_of_flags(
+            self.stiffness,
+            self.damping,
+            self.static_friction,
+            self.dynamic_friction,
+        )
     }
+}
+
+/// The material of the flags `--stiffness`, `--damping`, `--static-friction` and
+/// `--dynamic-friction`, checked by the library's table of domains.
+///
+/// # Errors
+/// A value outside its domain, named as its flag.
+pub fn material_of_flags(
+    stiffness: f64,
+    damping: f64,
+    static_friction: f64,
+    dynamic_friction: f64,
+) -> anyhow::Result<Material> {
+    Material::builder()
+        .stiffness(stiffness)
+        .damping(damping)
+        .friction(static_friction, dynamic_friction)
+        .build()
+        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))
+}
+
+/// The proxy's options with the maximum force of `--max-force`.
+///
+/// # Errors
+/// A force outside its domain, named as its flag.
+pub fn proxy_options(max_force: f64) -> anyhow::Result<ProxyOptions> {
+    ProxyOptions::default()
+        .with_max_force(max_force)
+        .map_err(|e| anyhow!("{}", e.named("--max-force")))
+}
+
+/// The real-time options with the spin of `--spin-us`, microseconds.
+///
+/// # Errors
+/// A spin outside its domain, named as its flag (in microseconds).
+pub fn spin(spin_us: Option<f64>) -> anyhow::Result<RealtimeOptions> {
+    RealtimeOptions::default()
+        .with_spin_seconds(spin_us.map(|us| us * 1e-6))
+        .map_err(|_| {
+            let domain = Param::SpinSeconds.domain();
+            anyhow!(
+                "--spin-us must be a finite number from {} to {} µs, not {}",
+                domain.low * 1e6,
+                domain.high * 1e6,
+                spin_us.unwrap_or_default()
+            )
+        })
 }
 
 /// The files a session writes.

@@ -150,10 +150,7 @@ fn udp_loopback_with_a_peer_process() {
         .expect("the peer starts");
     // Opening waits for the peer's first position.
     let servo = Servo::new(device, scene(), ServoOptions::default()).expect("the peer sends");
-    let realtime = RealtimeOptions {
-        realtime_priority: false,
-        ..RealtimeOptions::default()
-    };
+    let realtime = RealtimeOptions::default().with_realtime_priority(false);
     let started = Instant::now();
     let running = ServoLoop::spawn(servo, Some(30.0), realtime).expect("spawn");
     let mut deepest = 0.0f64;

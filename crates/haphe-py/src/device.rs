@@ -5,7 +5,6 @@
 use std::time::{Duration, Instant};
 
 use haphe::DVec3;
-use haphe::proxy::ProxyOptions;
 use haphe::servo::{
     DeviceFault, RealtimeOptions, Servo, ServoLoop, ServoOptions, StopReason, TickRecord,
 };
@@ -16,7 +15,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 
-use crate::errors::haphe_error;
+use crate::errors::{haphe_error, param_error};
 
 create_exception!(
     haphe,
@@ -65,19 +64,14 @@ pub fn run_device(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<Device
         SpecError::Unknown(_) => haphe_error("device", e),
         other => DeviceError::new_err(format!("{}: {other}", run.spec)),
     })?;
-    let mapping = workspace_mapping(&opened.device.spec(), &scene, run.scale, run.centre);
-    let options = ServoOptions {
-        rate_hz: run.rate_hz,
-        proxy: ProxyOptions::default(),
-        mapping,
-        ..ServoOptions::default()
-    };
+    let mapping = workspace_mapping(&opened.device.spec(), &scene, run.scale, run.centre)
+        .map_err(param_error)?;
+    let options = ServoOptions::new(run.rate_hz)
+        .map_err(param_error)?
+        .with_mapping(mapping);
     let servo = Servo::new(opened.device, scene, options)
         .map_err(|e| DeviceError::new_err(format!("{}: {e}", run.spec)))?;
-    let realtime = RealtimeOptions {
-        overrun_budget: Some(DEFAULT_OVERRUN_BUDGET),
-        ..RealtimeOptions::default()
-    };
+    let realtime = RealtimeOptions::default().with_overrun_budget(Some(DEFAULT_OVERRUN_BUDGET));
     let limit = Some(run.seconds);
     let spawned = match opened.clock {
         Some(clock) => ServoLoop::spawn_clocked(servo, clock, limit, realtime),

@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use haphe::scene::{Param, ParamError};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyPermissionError, PyValueError};
 use pyo3::prelude::*;
@@ -21,6 +22,16 @@ pub fn haphe_error(context: &str, e: impl std::fmt::Display) -> PyErr {
     } else {
         HapheError::new_err(format!("{context}: {e}"))
     }
+}
+
+/// A value refused by the library's table of domains as a [`HapheError`], the parameter
+/// spelled as the keyword argument that gave it (`friction` for the static coefficient).
+pub fn param_error(e: ParamError) -> PyErr {
+    let name = match e.param() {
+        Param::StaticFriction => "friction",
+        other => other.name(),
+    };
+    HapheError::new_err(e.named(name).to_string())
 }
 
 /// An I/O error on `path` as the matching `OSError` subclass, naming the file.

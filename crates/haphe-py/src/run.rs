@@ -2,6 +2,7 @@
 //! or a real device (src/device.rs) on the wall clock.
 
 use haphe::DVec3;
+use haphe::scene::Param;
 use haphe::servo::{
     Device, HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, scripted_path,
 };
@@ -13,7 +14,7 @@ use pyo3::types::PyDict;
 use haphe_devices::{UDP_TIMEOUT_S, UdpOptions};
 
 use crate::device::{DeviceOutcome, DeviceRun, run_device};
-use crate::errors::haphe_error;
+use crate::errors::{haphe_error, param_error};
 use crate::scene::Scene;
 
 /// The simulated hand following the scripted path `path` over `scene` for `seconds`.
@@ -80,14 +81,22 @@ pub fn run<'py>(
     udp_timeout: f64,
     udp_workspace: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    // The library's table of domains checks the rate, the scale and the centre.
+    let options = ServoOptions::new(rate_hz).map_err(param_error)?;
     if !(seconds.is_finite() && seconds > 0.0 && seconds * rate_hz <= 1e8) {
         return Err(haphe_error(
             "seconds",
             format!("must be positive and give at most 1e8 ticks, not {seconds}"),
         ));
     }
+    if let Some(s) = scale {
+        Param::Scale.check(s).map_err(param_error)?;
+    }
+    if let Some(c) = centre {
+        Param::Centre.check_vector(c).map_err(param_error)?;
+    }
+    // The network device's own settings, not servo parameters.
     for (name, value) in [
-        ("scale", scale.unwrap_or(1.0)),
         ("udp_timeout", udp_timeout),
         ("udp_workspace", udp_workspace),
     ] {
@@ -95,20 +104,11 @@ pub fn run<'py>(
             return Err(haphe_error(name, format!("must be positive, not {value}")));
         }
     }
-    if let Some(c) = centre
-        && !c.iter().all(|x| x.is_finite())
-    {
-        return Err(haphe_error("centre", format!("must be finite, not {c:?}")));
-    }
     let world = scene.snapshot();
     drop(scene);
     let outcome = if device == "hand" {
         py.detach(|| -> Result<DeviceOutcome, String> {
             let hand = simulated_hand(path, &world, seconds, seed)?;
-            let options = ServoOptions {
-                rate_hz,
-                ..ServoOptions::default()
-            };
             let mut servo = Servo::new(hand, world, options).map_err(|e| e.to_string())?;
             let ticks = (seconds * rate_hz).round() as u64;
             let mut records = Vec::with_capacity(ticks as usize);

@@ -4,12 +4,12 @@
 use haphe::DVec3;
 use haphe::glam::{DMat3, DQuat};
 use haphe::proxy::{self, ProxyOptions};
-use haphe::scene::{self as hs, Material, ObjectId, Pose, SceneObject};
+use haphe::scene::{self as hs, Material, ObjectId, Param, Pose, SceneObject};
 use std::sync::{Mutex, PoisonError};
 
 use pyo3::prelude::*;
 
-use crate::errors::haphe_error;
+use crate::errors::{haphe_error, param_error};
 use crate::shape::Shape;
 
 /// Objects the proxy touches: shapes placed in the world (metres) with a material.
@@ -33,15 +33,8 @@ fn rotation(r: Option<&Bound<'_, PyAny>>) -> PyResult<DQuat> {
         return Ok(DQuat::IDENTITY);
     };
     if let Ok([x, y, z, w]) = r.extract::<[f64; 4]>() {
-        let q = DQuat::from_xyzw(x, y, z, w);
-        let norm = q.length();
-        if !(norm.is_finite() && norm > 0.0) {
-            return Err(haphe_error(
-                "rotation",
-                format!("the quaternion {:?} has no direction", [x, y, z, w]),
-            ));
-        }
-        return Ok(q / norm);
+        // Checked (finite, of non-zero length) and normalised by `Pose::new`.
+        return Ok(DQuat::from_xyzw(x, y, z, w));
     }
     let rows: [[f64; 3]; 3] = r.extract().map_err(|_| {
         haphe_error(
@@ -60,16 +53,9 @@ fn rotation(r: Option<&Bound<'_, PyAny>>) -> PyResult<DQuat> {
     Ok(DQuat::from_mat3(&m))
 }
 
-/// A point or vector from three finite numbers; the error names `what`.
-fn vector(what: &str, v: [f64; 3]) -> PyResult<DVec3> {
-    let v = DVec3::from_array(v);
-    if !v.is_finite() {
-        return Err(haphe_error(
-            what,
-            format!("{:?} is not finite", v.to_array()),
-        ));
-    }
-    Ok(v)
+/// A pose from a position and an optional rotation, checked by the library.
+fn pose(position: [f64; 3], rotation: Option<&Bound<'_, PyAny>>) -> PyResult<Pose> {
+    Pose::new(self::rotation(rotation)?, DVec3::from_array(position)).map_err(param_error)
 }
 
 #[pymethods]
@@ -105,13 +91,13 @@ impl Scene {
         dynamic_friction: Option<f64>,
         two_sided: Option<bool>,
     ) -> PyResult<u32> {
-        let pose = Pose::new(self::rotation(rotation)?, vector("position", position)?);
-        let material = Material {
-            stiffness,
-            damping,
-            static_friction: friction,
-            dynamic_friction: dynamic_friction.unwrap_or(friction),
-        };
+        let pose = pose(position, rotation)?;
+        let material = Material::builder()
+            .stiffness(stiffness)
+            .damping(damping)
+            .friction(friction, dynamic_friction.unwrap_or(friction))
+            .build()
+            .map_err(param_error)?;
         let id = ObjectId(self.next_id);
         let mut object = SceneObject::new(id, shape.inner.clone(), pose, material);
         if let Some(two) = two_sided {
@@ -140,7 +126,7 @@ impl Scene {
         position: [f64; 3],
         rotation: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let pose = Pose::new(self::rotation(rotation)?, vector("position", position)?);
+        let pose = pose(position, rotation)?;
         if self.scene().set_pose(ObjectId(id), pose) {
             Ok(())
         } else {
@@ -212,6 +198,14 @@ impl Contact {
     }
 }
 
+/// A proxy position, checked by the library's table of domains.
+fn position_of(position: [f64; 3]) -> PyResult<DVec3> {
+    Param::Position
+        .check_vector(position)
+        .map(DVec3::from_array)
+        .map_err(param_error)
+}
+
 /// A point or vector as Python sees it.
 type Vec3 = (f64, f64, f64);
 
@@ -227,7 +221,9 @@ fn tuple(v: DVec3) -> (f64, f64, f64) {
 /// ``Proxy(position=(0, 0, 0), max_force=3.3, skin=1e-6, workspace_radius=1000.0)``:
 /// the start position (metres, normally the device point at start-up), the largest force
 /// rendered (N), the distance kept from a touched surface (m), and the radius beyond which
-/// device points are pulled back (m).
+/// device points are pulled back (m). A value outside its domain (the library's table:
+/// a force above 0 and at most 100 N, a skin above 0 and at most 1 mm, a radius above 0)
+/// raises ``HapheError`` naming it.
 #[pyclass(module = "haphe")]
 pub struct Proxy {
     inner: proxy::Proxy,
@@ -243,19 +239,13 @@ impl Proxy {
         skin: f64,
         workspace_radius: f64,
     ) -> PyResult<Proxy> {
-        if !(skin.is_finite() && skin > 0.0) {
-            return Err(haphe_error(
-                "skin",
-                format!("must be a positive distance in metres, not {skin}"),
-            ));
-        }
-        let options = ProxyOptions {
-            skin,
-            max_force,
-            workspace_radius,
-        };
+        let options = ProxyOptions::default()
+            .with_max_force(max_force)
+            .and_then(|o| o.with_skin(skin))
+            .and_then(|o| o.with_workspace_radius(workspace_radius))
+            .map_err(param_error)?;
         Ok(Proxy {
-            inner: proxy::Proxy::new(vector("position", position)?, options),
+            inner: proxy::Proxy::new(position_of(position)?, options),
         })
     }
 
@@ -301,7 +291,7 @@ impl Proxy {
     ///
     /// Puts the proxy at ``position`` (metres) with no contact.
     fn reset(&mut self, position: [f64; 3]) -> PyResult<()> {
-        self.inner.reset(vector("position", position)?);
+        self.inner.reset(position_of(position)?);
         Ok(())
     }
 

@@ -40,10 +40,7 @@ fn row(label: &str, rate: f64, s: &TickStats) {
 fn without_view(rate: f64, seconds: f64) -> TickStats {
     let (device, mut handle) = MouseDevice::new(START, DVec3::splat(-1.0), DVec3::ONE);
     let device: Box<dyn Device> = Box::new(device);
-    let options = ServoOptions {
-        rate_hz: rate,
-        ..ServoOptions::default()
-    };
+    let options = ServoOptions::new(rate).expect("a valid rate");
     let servo = Servo::new(device, scene(), options).expect("servo");
     let running = ServoLoop::spawn(servo, Some(seconds), RealtimeOptions::default()).expect("loop");
     // The same pointer motion as with the view, straight into the hand-off.
@@ -72,10 +69,7 @@ fn with_view(rate: f64, seconds: f64, browser: &mut cdp::Browser) -> TickStats {
     let source = LiveSource {
         device: Box::new(device),
         scene,
-        options: ServoOptions {
-            rate_hz: rate,
-            ..ServoOptions::default()
-        },
+        options: ServoOptions::new(rate).expect("a valid rate"),
         motions: Vec::new(),
         seconds: Some(seconds),
         realtime: RealtimeOptions::default(),

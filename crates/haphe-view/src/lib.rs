@@ -149,7 +149,7 @@ impl ViewServer {
             .map(|(lo, hi)| [lo.to_array(), hi.to_array()]);
         let (live, mouse, trace, rate_hz, device, moving) = match source {
             Source::Live { source, mouse } => {
-                let rate = source.options.rate_hz;
+                let rate = source.options.rate_hz();
                 let device = source.device.spec().name;
                 let moving = source.motions.iter().map(|m| m.id.0).collect();
                 let live = Live::start(*source, frames_in)?;

@@ -172,7 +172,7 @@ mod tests {
             .insert(SceneObject::new(
                 ObjectId(7),
                 shape,
-                Pose::from_translation(DVec3::new(1.0, 0.0, 0.0)),
+                Pose::from_translation(DVec3::new(1.0, 0.0, 0.0)).expect("a valid pose"),
                 Material::default(),
             ))
             .map_err(|(e, _)| e)

@@ -62,7 +62,7 @@ mod tests {
     fn poses_follow_the_motion_and_encode_per_row() {
         let motions = [ObjectMotion {
             id: ObjectId(3),
-            base: Pose::from_translation(DVec3::new(1.0, 0.0, 0.0)),
+            base: Pose::from_translation(DVec3::new(1.0, 0.0, 0.0)).expect("a valid pose"),
             motion: Motion::Linear {
                 velocity: DVec3::new(0.0, 0.5, 0.0),
             },

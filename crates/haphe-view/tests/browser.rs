@@ -25,12 +25,12 @@ const WIDTH: u32 = 1280;
 const HEIGHT: u32 = 800;
 
 fn sphere_scene() -> Scene {
-    let material = Material {
-        stiffness: 600.0,
-        damping: 1.0,
-        static_friction: 0.3,
-        dynamic_friction: 0.2,
-    };
+    let material = Material::builder()
+        .stiffness(600.0)
+        .damping(1.0)
+        .friction(0.3, 0.2)
+        .build()
+        .expect("a valid material");
     haphe::verify::sphere_scene(2_000, material).expect("the sphere scene")
 }
 
@@ -59,10 +59,7 @@ fn live_view(
         options: ServoOptions::default(),
         motions,
         seconds,
-        realtime: RealtimeOptions {
-            realtime_priority: false,
-            ..RealtimeOptions::default()
-        },
+        realtime: RealtimeOptions::default().with_realtime_priority(false),
         clock: None,
     };
     ViewServer::start(

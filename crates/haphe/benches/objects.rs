@@ -37,14 +37,14 @@ fn grid(k: usize, side: usize) -> DVec3 {
 
 fn scene(shape: &Arc<Shape>, objects: usize) -> (Scene, Vec<(ObjectKey, DVec3)>) {
     let side = (1..).find(|s: &usize| s.pow(3) >= objects).unwrap_or(1);
-    let material = Material {
-        stiffness: 1000.0,
-        damping: 1.0,
-        ..Material::default()
-    };
+    let material = Material::builder()
+        .stiffness(1000.0)
+        .damping(1.0)
+        .build()
+        .expect("a valid material");
     let mut scene = Scene::local(objects);
     for k in 0..objects {
-        let pose = Pose::from_translation(grid(k, side));
+        let pose = Pose::from_translation(grid(k, side)).expect("a valid pose");
         let o = SceneObject::new(ObjectId(k as u32), Arc::clone(shape), pose, material);
         scene.insert(o).expect("room");
     }
@@ -91,12 +91,18 @@ fn object_ticks(c: &mut Criterion) {
                     Moves::None => {}
                     Moves::ByKey => {
                         for (key, at) in &mut moving {
-                            scene.set_pose_keyed(key, Pose::from_translation(*at + wobble));
+                            scene.set_pose_keyed(
+                                key,
+                                Pose::from_translation(*at + wobble).expect("a valid pose"),
+                            );
                         }
                     }
                     Moves::ByName => {
                         for (key, at) in &moving {
-                            scene.set_pose(key.id(), Pose::from_translation(*at + wobble));
+                            scene.set_pose(
+                                key.id(),
+                                Pose::from_translation(*at + wobble).expect("a valid pose"),
+                            );
                         }
                     }
                 }

@@ -36,7 +36,8 @@ fn scene_stage(c: &mut Criterion) {
     group.bench_function("box pushing a resting device point", |b| {
         b.iter(|| {
             i = if i + 1 < offsets.len() { i + 1 } else { 0 };
-            let pose = Pose::from_translation(DVec3::new(offsets[i], 0.0, 0.0));
+            let pose =
+                Pose::from_translation(DVec3::new(offsets[i], 0.0, 0.0)).expect("a valid pose");
             scene.begin_tick();
             scene.set_pose(ObjectId(0), pose);
             proxy.tick(&scene, black_box(hip), DVec3::ZERO).force

@@ -23,10 +23,7 @@ fn servo_stage(c: &mut Criterion) {
     let fresh = || {
         let scene = scene_with(Arc::clone(&shape));
         let hand = SimulatedHand::new(path.clone(), HandOptions::default());
-        let options = ServoOptions {
-            rate_hz: RATE_HZ,
-            ..ServoOptions::default()
-        };
+        let options = ServoOptions::new(RATE_HZ).expect("a valid rate");
         Servo::new(hand, scene, options).expect("the servo starts")
     };
     let mut group = c.benchmark_group("servo");

@@ -49,12 +49,12 @@ fn show(label: &str, out: &TickOutput) {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // One scene, owned by the servo thread; shapes are shared and immutable.
     let (mut scene, _editor) = Scene::new(8);
-    let rubber = Material {
-        stiffness: 600.0,
-        damping: 0.5,
-        static_friction: 0.6,
-        dynamic_friction: 0.4,
-    };
+    let rubber = Material::builder()
+        .stiffness(600.0)
+        .damping(0.5)
+        .friction(0.6, 0.4)
+        .build()
+        .expect("a valid material");
     scene
         .insert(SceneObject::new(
             ObjectId(1),
@@ -63,7 +63,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             rubber,
         ))
         .map_err(|(e, _)| e)?;
-    let plate_pose = Pose::from_translation(DVec3::new(0.0, 0.0, 0.2));
+    let plate_pose = Pose::from_translation(DVec3::new(0.0, 0.0, 0.2)).expect("a valid pose");
     scene
         .insert(SceneObject::new(
             ObjectId(2),

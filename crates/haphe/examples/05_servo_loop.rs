@@ -26,12 +26,12 @@ fn shape(which: Catalog) -> Result<Arc<Shape>, Box<dyn std::error::Error>> {
 /// A sphere at the origin and a thin plate beside it, oscillating 5 mm up and down.
 fn make_scene() -> Result<(Scene, ObjectMotion), Box<dyn std::error::Error>> {
     let mut scene = Scene::local(2);
-    let material = Material {
-        stiffness: 800.0,
-        damping: 1.0,
-        static_friction: 0.4,
-        dynamic_friction: 0.3,
-    };
+    let material = Material::builder()
+        .stiffness(800.0)
+        .damping(1.0)
+        .friction(0.4, 0.3)
+        .build()
+        .expect("a valid material");
     scene
         .insert(SceneObject::new(
             ObjectId(0),
@@ -40,7 +40,7 @@ fn make_scene() -> Result<(Scene, ObjectMotion), Box<dyn std::error::Error>> {
             material,
         ))
         .map_err(|(e, _)| e)?;
-    let plate_pose = Pose::from_translation(DVec3::new(0.3, 0.0, 0.0));
+    let plate_pose = Pose::from_translation(DVec3::new(0.3, 0.0, 0.0)).expect("a valid pose");
     scene
         .insert(SceneObject::new(
             ObjectId(1),
@@ -93,14 +93,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (scene, rocking) = make_scene()?;
     let path = scripted_path(PathKind::Press, &scene, 1.0, 0)?;
     let hand = SimulatedHand::new(path, HandOptions::default());
-    let mut servo = Servo::new(
-        hand,
-        scene,
-        ServoOptions {
-            rate_hz: 4_000.0,
-            ..ServoOptions::default()
-        },
-    )?;
+    let mut servo = Servo::new(hand, scene, ServoOptions::new(4_000.0)?)?;
     servo.set_motions(vec![rocking]);
     let running = ServoLoop::spawn(servo, Some(0.5), RealtimeOptions::default())?;
     let mut records = 0;

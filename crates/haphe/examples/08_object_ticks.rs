@@ -45,7 +45,10 @@ fn tick_once(
     scene.begin_tick();
     let wobble = DVec3::new(0.0, 0.0, 1e-3 * (t as f64 * 0.01).sin());
     for (key, at) in moving.iter_mut() {
-        scene.set_pose_keyed(key, Pose::from_translation(*at + wobble));
+        scene.set_pose_keyed(
+            key,
+            Pose::from_translation(*at + wobble).expect("a valid pose"),
+        );
     }
     let s = t as f64 * 2e-3;
     let hip = DVec3::new(0.04 * s.cos(), 0.04 * s.sin(), 0.085);
@@ -68,13 +71,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     shape.prepare_clear_zones();
     let side = (1..).find(|s: &usize| s.pow(3) >= objects).unwrap_or(1);
     let mut scene = Scene::local(objects);
-    let material = Material {
-        stiffness: 1000.0,
-        damping: 1.0,
-        ..Material::default()
-    };
+    let material = Material::builder()
+        .stiffness(1000.0)
+        .damping(1.0)
+        .build()
+        .expect("a valid material");
     for k in 0..objects {
-        let pose = Pose::from_translation(grid(k, side));
+        let pose = Pose::from_translation(grid(k, side)).expect("a valid pose");
         let _ = scene.insert(SceneObject::new(
             ObjectId(k as u32),
             shape.clone(),

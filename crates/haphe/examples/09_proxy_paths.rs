@@ -41,15 +41,14 @@ fn scenes() -> Vec<(String, usize, Scene)> {
         let shape = Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"));
         let materials = [
             Material::default(),
-            Material {
-                static_friction: 0.0,
-                dynamic_friction: 0.0,
-                ..Material::default()
-            },
-            Material {
-                stiffness: 2_000.0,
-                ..Material::default()
-            },
+            Material::builder()
+                .friction(0.0, 0.0)
+                .build()
+                .expect("a valid material"),
+            Material::builder()
+                .stiffness(2_000.0)
+                .build()
+                .expect("a valid material"),
         ];
         for (m, material) in materials.into_iter().enumerate() {
             let mut scene = Scene::local(4);

@@ -40,7 +40,7 @@ fn random_pose(rng: &mut SplitMix64, side: f64, turned: bool) -> Pose {
     } else {
         DQuat::IDENTITY
     };
-    Pose::new(r, t)
+    Pose::new(r, t).expect("a valid pose")
 }
 
 /// Ticks a broad-phase proxy and a linear one side by side; returns the first difference,
@@ -53,12 +53,12 @@ fn compare(
     seed: u64,
 ) -> Result<usize, String> {
     let mut rng = SplitMix64::new(seed);
-    let material = Material {
-        stiffness: 600.0,
-        damping: 0.5,
-        static_friction: if rng.index(2) == 0 { 0.4 } else { 0.0 },
-        dynamic_friction: 0.2,
-    };
+    let material = Material::builder()
+        .stiffness(600.0)
+        .damping(0.5)
+        .friction(if rng.index(2) == 0 { 0.4 } else { 0.0 }, 0.2)
+        .build()
+        .expect("a valid material");
     // Objects about 0.2 m across, packed so that the hand meets several.
     let side = 0.12 * (objects as f64).cbrt();
     let mut scene = Scene::local(objects + 8);
@@ -105,7 +105,8 @@ fn compare(
             } else {
                 old.rotation()
             };
-            let pose = Pose::new(rotation, old.translation() + step * wobble);
+            let pose =
+                Pose::new(rotation, old.translation() + step * wobble).expect("a valid pose");
             if m % 2 == 0 {
                 assert!(scene.set_pose(id, pose));
             } else {
@@ -119,7 +120,8 @@ fn compare(
                 scene.remove(victim);
             }
             let s = Arc::clone(&shapes()[rng.index(shapes().len())]);
-            let pose = Pose::from_translation(hip + rng.unit_vector() * 0.12);
+            let pose =
+                Pose::from_translation(hip + rng.unit_vector() * 0.12).expect("a valid pose");
             let _ = scene.insert(SceneObject::new(ObjectId(next_id), s, pose, material));
             next_id += 1;
         }

@@ -29,19 +29,19 @@ fn ticks_with_edits_from_another_thread_allocate_nothing() {
     )
     .expect("a surface");
     let sphere = Arc::new(Shape::build(surface, &MapOptions::default()).expect("a map"));
-    let material = Material {
-        stiffness: 800.0,
-        damping: 1.0,
-        static_friction: 0.3,
-        dynamic_friction: 0.2,
-    };
+    let material = Material::builder()
+        .stiffness(800.0)
+        .damping(1.0)
+        .friction(0.3, 0.2)
+        .build()
+        .expect("a valid material");
     let (mut scene, mut editor) = Scene::new(12_000);
     for k in 0..10_000 {
         scene
             .insert(SceneObject::new(
                 ObjectId(k),
                 Arc::clone(&sphere),
-                Pose::from_translation(grid(k)),
+                Pose::from_translation(grid(k)).expect("a valid pose"),
                 material,
             ))
             .expect("room");
@@ -62,7 +62,8 @@ fn ticks_with_edits_from_another_thread_allocate_nothing() {
                     0 => Edit::Insert(SceneObject::new(
                         ObjectId(id),
                         Arc::clone(&sphere),
-                        Pose::from_translation(if k.is_multiple_of(8) { near } else { grid(id) }),
+                        Pose::from_translation(if k.is_multiple_of(8) { near } else { grid(id) })
+                            .expect("a valid pose"),
                         material,
                     )),
                     1 => Edit::Remove(ObjectId(10_000 + (k / 2) % 1_500)),
@@ -71,9 +72,13 @@ fn ticks_with_edits_from_another_thread_allocate_nothing() {
                         Pose::new(
                             DQuat::from_rotation_z(0.01 * f64::from(k)),
                             grid(k % 10_000),
-                        ),
+                        )
+                        .expect("a valid pose"),
                     ),
-                    _ => Edit::SetPose(ObjectId(id), Pose::from_translation(grid(id) + near)),
+                    _ => Edit::SetPose(
+                        ObjectId(id),
+                        Pose::from_translation(grid(id) + near).expect("a valid pose"),
+                    ),
                 };
                 match editor.send(edit) {
                     Ok(()) => sent += 1,
@@ -104,7 +109,10 @@ fn ticks_with_edits_from_another_thread_allocate_nothing() {
                 for m in 0..1_000u32 {
                     let id = ObjectId(2_000 + m * 7);
                     let wobble = DVec3::new(0.0, 0.0, 0.01 * (s + f64::from(m)).sin());
-                    scene.set_pose(id, Pose::from_translation(grid(id.0) + wobble));
+                    scene.set_pose(
+                        id,
+                        Pose::from_translation(grid(id.0) + wobble).expect("a valid pose"),
+                    );
                 }
                 let hip = DVec3::new(0.05 * s.sin(), 0.05 * s.cos(), 0.095);
                 let out = proxy.tick(&scene, hip, DVec3::ZERO);

@@ -19,7 +19,7 @@ use haphe::mesh::shapes::{self, Catalog};
 use haphe::mesh::{Mesh, Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::query::{Side, classify_point};
-use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape, Sides};
+use haphe::scene::{ABSURD_FORCE_N, Material, ObjectId, Pose, Scene, SceneObject, Shape, Sides};
 use haphe::verify::{check_proxy, haptic_path, one_object_scene};
 
 fn shape(mesh: Mesh) -> Arc<Shape> {
@@ -32,12 +32,12 @@ fn scene_of(shape: Arc<Shape>, material: Material) -> Scene {
 }
 
 fn friction() -> Material {
-    Material {
-        stiffness: 800.0,
-        damping: 1.0,
-        static_friction: 0.6,
-        dynamic_friction: 0.4,
-    }
+    Material::builder()
+        .stiffness(800.0)
+        .damping(1.0)
+        .friction(0.6, 0.4)
+        .build()
+        .expect("a valid material")
 }
 
 /// The fast proxy equals the brute-force one at every tick, on every procedural shape
@@ -121,7 +121,7 @@ pub(crate) fn floor(material: Material) -> Scene {
         .insert(SceneObject::new(
             ObjectId(1),
             shape(mesh),
-            Pose::from_translation(DVec3::new(0.0, 0.0, -0.05)),
+            Pose::from_translation(DVec3::new(0.0, 0.0, -0.05)).expect("a valid pose"),
             material,
         ))
         .expect("room");
@@ -153,10 +153,9 @@ fn resting_on_a_floor_renders_a_spring() {
 fn no_break_through_on_a_thin_plate() {
     let plate = shape(Catalog::ThinPlate.with_triangles(2_000));
     let scene = scene_of(plate.clone(), Material::default());
-    let options = ProxyOptions {
-        max_force: 1e9,
-        ..ProxyOptions::default()
-    };
+    let options = ProxyOptions::default()
+        .with_max_force(ABSURD_FORCE_N)
+        .expect("the largest force");
     let vertices: Vec<DVec3> = plate.surface().vertices().to_vec();
     let mut strikes = 0;
     for (i, v) in vertices.iter().enumerate().step_by(3) {
@@ -224,7 +223,7 @@ fn a_moving_box_pushes_the_proxy() {
     let cube = shape(shapes::cuboid(DVec3::splat(0.02), [2, 2, 2]));
     let mut scene = Scene::local(2);
     let id = ObjectId(7);
-    let start = Pose::from_translation(DVec3::new(-0.05, 0.0, 0.0));
+    let start = Pose::from_translation(DVec3::new(-0.05, 0.0, 0.0)).expect("a valid pose");
     scene
         .insert(SceneObject::new(id, cube, start, Material::default()))
         .expect("room");
@@ -240,7 +239,8 @@ fn a_moving_box_pushes_the_proxy() {
             Pose::new(
                 DQuat::from_rotation_z(0.001 * k as f64),
                 DVec3::new(x, 0.0, 0.0),
-            ),
+            )
+            .expect("a valid pose"),
         );
         let out = proxy.tick(&scene, hip, DVec3::ZERO);
         let o = &scene.objects()[0];
@@ -262,11 +262,11 @@ fn a_moving_box_pushes_the_proxy() {
 /// A point mass pressed onto a floor with a constant force settles at `F / k`.
 #[test]
 fn constant_push_settles_at_force_over_stiffness() {
-    let material = Material {
-        stiffness: 1000.0,
-        damping: 2.0,
-        ..Material::default()
-    };
+    let material = Material::builder()
+        .stiffness(1000.0)
+        .damping(2.0)
+        .build()
+        .expect("a valid material");
     let scene = floor(material);
     let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.005), ProxyOptions::default());
     let (mass, push, dt) = (0.05, 1.5, 1e-3);
@@ -318,7 +318,7 @@ fn corner_between_two_objects() {
         .insert(SceneObject::new(
             ObjectId(2),
             wall,
-            Pose::from_translation(DVec3::new(0.03, 0.0, 0.05)),
+            Pose::from_translation(DVec3::new(0.03, 0.0, 0.05)).expect("a valid pose"),
             Material::default(),
         ))
         .expect("room");
@@ -353,7 +353,7 @@ fn fast_proxy_equals_brute_force_with_moving_objects() {
         .insert(SceneObject::new(
             ObjectId(1),
             plate,
-            Pose::from_translation(DVec3::new(0.0, 0.0, 0.12)),
+            Pose::from_translation(DVec3::new(0.0, 0.0, 0.12)).expect("a valid pose"),
             Material::default(),
         ))
         .expect("room");
@@ -371,14 +371,16 @@ fn fast_proxy_equals_brute_force_with_moving_objects() {
             Pose::new(
                 DQuat::from_rotation_z(t),
                 DVec3::new(0.03 * (10.0 * t).sin(), 0.0, 0.0),
-            ),
+            )
+            .expect("a valid pose"),
         );
         scene.set_pose(
             ObjectId(1),
             Pose::new(
                 DQuat::from_rotation_x(0.3 * t),
                 DVec3::new(0.0, 0.0, 0.12 - 0.01 * t),
-            ),
+            )
+            .expect("a valid pose"),
         );
         let out = fast.tick(&scene, hip, DVec3::ZERO);
         brute.sync(&scene);
@@ -424,13 +426,8 @@ proptest::proptest! {
         friction in 0.0f64..3.0,
         max_force in proptest::num::f64::ANY,
     ) {
-        let scene = thread_scene(Material {
-            stiffness,
-            damping: 1.0,
-            static_friction: friction,
-            dynamic_friction: friction * 0.5,
-        });
-        let options = ProxyOptions { max_force, ..ProxyOptions::default() };
+        let scene = thread_scene(Material::builder().stiffness(stiffness).damping(1.0).friction(friction, friction * 0.5).build().expect("a valid material"));
+        let options = ProxyOptions::default().with_max_force(max_force).expect("a valid force");
         let mut proxy = Proxy::new(DVec3::new(0.0, 0.0, 0.2), options);
         let limit = if max_force.is_finite() && max_force >= haphe::proxy::MIN_MAX_FORCE { max_force } else { 0.0 };
         for hip in hips {

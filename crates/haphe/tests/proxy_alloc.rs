@@ -37,12 +37,12 @@ fn the_counter_counts() {
 
 #[test]
 fn proxy_ticks_allocate_nothing() {
-    let material = Material {
-        stiffness: 800.0,
-        damping: 1.0,
-        static_friction: 0.5,
-        dynamic_friction: 0.3,
-    };
+    let material = Material::builder()
+        .stiffness(800.0)
+        .damping(1.0)
+        .friction(0.5, 0.3)
+        .build()
+        .expect("a valid material");
     let shapes = [
         shape(Catalog::Blob, 20_000),
         shape(Catalog::ThinPlate, 5_000),
@@ -51,7 +51,8 @@ fn proxy_ticks_allocate_nothing() {
     ];
     let (mut scene, mut editor) = Scene::new(8);
     for (i, s) in shapes.iter().enumerate() {
-        let pose = Pose::from_translation(DVec3::new(0.5 * i as f64, 0.0, 0.0));
+        let pose =
+            Pose::from_translation(DVec3::new(0.5 * i as f64, 0.0, 0.0)).expect("a valid pose");
         scene
             .insert(SceneObject::new(
                 ObjectId(i as u32),
@@ -96,7 +97,8 @@ fn proxy_ticks_allocate_nothing() {
             Pose::new(
                 DQuat::from_rotation_z(t),
                 DVec3::new(1.5, 0.0, 0.01 * t.sin()),
-            ),
+            )
+            .expect("a valid pose"),
         ));
         if let Some(object) = spare.take() {
             let _ = editor.send(Edit::Insert(object));
@@ -111,7 +113,7 @@ fn proxy_ticks_allocate_nothing() {
                 let out = proxy.tick(&scene, hip, velocity);
                 contacts += usize::from(out.contact.is_some());
                 assert!(out.force.is_finite());
-                assert!(out.force.length() <= proxy.options().max_force * (1.0 + 1e-12));
+                assert!(out.force.length() <= proxy.options().max_force() * (1.0 + 1e-12));
             }
         });
         total_allocations += info.count_total;

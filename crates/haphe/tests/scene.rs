@@ -56,7 +56,10 @@ fn edits_from_another_thread() {
         let object = SceneObject::new(id, ball.clone(), Pose::IDENTITY, Material::default());
         let mut edits = vec![
             Edit::Insert(object),
-            Edit::SetPose(id, Pose::from_translation(DVec3::new(0.0, 0.0, -0.01))),
+            Edit::SetPose(
+                id,
+                Pose::from_translation(DVec3::new(0.0, 0.0, -0.01)).expect("a valid pose"),
+            ),
             Edit::Remove(ObjectId((round + 1) % 3)),
         ];
         while let Some(edit) = edits.pop() {
@@ -156,7 +159,7 @@ fn force_shading_follows_the_smooth_normal() {
 fn keys_move_the_object_they_name() {
     let ball = shape(shapes::sphere(0.05, 1));
     let mut scene = Scene::local(8);
-    let at = |x: f64| Pose::from_translation(DVec3::new(x, 0.0, 0.0));
+    let at = |x: f64| Pose::from_translation(DVec3::new(x, 0.0, 0.0)).expect("a valid pose");
     let mut early = ObjectKey::new(ObjectId(7));
     assert!(
         !scene.set_pose_keyed(&mut early, at(1.0)),
@@ -223,7 +226,7 @@ fn a_held_contact_follows_its_object_across_removals() {
     let ball = shape(shapes::Catalog::Sphere.with_triangles(2_000));
     let mut scene = Scene::local(8);
     for k in 0..4 {
-        let pose = Pose::from_translation(DVec3::new(k as f64, 0.0, 0.0));
+        let pose = Pose::from_translation(DVec3::new(k as f64, 0.0, 0.0)).expect("a valid pose");
         let object = SceneObject::new(ObjectId(k), ball.clone(), pose, Material::default());
         scene.insert(object).expect("room");
     }

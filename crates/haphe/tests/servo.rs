@@ -37,15 +37,12 @@ fn scene_of(shape: Arc<Shape>, material: Material) -> Scene {
 }
 
 fn options(rate_hz: f64) -> ServoOptions {
-    ServoOptions {
-        rate_hz,
-        ..ServoOptions::default()
-    }
+    ServoOptions::new(rate_hz).expect("a valid rate")
 }
 
 /// Runs `seconds` of simulation and returns every record.
 fn run<D: Device>(servo: &mut Servo<D>, seconds: f64) -> Vec<TickRecord> {
-    let ticks = (seconds * servo.options().rate_hz).round() as u64;
+    let ticks = (seconds * servo.options().rate_hz()).round() as u64;
     let mut records = Vec::with_capacity(ticks as usize);
     servo.run_simulated(ticks, |r| records.push(*r));
     records
@@ -59,11 +56,11 @@ const BOX_TOP: f64 = 0.05;
 #[test]
 fn constant_push_settles_at_force_over_stiffness() {
     for (rate, stiffness, push) in [(1e3, 500.0, 1.0), (1e3, 1000.0, 2.0), (1e4, 800.0, 1.5)] {
-        let material = Material {
-            stiffness,
-            damping: 0.5,
-            ..Material::default()
-        };
+        let material = Material::builder()
+            .stiffness(stiffness)
+            .damping(0.5)
+            .build()
+            .expect("a valid material");
         let scene = scene_of(shape(Catalog::Box, 2_000), material);
         let hand = SimulatedHand::new(
             Trajectory::still(DVec3::new(0.01, -0.02, BOX_TOP + 0.03)),
@@ -99,12 +96,12 @@ fn constant_push_settles_at_force_over_stiffness() {
 /// dynamic cone while slipping.
 #[test]
 fn sliding_with_friction_sticks_and_slips() {
-    let material = Material {
-        stiffness: 800.0,
-        damping: 0.0,
-        static_friction: 0.6,
-        dynamic_friction: 0.4,
-    };
+    let material = Material::builder()
+        .stiffness(800.0)
+        .damping(0.0)
+        .friction(0.6, 0.4)
+        .build()
+        .expect("a valid material");
     let scene = scene_of(shape(Catalog::Box, 2_000), material);
     let a = DVec3::new(-0.02, 0.0, BOX_TOP);
     let b = DVec3::new(0.02, 0.0, BOX_TOP);
@@ -235,12 +232,12 @@ fn csv_of(records: &[TickRecord]) -> Vec<u8> {
 /// and friction in the scene.
 #[test]
 fn replay_is_bit_for_bit_repeatable() {
-    let material = Material {
-        stiffness: 700.0,
-        damping: 1.0,
-        static_friction: 0.5,
-        dynamic_friction: 0.3,
-    };
+    let material = Material::builder()
+        .stiffness(700.0)
+        .damping(1.0)
+        .friction(0.5, 0.3)
+        .build()
+        .expect("a valid material");
     let blob = shape(Catalog::Blob, 3_000);
     let scene = scene_of(blob.clone(), material);
     let path = scripted_path(PathKind::Explore, &scene, 3.0, 11).expect("a path");
@@ -354,7 +351,7 @@ fn a_fault_stops_with_zero_force() {
     let mut servo = Servo::new(device, scene, options(1e3)).expect("servo");
     servo.set_motions(vec![ObjectMotion {
         id: ObjectId(7),
-        base: Pose::from_translation(DVec3::new(0.0, 0.0, -0.2)),
+        base: Pose::from_translation(DVec3::new(0.0, 0.0, -0.2)).expect("a valid pose"),
         motion: Motion::Linear {
             velocity: DVec3::new(0.0, 0.0, 1.0),
         },
@@ -387,10 +384,7 @@ fn realtime_smoke() {
     let running = ServoLoop::spawn(
         hand_on_a_blob(PathKind::Press),
         Some(0.3),
-        RealtimeOptions {
-            realtime_priority: false,
-            ..RealtimeOptions::default()
-        },
+        RealtimeOptions::default().with_realtime_priority(false),
     )
     .expect("a thread");
     let mut n = 0u64;
@@ -453,13 +447,12 @@ fn realtime_with_a_standby_thread_ticks_each_deadline_once() {
     let running = ServoLoop::spawn(
         hand_on_a_blob(PathKind::Explore),
         Some(0.3),
-        RealtimeOptions {
-            realtime_priority: false,
-            core: Some(cores - 1),
-            spin_seconds: Some(500e-6),
-            standby_core: Some(0),
-            ..RealtimeOptions::default()
-        },
+        RealtimeOptions::default()
+            .with_realtime_priority(false)
+            .with_core(Some(cores - 1))
+            .with_spin_seconds(Some(500e-6))
+            .expect("a valid spin")
+            .with_standby_core(Some(0)),
     )
     .expect("a thread");
     let mut ticks = Vec::new();
@@ -495,12 +488,10 @@ fn no_standby_on_the_servo_threads_own_core() {
     let running = ServoLoop::spawn(
         hand_on_a_blob(PathKind::Press),
         Some(0.05),
-        RealtimeOptions {
-            realtime_priority: false,
-            core: Some(0),
-            standby_core: Some(0),
-            ..RealtimeOptions::default()
-        },
+        RealtimeOptions::default()
+            .with_realtime_priority(false)
+            .with_core(Some(0))
+            .with_standby_core(Some(0)),
     )
     .expect("a thread");
     let run = running.wait(|_| {}).expect("no panic");
@@ -528,7 +519,7 @@ fn explore_on_a_large_scene_stays_on_one_object() {
         let o = SceneObject::new(
             ObjectId(k),
             ball.clone(),
-            Pose::from_translation(at),
+            Pose::from_translation(at).expect("a valid pose"),
             Material::default(),
         );
         scene.insert(o).expect("room");

@@ -23,12 +23,12 @@ fn shape(which: Catalog, triangles: usize) -> Arc<Shape> {
 
 #[test]
 fn servo_ticks_allocate_nothing() {
-    let material = Material {
-        stiffness: 800.0,
-        damping: 1.0,
-        static_friction: 0.5,
-        dynamic_friction: 0.3,
-    };
+    let material = Material::builder()
+        .stiffness(800.0)
+        .damping(1.0)
+        .friction(0.5, 0.3)
+        .build()
+        .expect("a valid material");
     let blob = shape(Catalog::Blob, 20_000);
     let plate = shape(Catalog::ThinPlate, 5_000);
     let torus = shape(Catalog::Torus, 5_000);
@@ -41,7 +41,7 @@ fn servo_ticks_allocate_nothing() {
             material,
         ))
         .expect("room");
-    let plate_pose = Pose::from_translation(DVec3::new(0.3, 0.0, 0.0));
+    let plate_pose = Pose::from_translation(DVec3::new(0.3, 0.0, 0.0)).expect("a valid pose");
     scene
         .insert(SceneObject::new(ObjectId(1), plate, plate_pose, material))
         .expect("room");
@@ -61,7 +61,7 @@ fn servo_ticks_allocate_nothing() {
     let mut spare = Some(SceneObject::new(
         ObjectId(2),
         torus,
-        Pose::from_translation(DVec3::new(-0.3, 0.0, 0.0)),
+        Pose::from_translation(DVec3::new(-0.3, 0.0, 0.0)).expect("a valid pose"),
         material,
     ));
     let mut total = 0;
@@ -75,7 +75,8 @@ fn servo_ticks_allocate_nothing() {
         }
         let _ = editor.send(Edit::SetPose(
             ObjectId(0),
-            Pose::from_translation(DVec3::new(0.0, 0.0, 1e-4 * f64::from(chunk))),
+            Pose::from_translation(DVec3::new(0.0, 0.0, 1e-4 * f64::from(chunk)))
+                .expect("a valid pose"),
         ));
         let info = allocation_counter::measure(|| {
             servo.run_simulated(1_000, |r| {

@@ -85,10 +85,7 @@ fn clocked_ticks_match_the_virtual_clock_and_allocate_nothing() {
         warm: 200,
         allocations: Arc::clone(&allocations),
     };
-    let options = RealtimeOptions {
-        record_capacity: 200_000,
-        ..RealtimeOptions::default()
-    };
+    let options = RealtimeOptions::default().with_record_capacity(200_000);
     let (records, stop, clocked) = run(clock, seconds, options);
     assert_eq!(stop, StopReason::Finished);
     assert_eq!(records.len(), 100_200);
@@ -121,10 +118,7 @@ fn skipped_deadlines_past_the_budget_stop_with_zero_force() {
         warm: 0,
         allocations: Arc::new(AtomicU64::new(0)),
     };
-    let options = RealtimeOptions {
-        overrun_budget: Some(10),
-        ..RealtimeOptions::default()
-    };
+    let options = RealtimeOptions::default().with_overrun_budget(Some(10));
     let (records, stop, servo) = run(clock, 10.0, options);
     assert_eq!(stop, StopReason::Overruns);
     assert!(records.len() < 20, "{}", records.len());

@@ -83,12 +83,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 ObjectId(0),
                 blob,
                 Pose::IDENTITY,
-                Material {
-                    stiffness: 600.0,
-                    damping: 1.0,
-                    static_friction: 0.3,
-                    dynamic_friction: 0.2,
-                },
+                Material::builder()
+                    .stiffness(600.0)
+                    .damping(1.0)
+                    .friction(0.3, 0.2)
+                    .build()?,
             ),
             motion: None,
         },
@@ -97,13 +96,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             object: SceneObject::new(
                 ObjectId(1),
                 plate,
-                Pose::from_translation(DVec3::new(0.25, 0.0, 0.0)),
-                Material {
-                    stiffness: 1000.0,
-                    damping: 1.0,
-                    static_friction: 0.5,
-                    dynamic_friction: 0.4,
-                },
+                Pose::from_translation(DVec3::new(0.25, 0.0, 0.0))?,
+                Material::builder()
+                    .stiffness(1000.0)
+                    .damping(1.0)
+                    .friction(0.5, 0.4)
+                    .build()?,
             ),
             motion: None,
         },

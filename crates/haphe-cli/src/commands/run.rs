@@ -68,6 +68,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     }
     catch_interrupts()?;
     let material = args.model.material()?;
+    crate::args::proxy_options(args.max_force)?;
     let started = Instant::now();
     let (objects, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();

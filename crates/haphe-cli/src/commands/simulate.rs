@@ -7,11 +7,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::{anyhow, bail};
-use haphe::scene::check_max_force;
-use haphe::servo::{HandOptions, HipTrace, MAX_RATE_HZ, MIN_RATE_HZ, PathKind};
+use anyhow::anyhow;
+use haphe::servo::{HandOptions, HipTrace, PathKind, ServoOptions};
 
-use crate::args::{ModelArgs, OutputArgs};
+use crate::args::{ModelArgs, OutputArgs, proxy_options, spin};
 use crate::input::files::{self, read_input};
 use crate::input::model::load_model;
 use crate::output::check_outputs;
@@ -74,12 +73,8 @@ pub struct Args {
 
 /// Runs `haphe simulate`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    if !(args.rate.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&args.rate)) {
-        bail!(
-            "--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {}",
-            args.rate
-        );
-    }
+    // The library's table of domains checks every number, named as its flag.
+    ServoOptions::new(args.rate).map_err(|e| anyhow!("{}", e.named("--rate")))?;
     let outputs: Vec<&Path> = [&args.output.out, &args.output.plot]
         .into_iter()
         .flatten()
@@ -96,8 +91,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     }
     // The same check as a scene file's materials.
     let material = args.model.material()?;
-    check_max_force(args.max_force)
-        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))?;
+    proxy_options(args.max_force)?;
+    spin(args.spin_us)?;
     let started = Instant::now();
     let (objects, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();

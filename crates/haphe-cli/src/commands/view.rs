@@ -9,7 +9,7 @@ use anyhow::{anyhow, bail};
 use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Catalog;
-use haphe::scene::{Material, ObjectId, Pose, SceneObject};
+use haphe::scene::{ObjectId, Pose, SceneObject};
 use haphe_view::{Model, Source, Trace};
 
 use crate::args::{MappingArgs, parse_units};
@@ -71,12 +71,12 @@ pub struct Args {
 /// Runs `haphe view`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let map = MapOptions::default();
-    let material = Material {
-        stiffness: args.stiffness,
-        damping: 1.0,
-        static_friction: args.static_friction,
-        dynamic_friction: args.dynamic_friction,
-    };
+    let material = crate::args::material_of_flags(
+        args.stiffness,
+        1.0,
+        args.static_friction,
+        args.dynamic_friction,
+    )?;
     let single = |name: String, shape| {
         vec![LoadedObject {
             name,

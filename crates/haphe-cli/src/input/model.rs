@@ -45,7 +45,8 @@ pub fn load_model(
         let o = SceneObject::new(
             ObjectId(0),
             shape,
-            Pose::from_translation(-centre),
+            Pose::from_translation(-centre)
+                .map_err(|e| anyhow!("{}: placing it at the origin: {e}", file.display()))?,
             material,
         );
         (

@@ -4,7 +4,7 @@
 use std::io::Write;
 
 use haphe::DVec3;
-use haphe::scene::Scene;
+use haphe::scene::{Param, Scene};
 use haphe::servo::{DeviceMapping, DeviceSpec};
 use haphe_devices::{OpenedDevice, UdpOptions, open_device, workspace_mapping};
 
@@ -44,11 +44,25 @@ pub fn open(choice: &VendorChoice, scene: &Scene, seconds: f64) -> anyhow::Resul
 /// The mapping of the run: the device's workspace centred on the scene and scaled to
 /// cover its bounds, unless `--scale` / `--centre` say otherwise. The simulated hand
 /// moves in the world already.
-pub fn mapping(choice: &VendorChoice, spec: &DeviceSpec, scene: &Scene) -> DeviceMapping {
+///
+/// # Errors
+/// A scale or centre outside its domain, named as its flag.
+pub fn mapping(
+    choice: &VendorChoice,
+    spec: &DeviceSpec,
+    scene: &Scene,
+) -> anyhow::Result<DeviceMapping> {
     if choice.spec == "hand" {
-        return DeviceMapping::IDENTITY;
+        return Ok(DeviceMapping::IDENTITY);
     }
-    workspace_mapping(spec, scene, choice.scale, choice.centre)
+    workspace_mapping(spec, scene, choice.scale, choice.centre).map_err(|e| {
+        let flag = if e.param() == Param::Scale {
+            "--scale"
+        } else {
+            "--centre"
+        };
+        anyhow::anyhow!("{}", e.named(flag))
+    })
 }
 
 /// Prints the mapping and what it does to stiffness.

@@ -1,13 +1,12 @@
 //! A live session in the browser view (`haphe view`, `haphe demo --view`): the scene
 //! served with its device (the mouse, the simulated hand or a real device) until Ctrl-C.
 
-use anyhow::{anyhow, bail};
+use anyhow::anyhow;
 use haphe::DVec3;
-use haphe::proxy::ProxyOptions;
 use haphe::scene::Scene;
 use haphe::servo::{
-    Device, DeviceMapping, HandOptions, MAX_RATE_HZ, MIN_RATE_HZ, ObjectMotion, PathKind,
-    RealtimeOptions, ServoOptions, SimulatedHand, scene_bounds, scripted_path,
+    Device, DeviceMapping, HandOptions, ObjectMotion, PathKind, RealtimeOptions, ServoOptions,
+    SimulatedHand, scene_bounds, scripted_path,
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, ViewOptions, ViewServer};
 use std::process::ExitCode;
@@ -69,9 +68,7 @@ pub fn live(
     what: &str,
     serve_options: &Serve,
 ) -> anyhow::Result<ExitCode> {
-    if !(rate_hz.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&rate_hz)) {
-        bail!("--rate must be between {MIN_RATE_HZ} and {MAX_RATE_HZ} Hz, not {rate_hz}");
-    }
+    let options = ServoOptions::new(rate_hz).map_err(|e| anyhow!("{}", e.named("--rate")))?;
     let (scene, names, motions) = scene_of(objects)?;
     let model = Model::from_scene(&scene, &names);
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
@@ -105,11 +102,11 @@ pub fn live(
         }
         ViewDevice::Vendor(choice, seconds) => {
             let opened = device::open(&choice, &scene, seconds.unwrap_or(HAND_SECONDS))?;
-            mapping = device::mapping(&choice, &opened.device.spec(), &scene);
+            mapping = device::mapping(&choice, &opened.device.spec(), &scene)?;
             println!("device: {}", opened.description);
             let stiffness = super::stiffest(&scene);
             device::print_mapping(&mut std::io::stdout(), &choice, &mapping, stiffness)?;
-            realtime.overrun_budget = choice.overrun_budget;
+            realtime = realtime.with_overrun_budget(choice.overrun_budget);
             clock = opened.clock;
             report = Some(opened.report);
             (
@@ -123,12 +120,7 @@ pub fn live(
     let source = LiveSource {
         device,
         scene,
-        options: ServoOptions {
-            rate_hz,
-            proxy: ProxyOptions::default(),
-            mapping,
-            ..ServoOptions::default()
-        },
+        options: options.with_mapping(mapping),
         motions,
         seconds,
         realtime,

@@ -14,7 +14,6 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail};
-use haphe::proxy::ProxyOptions;
 use haphe::scene::Scene;
 use haphe::servo::{
     Device, DeviceClock, HandOptions, HipTrace, Interference, ObjectMotion, PathKind,
@@ -25,7 +24,7 @@ use haphe::servo::{
 use self::device::VendorChoice;
 use self::summary::{RunInfo, Summary};
 use self::trace::TraceOut;
-use crate::args::{DEFAULT_SECONDS, MAX_SECONDS, PLOT_SECONDS};
+use crate::args::{DEFAULT_SECONDS, MAX_SECONDS, PLOT_SECONDS, proxy_options};
 use crate::input::scene::LoadedObject;
 
 /// Which device drives the run.
@@ -116,9 +115,9 @@ fn build_scene(objects: Vec<LoadedObject>) -> anyhow::Result<Built> {
             o.name,
             o.object.id.0,
             o.object.shape.surface().triangles().len(),
-            o.object.material.stiffness,
-            o.object.material.static_friction,
-            o.object.material.dynamic_friction
+            o.object.material.stiffness(),
+            o.object.material.static_friction(),
+            o.object.material.dynamic_friction()
         ));
         motions.extend(o.motion);
         scene
@@ -149,22 +148,17 @@ impl Session {
         let replay = matches!(self.device, DeviceChoice::Replay(_));
         let (device, vendor) = open_device(self.device, &scene, seconds, self.seed)?;
         let mapping = match &vendor {
-            Some(v) => device::mapping(&v.choice, &device.spec(), &scene),
+            Some(v) => device::mapping(&v.choice, &device.spec(), &scene)?,
             None => haphe::servo::DeviceMapping::IDENTITY,
         };
-        let options = ServoOptions {
-            rate_hz: self.rate_hz,
-            proxy: ProxyOptions {
-                max_force: self.max_force,
-                ..ProxyOptions::default()
-            },
-            mapping,
-            ..ServoOptions::default()
-        };
+        let options = ServoOptions::new(self.rate_hz)
+            .map_err(|e| anyhow!("{}", e.named("--rate")))?
+            .with_proxy(proxy_options(self.max_force)?)
+            .with_mapping(mapping);
         let stiffness = stiffest(&scene);
         let mut servo = Servo::new(device, scene, options)?;
         servo.set_motions(motions);
-        let max_force = servo.options().proxy.max_force;
+        let max_force = servo.options().proxy().max_force();
 
         writeln!(out, "{}", self.title)?;
         print_scene(out, &names, triangles, self.build_seconds)?;
@@ -188,12 +182,10 @@ impl Session {
         };
         let mut report = None;
         let ran = if realtime {
-            let options = RealtimeOptions {
-                spin_seconds: self.spin_seconds,
-                realtime_priority: self.fifo,
-                standby_core: self.standby_core,
-                ..RealtimeOptions::default()
-            };
+            let options = RealtimeOptions::default()
+                .with_spin_seconds(self.spin_seconds)?
+                .with_realtime_priority(self.fifo)
+                .with_standby_core(self.standby_core);
             let (ran, said) = run_realtime(out, servo, vendor, limit, options, &mut on_tick)?;
             report = said;
             ran
@@ -323,7 +315,7 @@ pub fn stiffest(scene: &Scene) -> f64 {
     scene
         .objects()
         .iter()
-        .map(|o| o.material.stiffness)
+        .map(|o| o.material.stiffness())
         .fold(0.0, f64::max)
 }
 
@@ -366,7 +358,7 @@ fn run_realtime(
     let mut clock = None;
     let mut report = None;
     if let Some(v) = vendor {
-        options.overrun_budget = v.choice.overrun_budget;
+        options = options.with_overrun_budget(v.choice.overrun_budget);
         clock = v.clock;
         report = Some(v.report);
         if limit.is_none() {

@@ -11,7 +11,7 @@ fn material_flags_are_checked_like_a_scene_file() {
         (
             "--stiffness",
             "-5",
-            "--stiffness must be a finite number of at least 0, not -5",
+            "--stiffness must be a finite number above 0 and at most 1000000 N/m, not -5",
         ),
         ("--damping", "NaN", "--damping must be"),
         (
@@ -22,7 +22,27 @@ fn material_flags_are_checked_like_a_scene_file() {
         (
             "--max-force",
             "-1",
-            "--max-force must be a finite number from 0 to 10000, not -1",
+            "--max-force must be a finite number above 0 and at most 100 N, not -1",
+        ),
+        (
+            "--max-force",
+            "1000",
+            "--max-force must be a finite number above 0 and at most 100 N, not 1000",
+        ),
+        (
+            "--stiffness",
+            "1e7",
+            "--stiffness must be a finite number above 0 and at most 1000000 N/m, not 1e7",
+        ),
+        (
+            "--rate",
+            "0",
+            "--rate must be a finite number from 1 to 40000 Hz, not 0",
+        ),
+        (
+            "--spin-us",
+            "-5",
+            "--spin-us must be a finite number from 0 to 1000000 µs, not -5",
         ),
     ] {
         let o = simulate_sphere(&[flag, value]);
@@ -35,7 +55,7 @@ fn material_flags_are_checked_like_a_scene_file() {
             "[[object]]\nshape = \"sphere\"\ntriangles = 100\nmaterial = { stiffness = -5.0, damping = 0.0, static_friction = 0.0, dynamic_friction = 0.0 }\n",
         ),
         &[
-            "s.toml: object 1 (line 1): material stiffness must be a finite number of at least 0, not -5",
+            "s.toml: object 1 (line 1): material stiffness must be a finite number above 0 and at most 1000000 N/m, not -5",
         ],
     );
 }
@@ -50,15 +70,15 @@ fn scene_motions_are_checked() {
         ),
         (
             "{ kind = \"oscillating\", amplitude = [1e308, 0.0, 0.0], frequency = 1.0 }",
-            "motion amplitude must be at most 100 long",
+            "motion amplitude must be finite with a length of at most 100 m, not 1e308",
         ),
         (
             "{ kind = \"oscillating\", amplitude = [0.01, 0.0, 0.0], frequency = inf }",
-            "motion frequency must be a finite number from 0 to 500, not inf",
+            "motion frequency must be a finite number from 0 to 500 Hz, not inf",
         ),
         (
             "{ kind = \"rotating\", axis = [0.0, 0.0, 0.0], rate = 1.0 }",
-            "motion axis must be a direction",
+            "motion axis must be finite with a length above 0, not 0",
         ),
         (
             "{ kind = \"rotating\", axis = [0.0, 0.0, 1.0], rate = nan }",

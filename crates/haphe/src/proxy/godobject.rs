@@ -9,7 +9,7 @@ use super::hold::{Hold, is_deep, saturation_depth};
 use super::meet::{carry, move_checked};
 use super::near::NearCache;
 use super::output::{Contact, TickOutput, TickStatus};
-use crate::scene::{Hit, Material, Scene, SurfaceRef, others_box};
+use crate::scene::{Hit, Material, Param, ParamError, Scene, SurfaceRef, others_box};
 
 /// How far a probe reaches beyond the ends of a move, as a fraction of the skin: far
 /// above the rounding of coordinates (about 1e-16 m per metre), well inside the skin, so a
@@ -25,18 +25,34 @@ pub const MAX_PROXY_STEPS: usize = 8;
 /// (about 1e-15 m), far below what a hand can feel.
 pub const DEFAULT_SKIN: f64 = 1e-6;
 
-/// Settings of a [`Proxy`].
+/// Settings of a [`Proxy`], every value within its domain (see
+/// [`Param`](crate::scene::Param)).
+///
+/// Built from [`ProxyOptions::default`] by the `with_*` builders, each of which checks its
+/// value; the fields are private, so a struct literal does not build:
+///
+/// ```compile_fail
+/// let o = haphe::proxy::ProxyOptions { skin: 1e-6, max_force: f64::NAN, workspace_radius: 1.0 };
+/// ```
+///
+/// ```
+/// # fn main() -> Result<(), haphe::scene::ParamError> {
+/// use haphe::proxy::ProxyOptions;
+/// let options = ProxyOptions::default().with_max_force(2.0)?.with_workspace_radius(0.5)?;
+/// assert_eq!(options.max_force(), 2.0);
+/// assert!(ProxyOptions::default().with_max_force(-1.0).is_err());
+/// # Ok(())
+/// # }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ProxyOptions {
     /// Distance kept from a touched surface, metres (see [`DEFAULT_SKIN`]).
-    pub skin: f64,
-    /// Largest force rendered, newtons (the device's maximum continuous force); below
-    /// [`MIN_MAX_FORCE`](super::MIN_MAX_FORCE) no force is rendered.
-    pub max_force: f64,
+    pub(crate) skin: f64,
+    /// Largest force rendered, newtons (the device's maximum continuous force).
+    pub(crate) max_force: f64,
     /// Device points farther than this from the world origin are pulled back to it,
-    /// metres (at most [`MAX_WORKSPACE_RADIUS`]; a negative or NaN radius pulls every point
-    /// to the origin): keeps every product in range whatever the input.
-    pub workspace_radius: f64,
+    /// metres: keeps every product in range whatever the input.
+    pub(crate) workspace_radius: f64,
 }
 
 impl Default for ProxyOptions {
@@ -51,6 +67,57 @@ impl Default for ProxyOptions {
 }
 
 impl ProxyOptions {
+    /// The same options with the largest force rendered, newtons.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `max_force` outside its domain (above 0, at most
+    /// [`ABSURD_FORCE_N`](crate::scene::ABSURD_FORCE_N)).
+    pub fn with_max_force(self, max_force: f64) -> Result<ProxyOptions, ParamError> {
+        Ok(ProxyOptions {
+            max_force: Param::MaxForce.check(max_force)?,
+            ..self
+        })
+    }
+
+    /// The same options with the skin, metres.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `skin` outside its domain (above 0, at most a millimetre).
+    pub fn with_skin(self, skin: f64) -> Result<ProxyOptions, ParamError> {
+        Ok(ProxyOptions {
+            skin: Param::Skin.check(skin)?,
+            ..self
+        })
+    }
+
+    /// The same options with the workspace radius, metres.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `workspace_radius` outside its domain (above 0, at most
+    /// [`MAX_WORKSPACE_RADIUS`]).
+    pub fn with_workspace_radius(self, workspace_radius: f64) -> Result<ProxyOptions, ParamError> {
+        Ok(ProxyOptions {
+            workspace_radius: Param::WorkspaceRadius.check(workspace_radius)?,
+            ..self
+        })
+    }
+
+    /// Distance kept from a touched surface, metres.
+    pub fn skin(&self) -> f64 {
+        self.skin
+    }
+
+    /// Largest force rendered, newtons.
+    pub fn max_force(&self) -> f64 {
+        self.max_force
+    }
+
+    /// Device points farther than this from the world origin are pulled back to it,
+    /// metres.
+    pub fn workspace_radius(&self) -> f64 {
+        self.workspace_radius
+    }
+
     /// Tolerance of the constraint planes, metres: a thousandth of the skin.
     pub fn plane_tolerance(&self) -> f64 {
         self.skin * 1e-3
@@ -429,7 +496,7 @@ pub(super) fn contact_at(
 /// Largest workspace radius honoured, metres: a larger (or non-finite)
 /// [`ProxyOptions::workspace_radius`] counts as this, so that squared coordinates never
 /// overflow.
-pub const MAX_WORKSPACE_RADIUS: f64 = 1e9;
+pub const MAX_WORKSPACE_RADIUS: f64 = Param::WorkspaceRadius.domain().high;
 
 /// `p` pulled back onto the sphere of `radius` (metres, at most [`MAX_WORKSPACE_RADIUS`])
 /// around the origin when beyond it, and whether it was. Exact for any finite `p`, however

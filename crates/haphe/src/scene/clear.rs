@@ -177,7 +177,7 @@ mod tests {
     #[test]
     fn a_shown_hit_is_the_searched_hit() {
         let mut rng = SplitMix64::new(11);
-        let pose = Pose::from_translation(DVec3::new(0.3, -0.2, 0.1));
+        let pose = Pose::from_translation(DVec3::new(0.3, -0.2, 0.1)).unwrap();
         for (which, least_share) in [
             (Catalog::Sphere, 0.5),
             (Catalog::Blob, 0.5),
@@ -307,7 +307,7 @@ mod tests {
             &mut scene,
             1,
             shape,
-            Pose::from_translation(on + normal * 0.05),
+            Pose::from_translation(on + normal * 0.05).unwrap(),
         );
         assert!(
             scene

@@ -13,7 +13,7 @@ use std::sync::Arc;
 
 use glam::{DMat3, DQuat};
 
-use super::{InvalidValue, Material, ObjectId, Pose, SceneObject, Shape};
+use super::{Material, ObjectId, ParamError, Pose, SceneObject, Shape};
 use crate::map::MapOptions;
 use crate::mesh::{GltfNode, GltfScene, Mesh, Surface, SurfaceOptions, Weld, weld};
 
@@ -39,7 +39,18 @@ pub enum GltfSceneError {
         /// Its name for reports.
         name: String,
         /// The value refused.
-        source: InvalidValue,
+        source: ParamError,
+    },
+    /// The node's world placement is outside the domain of a pose (a translation farther
+    /// than [`ABSURD_DISTANCE_M`](super::ABSURD_DISTANCE_M) from the origin).
+    #[error("node {node} ('{name}'): placement: {source}")]
+    Placement {
+        /// The node's index in the file.
+        node: usize,
+        /// Its name for reports.
+        name: String,
+        /// The value refused.
+        source: ParamError,
     },
     /// The node's shape cannot be built (its surface or its map).
     #[error("node {node} ('{name}'): {message}")]
@@ -226,21 +237,22 @@ fn material_of(node: &GltfNode) -> Result<Option<Material>, GltfSceneError> {
         return Ok(None);
     }
     let base = Material::default();
-    let static_friction = static_friction.unwrap_or(base.static_friction);
-    Material {
-        stiffness: stiffness.unwrap_or(base.stiffness),
-        damping: damping.unwrap_or(base.damping),
-        static_friction,
+    let static_friction = static_friction.unwrap_or(base.static_friction());
+    Material::builder()
+        .stiffness(stiffness.unwrap_or(base.stiffness()))
+        .damping(damping.unwrap_or(base.damping()))
         // A lone static coefficient also caps the dynamic one.
-        dynamic_friction: dynamic_friction.unwrap_or(base.dynamic_friction.min(static_friction)),
-    }
-    .checked()
-    .map(Some)
-    .map_err(|source| GltfSceneError::Material {
-        node: node.index,
-        name: node.label(),
-        source,
-    })
+        .friction(
+            static_friction,
+            dynamic_friction.unwrap_or(base.dynamic_friction().min(static_friction)),
+        )
+        .build()
+        .map(Some)
+        .map_err(|source| GltfSceneError::Material {
+            node: node.index,
+            name: node.label(),
+            source,
+        })
 }
 
 /// The objects of a glTF scene: one per node with a mesh, at its world pose, with its
@@ -283,7 +295,13 @@ pub fn gltf_objects(scene: &GltfScene) -> Result<GltfObjects, GltfSceneError> {
             name: node.label(),
             node: node.index,
             shape,
-            pose: Pose::new(rotation, node.world_from_node.translation),
+            pose: Pose::new(rotation, node.world_from_node.translation).map_err(|source| {
+                GltfSceneError::Placement {
+                    node: node.index,
+                    name: node.label(),
+                    source,
+                }
+            })?,
             material: material_of(node)?,
         });
     }

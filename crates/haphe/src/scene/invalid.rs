@@ -1,79 +1,109 @@
-//! One check for the numbers a user gives a scene — materials, motions, the device's force
-//! limit — whichever front end they come from (a scene file, command-line flags, code).
+//! The error of a value refused by the table of domains (`domain.rs`), whichever front end
+//! it came from (code, a scene file, command-line flags, Python, C).
 
-/// A value refused by a check: which one, what it was, what it must be.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{field} must be {expected}, not {value}")]
-pub struct InvalidValue {
-    /// The value's name as front ends spell it (`stiffness`, `motion frequency`).
-    pub field: &'static str,
-    /// The value given (a vector's offending component or length).
-    pub value: f64,
-    /// What it must be, in words.
-    pub expected: String,
-}
+use std::fmt;
 
-impl InvalidValue {
-    /// Checks that `value` is finite and within `low..=high`.
-    ///
-    /// # Errors
-    /// Naming `field`, when it is not.
-    pub fn check_range(
-        field: &'static str,
-        value: f64,
-        low: f64,
-        high: f64,
-    ) -> Result<f64, InvalidValue> {
-        if value.is_finite() && (low..=high).contains(&value) {
-            Ok(value)
-        } else {
-            Err(InvalidValue {
-                field,
-                value,
-                expected: if high == f64::MAX {
-                    format!("a finite number of at least {low}")
-                } else {
-                    format!("a finite number from {low} to {high}")
-                },
-            })
-        }
-    }
+use super::domain::{Number, Param};
 
-    /// Checks that every component of `v` is finite and its length at most `max`.
-    ///
-    /// # Errors
-    /// Naming `field`, when it is not.
-    pub fn check_vector(
-        field: &'static str,
-        v: glam::DVec3,
-        max: f64,
-    ) -> Result<glam::DVec3, InvalidValue> {
-        if let Some(&bad) = v.to_array().iter().find(|x| !x.is_finite()) {
-            return Err(InvalidValue {
-                field,
-                value: bad,
-                expected: "finite in every component".into(),
-            });
-        }
-        if v.length() > max {
-            return Err(InvalidValue {
-                field,
-                value: v.length(),
-                expected: format!("at most {max} long"),
-            });
-        }
-        Ok(v)
-    }
-}
-
-/// The largest maximum force accepted, newtons (no desktop device renders more than a
-/// few tens of newtons; larger values are typing mistakes).
-pub const MAX_FORCE_LIMIT_N: f64 = 1e4;
-
-/// Checks a device's or proxy's maximum force: finite, from 0 to [`MAX_FORCE_LIMIT_N`].
+/// A value refused: which parameter, what it was, what it must be. `Copy`, no allocation.
 ///
-/// # Errors
-/// An [`InvalidValue`] naming `max_force`.
-pub fn check_max_force(max_force: f64) -> Result<f64, InvalidValue> {
-    InvalidValue::check_range("max_force", max_force, 0.0, MAX_FORCE_LIMIT_N)
+/// Its message names the parameter as the library spells it (`max_force must be a finite
+/// number above 0 and at most 100 N, not -1`); [`ParamError::named`] spells it as a front
+/// end does (`--max-force`, a keyword argument).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ParamError {
+    /// The value is not finite or outside its parameter's domain.
+    OutOfDomain {
+        /// The parameter.
+        param: Param,
+        /// The value given (a vector's length).
+        value: f64,
+    },
+    /// A component of a vector is not finite.
+    NotFinite {
+        /// The parameter.
+        param: Param,
+        /// The first component that is not finite.
+        value: f64,
+    },
+    /// The dynamic friction coefficient exceeds the static one (the proxy's friction rule
+    /// slips back to the dynamic cone once outside the static one, so it must be the
+    /// narrower).
+    FrictionOrder {
+        /// The static coefficient.
+        static_friction: f64,
+        /// The dynamic coefficient given.
+        dynamic_friction: f64,
+    },
+}
+
+impl ParamError {
+    /// The parameter refused.
+    pub fn param(&self) -> Param {
+        match *self {
+            ParamError::OutOfDomain { param, .. } | ParamError::NotFinite { param, .. } => param,
+            ParamError::FrictionOrder { .. } => Param::DynamicFriction,
+        }
+    }
+
+    /// The value refused (a vector's length, or its first non-finite component).
+    pub fn value(&self) -> f64 {
+        match *self {
+            ParamError::OutOfDomain { value, .. } | ParamError::NotFinite { value, .. } => value,
+            ParamError::FrictionOrder {
+                dynamic_friction, ..
+            } => dynamic_friction,
+        }
+    }
+
+    /// The message with the parameter spelled `name` (a flag, a keyword argument).
+    pub fn named<'a>(&'a self, name: &'a str) -> impl fmt::Display + 'a {
+        Named { error: self, name }
+    }
+
+    fn write(&self, f: &mut fmt::Formatter<'_>, name: &str) -> fmt::Result {
+        match *self {
+            ParamError::OutOfDomain { param, value } => {
+                write!(
+                    f,
+                    "{name} must be {}, not {}",
+                    param.domain(),
+                    Number(value)
+                )
+            }
+            ParamError::NotFinite { value, .. } => {
+                write!(
+                    f,
+                    "{name} must be finite in every component, not {}",
+                    Number(value)
+                )
+            }
+            ParamError::FrictionOrder {
+                static_friction,
+                dynamic_friction,
+            } => write!(
+                f,
+                "{name} must be at most static_friction ({static_friction}), not {dynamic_friction}"
+            ),
+        }
+    }
+}
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write(f, self.param().name())
+    }
+}
+
+/// A [`ParamError`] spelled with another name.
+struct Named<'a> {
+    error: &'a ParamError,
+    name: &'a str,
+}
+
+impl fmt::Display for Named<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.error.write(f, self.name)
+    }
 }

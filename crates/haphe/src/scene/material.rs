@@ -1,22 +1,41 @@
 //! What a surface feels like: stiffness, damping and friction.
 
-use super::InvalidValue;
+use super::domain::Param;
+use super::invalid::ParamError;
 
-/// The haptic material of an object.
+/// The haptic material of an object, every value within its domain (see [`Param`]).
 ///
 /// Friction follows Coulomb's law on the proxy: it sticks while the tangential force stays
 /// within `static_friction` times the normal force, and once it slips it is held back by
 /// `dynamic_friction` times the normal force, until it sticks again.
+///
+/// Built by [`Material::new`] or [`Material::builder`], which check every value, so a
+/// material holds no value outside its domain. Its fields are private: a struct literal
+/// does not build.
+///
+/// ```compile_fail
+/// let m = haphe::scene::Material { stiffness: f64::NAN, damping: 0.0, static_friction: 0.0, dynamic_friction: 0.0 };
+/// ```
+///
+/// ```
+/// # fn main() -> Result<(), haphe::scene::ParamError> {
+/// use haphe::scene::Material;
+/// let m = Material::builder().stiffness(800.0).damping(1.0).friction(0.5, 0.3).build()?;
+/// assert_eq!(m.dynamic_friction(), 0.3);
+/// assert!(Material::new(f64::NAN).is_err());
+/// # Ok(())
+/// # }
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material {
     /// Spring constant between proxy and device, N/m.
-    pub stiffness: f64,
+    pub(crate) stiffness: f64,
     /// Damping along the contact normal, N·s/m.
-    pub damping: f64,
+    pub(crate) damping: f64,
     /// Static friction coefficient (dimensionless, ≥ 0).
-    pub static_friction: f64,
+    pub(crate) static_friction: f64,
     /// Dynamic friction coefficient (dimensionless, 0 ≤ dynamic ≤ static).
-    pub dynamic_friction: f64,
+    pub(crate) dynamic_friction: f64,
 }
 
 impl Default for Material {
@@ -32,40 +51,93 @@ impl Default for Material {
 }
 
 impl Material {
-    /// Checks every field: finite and non-negative, the dynamic friction coefficient at
-    /// most the static one. Scene files, command-line flags and code use this one check.
+    /// A material of `stiffness` N/m, no damping, no friction.
     ///
     /// # Errors
-    /// An [`InvalidValue`] naming the first field that is not usable.
-    pub fn checked(self) -> Result<Material, InvalidValue> {
-        for (field, v) in [
-            ("stiffness", self.stiffness),
-            ("damping", self.damping),
-            ("static_friction", self.static_friction),
-            ("dynamic_friction", self.dynamic_friction),
-        ] {
-            InvalidValue::check_range(field, v, 0.0, f64::MAX)?;
-        }
-        if self.dynamic_friction > self.static_friction {
-            return Err(InvalidValue {
-                field: "dynamic_friction",
-                value: self.dynamic_friction,
-                expected: format!("at most static_friction ({})", self.static_friction),
-            });
-        }
-        Ok(self)
+    /// [`ParamError`] naming `stiffness` outside its domain (above 0, at most 10⁶ N/m).
+    pub fn new(stiffness: f64) -> Result<Material, ParamError> {
+        Material::builder().stiffness(stiffness).build()
     }
 
-    /// The material with every field made usable: non-finite or negative values become 0,
-    /// and the dynamic coefficient is capped by the static one.
-    pub fn sanitised(self) -> Material {
-        let clean = |x: f64| if x.is_finite() && x > 0.0 { x } else { 0.0 };
-        let static_friction = clean(self.static_friction);
-        Material {
-            stiffness: clean(self.stiffness),
-            damping: clean(self.damping),
-            static_friction,
-            dynamic_friction: clean(self.dynamic_friction).min(static_friction),
+    /// A builder starting from the default material ([`Material::default`]).
+    pub fn builder() -> MaterialBuilder {
+        Material::default().to_builder()
+    }
+
+    /// A builder starting from this material.
+    pub fn to_builder(self) -> MaterialBuilder {
+        MaterialBuilder { values: self }
+    }
+
+    /// Spring constant between proxy and device, N/m.
+    pub fn stiffness(&self) -> f64 {
+        self.stiffness
+    }
+
+    /// Damping along the contact normal, N·s/m.
+    pub fn damping(&self) -> f64 {
+        self.damping
+    }
+
+    /// Static friction coefficient.
+    pub fn static_friction(&self) -> f64 {
+        self.static_friction
+    }
+
+    /// Dynamic friction coefficient (at most the static one).
+    pub fn dynamic_friction(&self) -> f64 {
+        self.dynamic_friction
+    }
+}
+
+/// The values of a [`Material`] to be, checked together by [`MaterialBuilder::build`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[must_use = "a builder does nothing until `build` checks it"]
+pub struct MaterialBuilder {
+    /// Not checked yet.
+    values: Material,
+}
+
+impl MaterialBuilder {
+    /// The spring constant, N/m.
+    pub fn stiffness(mut self, stiffness: f64) -> MaterialBuilder {
+        self.values.stiffness = stiffness;
+        self
+    }
+
+    /// The damping along the contact normal, N·s/m.
+    pub fn damping(mut self, damping: f64) -> MaterialBuilder {
+        self.values.damping = damping;
+        self
+    }
+
+    /// The static and dynamic friction coefficients.
+    pub fn friction(mut self, static_friction: f64, dynamic_friction: f64) -> MaterialBuilder {
+        self.values.static_friction = static_friction;
+        self.values.dynamic_friction = dynamic_friction;
+        self
+    }
+
+    /// The material, every value checked against its domain ([`Param`]) in the order
+    /// stiffness, damping, static friction, dynamic friction.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming the first value outside its domain, or
+    /// [`ParamError::FrictionOrder`] when the dynamic coefficient exceeds the static one
+    /// (the proxy sticks inside the static cone and slips back to the dynamic one, which
+    /// must be the narrower).
+    pub fn build(self) -> Result<Material, ParamError> {
+        let v = self.values;
+        Param::Stiffness.check(v.stiffness)?;
+        Param::Damping.check(v.damping)?;
+        Param::StaticFriction.check(v.static_friction)?;
+        Param::DynamicFriction.check(v.dynamic_friction)?;
+        if v.dynamic_friction > v.static_friction {
+            return Err(ParamError::FrictionOrder {
+                static_friction: v.static_friction,
+                dynamic_friction: v.dynamic_friction,
+            });
         }
+        Ok(v)
     }
 }

@@ -27,6 +27,7 @@
 
 mod broad;
 mod clear;
+mod domain;
 mod gltf;
 mod handoff;
 mod invalid;
@@ -37,9 +38,12 @@ mod removals;
 mod shape;
 
 pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};
+pub use domain::{
+    ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M, Domain, DomainKind, Param,
+};
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
-pub use invalid::{InvalidValue, MAX_FORCE_LIMIT_N, check_max_force};
-pub use material::Material;
+pub use invalid::ParamError;
+pub use material::{Material, MaterialBuilder};
 pub use moves::ObjectKey;
 pub use pose::Pose;
 pub use shape::Shape;
@@ -106,7 +110,7 @@ impl SceneObject {
             shape,
             pose,
             previous_pose: pose,
-            material: material.sanitised(),
+            material,
             sides,
         }
     }
@@ -319,7 +323,7 @@ impl Scene {
     /// Changes the material of the object named `id`. `false` when there is no such object.
     pub fn set_material(&mut self, id: ObjectId, material: Material) -> bool {
         self.index_of(id)
-            .map(|i| self.objects[i].material = material.sanitised())
+            .map(|i| self.objects[i].material = material)
             .is_some()
     }
 

@@ -2,6 +2,9 @@
 
 use glam::{DQuat, DVec3};
 
+use super::domain::{ABSURD_DISTANCE_M, Param};
+use super::invalid::ParamError;
+
 /// A rigid transform `world_from_object`: a rotation, then a translation (metres).
 ///
 /// Applied to a point `p_object` it gives `p_world = rotation · p_object + translation`.
@@ -29,9 +32,31 @@ impl Pose {
         unrotated: true,
     };
 
-    /// A pose from a rotation (normalised here) and a translation in metres. A non-finite
-    /// or zero rotation gives the identity rotation; a non-finite translation gives zero.
-    pub fn new(rotation: DQuat, translation: DVec3) -> Pose {
+    /// A pose from a rotation (a quaternion of any non-zero length, normalised here) and a
+    /// translation in metres.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `rotation` for a quaternion that is not finite or of zero
+    /// length, or `position` for a translation that is not finite or farther than
+    /// [`ABSURD_DISTANCE_M`](super::ABSURD_DISTANCE_M) from the origin.
+    ///
+    /// ```
+    /// use haphe::glam::{DQuat, DVec3};
+    /// use haphe::scene::{Param, Pose};
+    /// assert!(Pose::new(DQuat::from_rotation_z(0.5), DVec3::X).is_ok());
+    /// let e = Pose::new(DQuat::IDENTITY, DVec3::new(f64::NAN, 0.0, 0.0)).unwrap_err();
+    /// assert_eq!(e.param(), Param::Position);
+    /// ```
+    pub fn new(rotation: DQuat, translation: DVec3) -> Result<Pose, ParamError> {
+        Param::Rotation.check_vector(rotation.to_array())?;
+        Param::Position.check_vector(translation.to_array())?;
+        Ok(Pose::sanitised(rotation, translation))
+    }
+
+    /// A pose from a rotation and a translation computed on the servo path (a scripted
+    /// motion): a non-finite or zero rotation gives the identity rotation, a non-finite
+    /// translation gives zero, so that a tick never fails.
+    pub(crate) fn sanitised(rotation: DQuat, translation: DVec3) -> Pose {
         let rotation = if rotation.is_finite() && rotation.length_squared() > 0.0 {
             rotation.normalize()
         } else {
@@ -49,19 +74,25 @@ impl Pose {
         }
     }
 
-    /// A pure translation, metres (a non-finite translation gives zero): the same pose as
-    /// `Pose::new(DQuat::IDENTITY, translation)`, without normalising the rotation.
+    /// A pure translation, metres: the same pose as `Pose::new(DQuat::IDENTITY,
+    /// translation)`, without normalising the rotation.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `position`, as [`Pose::new`].
     #[inline]
-    pub fn from_translation(translation: DVec3) -> Pose {
-        Pose {
-            rotation: DQuat::IDENTITY,
-            // `0 · x` is 0 for a finite `x`, NaN otherwise: one compare for all three.
-            translation: if (translation * 0.0).element_sum() == 0.0 {
-                translation
-            } else {
-                DVec3::ZERO
-            },
-            unrotated: true,
+    pub fn from_translation(translation: DVec3) -> Result<Pose, ParamError> {
+        // `0 · x` is 0 for a finite `x`, NaN otherwise: one compare for all three.
+        if (translation * 0.0).element_sum() == 0.0
+            && translation.length_squared() <= ABSURD_DISTANCE_M * ABSURD_DISTANCE_M
+        {
+            Ok(Pose {
+                rotation: DQuat::IDENTITY,
+                translation,
+                unrotated: true,
+            })
+        } else {
+            // The error, or a length that rounds to the bound.
+            Pose::new(DQuat::IDENTITY, translation)
         }
     }
 
@@ -127,7 +158,8 @@ mod tests {
         let pose = Pose::new(
             DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7),
             DVec3::new(0.1, -0.2, 0.3),
-        );
+        )
+        .unwrap();
         let p = DVec3::new(0.4, 0.5, -0.6);
         assert!(pose.to_object(pose.to_world(p)).distance(p) < 1e-15);
         assert!(pose.vector_to_object(pose.vector_to_world(p)).distance(p) < 1e-15);
@@ -140,6 +172,7 @@ mod tests {
             DVec3::ZERO,
             DVec3::NAN,
             DVec3::INFINITY,
+            DVec3::new(2e9, 0.0, 0.0),
         ] {
             assert_eq!(
                 Pose::from_translation(t),
@@ -150,8 +183,12 @@ mod tests {
     }
 
     #[test]
-    fn bad_input_gives_a_valid_pose() {
-        let pose = Pose::new(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), DVec3::NAN);
-        assert_eq!(pose, Pose::IDENTITY);
+    fn bad_input_is_refused_naming_the_parameter() {
+        let zero = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+        let e = Pose::new(zero, DVec3::ZERO).unwrap_err();
+        assert_eq!(e.param(), Param::Rotation);
+        let e = Pose::new(DQuat::IDENTITY, DVec3::new(0.0, f64::INFINITY, 0.0)).unwrap_err();
+        assert_eq!(e.param(), Param::Position);
+        assert_eq!(Pose::sanitised(zero, DVec3::NAN), Pose::IDENTITY);
     }
 }

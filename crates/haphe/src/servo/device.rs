@@ -3,6 +3,8 @@
 
 use glam::{DQuat, DVec3};
 
+use crate::scene::{Param, ParamError};
+
 /// What a device can do, in SI units and the device frame.
 ///
 /// Vendor units (millimetres, counts, "stiffness units") are converted inside the adapter
@@ -182,11 +184,42 @@ impl DeviceMapping {
         offset: DVec3::ZERO,
     };
 
-    /// A mapping from a rotation (device axes to world axes, normalised here), a scale
-    /// (world metres per device metre) and an offset (metres, world frame). A non-finite or
-    /// zero rotation becomes the identity, a non-finite or non-positive scale becomes 1,
-    /// a non-finite offset becomes zero.
-    pub fn new(rotation: DQuat, scale: f64, offset: DVec3) -> DeviceMapping {
+    /// A mapping from a rotation (device axes to world axes, a quaternion of any non-zero
+    /// length, normalised here), a scale (world metres per device metre) and an offset
+    /// (the world position of the device origin, metres).
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `rotation`, `scale` or `centre` outside its domain (see
+    /// [`Param`]).
+    pub fn new(rotation: DQuat, scale: f64, offset: DVec3) -> Result<DeviceMapping, ParamError> {
+        Param::Rotation.check_vector(rotation.to_array())?;
+        Param::Scale.check(scale)?;
+        Param::Centre.check_vector(offset.to_array())?;
+        Ok(DeviceMapping::sanitised(rotation, scale, offset))
+    }
+
+    /// The mapping of `spec`'s workspace, unrotated, that puts the workspace's centre at
+    /// the world point `centre` and scales it by `scale`.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `scale` or `centre` outside its domain.
+    pub fn centred(
+        spec: &DeviceSpec,
+        scale: f64,
+        centre: DVec3,
+    ) -> Result<DeviceMapping, ParamError> {
+        Param::Scale.check(scale)?;
+        Param::Centre.check_vector(centre.to_array())?;
+        DeviceMapping::new(
+            DQuat::IDENTITY,
+            scale,
+            centre - scale * spec.workspace_centre(),
+        )
+    }
+
+    /// The mapping, with unusable values replaced (a non-finite or zero rotation by the
+    /// identity, a non-finite or non-positive scale by 1, a non-finite offset by zero).
+    fn sanitised(rotation: DQuat, scale: f64, offset: DVec3) -> DeviceMapping {
         DeviceMapping {
             rotation: if rotation.is_finite() && rotation.length_squared() > 0.0 {
                 rotation.normalize()
@@ -208,7 +241,8 @@ impl DeviceMapping {
 
     /// Workspace scaling: the mapping (without rotation) that makes the device's workspace
     /// box cover the world box `[world_min, world_max]` (metres), centre on centre, with
-    /// one scale for all axes chosen so that the box fits along every axis.
+    /// one scale for all axes chosen so that the box fits along every axis (a box that
+    /// is not finite gives a usable mapping, not an error).
     pub fn fit(spec: &DeviceSpec, world_min: DVec3, world_max: DVec3) -> DeviceMapping {
         let device = spec.workspace_size();
         let world = (world_max - world_min).max(DVec3::ZERO);
@@ -218,7 +252,7 @@ impl DeviceMapping {
             .max(ratio(world.z, device.z));
         let scale = if scale > 0.0 { scale } else { 1.0 };
         let offset = 0.5 * (world_min + world_max) - scale * spec.workspace_centre();
-        DeviceMapping::new(DQuat::IDENTITY, scale, offset)
+        DeviceMapping::sanitised(DQuat::IDENTITY, scale, offset)
     }
 
     /// World metres per device metre.
@@ -282,7 +316,8 @@ mod tests {
 
     #[test]
     fn round_trip_and_forces_are_not_scaled() {
-        let m = DeviceMapping::new(DQuat::from_rotation_z(0.3), 2.5, DVec3::new(0.1, -0.2, 0.3));
+        let m = DeviceMapping::new(DQuat::from_rotation_z(0.3), 2.5, DVec3::new(0.1, -0.2, 0.3))
+            .unwrap();
         let p = DVec3::new(0.01, 0.02, -0.03);
         assert!(m.position_to_device(m.position_to_world(p)).distance(p) < 1e-15);
         let f = DVec3::new(1.0, 2.0, 3.0);
@@ -302,8 +337,15 @@ mod tests {
     }
 
     #[test]
-    fn bad_parameters_give_a_usable_mapping() {
-        let m = DeviceMapping::new(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), f64::NAN, DVec3::NAN);
+    fn bad_parameters_are_refused_naming_them() {
+        let zero = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+        let e = DeviceMapping::new(zero, 1.0, DVec3::ZERO).unwrap_err();
+        assert_eq!(e.param(), Param::Rotation);
+        let e = DeviceMapping::new(DQuat::IDENTITY, 0.0, DVec3::ZERO).unwrap_err();
+        assert_eq!(e.param(), Param::Scale);
+        let e = DeviceMapping::centred(&spec(), 1.0, DVec3::NAN).unwrap_err();
+        assert_eq!(e.param(), Param::Centre);
+        let m = DeviceMapping::sanitised(zero, f64::NAN, DVec3::NAN);
         assert_eq!(m, DeviceMapping::IDENTITY);
         assert!(Buttons(0b10).is_down(1) && !Buttons(0b10).is_down(0) && !Buttons(1).is_down(40));
     }

@@ -71,7 +71,7 @@ struct MaterialSpec {
 }
 
 fn default_stiffness() -> f64 {
-    Material::default().stiffness
+    Material::default().stiffness()
 }
 
 impl Default for MaterialSpec {
@@ -126,7 +126,7 @@ pub struct SceneEntry {
     pub source: ObjectSource,
     /// `world_from_object` at the start.
     pub pose: Pose,
-    /// How it feels (checked by [`Material::checked`]).
+    /// How it feels (checked by [`MaterialBuilder::build`](crate::scene::MaterialBuilder::build)).
     pub material: Material,
     /// Its scripted motion (checked by [`Motion::checked`]).
     pub motion: Option<ObjectMotion>,
@@ -208,13 +208,11 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
             }
         }
         let m = &spec.material;
-        let material = match (Material {
-            stiffness: m.stiffness,
-            damping: m.damping,
-            static_friction: m.static_friction,
-            dynamic_friction: m.dynamic_friction,
-        })
-        .checked()
+        let material = match Material::builder()
+            .stiffness(m.stiffness)
+            .damping(m.damping)
+            .friction(m.static_friction, m.dynamic_friction)
+            .build()
         {
             Ok(material) => material,
             Err(e) => bail!("{place}: material {e}"),
@@ -223,7 +221,8 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
         let pose = Pose::new(
             DQuat::from_euler(EulerRot::ZYX, rz, ry, rx),
             vec3(spec.position),
-        );
+        )
+        .map_err(|e| fail(format!("{place}: {e}")))?;
         let copies = grid::copies(spec.grid.as_ref(), &place)?;
         if out.len() + copies.len() > MAX_OBJECTS {
             bail!("{place}: more than {MAX_OBJECTS} objects in the scene");
@@ -237,7 +236,8 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
             if !ids.insert(id) {
                 bail!("{place}: id {} is used by another object", id.0);
             }
-            let pose = Pose::new(pose.rotation(), pose.translation() + copy.offset);
+            let pose = Pose::new(pose.rotation(), pose.translation() + copy.offset)
+                .map_err(|e| fail(format!("{place}: {e}")))?;
             out.push(SceneEntry {
                 name: spec.name.clone().unwrap_or_else(|| name.clone()) + &copy.suffix,
                 id,

@@ -119,9 +119,9 @@ fn objects_sit_where_the_flattened_mesh_is_with_scale_baked_in() {
     let material = objects.objects[1].material.expect("from extras");
     assert_eq!(
         (
-            material.stiffness,
-            material.static_friction,
-            material.dynamic_friction
+            material.stiffness(),
+            material.static_friction(),
+            material.dynamic_friction()
         ),
         (800.0, 0.4, 0.4)
     );

@@ -1,66 +1,222 @@
-//! One check for materials, motions and the maximum force, whichever front end they come
-//! from.
+//! One check for every number a user gives the library — materials, the proxy's options,
+//! poses, servo rates, device mappings, motions — the table of domains (`Param`), whichever
+//! front end the number comes from.
 
 use haphe::DVec3;
-use haphe::scene::{Material, check_max_force};
-use haphe::servo::{MAX_MOTION_AMPLITUDE, Motion};
+use haphe::glam::DQuat;
+use haphe::proxy::ProxyOptions;
+use haphe::scene::{DomainKind, Material, Param, ParamError, Pose};
+use haphe::servo::{
+    DeviceMapping, MAX_MOTION_AMPLITUDE, Motion, RealtimeOptions, ServoOptions, simulated_spec,
+};
+
+/// What each parameter must accept besides a typical value, stated here from the
+/// physics rather than read from the table: whether 0 and a negative value (−1) are
+/// usable, and a value far beyond any device (`None`: no value is absurd).
+struct Expected {
+    param: Param,
+    typical: f64,
+    zero: bool,
+    negative: bool,
+    absurd: Option<f64>,
+}
+
+const EXPECTED: [Expected; 19] = [
+    // A material with no stiffness renders nothing; damping and friction may be absent.
+    expect(Param::Stiffness, 800.0, false, false, Some(1e7)),
+    expect(Param::Damping, 1.0, true, false, Some(1e5)),
+    expect(Param::StaticFriction, 0.5, true, false, Some(100.0)),
+    expect(Param::DynamicFriction, 0.3, true, false, Some(100.0)),
+    // A proxy that renders no force, keeps no skin or has no workspace is a mistake.
+    expect(Param::MaxForce, 3.3, false, false, Some(1e4)),
+    expect(Param::Skin, 1e-6, false, false, Some(1.0)),
+    expect(Param::WorkspaceRadius, 1.0, false, false, Some(1e12)),
+    // A position is a point: any sign, the origin included; not beyond 10⁹ m.
+    expect(Param::Position, 0.2, true, true, Some(1e12)),
+    // A quaternion of any non-zero length is a rotation (normalised).
+    expect(Param::Rotation, 1.0, false, true, None),
+    expect(Param::RateHz, 1000.0, false, false, Some(1e6)),
+    expect(Param::RampSeconds, 0.05, true, false, Some(1e4)),
+    expect(Param::SpinSeconds, 2e-4, true, false, Some(100.0)),
+    expect(Param::Scale, 2.0, false, false, Some(1e9)),
+    expect(Param::Centre, 0.1, true, true, Some(1e12)),
+    expect(Param::MotionVelocity, 0.1, true, true, Some(1e4)),
+    expect(Param::MotionAmplitude, 0.01, true, true, Some(1e4)),
+    expect(Param::MotionFrequency, 2.0, true, false, Some(1e5)),
+    expect(Param::MotionAxis, 1.0, false, true, None),
+    // Turning either way, or not at all.
+    expect(Param::MotionRate, 1.0, true, true, Some(1e5)),
+];
+
+const fn expect(
+    param: Param,
+    typical: f64,
+    zero: bool,
+    negative: bool,
+    absurd: Option<f64>,
+) -> Expected {
+    Expected {
+        param,
+        typical,
+        zero,
+        negative,
+        absurd,
+    }
+}
+
+/// Gives `v` to the public constructor that takes `param`, every other value typical.
+fn build(param: Param, v: f64) -> Result<(), ParamError> {
+    let x = DVec3::new(v, 0.0, 0.0);
+    let material = Material::builder();
+    let proxy = ProxyOptions::default();
+    match param {
+        Param::Stiffness => material.stiffness(v).build().map(drop),
+        Param::Damping => material.damping(v).build().map(drop),
+        Param::StaticFriction => material.friction(v, 0.0).build().map(drop),
+        Param::DynamicFriction => material.friction(10.0, v).build().map(drop),
+        Param::MaxForce => proxy.with_max_force(v).map(drop),
+        Param::Skin => proxy.with_skin(v).map(drop),
+        Param::WorkspaceRadius => proxy.with_workspace_radius(v).map(drop),
+        Param::Position => {
+            let a = Pose::from_translation(x);
+            assert_eq!(a, Pose::new(DQuat::IDENTITY, x), "{v}");
+            a.map(drop)
+        }
+        Param::Rotation => Pose::new(DQuat::from_xyzw(v, 0.0, 0.0, 0.0), DVec3::ZERO).map(drop),
+        Param::RateHz => ServoOptions::new(v).map(drop),
+        Param::RampSeconds => ServoOptions::default().with_ramp_seconds(v).map(drop),
+        Param::SpinSeconds => RealtimeOptions::default()
+            .with_spin_seconds(Some(v))
+            .map(drop),
+        Param::Scale => DeviceMapping::new(DQuat::IDENTITY, v, DVec3::ZERO)
+            .and(DeviceMapping::centred(&simulated_spec(), v, DVec3::ZERO))
+            .map(drop),
+        Param::Centre => DeviceMapping::centred(&simulated_spec(), 1.0, x)
+            .and(DeviceMapping::new(DQuat::IDENTITY, 1.0, x))
+            .map(drop),
+        Param::MotionVelocity => Motion::Linear { velocity: x }.checked().map(drop),
+        Param::MotionAmplitude => Motion::Oscillating {
+            amplitude: x,
+            frequency: 1.0,
+        }
+        .checked()
+        .map(drop),
+        Param::MotionFrequency => Motion::Oscillating {
+            amplitude: DVec3::X * 0.01,
+            frequency: v,
+        }
+        .checked()
+        .map(drop),
+        Param::MotionAxis => Motion::Rotating { axis: x, rate: 1.0 }.checked().map(drop),
+        Param::MotionRate => Motion::Rotating {
+            axis: DVec3::Z,
+            rate: v,
+        }
+        .checked()
+        .map(drop),
+        other => panic!("no constructor in this test for {other}"),
+    }
+}
+
+/// Acceptance: NaN, ±∞, a negative value, zero and an absurd value through every
+/// parameter's constructor: refused with an error naming the parameter, the value and the
+/// domain, or accepted where the domain allows it.
+#[test]
+fn every_parameter_refuses_what_its_domain_does_not_allow() {
+    assert_eq!(
+        EXPECTED.iter().map(|e| e.param).collect::<Vec<_>>(),
+        Param::ALL,
+        "every parameter has its expectations here"
+    );
+    for e in &EXPECTED {
+        let p = e.param;
+        let mut cases = vec![
+            (e.typical, true),
+            (f64::NAN, false),
+            (f64::INFINITY, false),
+            (f64::NEG_INFINITY, false),
+            (-1.0, e.negative),
+            (0.0, e.zero),
+        ];
+        if let Some(absurd) = e.absurd {
+            cases.push((absurd, false));
+            cases.push((-absurd, false));
+        }
+        for (v, accepted) in cases {
+            match build(p, v) {
+                Ok(()) => assert!(accepted, "{p} = {v} was accepted"),
+                Err(err) => {
+                    assert!(!accepted, "{p} = {v} was refused: {err}");
+                    assert_eq!(err.param(), p, "{p} = {v}: {err}");
+                    let message = err.to_string();
+                    assert!(message.starts_with(&format!("{p} must be")), "{message}");
+                    // The value given (a vector's length, or its component given).
+                    let value = err.value();
+                    assert!(
+                        value.total_cmp(&v).is_eq() || value.total_cmp(&v.abs()).is_eq(),
+                        "{p} = {v}: {err}"
+                    );
+                }
+            }
+            // The table agrees (for a vector, about its length).
+            let probe = match p.domain().kind {
+                DomainKind::Number => v,
+                DomainKind::Vector => v.abs(),
+            };
+            assert_eq!(p.domain().contains(probe), accepted, "the table, {p} = {v}");
+        }
+    }
+}
 
 #[test]
-fn materials_are_checked() {
-    let good = Material {
-        stiffness: 600.0,
-        damping: 1.0,
-        static_friction: 0.3,
-        dynamic_friction: 0.2,
-    };
-    assert_eq!(good.checked(), Ok(good));
-    for (bad, field) in [
+fn a_refusal_names_the_domain_with_its_unit() {
+    let e = ProxyOptions::default().with_max_force(-1.0).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "max_force must be a finite number above 0 and at most 100 N, not -1"
+    );
+    assert_eq!(
+        e.named("--max-force").to_string(),
+        "--max-force must be a finite number above 0 and at most 100 N, not -1"
+    );
+    let e = Material::new(1e7).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "stiffness must be a finite number above 0 and at most 1000000 N/m, not 1e7"
+    );
+}
+
+#[test]
+fn the_dynamic_friction_is_at_most_the_static() {
+    let good = Material::builder()
+        .stiffness(600.0)
+        .damping(1.0)
+        .friction(0.3, 0.2)
+        .build()
+        .expect("a valid material");
+    assert_eq!(good.to_builder().build(), Ok(good));
+    assert_eq!(
         (
-            Material {
-                stiffness: -1.0,
-                ..good
-            },
-            "stiffness",
+            good.stiffness(),
+            good.damping(),
+            good.static_friction(),
+            good.dynamic_friction()
         ),
-        (
-            Material {
-                damping: f64::NAN,
-                ..good
-            },
-            "damping",
-        ),
-        (
-            Material {
-                stiffness: f64::INFINITY,
-                ..good
-            },
-            "stiffness",
-        ),
-        (
-            Material {
-                static_friction: -0.1,
-                ..good
-            },
-            "static_friction",
-        ),
-        (
-            Material {
-                dynamic_friction: 0.5,
-                ..good
-            },
-            "dynamic_friction",
-        ),
-    ] {
-        let err = bad.checked().unwrap_err();
-        assert_eq!(err.field, field, "{bad:?}");
-        assert!(
-            err.to_string().starts_with(&format!("{field} must be")),
-            "{err}"
-        );
-    }
-    assert!(check_max_force(3.3).is_ok());
-    assert!(check_max_force(-1.0).is_err());
-    assert!(check_max_force(f64::NAN).is_err());
+        (600.0, 1.0, 0.3, 0.2)
+    );
+    let err = good.to_builder().friction(0.3, 0.5).build().unwrap_err();
+    assert_eq!(err.param(), Param::DynamicFriction);
+    assert_eq!(
+        err.to_string(),
+        "dynamic_friction must be at most static_friction (0.3), not 0.5"
+    );
+    // The first value refused is named, in the order stiffness, damping, friction.
+    let err = Material::builder()
+        .stiffness(-1.0)
+        .damping(f64::NAN)
+        .build()
+        .unwrap_err();
+    assert_eq!(err.param(), Param::Stiffness);
 }
 
 #[test]

@@ -69,11 +69,11 @@ fn assert_holds(name: &str, check: &StrikeCheck) {
 /// default material and a stiff one.
 #[test]
 fn deep_strikes_never_pull_the_hand_on_procedural_shapes() {
-    let stiff = Material {
-        stiffness: 2_000.0,
-        damping: 2.0,
-        ..Material::default()
-    };
+    let stiff = Material::builder()
+        .stiffness(2_000.0)
+        .damping(2.0)
+        .build()
+        .expect("a valid material");
     for which in [
         Catalog::Sphere,
         Catalog::Blob,
@@ -342,7 +342,7 @@ fn sliding_under_a_hard_press_moves_the_held_proxy_with_the_hand() {
     }
     println!("held {held} ticks; proxy off the hand across by at most {worst:.3e} m");
     assert_eq!(held, 400);
-    assert!(worst <= ProxyOptions::default().skin, "{worst}");
+    assert!(worst <= ProxyOptions::default().skin(), "{worst}");
     let check = check_proxy(&scene, &path, ProxyOptions::default());
     assert_eq!(check.mismatches, 0, "{check:?}");
     assert_eq!(check.inside, 0, "{check:?}");

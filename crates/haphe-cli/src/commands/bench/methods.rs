@@ -457,7 +457,7 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
                 1,
             );
             if let Some(mesh) = parry {
-                let stiffness = Material::default().stiffness;
+                let stiffness = Material::default().stiffness();
                 add(
                     Method::Parry,
                     each(

@@ -67,15 +67,15 @@ fn grid(k: usize, side: usize) -> DVec3 {
 
 fn config(shape: &Arc<Shape>, objects: usize, moving: usize, linear: bool) -> Config {
     let side = (1..).find(|s: &usize| s.pow(3) >= objects).unwrap_or(1);
-    let material = Material {
-        stiffness: 1000.0,
-        damping: 1.0,
-        static_friction: 0.0,
-        dynamic_friction: 0.0,
-    };
+    let material = Material::builder()
+        .stiffness(1000.0)
+        .damping(1.0)
+        .friction(0.0, 0.0)
+        .build()
+        .expect("a valid material");
     let mut scene = Scene::local(objects);
     for k in 0..objects {
-        let pose = Pose::from_translation(grid(k, side));
+        let pose = Pose::from_translation(grid(k, side)).expect("a valid pose");
         let object = SceneObject::new(ObjectId(k as u32), Arc::clone(shape), pose, material);
         let _ = scene.insert(object);
     }
@@ -162,8 +162,10 @@ pub fn series(counts: &[usize], ticks: usize) -> anyhow::Result<Vec<Row>> {
                 c.scene.begin_tick();
                 let wobble = DVec3::new(0.0, 0.0, 1e-3 * (t as f64 * 0.01).sin());
                 for (key, at) in &mut c.moving {
-                    c.scene
-                        .set_pose_keyed(key, Pose::from_translation(*at + wobble));
+                    c.scene.set_pose_keyed(
+                        key,
+                        Pose::from_translation(*at + wobble).expect("a valid pose"),
+                    );
                 }
                 let out = c.proxy.tick(&c.scene, black_box(hip), DVec3::ZERO);
                 black_box(out);

@@ -55,12 +55,12 @@ const KINDS: [(&str, (f64, f64)); 3] = [
 
 /// The material of the proxy checks: 800 N/m, 1 N·s/m, friction 0.5 / 0.3.
 fn verify_material() -> Material {
-    Material {
-        stiffness: 800.0,
-        damping: 1.0,
-        static_friction: 0.5,
-        dynamic_friction: 0.3,
-    }
+    Material::builder()
+        .stiffness(800.0)
+        .damping(1.0)
+        .friction(0.5, 0.3)
+        .build()
+        .expect("800 N/m, 1 N·s/m and 0.5 / 0.3 are in their domains")
 }
 
 /// `surface` scaled to a hand's size (its largest side [`HAND_SCALE_M`]) and mapped, and
@@ -123,11 +123,7 @@ impl StrikeReport {
 pub fn strikes(surface: &Surface, strikes: usize, seed: u64) -> anyhow::Result<StrikeReport> {
     let start = Instant::now();
     let (shape, scale) = scaled_shape(surface)?;
-    let material = Material {
-        static_friction: 0.0,
-        dynamic_friction: 0.0,
-        ..verify_material()
-    };
+    let material = verify_material().to_builder().friction(0.0, 0.0).build()?;
     let options = ProxyOptions::default();
     let scene = scene_of(&shape, material)?;
     let clock = Instant::now();
@@ -135,7 +131,7 @@ pub fn strikes(surface: &Surface, strikes: usize, seed: u64) -> anyhow::Result<S
     let us_per_tick = clock.elapsed().as_secs_f64() * 1e6 / check.ticks.max(1) as f64;
     Ok(StrikeReport {
         scale,
-        saturation_depth_m: options.max_force / material.stiffness,
+        saturation_depth_m: options.max_force() / material.stiffness(),
         check,
         seconds: start.elapsed().as_secs_f64(),
         us_per_tick,

@@ -157,11 +157,6 @@ mod tests {
         assert_eq!(saturation_depth(&m, 3.3), Some(3.3 / 500.0));
         assert_eq!(saturation_depth(&m, 0.0), None);
         assert_eq!(saturation_depth(&m, f64::NAN), None);
-        let soft = Material {
-            stiffness: 0.0,
-            ..m
-        };
-        assert_eq!(saturation_depth(&soft, 3.3), None);
         let n = DVec3::Z;
         let d = saturation_depth(&m, 3.3);
         assert!(!is_deep(DVec3::ZERO, DVec3::new(0.5, 0.0, -0.006), n, d));

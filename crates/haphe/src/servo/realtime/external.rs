@@ -72,7 +72,7 @@ fn run_clocked<D: Device>(
     stop_flag: &AtomicBool,
     producer: rtrb::Producer<TickRecord>,
 ) -> RealtimeRun<D> {
-    let (period_ns, max_ticks) = period_and_ticks(servo.options().rate_hz, seconds);
+    let (period_ns, max_ticks) = period_and_ticks(servo.options().rate_hz(), seconds);
     let period = Duration::from_nanos(period_ns);
     let mut run = Run::new(servo, producer, options.overrun_budget);
     let counters = Counters::read(None);

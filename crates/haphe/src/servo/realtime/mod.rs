@@ -16,6 +16,7 @@ use std::time::{Duration, Instant};
 
 use rtrb::{Consumer, RingBuffer};
 
+use crate::scene::{Param, ParamError};
 use crate::servo::device::Device;
 use crate::servo::tick::{Servo, ServoError, StopReason};
 use crate::servo::trace::TickRecord;
@@ -39,21 +40,27 @@ pub const DEFAULT_SPIN_FRACTION: f64 = 0.3;
 /// kernel's own per-CPU threads (99).
 pub const FIFO_PRIORITY: u8 = 80;
 
-/// How the servo thread is scheduled.
+/// How the servo thread is scheduled, built from [`RealtimeOptions::default`] by the
+/// `with_*` builders (the spin is checked against its domain, [`Param::SpinSeconds`]); the
+/// fields are private, so a struct literal does not build:
+///
+/// ```compile_fail
+/// let o = haphe::servo::RealtimeOptions { spin_seconds: Some(f64::NAN), ..Default::default() };
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RealtimeOptions {
     /// Ask for real-time (FIFO) priority; without permission the thread keeps the normal
     /// priority, quietly, and [`RealtimeSetup`] says so.
-    pub realtime_priority: bool,
+    pub(crate) realtime_priority: bool,
     /// Pin the thread to this core (`None`: the last core, where the system tends to put
     /// the least work; pinning is skipped when there is a single core).
-    pub core: Option<usize>,
+    pub(crate) core: Option<usize>,
     /// Spin (instead of sleeping) for this last part before each deadline, seconds.
-    /// `None`: 200 µs, at most 30 % of the period.
-    pub spin_seconds: Option<f64>,
+    /// `None`: [`DEFAULT_SPIN_S`], at most [`DEFAULT_SPIN_FRACTION`] of the period.
+    pub(crate) spin_seconds: Option<f64>,
     /// Capacity of the record ring to the reading thread, ticks; records that find it
     /// full are dropped and counted.
-    pub record_capacity: usize,
+    pub(crate) record_capacity: usize,
     /// Run a standby thread pinned to this core, which ticks in place of the servo
     /// thread when that one has not started a tick
     /// 20 µs after its deadline (its core was taken
@@ -61,13 +68,13 @@ pub struct RealtimeOptions {
     /// whole period at normal priority, so it costs a second core; `None` (the default):
     /// no standby. A core the servo thread is pinned to gets no standby (said in
     /// [`RealtimeSetup::notes`]).
-    pub standby_core: Option<usize>,
+    pub(crate) standby_core: Option<usize>,
     /// Stop the run (zero force, [`StopReason::Overruns`]) once more deadlines than this
     /// were missed (overruns and skipped deadlines together, see
     /// [`TickStats::missed`](super::TickStats::missed)); `None` (the
     /// default): never. A real device should have one: a servo that keeps missing its
     /// deadlines renders unstable walls.
-    pub overrun_budget: Option<u64>,
+    pub(crate) overrun_budget: Option<u64>,
 }
 
 impl Default for RealtimeOptions {
@@ -82,6 +89,93 @@ impl Default for RealtimeOptions {
             standby_core: None,
             overrun_budget: None,
         }
+    }
+}
+
+impl RealtimeOptions {
+    /// The same options asking (or not) for real-time priority.
+    pub fn with_realtime_priority(self, realtime_priority: bool) -> RealtimeOptions {
+        RealtimeOptions {
+            realtime_priority,
+            ..self
+        }
+    }
+
+    /// The same options pinning the servo thread to `core` (`None`: the last core).
+    pub fn with_core(self, core: Option<usize>) -> RealtimeOptions {
+        RealtimeOptions { core, ..self }
+    }
+
+    /// The same options spinning this last part before each deadline, seconds (`None`:
+    /// the default).
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `spin_seconds` outside its domain (0 to 1 s).
+    pub fn with_spin_seconds(
+        self,
+        spin_seconds: Option<f64>,
+    ) -> Result<RealtimeOptions, ParamError> {
+        Ok(RealtimeOptions {
+            spin_seconds: spin_seconds
+                .map(|s| Param::SpinSeconds.check(s))
+                .transpose()?,
+            ..self
+        })
+    }
+
+    /// The same options with a record ring of `record_capacity` ticks.
+    pub fn with_record_capacity(self, record_capacity: usize) -> RealtimeOptions {
+        RealtimeOptions {
+            record_capacity,
+            ..self
+        }
+    }
+
+    /// The same options with a standby thread pinned to `core` (`None`: no standby).
+    pub fn with_standby_core(self, standby_core: Option<usize>) -> RealtimeOptions {
+        RealtimeOptions {
+            standby_core,
+            ..self
+        }
+    }
+
+    /// The same options stopping the run once more than `budget` deadlines were missed
+    /// (`None`: never).
+    pub fn with_overrun_budget(self, overrun_budget: Option<u64>) -> RealtimeOptions {
+        RealtimeOptions {
+            overrun_budget,
+            ..self
+        }
+    }
+
+    /// Whether real-time priority is asked for.
+    pub fn realtime_priority(&self) -> bool {
+        self.realtime_priority
+    }
+
+    /// The core the servo thread is pinned to (`None`: the last core).
+    pub fn core(&self) -> Option<usize> {
+        self.core
+    }
+
+    /// The spin before each deadline, seconds (`None`: the default).
+    pub fn spin_seconds(&self) -> Option<f64> {
+        self.spin_seconds
+    }
+
+    /// The record ring's capacity, ticks.
+    pub fn record_capacity(&self) -> usize {
+        self.record_capacity
+    }
+
+    /// The standby thread's core, if any.
+    pub fn standby_core(&self) -> Option<usize> {
+        self.standby_core
+    }
+
+    /// The overrun budget, if any.
+    pub fn overrun_budget(&self) -> Option<u64> {
+        self.overrun_budget
     }
 }
 
@@ -466,7 +560,7 @@ fn run_thread<D: Device>(
         }
         other => other,
     };
-    let rate = servo.options().rate_hz;
+    let rate = servo.options().rate_hz();
     let (period_ns, max_ticks) = period_and_ticks(rate, seconds);
     let spin_s = options
         .spin_seconds

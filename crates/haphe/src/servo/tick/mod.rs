@@ -14,27 +14,34 @@ use glam::DVec3;
 
 use crate::proxy::{Proxy, ProxyOptions, TickStatus};
 use crate::query::{Side, classify_point};
-use crate::scene::{ObjectKey, Scene};
+use crate::scene::{ObjectKey, Param, ParamError, Scene};
 use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
 use crate::servo::trace::{Phase, TickRecord};
 
-/// Lowest servo rate accepted, Hz.
-pub const MIN_RATE_HZ: f64 = 1.0;
+/// Lowest servo rate accepted, Hz (the table of domains: [`Param::RateHz`]).
+pub const MIN_RATE_HZ: f64 = Param::RateHz.domain().low;
 /// Highest servo rate accepted, Hz.
-pub const MAX_RATE_HZ: f64 = 40_000.0;
+pub const MAX_RATE_HZ: f64 = Param::RateHz.domain().high;
 
-/// Settings of a [`Servo`].
+/// Settings of a [`Servo`], every value within its domain (see [`Param`]).
+///
+/// Built by [`ServoOptions::new`] (or [`ServoOptions::default`]) and the `with_*`
+/// builders; the fields are private, so a struct literal does not build:
+///
+/// ```compile_fail
+/// let o = haphe::servo::ServoOptions { rate_hz: 0.0, ..Default::default() };
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ServoOptions {
     /// Ticks per second, Hz, within [`MIN_RATE_HZ`]..=[`MAX_RATE_HZ`].
-    pub rate_hz: f64,
+    rate_hz: f64,
     /// The proxy's settings; its `max_force` is lowered to the device's if larger.
-    pub proxy: ProxyOptions,
+    pub(crate) proxy: ProxyOptions,
     /// Where the device workspace sits in the world.
-    pub mapping: DeviceMapping,
+    mapping: DeviceMapping,
     /// Safe start: after the device point is found outside every object, the force rises
     /// linearly from zero over this time, seconds (0: at once).
-    pub ramp_seconds: f64,
+    ramp_seconds: f64,
 }
 
 impl Default for ServoOptions {
@@ -49,16 +56,65 @@ impl Default for ServoOptions {
     }
 }
 
+impl ServoOptions {
+    /// The default options at `rate_hz` ticks per second.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `rate_hz` outside [`MIN_RATE_HZ`]..=[`MAX_RATE_HZ`].
+    pub fn new(rate_hz: f64) -> Result<ServoOptions, ParamError> {
+        Ok(ServoOptions {
+            rate_hz: Param::RateHz.check(rate_hz)?,
+            ..ServoOptions::default()
+        })
+    }
+
+    /// The same options with the proxy's settings.
+    pub fn with_proxy(self, proxy: ProxyOptions) -> ServoOptions {
+        ServoOptions { proxy, ..self }
+    }
+
+    /// The same options with the device mapping.
+    pub fn with_mapping(self, mapping: DeviceMapping) -> ServoOptions {
+        ServoOptions { mapping, ..self }
+    }
+
+    /// The same options with the safe start's ramp, seconds.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `ramp_seconds` outside its domain (0 to 60 s).
+    pub fn with_ramp_seconds(self, ramp_seconds: f64) -> Result<ServoOptions, ParamError> {
+        Ok(ServoOptions {
+            ramp_seconds: Param::RampSeconds.check(ramp_seconds)?,
+            ..self
+        })
+    }
+
+    /// Ticks per second, Hz.
+    pub fn rate_hz(&self) -> f64 {
+        self.rate_hz
+    }
+
+    /// The proxy's settings (after [`Servo::new`], with the maximum force lowered to the
+    /// device's).
+    pub fn proxy(&self) -> &ProxyOptions {
+        &self.proxy
+    }
+
+    /// Where the device workspace sits in the world.
+    pub fn mapping(&self) -> &DeviceMapping {
+        &self.mapping
+    }
+
+    /// The safe start's ramp, seconds.
+    pub fn ramp_seconds(&self) -> f64 {
+        self.ramp_seconds
+    }
+}
+
 /// Why a servo could not be set up or run.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ServoError {
-    /// The rate is outside the accepted range.
-    #[error("servo rate {rate_hz} Hz is outside {MIN_RATE_HZ}..={MAX_RATE_HZ} Hz")]
-    Rate {
-        /// The rate asked for, Hz.
-        rate_hz: f64,
-    },
     /// The device could not be opened or calibrated.
     #[error(transparent)]
     Device(#[from] DeviceError),
@@ -132,22 +188,12 @@ impl<D: Device> Servo<D> {
     /// Opens and calibrates `device` and prepares to render `scene`.
     ///
     /// # Errors
-    /// [`ServoError::Rate`] for a rate out of range; [`ServoError::Device`] when the device
-    /// cannot be opened or calibrated.
+    /// [`ServoError::Device`] when the device cannot be opened or calibrated.
     pub fn new(mut device: D, scene: Scene, options: ServoOptions) -> Result<Servo<D>, ServoError> {
-        if !(options.rate_hz.is_finite() && (MIN_RATE_HZ..=MAX_RATE_HZ).contains(&options.rate_hz))
-        {
-            return Err(ServoError::Rate {
-                rate_hz: options.rate_hz,
-            });
-        }
         let spec = device.spec();
         let mut options = options;
         if spec.max_force.is_finite() && spec.max_force >= 0.0 {
             options.proxy.max_force = options.proxy.max_force.min(spec.max_force);
-        }
-        if !(options.ramp_seconds.is_finite() && options.ramp_seconds >= 0.0) {
-            options.ramp_seconds = 0.0;
         }
         device.open()?;
         device.calibrate()?;

@@ -2,7 +2,7 @@
 
 use glam::{DQuat, DVec3};
 
-use crate::scene::{InvalidValue, ObjectId, Pose};
+use crate::scene::{ObjectId, Param, ParamError, Pose};
 
 /// How an object moves over time, from its base pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,50 +39,33 @@ pub struct ObjectMotion {
     pub motion: Motion,
 }
 
-/// The fastest linear motion accepted, m/s.
-pub const MAX_MOTION_SPEED: f64 = 100.0;
-/// The largest oscillation amplitude accepted, metres.
-pub const MAX_MOTION_AMPLITUDE: f64 = 100.0;
-/// The highest oscillation frequency accepted, Hz (a 1 kHz servo samples it twice a cycle
-/// at 500 Hz; faster motions are aliased noise).
-pub const MAX_MOTION_FREQUENCY: f64 = 500.0;
-/// The fastest rotation accepted, rad/s.
-pub const MAX_MOTION_RATE: f64 = 1000.0;
+/// The largest oscillation amplitude accepted, metres (the table of domains: [`Param`]).
+pub const MAX_MOTION_AMPLITUDE: f64 = Param::MotionAmplitude.domain().high;
 
 impl Motion {
-    /// Checks the motion's numbers: finite, at most 100 m/s, 100 m of amplitude, 500 Hz
-    /// and 1000 rad/s (`MAX_MOTION_SPEED`, `MAX_MOTION_AMPLITUDE`, `MAX_MOTION_FREQUENCY`,
-    /// `MAX_MOTION_RATE`), and a rotation axis of non-zero length. Scene files and code use this one check.
+    /// Checks the motion's numbers against the table of domains ([`Param`]): finite,
+    /// within the domains of [`Param::MotionVelocity`], [`Param::MotionAmplitude`],
+    /// [`Param::MotionFrequency`] (a 1 kHz servo samples 500 Hz twice a cycle; faster
+    /// motions are aliased noise) and [`Param::MotionRate`], and a rotation axis of non-zero
+    /// length. Scene files and code use this one check.
     ///
     /// # Errors
-    /// An [`InvalidValue`] naming the first value that is not usable.
-    pub fn checked(self) -> Result<Motion, InvalidValue> {
+    /// A [`ParamError`] naming the first value that is not usable.
+    pub fn checked(self) -> Result<Motion, ParamError> {
         match self {
             Motion::Linear { velocity } => {
-                InvalidValue::check_vector("motion velocity", velocity, MAX_MOTION_SPEED)?;
+                Param::MotionVelocity.check_vector(velocity.to_array())?;
             }
             Motion::Oscillating {
                 amplitude,
                 frequency,
             } => {
-                InvalidValue::check_vector("motion amplitude", amplitude, MAX_MOTION_AMPLITUDE)?;
-                InvalidValue::check_range(
-                    "motion frequency",
-                    frequency,
-                    0.0,
-                    MAX_MOTION_FREQUENCY,
-                )?;
+                Param::MotionAmplitude.check_vector(amplitude.to_array())?;
+                Param::MotionFrequency.check(frequency)?;
             }
             Motion::Rotating { axis, rate } => {
-                InvalidValue::check_vector("motion axis", axis, f64::MAX)?;
-                if axis.length() < 1e-12 {
-                    return Err(InvalidValue {
-                        field: "motion axis",
-                        value: axis.length(),
-                        expected: "a direction (of non-zero length)".into(),
-                    });
-                }
-                InvalidValue::check_range("motion rate", rate, -MAX_MOTION_RATE, MAX_MOTION_RATE)?;
+                Param::MotionAxis.check_vector(axis.to_array())?;
+                Param::MotionRate.check(rate)?;
             }
         }
         Ok(self)
@@ -97,11 +80,11 @@ impl ObjectMotion {
     pub fn pose_at(&self, t: f64) -> Pose {
         let (r, p) = (self.base.rotation(), self.base.translation());
         match self.motion {
-            Motion::Linear { velocity } => Pose::new(r, p + velocity * t),
+            Motion::Linear { velocity } => Pose::sanitised(r, p + velocity * t),
             Motion::Oscillating {
                 amplitude,
                 frequency,
-            } => Pose::new(
+            } => Pose::sanitised(
                 r,
                 p + amplitude * (std::f64::consts::TAU * frequency * t).sin(),
             ),
@@ -110,7 +93,7 @@ impl ObjectMotion {
                 if axis == DVec3::ZERO {
                     return self.base;
                 }
-                Pose::new(DQuat::from_axis_angle(axis, rate * t) * r, p)
+                Pose::sanitised(DQuat::from_axis_angle(axis, rate * t) * r, p)
             }
         }
     }
@@ -122,7 +105,7 @@ mod tests {
 
     #[test]
     fn poses_over_time() {
-        let base = Pose::from_translation(DVec3::new(1.0, 0.0, 0.0));
+        let base = Pose::from_translation(DVec3::new(1.0, 0.0, 0.0)).unwrap();
         let id = ObjectId(0);
         let linear = ObjectMotion {
             id,

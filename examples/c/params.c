@@ -1,0 +1,126 @@
+/* Every parameter given through the C API goes through the library's table of domains:
+ * NaN, +inf, -inf, a negative value, zero and an absurd value are each refused with
+ * HAPHE_STATUS_INVALID_ARGUMENT and a haphe_last_error() naming the parameter, or accepted
+ * where the domain allows it. Prints one line per case; exits 1 on the first surprise.
+ *
+ *   cargo build -p haphe-c
+ *   cc -std=c11 -Wall -Wextra -Werror examples/c/params.c -Icrates/haphe-c/include \
+ *       -Ltarget/debug -lhaphe -lm -o params
+ *   LD_LIBRARY_PATH=target/debug ./params */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "haphe.h"
+
+/* A tetrahedron, 10 cm, counter-clockwise seen from outside. */
+static const double VERTICES[] = {0, 0, 0, 0.1, 0, 0, 0, 0.1, 0, 0, 0, 0.1};
+static const uint32_t FACES[] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+
+static HapheShape *shape;
+
+/* The parameter a case gives a value to, and how. */
+typedef enum {
+    STIFFNESS,
+    DAMPING,
+    STATIC_FRICTION,
+    DYNAMIC_FRICTION,
+    POSITION,
+    ROTATION,
+    SET_POSITION,
+    MAX_FORCE,
+    PROXY_POSITION,
+    RATE_HZ,
+} Which;
+
+static HapheStatus give(Which which, double v) {
+    HapheScene *scene = NULL;
+    HapheStatus status = haphe_scene_new(2, &scene);
+    if (status != HAPHE_STATUS_OK) return status;
+    HapheMaterial m = {800.0, 1.0, 0.5, 0.3};
+    double x[3] = {v, 0.0, 0.0};
+    double q[4] = {v, 0.0, 0.0, 0.0};
+    uint32_t id = 0;
+    HapheProxy *proxy = NULL;
+    switch (which) {
+    case STIFFNESS: m.stiffness = v; break;
+    case DAMPING: m.damping = v; break;
+    case STATIC_FRICTION: m.static_friction = v; m.dynamic_friction = 0.0; break;
+    case DYNAMIC_FRICTION: m.static_friction = 10.0; m.dynamic_friction = v; break;
+    default: break;
+    }
+    switch (which) {
+    case POSITION: status = haphe_scene_add(scene, shape, x, NULL, &m, &id); break;
+    case ROTATION: status = haphe_scene_add(scene, shape, NULL, q, &m, &id); break;
+    case SET_POSITION:
+        status = haphe_scene_add(scene, shape, NULL, NULL, &m, &id);
+        if (status == HAPHE_STATUS_OK) status = haphe_scene_set_pose(scene, id, x, NULL);
+        break;
+    case MAX_FORCE: status = haphe_proxy_new(NULL, v, &proxy); break;
+    case PROXY_POSITION: status = haphe_proxy_new(x, 3.3, &proxy); break;
+    case RATE_HZ:
+        status = haphe_scene_add(scene, shape, NULL, NULL, &m, &id);
+        if (status == HAPHE_STATUS_OK)
+            status = haphe_run(scene, "hand", "press", 0.01, v, NULL, NULL, NULL);
+        break;
+    default: status = haphe_scene_add(scene, shape, NULL, NULL, &m, &id); break;
+    }
+    haphe_proxy_free(proxy);
+    haphe_scene_free(scene);
+    return status;
+}
+
+/* What each parameter must accept, stated here from the physics: whether 0 and -1 are
+ * usable, and a value far beyond any device (0: none is absurd). */
+static const struct {
+    Which which;
+    const char *name;
+    double typical;
+    int zero, negative;
+    double absurd;
+} CASES[] = {
+    {STIFFNESS, "stiffness", 800.0, 0, 0, 1e7},
+    {DAMPING, "damping", 1.0, 1, 0, 1e5},
+    {STATIC_FRICTION, "static_friction", 0.5, 1, 0, 100.0},
+    {DYNAMIC_FRICTION, "dynamic_friction", 0.3, 1, 0, 100.0},
+    {POSITION, "position", 0.2, 1, 1, 1e12},
+    {ROTATION, "rotation", 1.0, 0, 1, 0.0},
+    {SET_POSITION, "position", 0.2, 1, 1, 1e12},
+    {MAX_FORCE, "max_force", 3.3, 0, 0, 1e4},
+    {PROXY_POSITION, "position", 0.2, 1, 1, 1e12},
+    {RATE_HZ, "rate_hz", 1000.0, 0, 0, 1e6},
+};
+
+int main(void) {
+    if (haphe_shape_from_arrays(VERTICES, 4, FACES, 4, &shape) != HAPHE_STATUS_OK) {
+        fprintf(stderr, "shape: %s\n", haphe_last_error());
+        return 1;
+    }
+    int cases = 0;
+    for (size_t c = 0; c < sizeof CASES / sizeof CASES[0]; c++) {
+        double values[8] = {CASES[c].typical, NAN, INFINITY, -INFINITY, -1.0, 0.0,
+                            CASES[c].absurd, -CASES[c].absurd};
+        int accepted[8] = {1, 0, 0, 0, CASES[c].negative, CASES[c].zero, 0, 0};
+        size_t n = CASES[c].absurd != 0.0 ? 8 : 6;
+        for (size_t i = 0; i < n; i++) {
+            HapheStatus status = give(CASES[c].which, values[i]);
+            const char *error = status == HAPHE_STATUS_OK ? "" : haphe_last_error();
+            printf("%-16s %-8g -> %s\n", CASES[c].name, values[i],
+                   status == HAPHE_STATUS_OK ? "accepted" : error);
+            if (accepted[i]) {
+                if (status != HAPHE_STATUS_OK) return 1;
+            } else if (status != HAPHE_STATUS_INVALID_ARGUMENT ||
+                       strncmp(error, CASES[c].name, strlen(CASES[c].name)) != 0 ||
+                       strstr(error, " must be ") == NULL) {
+                fprintf(stderr, "%s = %g: expected a refusal naming it\n", CASES[c].name,
+                        values[i]);
+                return 1;
+            }
+            cases++;
+        }
+    }
+    haphe_shape_free(shape);
+    printf("%d cases: every refusal named its parameter\n", cases);
+    return 0;
+}
