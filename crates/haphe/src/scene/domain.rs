@@ -247,7 +247,7 @@ pub(crate) struct Number(pub(crate) f64);
 impl fmt::Display for Number {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let a = self.0.abs();
-        if a.is_finite() && (a > 1e7 || (a < 1e-4 && a != 0.0)) {
+        if a.is_finite() && (a >= 1e7 || (a < 1e-4 && a != 0.0)) {
             write!(f, "{:e}", self.0)
         } else {
             write!(f, "{}", self.0)
