@@ -19,7 +19,8 @@
 typedef enum HapheStatus {
   // Done.
   HAPHE_STATUS_OK = 0,
-  // An argument is null, out of range or not finite.
+  // An argument is null, out of range or not finite (a parameter outside its domain in
+  // the library's table: the message names it, its value and its domain).
   HAPHE_STATUS_INVALID_ARGUMENT = 1,
   // A file could not be read or written.
   HAPHE_STATUS_IO = 2,
@@ -144,7 +145,11 @@ void haphe_scene_free(struct HapheScene *scene);
 // turned by the quaternion `rotation` (x, y, z, w, object to world; null: none), with
 // `material` (null: 500 N/m, no damping, no friction). The scene keeps its own reference
 // to the shape (the caller may free its handle). `*id` (may be null) receives the
-// object's id. Errors: `HAPHE_STATUS_FULL` at capacity, `HAPHE_STATUS_INVALID_ARGUMENT`.
+// object's id. Errors: `HAPHE_STATUS_FULL` at capacity, `HAPHE_STATUS_INVALID_ARGUMENT`
+// (`haphe_last_error()` names the parameter outside its domain in the library's table:
+// a stiffness above 0 and at most 1e6 N/m, damping 0 to 1000 N·s/m, friction 0 to 10
+// with the dynamic at most the static, a position at most 1e9 m from the origin, a
+// quaternion of non-zero length).
 enum HapheStatus haphe_scene_add(struct HapheScene *scene,
                                  const struct HapheShape *shape,
                                  const double *position,
@@ -154,7 +159,8 @@ enum HapheStatus haphe_scene_add(struct HapheScene *scene,
 
 // Moves object `id` to `position` (metres) turned by `rotation` (x, y, z, w; null: none);
 // the motion is rendered at the next tick. Allocates nothing. Errors:
-// `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id.
+// `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id or a position or rotation outside its
+// domain (named by `haphe_last_error()`).
 enum HapheStatus haphe_scene_set_pose(struct HapheScene *scene,
                                       uint32_t id,
                                       const double *position,
@@ -162,7 +168,8 @@ enum HapheStatus haphe_scene_set_pose(struct HapheScene *scene,
 
 // A new proxy at `position` (3 doubles, metres; null: the origin), rendering at most
 // `max_force` newtons. On success `*out` is owned by the caller: free it with
-// `haphe_proxy_free`.
+// `haphe_proxy_free`. Errors: `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()`
+// naming `max_force` (above 0, at most 100 N) or `position`.
 enum HapheStatus haphe_proxy_new(const double *position, double max_force, struct HapheProxy **out);
 
 // Frees a proxy (null is ignored).
@@ -187,7 +194,8 @@ enum HapheStatus haphe_proxy_tick(struct HapheProxy *proxy,
 // Safe start: no force until the device point is outside every solid, then a 50 ms ramp.
 // `*ticks` (may be null) receives the number of ticks run. The scene is only read.
 // Errors: `HAPHE_STATUS_DEVICE` (unknown device, or one that faulted),
-// `HAPHE_STATUS_INVALID_ARGUMENT`.
+// `HAPHE_STATUS_INVALID_ARGUMENT` (`rate_hz` outside 1 to 40000 Hz, named by
+// `haphe_last_error()`; `seconds` not positive).
 enum HapheStatus haphe_run(struct HapheScene *scene,
                            const char *device,
                            const char *path,

@@ -211,7 +211,14 @@ impl Param {
         if let Some(&value) = v.iter().find(|x| !x.is_finite()) {
             return Err(ParamError::NotFinite { param: self, value });
         }
-        let length = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        // Scaled by the largest component, so that a length near f64::MAX is reported as
+        // itself rather than as the infinity its squares overflow to.
+        let largest = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        let length = if largest > 0.0 {
+            largest * v.iter().map(|x| (x / largest).powi(2)).sum::<f64>().sqrt()
+        } else {
+            0.0
+        };
         self.check(length).map(|_| v)
     }
 }

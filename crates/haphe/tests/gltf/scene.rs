@@ -137,7 +137,7 @@ fn bad_materials_and_flat_nodes_are_named() {
     let err = gltf_objects(&scene).unwrap_err();
     assert_eq!(
         err.to_string(),
-        "node 1 ('lid'): extras: stiffness must be a finite number of at least 0, not -5"
+        "node 1 ('lid'): extras: stiffness must be a finite number above 0 and at most 1000000 N/m, not -5"
     );
     w.doc["nodes"][1]["extras"] = json!({"friction": "high"});
     let scene = read_gltf("b.glb", &w.glb(), Units::Metres, &mut NoSideCars).expect("reads");
