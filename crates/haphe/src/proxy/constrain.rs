@@ -39,7 +39,7 @@ pub(super) struct Sweep {
 
 impl Sweep {
     /// No surface met yet, the proxy at `p`.
-    fn at(p: DVec3) -> Sweep {
+    pub(super) fn at(p: DVec3) -> Sweep {
         Sweep {
             position: p,
             touch_down: p,
@@ -76,19 +76,22 @@ enum Leg {
 }
 
 /// The god-object's steps of one tick over `scene` (the objects near the proxy kept in
-/// `near`), from `p` toward `hip`: at most [`MAX_PROXY_STEPS`] legs, each toward the point
-/// closest to `hip` on the free side of the planes met so far.
+/// `near`), from the sweep's position (no surface met yet: [`Sweep::at`]) toward `hip`: at
+/// most [`MAX_PROXY_STEPS`] legs, each toward the point closest to `hip` on the free side of
+/// the planes met so far.
+///
+/// The caller owns the sweep (the planes and the last hit, a few hundred bytes): filled in
+/// place, it is never copied out.
 pub(super) fn constrain(
     (scene, near): (&Scene, &mut NearCache),
-    p: DVec3,
+    sweep: &mut Sweep,
     hip: DVec3,
     start: Start,
     options: &ProxyOptions,
     status: &mut TickStatus,
-) -> Sweep {
-    let mut sweep = Sweep::at(p);
+) {
     if start.placed {
-        touch_where_placed(scene, near, &mut sweep, hip, options);
+        touch_where_placed(scene, near, sweep, hip, options);
     }
     for _ in 0..MAX_PROXY_STEPS {
         let Some(target) = sweep
@@ -96,27 +99,26 @@ pub(super) fn constrain(
             .closest_feasible(hip, options.plane_tolerance())
         else {
             status.wedged = true;
-            return sweep;
+            return;
         };
         if target == sweep.position {
-            return sweep;
+            return;
         }
-        match leg((scene, &mut *near), &sweep, target, start, options) {
+        match leg((scene, &mut *near), sweep, target, start, options) {
             Leg::Free { cleared } => {
                 status.cleared |= cleared;
                 sweep.position = target;
-                return sweep;
+                return;
             }
             Leg::Met(hit, plane, position) => {
                 if !sweep.met(hit, plane, position) {
                     status.step_cap_hit = true;
-                    return sweep;
+                    return;
                 }
             }
         }
     }
     status.step_cap_hit = true;
-    sweep
 }
 
 /// A proxy placed on a surface (within a probe's reach) touches it when the device point

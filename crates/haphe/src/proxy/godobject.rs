@@ -282,9 +282,10 @@ impl Proxy {
             rest: self.rest,
             under: self.under,
         };
-        let sweep = constrain(
+        let mut sweep = Sweep::at(carried);
+        constrain(
             (scene, &mut self.near),
-            carried,
+            &mut sweep,
             hand.hip,
             start,
             &self.options,

@@ -12,6 +12,7 @@ use crate::scene::{Hit, Scene, SurfaceRef};
 
 /// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
 /// object index. Only the objects near the segment are tested (see [`NearCache`]).
+#[inline]
 pub(crate) fn first_hit_all(
     scene: &Scene,
     near: &mut NearCache,
@@ -33,6 +34,7 @@ pub(crate) fn first_hit_all(
 
 /// The surface within `reach` of the world point `p` of the lowest-index object that has
 /// one (see [`Scene::touching`]).
+#[inline]
 pub(crate) fn touching_any(
     scene: &Scene,
     near: &mut NearCache,

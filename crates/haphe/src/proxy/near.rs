@@ -15,6 +15,11 @@ const FAT: f64 = 1e-3;
 /// holds more candidates, while a query costs far more than a tick's other bookkeeping.
 const GROWTH: f64 = 8.0;
 
+/// Scenes of at most this many objects skip the broad phase: a bounding-sphere test per
+/// object (the first step of `Scene::first_hit` and `Scene::touching`) costs
+/// less than checking the remembered box, let alone asking the broad phase again.
+const SMALL_SCENE: usize = 4;
+
 /// The candidate objects of the proxy's searches: a [`Near`] set for a box, kept while the
 /// scene's broad phase is unchanged (same scene, no object changed cell) and every search
 /// lies in the box. A search outside the box asks the broad phase again, for its own box
@@ -61,9 +66,9 @@ impl NearCache {
     ///
     /// # Real-time
     /// No allocation: at most two broad-phase queries, none when the remembered box holds
-    /// this one.
+    /// this one or the scene is small.
     pub(crate) fn get(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> &Near {
-        if self.linear {
+        if self.linear || scene.objects().len() <= SMALL_SCENE {
             return &Near::ALL;
         }
         let key = Some(scene.broad_epoch());

@@ -87,9 +87,10 @@ impl Proxy {
                 under: self.under,
             };
             let near = (scene, &mut self.near);
-            let sweep = constrain(
+            let mut sweep = Sweep::at(p);
+            constrain(
                 near,
-                p,
+                &mut sweep,
                 slide - normal * depth,
                 start,
                 &self.options,
