@@ -7,6 +7,7 @@ use glam::DVec3;
 
 use crate::mesh::Surface;
 
+mod batch;
 mod behind;
 mod closest;
 mod crossing;
@@ -36,6 +37,10 @@ pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64
     (above | below).any()
 }
 
+pub use batch::{
+    BatchError, NonFinite, check_rows, first_crossing_batch, for_each_point, for_each_segment,
+    inside_batch,
+};
 pub(crate) use closest::distance_to_segment;
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use crossing::{Crossing, first_crossing};
