@@ -57,8 +57,8 @@ int main(int argc, char **argv) {
         ends[i][1] = 5.0;
         ends[i][2] = 0.0;
     }
-    CHECK(haphe_shape_inside(shape, &points[0][0], N, inside));
-    CHECK(haphe_shape_first_crossing(shape, &points[0][0], &ends[0][0], N, hits));
+    CHECK(haphe_shape_inside(shape, &points[0][0], N, 0, inside));
+    CHECK(haphe_shape_first_crossing(shape, &points[0][0], &ends[0][0], N, 0, hits));
     for (int i = 0; i < N; i++) {
         printf("x=%+.2f inside=%d crossing: triangle %lld at t=%.4f\n", points[i][0], inside[i],
                (long long)hits[i].triangle, hits[i].t);

@@ -34,7 +34,7 @@ int main(int argc, char **argv) try {
 
     const double centre[3] = {0.0, 0.0, 0.0};
     uint8_t inside = 0;
-    check(haphe_shape_inside(shape.get(), centre, 1, &inside), "inside");
+    check(haphe_shape_inside(shape.get(), centre, 1, 0, &inside), "inside");
     std::printf("origin inside: %d\n", inside);
 
     HapheScene *raw_scene = nullptr;

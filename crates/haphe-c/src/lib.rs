@@ -27,7 +27,7 @@ pub use scene::{
 };
 pub use servo::{HapheTickCallback, HapheTickRecord, haphe_run};
 pub use shape::{
-    HapheCrossing, HapheShape, haphe_shape_first_crossing, haphe_shape_free,
+    HAPHE_SKIP_NONFINITE, HapheCrossing, HapheShape, haphe_shape_first_crossing, haphe_shape_free,
     haphe_shape_from_arrays, haphe_shape_from_file, haphe_shape_inside, haphe_shape_load,
     haphe_shape_save, haphe_shape_triangle_count,
 };

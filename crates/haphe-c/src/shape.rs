@@ -9,7 +9,10 @@ use haphe_lib::map::{MapOptions, decode, encode};
 use haphe_lib::mesh::{
     Mesh, ReadOptions, Surface, SurfaceOptions, Units, Weld, read_mesh_with_stats, weld,
 };
-use haphe_lib::query::{Side, classify_point, first_crossing};
+use haphe_lib::query::{
+    BatchError, NonFinite, Side, check_rows, classify_point, first_crossing, for_each_point,
+    for_each_segment,
+};
 use haphe_lib::scene::Shape;
 
 use crate::error::{Failure, HapheStatus, guard};
@@ -232,25 +235,56 @@ pub extern "C" fn haphe_shape_triangle_count(shape: *const HapheShape) -> usize 
     self::shape(shape).map_or(0, |s| s.inner.surface().triangle_count())
 }
 
+/// A flag of the batch queries (`haphe_shape_inside`, `haphe_shape_first_crossing`): a row
+/// with a NaN or infinite coordinate answers "nothing found" (not inside, no crossing)
+/// instead of failing the call.
+pub const HAPHE_SKIP_NONFINITE: u32 = 1;
+
+/// The batch queries' `flags` as the library's option; unknown bits are refused.
+fn nonfinite(flags: u32) -> Result<NonFinite, Failure> {
+    match flags {
+        0 => Ok(NonFinite::Error),
+        HAPHE_SKIP_NONFINITE => Ok(NonFinite::Skip),
+        other => Err(Failure::argument(format!(
+            "flags: unknown bits {other:#x} (the known flag is HAPHE_SKIP_NONFINITE = 1)"
+        ))),
+    }
+}
+
+/// A refused batch as a failure naming the argument and the row.
+fn refused(e: BatchError) -> Failure {
+    Failure::argument(e.to_string())
+}
+
 /// Whether each of `n` points (3 doubles each, metres, object frame) is inside the solid:
 /// `inside[i]` is 1 or 0 (always 0 for an open surface). Both arrays are borrowed for the
 /// call. Allocates nothing.
+///
+/// A point with a NaN or infinite coordinate fails the call with
+/// `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()` naming the first such row
+/// (`points: row 17 is not finite (…)`) and nothing written to `inside`; with `flags`
+/// `HAPHE_SKIP_NONFINITE` such a row answers 0 instead. `flags` is 0 or
+/// `HAPHE_SKIP_NONFINITE`.
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_shape_inside(
     shape: *const HapheShape,
     points: *const f64,
     n: usize,
+    flags: u32,
     inside: *mut u8,
 ) -> HapheStatus {
     guard(|| {
         let s = self::shape(shape)?;
+        let nonfinite = nonfinite(flags)?;
         let p = self::points("points", points, n)?;
         let out = output("inside", inside, n)?;
+        check_rows("points", p, nonfinite).map_err(refused)?;
+        out.fill(0);
         let (surface, map) = (s.inner.surface(), s.inner.map());
-        for (o, &q) in out.iter_mut().zip(p) {
-            *o = u8::from(classify_point(surface, map, DVec3::from_array(q)).0 == Side::Inside);
-        }
-        Ok(())
+        for_each_point("points", p, nonfinite, |i, q| {
+            out[i] = u8::from(classify_point(surface, map, q).0 == Side::Inside);
+        })
+        .map_err(refused)
     })
 }
 
@@ -258,38 +292,49 @@ pub extern "C" fn haphe_shape_inside(
 /// object frame) with the surface, found watertight (a segment through an edge or corner
 /// meets exactly one triangle), written to `out[i]`. All arrays are borrowed for the call.
 /// Allocates nothing.
+///
+/// A segment with a NaN or infinite coordinate fails the call with
+/// `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()` naming the first such row (of
+/// `p0`, then of `p1`) and nothing written to `out`; with `flags` `HAPHE_SKIP_NONFINITE`
+/// such a row answers "no crossing" (`t` NaN, `triangle` -1) instead. `flags` is 0 or
+/// `HAPHE_SKIP_NONFINITE`.
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_shape_first_crossing(
     shape: *const HapheShape,
     p0: *const f64,
     p1: *const f64,
     n: usize,
+    flags: u32,
     out: *mut HapheCrossing,
 ) -> HapheStatus {
     guard(|| {
         let s = self::shape(shape)?;
+        let nonfinite = nonfinite(flags)?;
         let a = points("p0", p0, n)?;
         let b = points("p1", p1, n)?;
         let out = output("out", out, n)?;
+        check_rows("p0", a, nonfinite).map_err(refused)?;
+        check_rows("p1", b, nonfinite).map_err(refused)?;
+        let none = HapheCrossing {
+            t: f64::NAN,
+            triangle: -1,
+            point: [f64::NAN; 3],
+            normal: [f64::NAN; 3],
+            entering: 0,
+        };
+        out.fill(none);
         let (surface, map) = (s.inner.surface(), s.inner.map());
-        for ((o, &q0), &q1) in out.iter_mut().zip(a).zip(b) {
-            *o = match first_crossing(surface, map, DVec3::from_array(q0), DVec3::from_array(q1)) {
-                Some(c) => HapheCrossing {
+        for_each_segment(a, b, nonfinite, |i, q0, q1| {
+            if let Some(c) = first_crossing(surface, map, q0, q1) {
+                out[i] = HapheCrossing {
                     t: c.t,
                     triangle: i64::from(surface.source_triangle(c.triangle)),
                     point: c.point.to_array(),
                     normal: c.face_normal.to_array(),
                     entering: u8::from(c.entering),
-                },
-                None => HapheCrossing {
-                    t: f64::NAN,
-                    triangle: -1,
-                    point: [f64::NAN; 3],
-                    normal: [f64::NAN; 3],
-                    entering: 0,
-                },
-            };
-        }
-        Ok(())
+                };
+            }
+        })
+        .map_err(refused)
     })
 }

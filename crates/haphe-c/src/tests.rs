@@ -61,7 +61,13 @@ fn bad_file_names_the_file() {
     );
     assert!(last_error().contains("/nonexistent/x.stl"));
     assert_eq!(
-        haphe_shape_inside(std::ptr::null(), std::ptr::null(), 0, std::ptr::null_mut()),
+        haphe_shape_inside(
+            std::ptr::null(),
+            std::ptr::null(),
+            0,
+            0,
+            std::ptr::null_mut()
+        ),
         HapheStatus::InvalidArgument
     );
     std::fs::remove_dir_all(&dir).expect("clean up");
@@ -72,4 +78,107 @@ fn a_panic_becomes_a_status() {
     let status = error::guard(|| panic!("boom"));
     assert_eq!(status, HapheStatus::Panic);
     assert!(last_error().contains("boom"));
+}
+
+/// The unit cube [0, 1]³ from arrays.
+fn cube() -> *mut HapheShape {
+    let mut vertices = Vec::new();
+    for z in [0.0, 1.0] {
+        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            vertices.extend([x, y, z]);
+        }
+    }
+    let faces: [u32; 36] = [
+        0, 2, 1, 0, 3, 2, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7,
+        4, 5, 6, 4, 6, 7,
+    ];
+    let mut shape = std::ptr::null_mut();
+    assert_eq!(
+        haphe_shape_from_arrays(vertices.as_ptr(), 8, faces.as_ptr(), 12, &mut shape),
+        HapheStatus::Ok,
+        "{}",
+        last_error()
+    );
+    shape
+}
+
+#[test]
+fn a_non_finite_row_is_refused_by_name_or_skipped_on_request() {
+    let shape = cube();
+    // Row 0 inside, row 1 outside, row 2 not finite, row 3 inside, row 4 infinite.
+    let points: [[f64; 3]; 5] = [
+        [0.5, 0.5, 0.5],
+        [2.0, 0.5, 0.5],
+        [0.5, f64::NAN, 0.5],
+        [0.25, 0.75, 0.5],
+        [f64::INFINITY, 0.5, 0.5],
+    ];
+    let mut inside = [7u8; 5];
+    let status = haphe_shape_inside(shape, points.as_ptr().cast(), 5, 0, inside.as_mut_ptr());
+    assert_eq!(status, HapheStatus::InvalidArgument);
+    assert!(
+        last_error().starts_with("points: row 2 is not finite"),
+        "{}",
+        last_error()
+    );
+    assert_eq!(inside, [7; 5], "nothing written when refused");
+    let status = haphe_shape_inside(
+        shape,
+        points.as_ptr().cast(),
+        5,
+        HAPHE_SKIP_NONFINITE,
+        inside.as_mut_ptr(),
+    );
+    assert_eq!(status, HapheStatus::Ok);
+    assert_eq!(inside, [1, 0, 0, 1, 0]);
+    assert_eq!(
+        haphe_shape_inside(shape, points.as_ptr().cast(), 5, 6, inside.as_mut_ptr()),
+        HapheStatus::InvalidArgument
+    );
+    assert!(
+        last_error().starts_with("flags: unknown bits 0x6"),
+        "{}",
+        last_error()
+    );
+
+    // Segments straight down through the top face at z = 1, from z = 2 to z = 0.5.
+    let p0: [[f64; 3]; 3] = [[0.5, 0.5, 2.0], [0.25, 0.25, 2.0], [0.75, 0.5, 2.0]];
+    let mut p1: [[f64; 3]; 3] = [[0.5, 0.5, 0.5], [0.25, 0.25, 0.5], [0.75, 0.5, 0.5]];
+    p1[1][2] = f64::NEG_INFINITY;
+    let blank = HapheCrossing {
+        t: 0.0,
+        triangle: 99,
+        point: [0.0; 3],
+        normal: [0.0; 3],
+        entering: 9,
+    };
+    let mut out = [blank; 3];
+    let call = |flags, out: &mut [HapheCrossing; 3]| {
+        haphe_shape_first_crossing(
+            shape,
+            p0.as_ptr().cast(),
+            p1.as_ptr().cast(),
+            3,
+            flags,
+            out.as_mut_ptr(),
+        )
+    };
+    assert_eq!(call(0, &mut out), HapheStatus::InvalidArgument);
+    assert!(
+        last_error().starts_with("p1: row 1 is not finite"),
+        "{}",
+        last_error()
+    );
+    assert!(
+        out.iter().all(|c| c.triangle == 99),
+        "nothing written when refused"
+    );
+    assert_eq!(call(HAPHE_SKIP_NONFINITE, &mut out), HapheStatus::Ok);
+    assert!(out[1].t.is_nan() && out[1].triangle == -1 && out[1].entering == 0);
+    for i in [0, 2] {
+        // From z = 2 to 0.5, the top face is met at two thirds of the way.
+        assert!((out[i].t - 2.0 / 3.0).abs() < 1e-12, "{}", out[i].t);
+        assert!(matches!(out[i].triangle, 10 | 11) && out[i].entering == 1);
+    }
+    haphe_shape_free(shape);
 }
