@@ -5,6 +5,7 @@
 //! and loop in Rust; errors become Python exceptions carrying the library's messages, which
 //! name the file and the place.
 
+mod arrays;
 mod device;
 mod errors;
 mod files;

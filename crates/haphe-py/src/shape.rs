@@ -5,18 +5,20 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use haphe::DVec3;
-use haphe::map::MapOptions;
+use haphe::map::{MapFileError, MapOptions, decode, encode};
 use haphe::mesh::{Mesh, Surface, SurfaceOptions, read_mesh_with_stats};
 use haphe::query::{
-    Side, classify_point, first_crossing, first_crossing_brute_force, nearest_within,
+    first_crossing, first_crossing_brute_force, for_each_point, for_each_segment, inside_batch,
+    nearest_within,
 };
 use haphe::scene;
 use haphe::verify::{SegmentKind, segments};
-use numpy::ndarray::{Array1, Array2, ArrayView2};
+use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict};
 
+use crate::arrays::{self, batch_error, rows, rows_argument};
 use crate::errors::haphe_error;
 use crate::files::{load_map, read_bytes, read_options, save_map};
 
@@ -44,22 +46,6 @@ fn build(name: &str, mesh: Mesh) -> Result<scene::Shape, String> {
         scene::Shape::build(surface, &MapOptions::default()).map_err(|e| format!("{name}: {e}"))?;
     shape.prepare_clear_zones();
     Ok(shape)
-}
-
-/// The rows of an `(N, 3)` array as points.
-fn points(a: &ArrayView2<'_, f64>) -> impl Iterator<Item = DVec3> {
-    a.rows().into_iter().map(|r| DVec3::new(r[0], r[1], r[2]))
-}
-
-/// Checks that `a` has shape `(N, 3)`; the error names the argument.
-fn check_n3(what: &str, a: &ArrayView2<'_, f64>) -> PyResult<()> {
-    if a.ncols() != 3 {
-        return Err(haphe_error(
-            what,
-            format!("expected an array of shape (N, 3), got {:?}", a.shape()),
-        ));
-    }
-    Ok(())
 }
 
 #[pymethods]
@@ -109,11 +95,11 @@ impl Shape {
     #[staticmethod]
     fn from_arrays(
         py: Python<'_>,
-        vertices: PyReadonlyArray2<'_, f64>,
+        vertices: &Bound<'_, PyAny>,
         faces: PyReadonlyArray2<'_, i64>,
     ) -> PyResult<Shape> {
-        let v = vertices.as_array();
-        check_n3("vertices", &v)?;
+        let vertices = rows_argument("vertices", vertices)?;
+        let v = rows(&vertices);
         let f = faces.as_array();
         if f.ncols() != 3 {
             return Err(haphe_error(
@@ -121,7 +107,7 @@ impl Shape {
                 format!("expected an array of shape (F, 3), got {:?}", f.shape()),
             ));
         }
-        let count = v.nrows();
+        let count = v.len();
         let mut triangles = Vec::with_capacity(f.nrows());
         for (face, row) in f.rows().into_iter().enumerate() {
             let mut t = [0u32; 3];
@@ -141,7 +127,7 @@ impl Shape {
             triangles.push(t);
         }
         let mesh = Mesh {
-            vertices: points(&v).collect(),
+            vertices: v.iter().map(|&p| DVec3::from_array(p)).collect(),
             triangles,
         };
         mesh.check_indices_and_finite()
@@ -187,85 +173,155 @@ impl Shape {
         py.detach(|| save_map(&path, inner.surface(), inner.map()))
     }
 
-    /// inside(points)
+    /// to_bytes()
     /// --
     ///
-    /// Whether each point of an ``(N, 3)`` float array (metres) is inside the solid:
-    /// an ``(N,)`` bool array. Always ``False`` for an open surface. Runs without the GIL.
+    /// The shape as the bytes of its map file (the format of ``shape.save`` and ``haphe
+    /// build``: the surface and its voxel map), for ``Shape.from_bytes``. Pickling a shape
+    /// sends these bytes.
+    fn to_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        let inner = &self.inner;
+        let bytes = py.detach(|| encode(inner.surface(), inner.map()));
+        PyBytes::new(py, &bytes)
+    }
+
+    /// Shape.from_bytes(data, name="bytes")
+    /// --
+    ///
+    /// A shape from the bytes of a map file (``shape.to_bytes()``, or a file written by
+    /// ``shape.save`` or ``haphe build``), checked as ``Shape.load`` checks a file
+    /// (checksum and invariants) and used without rebuilding the map: the answers are those
+    /// of the shape that wrote them, bit for bit. ``name`` is shown in messages and
+    /// ``repr``. Raises ``HapheError`` naming ``name`` for damaged or foreign bytes.
+    #[staticmethod]
+    #[pyo3(signature = (data, name = None))]
+    fn from_bytes(py: Python<'_>, data: &[u8], name: Option<String>) -> PyResult<Shape> {
+        let name = name.unwrap_or_else(|| "bytes".to_owned());
+        let inner = py
+            .detach(|| -> Result<scene::Shape, MapFileError> {
+                let (surface, map) = decode(data)?;
+                let shape = scene::Shape::new(surface, map);
+                shape.prepare_clear_zones();
+                Ok(shape)
+            })
+            .map_err(|e: MapFileError| haphe_error(&name, e))?;
+        Ok(Shape {
+            inner: Arc::new(inner),
+            name,
+        })
+    }
+
+    /// Pickling: ``Shape.from_bytes(shape.to_bytes(), name)``, so that a shape reaches
+    /// other processes (``multiprocessing``, Dask, Ray) with its map, not rebuilt there.
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>, String))> {
+        let py = slf.py();
+        let shape = slf.get();
+        let from_bytes = py.get_type::<Shape>().getattr("from_bytes")?;
+        Ok((from_bytes, (shape.to_bytes(py), shape.name.clone())))
+    }
+
+    /// A shape is immutable: a copy is the shape itself.
+    fn __copy__(slf: Bound<'_, Self>) -> Bound<'_, Self> {
+        slf
+    }
+
+    /// A shape is immutable: a deep copy is the shape itself.
+    fn __deepcopy__<'py>(slf: Bound<'py, Self>, _memo: &Bound<'py, PyAny>) -> Bound<'py, Self> {
+        slf
+    }
+
+    /// inside(points, nonfinite="error")
+    /// --
+    ///
+    /// Whether each point of an ``(N, 3)`` array (metres; anything
+    /// ``numpy.asarray(points, dtype=float64)`` takes: lists, float32, any strides) is
+    /// inside the solid: an ``(N,)`` bool array. Always ``False`` for an open surface.
+    /// Runs without the GIL.
+    ///
+    /// A row with a NaN or infinite coordinate raises ``HapheError`` naming the first
+    /// such row, unless ``nonfinite="skip"``: then it answers ``False``.
+    #[pyo3(signature = (points, nonfinite = "error"))]
     fn inside<'py>(
         &self,
         py: Python<'py>,
-        points: PyReadonlyArray2<'py, f64>,
+        points: &Bound<'py, PyAny>,
+        nonfinite: &str,
     ) -> PyResult<Bound<'py, numpy::PyArray1<bool>>> {
-        let p = points.as_array();
-        check_n3("points", &p)?;
+        let nonfinite = arrays::nonfinite(nonfinite)?;
+        let array = rows_argument("points", points)?;
+        let p = rows(&array);
         let shape = &*self.inner;
-        let out = py.detach(|| {
-            Array1::from_iter(
-                self::points(&p)
-                    .map(|q| classify_point(shape.surface(), shape.map(), q).0 == Side::Inside),
-            )
-        });
-        Ok(out.into_pyarray(py))
+        let out = py
+            .detach(|| {
+                let mut out = vec![false; p.len()];
+                inside_batch(shape.surface(), shape.map(), &p[..], nonfinite, &mut out)
+                    .map(|()| out)
+            })
+            .map_err(batch_error)?;
+        Ok(Array1::from_vec(out).into_pyarray(py))
     }
 
-    /// first_crossing(p0, p1, brute_force=False)
+    /// first_crossing(p0, p1, brute_force=False, nonfinite="error")
     /// --
     ///
-    /// The first place where each segment ``p0[i] → p1[i]`` (two ``(N, 3)`` float arrays,
-    /// metres) crosses the surface, found watertight (a segment through an edge or a
-    /// corner meets exactly one triangle). Returns a dict of arrays: ``t`` (N,) parameter
-    /// along the segment (NaN where none), ``triangle`` (N,) the file's face index (-1
-    /// where none), ``point`` (N, 3) and ``normal`` (N, 3) the crossing and the unit face
-    /// normal (NaN where none), ``entering`` (N,) bool (the segment goes from the front to
-    /// the back of the triangle: into a solid). Runs without the GIL.
+    /// The first place where each segment ``p0[i] → p1[i]`` (two ``(N, 3)`` arrays, metres,
+    /// converted as ``numpy.asarray(x, dtype=float64)`` does) crosses the surface, found
+    /// watertight (a segment through an edge or a corner meets exactly one triangle).
+    /// Returns a dict of arrays: ``t`` (N,) parameter along the segment (NaN where none),
+    /// ``triangle`` (N,) the file's face index (-1 where none), ``point`` (N, 3) and
+    /// ``normal`` (N, 3) the crossing and the unit face normal (NaN where none),
+    /// ``entering`` (N,) bool (the segment goes from the front to the back of the triangle:
+    /// into a solid). Runs without the GIL.
     ///
     /// ``brute_force=True`` tests every triangle instead of walking the map: the oracle of
     /// ``haphe verify`` (the same answers, thousands of times slower on large meshes).
-    #[pyo3(signature = (p0, p1, brute_force = false))]
+    ///
+    /// A segment with a NaN or infinite coordinate raises ``HapheError`` naming the first
+    /// such row (of ``p0``, then of ``p1``), unless ``nonfinite="skip"``: then it answers
+    /// "no crossing".
+    #[pyo3(signature = (p0, p1, brute_force = false, nonfinite = "error"))]
     fn first_crossing<'py>(
         &self,
         py: Python<'py>,
-        p0: PyReadonlyArray2<'py, f64>,
-        p1: PyReadonlyArray2<'py, f64>,
+        p0: &Bound<'py, PyAny>,
+        p1: &Bound<'py, PyAny>,
         brute_force: bool,
+        nonfinite: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let (a, b) = (p0.as_array(), p1.as_array());
-        check_n3("p0", &a)?;
-        check_n3("p1", &b)?;
-        if a.nrows() != b.nrows() {
-            return Err(haphe_error(
-                "p0, p1",
-                format!("have {} and {} rows", a.nrows(), b.nrows()),
-            ));
-        }
-        let n = a.nrows();
+        let nonfinite = arrays::nonfinite(nonfinite)?;
+        let (a, b) = (rows_argument("p0", p0)?, rows_argument("p1", p1)?);
+        let (a, b) = (rows(&a), rows(&b));
+        let n = a.len();
         let shape = &*self.inner;
-        let (t, triangle, point, normal, entering) = py.detach(|| {
-            let mut t = Array1::from_elem(n, f64::NAN);
-            let mut triangle = Array1::from_elem(n, -1i64);
-            let mut point = Array2::from_elem((n, 3), f64::NAN);
-            let mut normal = Array2::from_elem((n, 3), f64::NAN);
-            let mut entering = Array1::from_elem(n, false);
-            let surface = shape.surface();
-            for (i, (q0, q1)) in points(&a).zip(points(&b)).enumerate() {
-                let hit = if brute_force {
-                    first_crossing_brute_force(surface, q0, q1)
-                } else {
-                    first_crossing(surface, shape.map(), q0, q1)
-                };
-                if let Some(c) = hit {
-                    t[i] = c.t;
-                    triangle[i] = i64::from(surface.source_triangle(c.triangle));
-                    for k in 0..3 {
-                        point[[i, k]] = c.point[k];
-                        normal[[i, k]] = c.face_normal[k];
+        let (t, triangle, point, normal, entering) = py
+            .detach(|| {
+                let mut t = Array1::from_elem(n, f64::NAN);
+                let mut triangle = Array1::from_elem(n, -1i64);
+                let mut point = Array2::from_elem((n, 3), f64::NAN);
+                let mut normal = Array2::from_elem((n, 3), f64::NAN);
+                let mut entering = Array1::from_elem(n, false);
+                let surface = shape.surface();
+                for_each_segment(&a[..], &b[..], nonfinite, |i, q0, q1| {
+                    let hit = if brute_force {
+                        first_crossing_brute_force(surface, q0, q1)
+                    } else {
+                        first_crossing(surface, shape.map(), q0, q1)
+                    };
+                    if let Some(c) = hit {
+                        t[i] = c.t;
+                        triangle[i] = i64::from(surface.source_triangle(c.triangle));
+                        for k in 0..3 {
+                            point[[i, k]] = c.point[k];
+                            normal[[i, k]] = c.face_normal[k];
+                        }
+                        entering[i] = c.entering;
                     }
-                    entering[i] = c.entering;
-                }
-            }
-            (t, triangle, point, normal, entering)
-        });
+                })
+                .map(|()| (t, triangle, point, normal, entering))
+            })
+            .map_err(batch_error)?;
         let d = PyDict::new(py);
         d.set_item("t", t.into_pyarray(py))?;
         d.set_item("triangle", triangle.into_pyarray(py))?;
@@ -275,46 +331,55 @@ impl Shape {
         Ok(d)
     }
 
-    /// nearest(points, max_distance)
+    /// nearest(points, max_distance, nonfinite="error")
     /// --
     ///
-    /// The nearest surface point to each point of an ``(N, 3)`` float array among those
-    /// within ``max_distance`` metres (searched in the map cells next to the point's: exact
-    /// for a radius up to a map cell). Returns a dict of arrays: ``distance`` (N,) metres
-    /// (inf where none), ``triangle`` (N,) the file's face index (-1 where none),
-    /// ``point`` (N, 3) (NaN where none). Runs without the GIL.
+    /// The nearest surface point to each point of an ``(N, 3)`` array (converted as
+    /// ``numpy.asarray(points, dtype=float64)`` does) among those within ``max_distance``
+    /// metres (searched in the map cells next to the point's: exact for a radius up to a
+    /// map cell). Returns a dict of arrays: ``distance`` (N,) metres (inf where none),
+    /// ``triangle`` (N,) the file's face index (-1 where none), ``point`` (N, 3) (NaN where
+    /// none). Runs without the GIL.
+    ///
+    /// A row with a NaN or infinite coordinate raises ``HapheError`` naming the first
+    /// such row, unless ``nonfinite="skip"``: then it answers "none within the radius".
+    #[pyo3(signature = (points, max_distance, nonfinite = "error"))]
     fn nearest<'py>(
         &self,
         py: Python<'py>,
-        points: PyReadonlyArray2<'py, f64>,
+        points: &Bound<'py, PyAny>,
         max_distance: f64,
+        nonfinite: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let p = points.as_array();
-        check_n3("points", &p)?;
+        let nonfinite = arrays::nonfinite(nonfinite)?;
+        let array = rows_argument("points", points)?;
+        let p = rows(&array);
         if !(max_distance.is_finite() && max_distance >= 0.0) {
             return Err(haphe_error(
                 "max_distance",
                 format!("must be a non-negative distance in metres, not {max_distance}"),
             ));
         }
-        let n = p.nrows();
+        let n = p.len();
         let shape = &*self.inner;
-        let (distance, triangle, point) = py.detach(|| {
-            let mut distance = Array1::from_elem(n, f64::INFINITY);
-            let mut triangle = Array1::from_elem(n, -1i64);
-            let mut point = Array2::from_elem((n, 3), f64::NAN);
-            let surface = shape.surface();
-            for (i, q) in self::points(&p).enumerate() {
-                if let Some(near) = nearest_within(surface, shape.map(), q, max_distance) {
-                    distance[i] = near.distance;
-                    triangle[i] = i64::from(surface.source_triangle(near.triangle));
-                    for k in 0..3 {
-                        point[[i, k]] = near.closest.point[k];
+        let (distance, triangle, point) = py
+            .detach(|| {
+                let mut distance = Array1::from_elem(n, f64::INFINITY);
+                let mut triangle = Array1::from_elem(n, -1i64);
+                let mut point = Array2::from_elem((n, 3), f64::NAN);
+                let surface = shape.surface();
+                for_each_point("points", &p[..], nonfinite, |i, q| {
+                    if let Some(near) = nearest_within(surface, shape.map(), q, max_distance) {
+                        distance[i] = near.distance;
+                        triangle[i] = i64::from(surface.source_triangle(near.triangle));
+                        for k in 0..3 {
+                            point[[i, k]] = near.closest.point[k];
+                        }
                     }
-                }
-            }
-            (distance, triangle, point)
-        });
+                })
+                .map(|()| (distance, triangle, point))
+            })
+            .map_err(batch_error)?;
         let d = PyDict::new(py);
         d.set_item("distance", distance.into_pyarray(py))?;
         d.set_item("triangle", triangle.into_pyarray(py))?;

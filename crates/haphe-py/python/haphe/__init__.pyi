@@ -1,7 +1,7 @@
 """Type stubs of haphe (the native module haphe._haphe)."""
 
 from os import PathLike
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -11,6 +11,9 @@ __version__: str
 _Path = Union[str, PathLike[str]]
 _Vec3 = Union[Sequence[float], npt.NDArray[np.float64]]
 _Rotation = Union[Sequence[float], Sequence[Sequence[float]], npt.NDArray[np.float64]]
+# (N, 3) points: anything numpy.asarray(x, dtype=float64) takes (lists, float32, any strides).
+_Points = npt.ArrayLike
+_NonFinite = Literal["error", "skip"]
 
 class HapheError(ValueError):
     """A file or an input haphe cannot use: the message names the file and the place."""
@@ -56,19 +59,25 @@ class Shape:
         path: _Path, units: str = "m", weld_tolerance: Optional[float] = None
     ) -> Shape: ...
     @staticmethod
-    def from_arrays(
-        vertices: npt.NDArray[np.float64], faces: npt.NDArray[np.int64]
-    ) -> Shape: ...
+    def from_arrays(vertices: _Points, faces: npt.NDArray[np.int64]) -> Shape: ...
     @staticmethod
     def load(path: _Path) -> Shape: ...
     def save(self, path: _Path) -> None: ...
-    def inside(self, points: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
-        """(N, 3) points -> (N,) bool: inside the solid."""
+    @staticmethod
+    def from_bytes(data: bytes, name: Optional[str] = None) -> Shape:
+        """A shape from its map file's bytes (to_bytes, save, haphe build), not rebuilt."""
+    def to_bytes(self) -> bytes:
+        """The map file's bytes; pickling a shape sends them."""
+    def __reduce__(self) -> Tuple[Any, Tuple[bytes, str]]: ...
+    def inside(self, points: _Points, nonfinite: _NonFinite = "error") -> npt.NDArray[np.bool_]:
+        """(N, 3) points -> (N,) bool: inside the solid. A non-finite row raises
+        HapheError naming it, or answers False with nonfinite="skip"."""
     def first_crossing(
         self,
-        p0: npt.NDArray[np.float64],
-        p1: npt.NDArray[np.float64],
+        p0: _Points,
+        p1: _Points,
         brute_force: bool = False,
+        nonfinite: _NonFinite = "error",
     ) -> Dict[str, npt.NDArray[Any]]:
         """Arrays t (NaN none), triangle (-1 none), point, normal (N, 3), entering."""
     def sample_segments(
@@ -76,7 +85,7 @@ class Shape:
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
         """n segments of a kind haphe verify tests: (p0, p1)."""
     def nearest(
-        self, points: npt.NDArray[np.float64], max_distance: float
+        self, points: _Points, max_distance: float, nonfinite: _NonFinite = "error"
     ) -> Dict[str, npt.NDArray[Any]]:
         """Arrays distance (inf none), triangle (-1 none), point (N, 3)."""
     @property
