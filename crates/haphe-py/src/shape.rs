@@ -35,6 +35,9 @@ pub struct Shape {
     pub name: String,
 }
 
+/// What `__reduce__` gives pickle: `Shape.from_bytes` and its arguments.
+type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>, String));
+
 /// An `(N, 3)` array of points handed to Python.
 type Points<'py> = Bound<'py, numpy::PyArray2<f64>>;
 
@@ -213,9 +216,7 @@ impl Shape {
 
     /// Pickling: ``Shape.from_bytes(shape.to_bytes(), name)``, so that a shape reaches
     /// other processes (``multiprocessing``, Dask, Ray) with its map, not rebuilt there.
-    fn __reduce__<'py>(
-        slf: &Bound<'py, Self>,
-    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>, String))> {
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
         let py = slf.py();
         let shape = slf.get();
         let from_bytes = py.get_type::<Shape>().getattr("from_bytes")?;
