@@ -15,6 +15,11 @@
 #include <stddef.h>
 #include <stdint.h>
 
+// A flag of the batch queries (`haphe_shape_inside`, `haphe_shape_first_crossing`): a row
+// with a NaN or infinite coordinate answers "nothing found" (not inside, no crossing)
+// instead of failing the call.
+#define HAPHE_SKIP_NONFINITE 1
+
 // What a call did. `HAPHE_STATUS_OK` is 0; on any other status `haphe_last_error()` says why.
 typedef enum HapheStatus {
   // Done.
@@ -251,19 +256,33 @@ uintptr_t haphe_shape_triangle_count(const struct HapheShape *shape);
 // Whether each of `n` points (3 doubles each, metres, object frame) is inside the solid:
 // `inside[i]` is 1 or 0 (always 0 for an open surface). Both arrays are borrowed for the
 // call. Allocates nothing.
+//
+// A point with a NaN or infinite coordinate fails the call with
+// `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()` naming the first such row
+// (`points: row 17 is not finite (…)`) and nothing written to `inside`; with `flags`
+// `HAPHE_SKIP_NONFINITE` such a row answers 0 instead. `flags` is 0 or
+// `HAPHE_SKIP_NONFINITE`.
 enum HapheStatus haphe_shape_inside(const struct HapheShape *shape,
                                     const double *points,
                                     uintptr_t n,
+                                    uint32_t flags,
                                     uint8_t *inside);
 
 // The first crossing of each of `n` segments `p0[i] → p1[i]` (3 doubles each, metres,
 // object frame) with the surface, found watertight (a segment through an edge or corner
 // meets exactly one triangle), written to `out[i]`. All arrays are borrowed for the call.
 // Allocates nothing.
+//
+// A segment with a NaN or infinite coordinate fails the call with
+// `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()` naming the first such row (of
+// `p0`, then of `p1`) and nothing written to `out`; with `flags` `HAPHE_SKIP_NONFINITE`
+// such a row answers "no crossing" (`t` NaN, `triangle` -1) instead. `flags` is 0 or
+// `HAPHE_SKIP_NONFINITE`.
 enum HapheStatus haphe_shape_first_crossing(const struct HapheShape *shape,
                                             const double *p0,
                                             const double *p1,
                                             uintptr_t n,
+                                            uint32_t flags,
                                             struct HapheCrossing *out);
 
 #ifdef __cplusplus
