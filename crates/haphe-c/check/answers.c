@@ -64,7 +64,7 @@ int main(int argc, char **argv) {
         expected[i] = (uint8_t)e;
         got[i] = 2;
     }
-    if (haphe_shape_inside(shape, points, n, got) != HAPHE_STATUS_OK) {
+    if (haphe_shape_inside(shape, points, n, 0, got) != HAPHE_STATUS_OK) {
         fprintf(stderr, "haphe_shape_inside: %s\n", haphe_last_error());
         return 1;
     }
@@ -112,7 +112,7 @@ int main(int argc, char **argv) {
             seen_hits++;
         }
     }
-    if (haphe_shape_first_crossing(shape, p0, p1, m, hits) != HAPHE_STATUS_OK) {
+    if (haphe_shape_first_crossing(shape, p0, p1, m, 0, hits) != HAPHE_STATUS_OK) {
         fprintf(stderr, "haphe_shape_first_crossing: %s\n", haphe_last_error());
         return 1;
     }
