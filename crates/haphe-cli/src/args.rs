@@ -178,7 +178,13 @@ pub fn material_of_flags(
         .damping(damping)
         .friction(static_friction, dynamic_friction)
         .build()
-        .map_err(|e| anyhow!("--{}", e.to_string().replace('_', "-")))
+        .map_err(|e| {
+            // Parameter names as flags: `static_friction` also where the message compares.
+            let message = e
+                .to_string()
+                .replace(" static_friction", " --static_friction");
+            anyhow!("--{}", message.replace('_', "-"))
+        })
 }
 
 /// The proxy's options with the maximum force of `--max-force`.

@@ -17,7 +17,7 @@ fn material_flags_are_checked_like_a_scene_file() {
         (
             "--static-friction",
             "0.1",
-            "--dynamic-friction must be at most static-friction (0.1), not 0.2",
+            "--dynamic-friction must be at most --static-friction (0.1), not 0.2",
         ),
         (
             "--max-force",
