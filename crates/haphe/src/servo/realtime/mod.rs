@@ -38,6 +38,7 @@ pub const DEFAULT_SPIN_FRACTION: f64 = 0.3;
 
 /// Priority asked for the servo thread on Linux (SCHED_FIFO, 1–99): high, below the
 /// kernel's own per-CPU threads (99).
+#[cfg(all(unix, feature = "realtime"))]
 pub const FIFO_PRIORITY: u8 = 80;
 
 /// How the servo thread is scheduled, built from [`RealtimeOptions::default`] by the
