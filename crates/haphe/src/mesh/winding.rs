@@ -4,22 +4,12 @@
 use crate::par::*;
 use glam::DVec3;
 
+use super::solid_angle::solid_angle;
 use super::{Surface, TriId};
 
 /// Triangles per parallel task in a winding number (fixed, so that the sum does not depend
 /// on the number of threads).
 const WINDING_CHUNK: usize = 4096;
-
-/// Signed solid angle (steradians) of triangle `[a, b, c]` seen from `p` (Van Oosterom and
-/// Strackee): positive when `p` lies behind the triangle (on the side its normal points
-/// away from), so a closed outward-oriented surface sums to 4π around a point inside it.
-pub fn solid_angle([a, b, c]: [DVec3; 3], p: DVec3) -> f64 {
-    let (a, b, c) = (a - p, b - p, c - p);
-    let (la, lb, lc) = (a.length(), b.length(), c.length());
-    let numerator = a.dot(b.cross(c));
-    let denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-    2.0 * numerator.atan2(denominator)
-}
 
 /// Generalised winding number of `p` with respect to the surface: the sum of the
 /// triangles' signed [`solid_angle`]s over 4π. About 1 inside a closed outward-oriented

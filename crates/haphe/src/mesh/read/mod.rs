@@ -13,10 +13,12 @@ mod ply;
 pub(crate) mod polygon;
 mod stl;
 mod text;
+mod units;
 
-use std::str::FromStr;
+pub use units::Units;
 
 use self::gltf::{NoSideCars, Resolve};
+use self::text::{skip_ascii_whitespace, starts_with_word};
 use super::{Mesh, ReadError, ReadErrorKind, Weld, WeldStats, weld};
 
 /// A mesh file format.
@@ -118,75 +120,6 @@ pub(crate) fn without_byte_order_mark(bytes: &[u8]) -> &[u8] {
     match bytes.strip_prefix(b"\xEF\xBB\xBF".as_slice()) {
         Some(rest) if !stl::looks_binary(bytes) => rest,
         _ => bytes,
-    }
-}
-
-fn skip_ascii_whitespace(bytes: &[u8]) -> &[u8] {
-    let start = bytes
-        .iter()
-        .position(|b| !b.is_ascii_whitespace())
-        .unwrap_or(bytes.len());
-    &bytes[start..]
-}
-
-fn starts_with_word(bytes: &[u8], word: &[u8]) -> bool {
-    bytes.starts_with(word)
-        && bytes
-            .get(word.len())
-            .is_none_or(|b| b.is_ascii_whitespace())
-}
-
-/// The length unit of the numbers in a file; haphe works in metres.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum Units {
-    /// The file is in metres (the default).
-    #[default]
-    Metres,
-    /// The file is in millimetres (most CAD and 3D-printing STL files).
-    Millimetres,
-    /// The file is in centimetres.
-    Centimetres,
-    /// The file is in inches.
-    Inches,
-    /// Metres per file unit, finite and positive.
-    Factor(f64),
-}
-
-impl Units {
-    /// Metres per unit of the file.
-    pub fn metres_per_unit(self) -> f64 {
-        match self {
-            Units::Metres => 1.0,
-            Units::Millimetres => 1e-3,
-            Units::Centimetres => 1e-2,
-            Units::Inches => 0.0254,
-            Units::Factor(f) => f,
-        }
-    }
-}
-
-impl FromStr for Units {
-    type Err = String;
-
-    /// Parses `m`, `mm`, `cm`, `in` (and their long names) or a positive factor in metres
-    /// per file unit such as `0.001`.
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "m" | "metre" | "metres" | "meter" | "meters" => Ok(Units::Metres),
-            "mm" | "millimetre" | "millimetres" | "millimeter" | "millimeters" => {
-                Ok(Units::Millimetres)
-            }
-            "cm" | "centimetre" | "centimetres" | "centimeter" | "centimeters" => {
-                Ok(Units::Centimetres)
-            }
-            "in" | "inch" | "inches" => Ok(Units::Inches),
-            other => match other.parse::<f64>() {
-                Ok(f) if f.is_finite() && f > 0.0 => Ok(Units::Factor(f)),
-                _ => Err(format!(
-                    "unknown unit '{s}': use m, mm, cm, in or a positive factor (metres per file unit)"
-                )),
-            },
-        }
     }
 }
 

@@ -104,3 +104,18 @@ impl<'a> Words<'a> {
 pub(super) fn show(token: &[u8]) -> String {
     String::from_utf8_lossy(token).into_owned()
 }
+
+pub(super) fn skip_ascii_whitespace(bytes: &[u8]) -> &[u8] {
+    let start = bytes
+        .iter()
+        .position(|b| !b.is_ascii_whitespace())
+        .unwrap_or(bytes.len());
+    &bytes[start..]
+}
+
+pub(super) fn starts_with_word(bytes: &[u8], word: &[u8]) -> bool {
+    bytes.starts_with(word)
+        && bytes
+            .get(word.len())
+            .is_none_or(|b| b.is_ascii_whitespace())
+}

@@ -4,7 +4,8 @@ use crate::par::*;
 use glam::DVec3;
 use rustc_hash::FxHashMap;
 
-use super::{ComponentReport, Defects, EdgeUse, MeshReport, Usability, nesting};
+use super::findings::{ComponentReport, Defects, EdgeUse, MeshReport, Usability};
+use super::nesting;
 use crate::mesh::Mesh;
 use crate::mesh::edges::{EdgeTable, HalfEdge, has_distinct_corners};
 use crate::mesh::frame::{

@@ -6,9 +6,9 @@
 use crate::par::*;
 use glam::DVec3;
 
-use super::ComponentReport;
+use super::findings::ComponentReport;
 use crate::mesh::Mesh;
-use crate::mesh::winding::solid_angle;
+use crate::mesh::solid_angle::solid_angle;
 
 /// Upper bound on (closed components) × (triangles) for which nesting is computed exactly
 /// with winding numbers; past it, a closed component is taken as inside out when its

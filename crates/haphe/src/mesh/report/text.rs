@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use super::{MeshReport, Usability};
+use super::findings::{MeshReport, Usability};
 
 /// How many places of each defect the text lists before "… and N more".
 const LISTED: usize = 8;

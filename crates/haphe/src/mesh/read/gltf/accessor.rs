@@ -5,7 +5,9 @@ use gltf::json;
 use gltf::json::accessor::{ComponentType, Type};
 use gltf::json::validation::Checked;
 
-use super::{GltfPlace, MAX_DECODED_ELEMENTS, MAX_UNBACKED_ELEMENTS, ix, place};
+use super::limits::{MAX_DECODED_ELEMENTS, MAX_UNBACKED_ELEMENTS};
+use super::places::{ix, place};
+use crate::mesh::GltfPlace;
 use crate::mesh::ReadErrorKind;
 
 /// What an accessor must hold to be read as one kind of data.

@@ -5,7 +5,7 @@
 use base64::Engine;
 use gltf::json;
 
-use super::{ix, place};
+use super::places::{ix, place};
 use crate::mesh::{GltfPlace, Place, ReadErrorKind};
 
 /// The first four bytes of a binary glTF (`.glb`) file.

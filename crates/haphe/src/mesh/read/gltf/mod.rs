@@ -22,28 +22,22 @@
 
 mod accessor;
 mod container;
+mod limits;
 mod nodes;
+mod places;
 mod primitive;
+mod scene;
 mod summary;
 
 pub(crate) use container::GLB_MAGIC;
 pub use container::{NoSideCars, Resolve};
+pub use limits::MAX_TRIANGLES;
+pub use scene::{GltfNode, GltfScene, SkippedPrimitive};
 pub use summary::{GltfNodeSummary, GltfSummary, SkippedSummary};
 
-use glam::DAffine3;
 use gltf::json;
 
-use crate::mesh::{GltfPlace, Mesh, Place, ReadError, ReadErrorKind, Units};
-
-/// The most triangles the default scene may place (counting a mesh once per node that
-/// uses it): a file over this is refused before its triangles are made.
-pub const MAX_TRIANGLES: usize = 1 << 24;
-/// The most accessor elements read from a file's buffers, all accessors together (one
-/// element is one position or one index).
-pub(crate) const MAX_DECODED_ELEMENTS: u64 = 1 << 26;
-/// The most accessor elements without a buffer view (zeros, or sparse substitutions over
-/// zeros), all accessors together: such a count is backed by no data.
-pub(crate) const MAX_UNBACKED_ELEMENTS: u64 = 1 << 20;
+use crate::mesh::{Mesh, Place, ReadError, ReadErrorKind, Units};
 
 /// Required extensions that change only how a surface looks, which haphe may ignore.
 const APPEARANCE_EXTENSIONS: &[&str] = &[
@@ -69,141 +63,6 @@ const APPEARANCE_EXTENSIONS: &[&str] = &[
 
 /// Required extensions that haphe reads.
 const READ_EXTENSIONS: &[&str] = &["KHR_mesh_quantization"];
-
-/// An index of the file's arrays as a place names it (an index beyond `u32::MAX`, which
-/// no array of a file within the size limits has, is named as `u32::MAX`).
-fn ix(index: usize) -> u32 {
-    u32::try_from(index).unwrap_or(u32::MAX)
-}
-
-fn place(at: GltfPlace) -> Place {
-    Place::Gltf(at)
-}
-
-/// A node of the default scene that holds a mesh.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GltfNode {
-    /// The node's index in the file.
-    pub index: usize,
-    /// The node's name, if it has one.
-    pub name: Option<String>,
-    /// The index of its mesh in the file (in [`GltfScene::meshes`]).
-    pub mesh: usize,
-    /// Its mesh's name, if it has one.
-    pub mesh_name: Option<String>,
-    /// `world_from_node`: the product of the transforms from the scene's root down to this
-    /// node (metres; any affine map, scale and shear included).
-    pub world_from_node: DAffine3,
-    /// The node's `extras` as JSON text, else its mesh's, if either has some.
-    pub extras: Option<String>,
-}
-
-impl GltfNode {
-    /// Whether the node's world transform mirrors (a negative determinant): its triangles
-    /// are turned over when placed, so that they keep facing outwards.
-    pub fn mirrors(&self) -> bool {
-        self.world_from_node.matrix3.determinant() < 0.0
-    }
-
-    /// The node's name for reports: its own, else its mesh's, else `node N`.
-    pub fn label(&self) -> String {
-        self.name
-            .clone()
-            .or_else(|| self.mesh_name.clone())
-            .unwrap_or_else(|| format!("node {}", self.index))
-    }
-}
-
-/// A primitive that was not read because it draws points or lines.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct SkippedPrimitive {
-    /// The mesh.
-    pub mesh: usize,
-    /// The primitive within the mesh.
-    pub primitive: usize,
-    /// Its mode: `POINTS`, `LINES`, `LINE_LOOP` or `LINE_STRIP`.
-    pub mode: &'static str,
-}
-
-/// The default scene of a glTF file, read.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GltfScene {
-    /// The scene read: the file's `scene`, else its first; `None` for a file without
-    /// scenes, whose root nodes are read.
-    pub scene: Option<usize>,
-    /// The meshes by their index in the file: the ones the scene's nodes use, each in its
-    /// own frame, in metres, not welded (`None` for the others).
-    pub meshes: Vec<Option<Mesh>>,
-    /// The scene's nodes that hold a mesh, depth first, in the order the file lists them.
-    pub nodes: Vec<GltfNode>,
-    /// The primitives of those meshes that draw points or lines, not read.
-    pub skipped: Vec<SkippedPrimitive>,
-}
-
-impl GltfScene {
-    /// The mesh of `node`, in its own frame.
-    pub fn mesh_of(&self, node: &GltfNode) -> &Mesh {
-        static EMPTY: Mesh = Mesh {
-            vertices: Vec::new(),
-            triangles: Vec::new(),
-        };
-        self.meshes
-            .get(node.mesh)
-            .and_then(Option::as_ref)
-            .unwrap_or(&EMPTY)
-    }
-
-    /// The mesh of `node` placed in the world (metres, world frame), its triangles turned
-    /// over when the node's transform mirrors.
-    pub fn placed(&self, node: &GltfNode) -> Mesh {
-        let mut out = Mesh::default();
-        self.place_into(node, &mut out);
-        out
-    }
-
-    fn place_into(&self, node: &GltfNode, out: &mut Mesh) {
-        let mesh = self.mesh_of(node);
-        let base = out.vertices.len() as u32;
-        out.vertices.extend(
-            mesh.vertices
-                .iter()
-                .map(|&p| node.world_from_node.transform_point3(p)),
-        );
-        let mirrors = node.mirrors();
-        out.triangles
-            .extend(mesh.triangles.iter().map(|&[a, b, c]| {
-                if mirrors {
-                    [base + a, base + c, base + b]
-                } else {
-                    [base + a, base + b, base + c]
-                }
-            }));
-    }
-
-    /// Every node's mesh placed in the world, as one mesh (world frame, not welded).
-    pub fn flatten(&self) -> Mesh {
-        let (vertices, triangles) = self.nodes.iter().fold((0, 0), |(v, t), node| {
-            let mesh = self.mesh_of(node);
-            (v + mesh.vertices.len(), t + mesh.triangles.len())
-        });
-        let mut out = Mesh {
-            vertices: Vec::with_capacity(vertices),
-            triangles: Vec::with_capacity(triangles),
-        };
-        for node in &self.nodes {
-            self.place_into(node, &mut out);
-        }
-        out
-    }
-
-    /// How many triangles the scene places (a mesh counted once per node using it).
-    pub fn placed_triangles(&self) -> usize {
-        self.nodes
-            .iter()
-            .map(|n| self.mesh_of(n).triangles.len())
-            .sum()
-    }
-}
 
 /// Refuses a file that requires an extension haphe does not read, by its name.
 fn check_required_extensions(root: &json::Root) -> Result<(), ReadErrorKind> {

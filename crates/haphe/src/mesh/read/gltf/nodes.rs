@@ -5,7 +5,8 @@
 use glam::{DAffine3, DMat4, DQuat, DVec3};
 use gltf::json;
 
-use super::{GltfPlace, ix, place};
+use super::places::{ix, place};
+use crate::mesh::GltfPlace;
 use crate::mesh::ReadErrorKind;
 
 /// A node of the default scene that holds a mesh, placed in the world.

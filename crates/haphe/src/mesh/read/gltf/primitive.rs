@@ -7,7 +7,9 @@ use gltf::json::mesh::{Mode, Semantic};
 use gltf::json::validation::Checked;
 
 use super::accessor::{Accessors, INDICES, POSITIONS};
-use super::{GltfPlace, SkippedPrimitive, ix, place};
+use super::places::{ix, place};
+use super::scene::SkippedPrimitive;
+use crate::mesh::GltfPlace;
 use crate::mesh::{Mesh, ReadErrorKind};
 
 /// The extension name of Draco-compressed primitives.

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::{GltfScene, SkippedPrimitive};
+use super::scene::{GltfScene, SkippedPrimitive};
 use crate::mesh::{MeshReport, Weld, weld};
 
 /// One node with a mesh, as `haphe validate` reports it.

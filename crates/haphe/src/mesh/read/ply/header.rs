@@ -4,7 +4,7 @@
 use ply_rs_bw::ply::{ElementDef, PropertyType, ScalarType};
 use rustc_hash::{FxHashMap, FxHashSet};
 
-use super::{Source, min_entry_bytes};
+use super::source::{Source, min_entry_bytes};
 use crate::mesh::{Place, ReadErrorKind};
 
 /// What the scan learnt: where each element is declared.
