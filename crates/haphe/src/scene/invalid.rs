@@ -3,7 +3,8 @@
 
 use std::fmt;
 
-use super::domain::{Number, Param};
+use super::number::Number;
+use super::param::Param;
 
 /// A value refused: which parameter, what it was, what it must be. `Copy`, no allocation.
 ///

@@ -1,7 +1,7 @@
 //! What a surface feels like: stiffness, damping and friction.
 
-use super::domain::Param;
 use super::invalid::ParamError;
+use super::param::Param;
 
 /// The haptic material of an object, every value within its domain (see [`Param`]).
 ///

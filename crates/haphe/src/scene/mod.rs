@@ -33,18 +33,19 @@ mod handoff;
 mod invalid;
 mod material;
 mod moves;
+mod number;
+mod param;
 mod pose;
 mod removals;
 mod shape;
 
 pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};
-pub use domain::{
-    ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M, Domain, DomainKind, Param,
-};
+pub use domain::{ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M, Domain, DomainKind};
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
 pub use invalid::ParamError;
 pub use material::{Material, MaterialBuilder};
 pub use moves::ObjectKey;
+pub use param::Param;
 pub use pose::Pose;
 pub use shape::Shape;
 

@@ -2,8 +2,9 @@
 
 use glam::{DQuat, DVec3};
 
-use super::domain::{ABSURD_DISTANCE_M, Param};
+use super::domain::ABSURD_DISTANCE_M;
 use super::invalid::ParamError;
+use super::param::Param;
 
 /// A rigid transform `world_from_object`: a rotation, then a translation (metres).
 ///

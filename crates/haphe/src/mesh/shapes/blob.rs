@@ -18,8 +18,9 @@ use std::f64::consts::TAU;
 use crate::par::*;
 use glam::DVec3;
 
+use super::length::is_positive_length;
 use super::sphere::{MAX_SPHERE_SUBDIVISIONS, unit_geodesic_sphere};
-use super::{Mesh, is_positive_length};
+use crate::mesh::Mesh;
 
 /// Largest noise amplitude, as a fraction of the radius, that [`blob`] and
 /// [`geodesic_blob`] accept; larger amplitudes are clamped. Below 1, so every vertex stays

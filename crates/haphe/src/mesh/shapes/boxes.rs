@@ -5,7 +5,8 @@
 use glam::DVec3;
 
 use super::lattice::{Lattice, LatticeRect, Outward, lattice_surface};
-use super::{Mesh, is_positive_length};
+use super::length::is_positive_length;
+use crate::mesh::Mesh;
 
 /// Largest number of divisions along one axis [`cuboid`] and [`thin_plate`] accept; larger
 /// values are clamped (12·8192² ≈ 805 million triangles for a cube).

@@ -5,10 +5,11 @@ use std::str::FromStr;
 
 use glam::DVec3;
 
+use crate::mesh::Mesh;
+
 use super::{
     MAX_CONCAVE_CORNER_DIVISIONS, MAX_CUBOID_DIVISIONS, MAX_SPHERE_FREQUENCY, MAX_TORUS_SEGMENTS,
-    MIN_TORUS_SEGMENTS, Mesh, concave_corner, cuboid, geodesic_blob, geodesic_sphere, thin_plate,
-    torus,
+    MIN_TORUS_SEGMENTS, concave_corner, cuboid, geodesic_blob, geodesic_sphere, thin_plate, torus,
 };
 
 /// Sphere and blob radius, metres.

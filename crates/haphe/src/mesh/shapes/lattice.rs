@@ -7,7 +7,7 @@
 use glam::DVec3;
 use rustc_hash::FxHashMap;
 
-use super::Mesh;
+use crate::mesh::Mesh;
 
 /// A regular lattice of points over a box: `cells[k] + 1` points along axis `k`, from `min`
 /// to `min + extent`.

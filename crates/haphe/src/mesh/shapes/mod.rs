@@ -45,6 +45,7 @@ mod blob;
 mod boxes;
 mod catalog;
 mod lattice;
+mod length;
 mod sphere;
 mod torus;
 
@@ -67,8 +68,3 @@ pub fn shuffle_faces(mesh: &mut Mesh, seed: u64) {
 }
 
 use super::Mesh;
-
-/// True for a length a generator accepts: finite and strictly positive.
-fn is_positive_length(length_m: f64) -> bool {
-    length_m.is_finite() && length_m > 0.0
-}

@@ -9,7 +9,8 @@
 
 use glam::DVec3;
 
-use super::{Mesh, is_positive_length};
+use super::length::is_positive_length;
+use crate::mesh::Mesh;
 
 /// Largest `subdivisions` [`sphere`] and [`blob`](super::blob) accept; larger values are
 /// clamped (20·4¹³ ≈ 1.3 billion triangles).

@@ -4,7 +4,8 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
-use super::{Mesh, is_positive_length};
+use super::length::is_positive_length;
+use crate::mesh::Mesh;
 
 /// Fewest segments [`torus`] uses around the ring and around the tube; fewer are clamped
 /// up (with two, opposite grid lines would join the same two vertices twice).

@@ -1,0 +1,104 @@
+//! The numbers a user gives the library, by name.
+
+use std::fmt;
+
+/// A number a user gives the library. Its [`Display`](fmt::Display) is the name the
+/// front ends spell it with (`stiffness`, `max_force`, `motion frequency`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Param {
+    /// A material's spring constant between proxy and device, N/m.
+    Stiffness,
+    /// A material's damping along the contact normal, N·s/m.
+    Damping,
+    /// A material's static friction coefficient.
+    StaticFriction,
+    /// A material's dynamic friction coefficient (at most the static one).
+    DynamicFriction,
+    /// The largest force the proxy renders, N.
+    MaxForce,
+    /// The distance the proxy keeps from a touched surface, m.
+    Skin,
+    /// The radius beyond which device points are pulled back, m.
+    WorkspaceRadius,
+    /// A pose's translation (an object's position), m.
+    Position,
+    /// A pose's or a mapping's rotation, as a quaternion (normalised when used).
+    Rotation,
+    /// The servo rate, Hz.
+    RateHz,
+    /// The safe start's force ramp, s.
+    RampSeconds,
+    /// The spin before each deadline of a real-time loop, s.
+    SpinSeconds,
+    /// A device mapping's scale, world metres per device metre.
+    Scale,
+    /// Where a device mapping puts the device's origin or its workspace's centre, m.
+    Centre,
+    /// A linear motion's velocity, m/s.
+    MotionVelocity,
+    /// An oscillating motion's amplitude, m.
+    MotionAmplitude,
+    /// An oscillating motion's frequency, Hz.
+    MotionFrequency,
+    /// A rotating motion's axis.
+    MotionAxis,
+    /// A rotating motion's angular speed, rad/s (either sign).
+    MotionRate,
+}
+
+impl Param {
+    /// Every parameter, in table order.
+    pub const ALL: [Param; 19] = [
+        Param::Stiffness,
+        Param::Damping,
+        Param::StaticFriction,
+        Param::DynamicFriction,
+        Param::MaxForce,
+        Param::Skin,
+        Param::WorkspaceRadius,
+        Param::Position,
+        Param::Rotation,
+        Param::RateHz,
+        Param::RampSeconds,
+        Param::SpinSeconds,
+        Param::Scale,
+        Param::Centre,
+        Param::MotionVelocity,
+        Param::MotionAmplitude,
+        Param::MotionFrequency,
+        Param::MotionAxis,
+        Param::MotionRate,
+    ];
+
+    /// The name the front ends spell it with.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Param::Stiffness => "stiffness",
+            Param::Damping => "damping",
+            Param::StaticFriction => "static_friction",
+            Param::DynamicFriction => "dynamic_friction",
+            Param::MaxForce => "max_force",
+            Param::Skin => "skin",
+            Param::WorkspaceRadius => "workspace_radius",
+            Param::Position => "position",
+            Param::Rotation => "rotation",
+            Param::RateHz => "rate_hz",
+            Param::RampSeconds => "ramp_seconds",
+            Param::SpinSeconds => "spin_seconds",
+            Param::Scale => "scale",
+            Param::Centre => "centre",
+            Param::MotionVelocity => "motion velocity",
+            Param::MotionAmplitude => "motion amplitude",
+            Param::MotionFrequency => "motion frequency",
+            Param::MotionAxis => "motion axis",
+            Param::MotionRate => "motion rate",
+        }
+    }
+}
+
+impl fmt::Display for Param {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
