@@ -13,7 +13,7 @@
 use glam::DVec3;
 use robust::{Coord, orient2d};
 
-use super::crossing::FRAME_DIRECTION_ERROR;
+use super::frame_error::FRAME_DIRECTION_ERROR;
 use crate::mesh::TriFrame;
 
 /// The plane of a triangle whose corners share the coordinate `axis`.

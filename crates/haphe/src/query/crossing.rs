@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 
+use super::frame_error::FRAME_DIRECTION_ERROR;
 use super::{Segment, SegmentHit, intersect_segment_framed};
 use crate::map::{CellPart, Found, VoxelMap};
 use crate::mesh::{Surface, TriId};
@@ -179,7 +180,7 @@ pub fn first_crossing_where(
     p1: DVec3,
     accept: impl Fn(&SegmentHit) -> bool,
 ) -> Option<Crossing> {
-    if super::beyond_bounds(surface, p0, p1, 0.0) {
+    if super::bounds::beyond_bounds(surface, p0, p1, 0.0) {
         return None;
     }
     // A segment far longer than the object: the walk's parameters along it lose the
@@ -409,15 +410,6 @@ pub(crate) fn cannot_cross(surface: &Surface, t: u32, p0: DVec3, p1: DVec3, marg
         || (v0 < -weight_margin && v1 < -weight_margin)
         || (1.0 - u0 - v0 < -weight_margin && 1.0 - u1 - v1 < -weight_margin)
 }
-
-/// Bound on the relative error of a triangle frame's normal and duals (and so on the
-/// error of a height or weight computed from them, relative to the distance from the
-/// triangle's first corner): the cross product behind them loses about `ε / h` where `h`
-/// is the smallest altitude over the longest edge, at most `2e-7` for a triangle that is
-/// not degenerate ([`DEGENERATE_MAX_RELATIVE_HEIGHT`](crate::mesh::DEGENERATE_MAX_RELATIVE_HEIGHT));
-/// fifty times that, so that [`cannot_cross`] never skips a triangle the watertight test
-/// would hit.
-pub(crate) const FRAME_DIRECTION_ERROR: f64 = 1e-5;
 
 /// The distance from a triangle's plane (metres) beyond which [`cannot_cross`] trusts the
 /// sign of a height of a point at its first corner: a billionth of a cell, some five

@@ -62,7 +62,7 @@ const TARGET_JITTER: [f64; 3] = [0.123_456_7, -0.176_543_2, 0.211_111_3];
 /// No allocation, no lock, no panic; at most `(2·MAX_SEARCH_RING + 1)³` cell lookups and
 /// one bounded segment walk.
 pub fn classify_point(surface: &Surface, map: &VoxelMap, p: DVec3) -> (Side, SideStatus) {
-    if super::beyond_bounds(surface, p, p, 0.0) {
+    if super::bounds::beyond_bounds(surface, p, p, 0.0) {
         return (Side::Outside, SideStatus::Cell);
     }
     let Some(cell) = map.grid().cell_of(p) else {

@@ -3,16 +3,14 @@
 //! crossing through the voxel map, inside/outside, the nearest triangle within a radius, the
 //! barycentric surface walk, and the clear zones that let a sliding proxy skip its searches.
 
-use glam::DVec3;
-
-use crate::mesh::Surface;
-
 mod batch;
 mod behind;
+mod bounds;
 mod closest;
 mod crossing;
 pub(crate) use crossing::{crossing_from_hit, triangle_hit};
 mod exact;
+mod frame_error;
 mod inside;
 mod near;
 mod probe;
@@ -22,20 +20,6 @@ mod triangle_triangle;
 pub mod validation;
 mod walk;
 mod zone;
-
-/// Whether the segment `p0 → p1` (metres, object frame) lies entirely beyond one face of
-/// the surface's bounding box, farther than `margin` metres (strict comparisons of the
-/// given coordinates: exact), so that it meets no triangle: the early exit of every query
-/// near a flat object, whose box is thin. `false` for non-finite input.
-#[inline]
-pub(crate) fn beyond_bounds(surface: &Surface, p0: DVec3, p1: DVec3, margin: f64) -> bool {
-    let (lo, hi) = surface.bounds();
-    let (lo, hi) = (lo - DVec3::splat(margin), hi + DVec3::splat(margin));
-    // Masks, not short-circuits: which side a query falls on is not predictable.
-    let above = p0.cmpgt(hi) & p1.cmpgt(hi);
-    let below = p0.cmplt(lo) & p1.cmplt(lo);
-    (above | below).any()
-}
 
 pub use batch::{
     BatchError, NonFinite, check_rows, first_crossing_batch, for_each_point, for_each_segment,

@@ -42,7 +42,7 @@ pub fn nearest_within(
 ) -> Option<NearTriangle> {
     if !(p.is_finite() && radius >= 0.0 && radius.is_finite())
         // Beyond the box by more than the radius (and the rounding of the distances).
-        || super::beyond_bounds(surface, p, p, radius + 1e-12 * p.abs().max_element())
+        || super::bounds::beyond_bounds(surface, p, p, radius + 1e-12 * p.abs().max_element())
     {
         return None;
     }

@@ -440,7 +440,7 @@ enum Certain {
 /// a weight, with room to spare. A segment that the whole test does not take (a
 /// non-finite point, or a direction too short for its reciprocal) is `Outside`.
 ///
-/// [`FRAME_DIRECTION_ERROR`]: super::crossing::FRAME_DIRECTION_ERROR
+/// [`FRAME_DIRECTION_ERROR`]: super::frame_error::FRAME_DIRECTION_ERROR
 #[inline(always)]
 fn frame_weights(p0: DVec3, p1: DVec3, frame: &TriFrame, t: f64) -> Certain {
     let d = p1 - p0;
@@ -452,7 +452,7 @@ fn frame_weights(p0: DVec3, p1: DVec3, frame: &TriFrame, t: f64) -> Certain {
     let position_error =
         POSITION_ERROR * reach + 8.0 * super::exact::ROUNDOFF * (p0.abs().max_element() + reach);
     let margin = (frame.dual_b.abs().element_sum() + frame.dual_c.abs().element_sum())
-        * (super::crossing::FRAME_DIRECTION_ERROR * r.abs().max_element() + position_error);
+        * (super::frame_error::FRAME_DIRECTION_ERROR * r.abs().max_element() + position_error);
     // The NaN of a non-finite point or margin fails every comparison below.
     let usable = (1.0 / reach).is_finite() & p0.is_finite() & p1.is_finite();
     if !usable {

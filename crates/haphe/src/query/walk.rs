@@ -11,7 +11,7 @@
 
 use glam::DVec3;
 
-use super::crossing::FRAME_DIRECTION_ERROR;
+use super::frame_error::FRAME_DIRECTION_ERROR;
 use super::{ClosestPoint, Feature, closest_point_triangle};
 use crate::mesh::{NONE, Surface, TriFrame, TriId, VertId};
 
