@@ -4,7 +4,10 @@
 
 use glam::DVec3;
 
-use super::{BOUND_SLACK, Hit, Near, Scene, SceneObject, Sides, SurfaceRef};
+use super::broad::Near;
+use super::hit::{Hit, SurfaceRef};
+use super::object::{BOUND_SLACK, SceneObject, Sides};
+use super::world::Scene;
 use crate::mesh::TriId;
 use crate::query::{
     ClearZone, Probe, Segment, crossing_from_hit, distance_to_segment, triangle_hit,

@@ -13,7 +13,11 @@ use std::sync::Arc;
 
 use glam::{DMat3, DQuat};
 
-use super::{Material, ObjectId, ParamError, Pose, SceneObject, Shape};
+use super::invalid::ParamError;
+use super::material::Material;
+use super::object::{ObjectId, SceneObject};
+use super::pose::Pose;
+use super::shape::Shape;
 use crate::map::MapOptions;
 use crate::mesh::{GltfNode, GltfScene, Mesh, Surface, SurfaceOptions, Weld, weld};
 

@@ -2,7 +2,12 @@
 
 use rtrb::{Consumer, Producer, RingBuffer};
 
-use super::{MAX_EDITS_PER_TICK, Material, ObjectId, Pose, Scene, SceneObject};
+use super::material::Material;
+use super::object::{ObjectId, SceneObject};
+use super::pose::Pose;
+
+/// Most edits applied in one [`Scene::begin_tick`]; the rest wait for the next tick.
+pub const MAX_EDITS_PER_TICK: usize = 16;
 
 /// A change to a scene, sent from another thread.
 #[derive(Debug)]
@@ -106,33 +111,21 @@ impl SceneEditor {
 }
 
 impl Inbox {
-    /// Applies at most [`MAX_EDITS_PER_TICK`] edits; an edit that may hand an object back
-    /// waits while the return ring is full.
-    pub(super) fn apply(&mut self, scene: &mut Scene) -> usize {
-        let mut applied = 0;
-        while applied < MAX_EDITS_PER_TICK && self.returns.slots() > 0 {
-            let Ok(edit) = self.edits.pop() else { break };
-            applied += 1;
-            let back = match edit {
-                Edit::Insert(object) => scene
-                    .insert(object)
-                    .err()
-                    .map(|(why, o)| Returned::Refused(o, why)),
-                Edit::Remove(id) => scene.remove(id).map(Returned::Removed),
-                Edit::SetPose(id, pose) => {
-                    scene.set_pose(id, pose);
-                    None
-                }
-                Edit::SetMaterial(id, material) => {
-                    scene.set_material(id, material);
-                    None
-                }
-            };
-            if let Some(back) = back {
-                // A slot was free before the pop and only this thread fills the ring.
-                let _ = self.returns.push(back);
-            }
+    /// The next edit, when one waits and the return ring has room for what it may hand
+    /// back (an edit that may hand an object back waits while the ring is full).
+    #[inline]
+    pub(super) fn next(&mut self) -> Option<Edit> {
+        if self.returns.slots() == 0 {
+            return None;
         }
-        applied
+        self.edits.pop().ok()
+    }
+
+    /// Hands an object back to the editor.
+    #[inline]
+    pub(super) fn give_back(&mut self, back: Returned) {
+        // A slot was free before the edit was taken (see `next`) and only this thread
+        // fills the ring.
+        let _ = self.returns.push(back);
     }
 }

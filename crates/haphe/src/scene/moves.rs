@@ -12,7 +12,9 @@
 //! it needs no lookup by name while the indices stay the same (they change only when an
 //! object is removed); on a stale index the key finds the object by name again.
 
-use super::{ObjectId, Pose, Scene};
+use super::object::ObjectId;
+use super::pose::Pose;
+use super::world::Scene;
 
 /// An object's name with the index where it was last found in a [`Scene`]: moves the object
 /// by [`Scene::set_pose_keyed`] and [`Scene::set_poses`] without a lookup by name.

@@ -1,0 +1,84 @@
+//! One object of a scene: its name, shape, pose, material and touchable sides, and its
+//! bounding sphere.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use super::material::Material;
+use super::pose::Pose;
+use super::shape::Shape;
+
+/// A stable name for an object of a scene, chosen by the caller.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct ObjectId(pub u32);
+
+/// One object of a scene: a shared shape at a pose, with a material.
+#[derive(Debug, Clone)]
+pub struct SceneObject {
+    /// The caller's name for the object (unique within a scene).
+    pub id: ObjectId,
+    /// The shape, shared with other objects and threads.
+    pub shape: Arc<Shape>,
+    /// `world_from_object` now.
+    pub pose: Pose,
+    /// `world_from_object` at the previous tick (equal to `pose` for an object at rest).
+    pub previous_pose: Pose,
+    /// How the surface feels.
+    pub material: Material,
+    /// Which sides of the surface can be touched.
+    pub sides: Sides,
+}
+
+/// Which sides of an object's surface the proxy touches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sides {
+    /// Only the front (the side the face normals point to): the outside of a closed solid,
+    /// or the top of an open terrain. The proxy passes through from the back.
+    Front,
+    /// Both sides: an open sheet felt from either side, or the inside of a closed room.
+    Both,
+}
+
+impl SceneObject {
+    /// An object at rest at `pose`: one-sided ([`Sides::Front`]) when its shape is a closed
+    /// solid, two-sided otherwise.
+    pub fn new(id: ObjectId, shape: Arc<Shape>, pose: Pose, material: Material) -> SceneObject {
+        let sides = if shape.is_solid() {
+            Sides::Front
+        } else {
+            Sides::Both
+        };
+        SceneObject {
+            id,
+            shape,
+            pose,
+            previous_pose: pose,
+            material,
+            sides,
+        }
+    }
+
+    /// The same object touched on `sides`.
+    pub fn with_sides(mut self, sides: Sides) -> SceneObject {
+        self.sides = sides;
+        self
+    }
+
+    /// Whether the object moved since the previous tick.
+    pub fn moved(&self) -> bool {
+        self.pose != self.previous_pose
+    }
+}
+
+/// The world bounding sphere of `o` at its pose, with its slack.
+pub(super) fn sphere_of(o: &SceneObject) -> (DVec3, f64) {
+    let shape = &*o.shape;
+    (
+        o.pose.to_world(shape.bound_centre()),
+        shape.bound_radius() * BOUND_SLACK,
+    )
+}
+
+/// Relative slack on a shape's bounding sphere, covering the rounding of poses.
+pub(super) const BOUND_SLACK: f64 = 1.0 + 1e-7;
