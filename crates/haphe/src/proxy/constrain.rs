@@ -5,12 +5,16 @@
 use glam::DVec3;
 
 use super::constraints::{Constraints, Plane, advance_to_plane};
-use super::godobject::{MAX_PROXY_STEPS, ProxyOptions};
 use super::meet::{first_hit_all, hit_plane, touching_any};
 use super::near::NearCache;
+use super::options::ProxyOptions;
 use super::output::TickStatus;
 use super::rest::rest_hit;
 use crate::scene::{Hit, Scene, SurfaceRef, others_box};
+
+/// Most constraint steps in one tick (each is one segment crossing query). Three planes
+/// need at most four; the rest is headroom for re-targeting.
+pub const MAX_PROXY_STEPS: usize = 8;
 
 /// What a tick's constraint steps start from, besides the proxy and the device point.
 #[derive(Debug, Clone, Copy)]

@@ -8,127 +8,9 @@ use super::force::{contact_force, friction_target};
 use super::hold::{Hold, is_deep, saturation_depth};
 use super::meet::{carry, move_checked};
 use super::near::NearCache;
+use super::options::ProxyOptions;
 use super::output::{Contact, TickOutput, TickStatus};
-use crate::scene::{Hit, Material, Param, ParamError, Scene, SurfaceRef, others_box};
-
-/// How far a probe reaches beyond the ends of a move, as a fraction of the skin: far
-/// above the rounding of coordinates (about 1e-16 m per metre), well inside the skin, so a
-/// stop at the skin never lands within the reach of the next probe.
-pub(crate) const PROBE_REACH_OF_SKIN: f64 = 0.25;
-
-/// Most constraint steps in one tick (each is one segment crossing query). Three planes
-/// need at most four; the rest is headroom for re-targeting.
-pub const MAX_PROXY_STEPS: usize = 8;
-
-/// Default skin, metres: how far the proxy stays off a touched surface against rounding.
-/// A micrometre: far above the rounding of `f64` coordinates of a workspace of a few metres
-/// (about 1e-15 m), far below what a hand can feel.
-pub const DEFAULT_SKIN: f64 = 1e-6;
-
-/// Settings of a [`Proxy`], every value within its domain (see
-/// [`Param`](crate::scene::Param)).
-///
-/// Built from [`ProxyOptions::default`] by the `with_*` builders, each of which checks its
-/// value; the fields are private, so a struct literal does not build:
-///
-/// ```compile_fail
-/// let o = haphe::proxy::ProxyOptions { skin: 1e-6, max_force: f64::NAN, workspace_radius: 1.0 };
-/// ```
-///
-/// ```
-/// # fn main() -> Result<(), haphe::scene::ParamError> {
-/// use haphe::proxy::ProxyOptions;
-/// let options = ProxyOptions::default().with_max_force(2.0)?.with_workspace_radius(0.5)?;
-/// assert_eq!(options.max_force(), 2.0);
-/// assert!(ProxyOptions::default().with_max_force(-1.0).is_err());
-/// # Ok(())
-/// # }
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ProxyOptions {
-    /// Distance kept from a touched surface, metres (see [`DEFAULT_SKIN`]).
-    pub(crate) skin: f64,
-    /// Largest force rendered, newtons (the device's maximum continuous force).
-    pub(crate) max_force: f64,
-    /// Device points farther than this from the world origin are pulled back to it,
-    /// metres: keeps every product in range whatever the input.
-    pub(crate) workspace_radius: f64,
-}
-
-impl Default for ProxyOptions {
-    /// A micrometre of skin, 3.3 N (a common desktop device), a 1 km workspace.
-    fn default() -> ProxyOptions {
-        ProxyOptions {
-            skin: DEFAULT_SKIN,
-            max_force: 3.3,
-            workspace_radius: 1e3,
-        }
-    }
-}
-
-impl ProxyOptions {
-    /// The same options with the largest force rendered, newtons.
-    ///
-    /// # Errors
-    /// [`ParamError`] naming `max_force` outside its domain (above 0, at most
-    /// [`ABSURD_FORCE_N`](crate::scene::ABSURD_FORCE_N)).
-    pub fn with_max_force(self, max_force: f64) -> Result<ProxyOptions, ParamError> {
-        Ok(ProxyOptions {
-            max_force: Param::MaxForce.check(max_force)?,
-            ..self
-        })
-    }
-
-    /// The same options with the skin, metres.
-    ///
-    /// # Errors
-    /// [`ParamError`] naming `skin` outside its domain (above 0, at most a millimetre).
-    pub fn with_skin(self, skin: f64) -> Result<ProxyOptions, ParamError> {
-        Ok(ProxyOptions {
-            skin: Param::Skin.check(skin)?,
-            ..self
-        })
-    }
-
-    /// The same options with the workspace radius, metres.
-    ///
-    /// # Errors
-    /// [`ParamError`] naming `workspace_radius` outside its domain (above 0, at most
-    /// [`MAX_WORKSPACE_RADIUS`]).
-    pub fn with_workspace_radius(self, workspace_radius: f64) -> Result<ProxyOptions, ParamError> {
-        Ok(ProxyOptions {
-            workspace_radius: Param::WorkspaceRadius.check(workspace_radius)?,
-            ..self
-        })
-    }
-
-    /// Distance kept from a touched surface, metres.
-    pub fn skin(&self) -> f64 {
-        self.skin
-    }
-
-    /// Largest force rendered, newtons.
-    pub fn max_force(&self) -> f64 {
-        self.max_force
-    }
-
-    /// Device points farther than this from the world origin are pulled back to it,
-    /// metres.
-    pub fn workspace_radius(&self) -> f64 {
-        self.workspace_radius
-    }
-
-    /// Tolerance of the constraint planes, metres: a thousandth of the skin.
-    pub fn plane_tolerance(&self) -> f64 {
-        self.skin * 1e-3
-    }
-
-    /// How far crossing tests reach beyond the ends of a move, metres: a quarter of the
-    /// skin.
-    pub fn probe_reach(&self) -> f64 {
-        self.skin * PROBE_REACH_OF_SKIN
-    }
-}
+use crate::scene::{Hit, Material, Param, Scene, SurfaceRef, others_box};
 
 /// The device on one tick: its point (metres, world frame, pulled into the workspace), its
 /// velocity (m/s) and its point on the previous tick.
@@ -251,7 +133,7 @@ impl Proxy {
     ///
     /// # Real-time
     /// No allocation, no lock, no panic for any input; at most one carry query per moved
-    /// object, one resting test (one triangle), [`MAX_PROXY_STEPS`] crossing queries and as
+    /// object, one resting test (one triangle), [`MAX_PROXY_STEPS`](super::MAX_PROXY_STEPS) crossing queries and as
     /// many touching searches (plus one on the first tick after [`Proxy::new`] or
     /// [`Proxy::reset`]), one friction query and one walk; before each crossing query one
     /// clear-zone test (and before the first, one triangle test under the proxy that can
@@ -519,6 +401,41 @@ pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
         (scaled.normalize() * radius, true)
     } else {
         (p, false)
+    }
+}
+
+impl Proxy {
+    /// Follows the objects the proxy keeps by index (its last contact, the surface it
+    /// rests on, the contact it holds) across the removals since the previous tick: an
+    /// index that moved (the last object takes a removed one's place) is updated, and what
+    /// was kept of a removed object is forgotten, so that it never stands for another
+    /// object. A proxy moved to another scene forgets them all.
+    ///
+    /// # Real-time
+    /// No allocation; at most `REMOVALS_KEPT` (`scene/removals.rs`) steps per
+    /// index (a proxy that missed more forgets them).
+    pub(super) fn follow_removals(&mut self, scene: &Scene) {
+        let log = scene.removals();
+        let now = (scene.broad_epoch().0, log.count());
+        let Some(seen) = self.removals_seen.replace(now) else {
+            return;
+        };
+        if seen == now {
+            return;
+        }
+        let follow = |i: usize| (seen.0 == now.0).then(|| log.follow(seen.1, i)).flatten();
+        let follow_ref = |s: SurfaceRef| {
+            follow(s.object).map(|object| SurfaceRef {
+                object,
+                triangle: s.triangle,
+            })
+        };
+        self.under = self.under.and_then(follow_ref);
+        self.rest = self.rest.and_then(follow_ref);
+        self.hold = self.hold.and_then(|mut h| {
+            h.on = follow_ref(h.on)?;
+            Some(h)
+        });
     }
 }
 

@@ -6,9 +6,9 @@
 use glam::DVec3;
 
 use super::constraints::{Plane, advance_to_plane};
-use super::godobject::{Proxy, ProxyOptions};
 use super::near::{NearCache, search_box};
-use crate::scene::{Hit, Scene, SurfaceRef};
+use super::options::ProxyOptions;
+use crate::scene::{Hit, Scene};
 
 /// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
 /// object index. Only the objects near the segment are tested (see [`NearCache`]).
@@ -129,40 +129,5 @@ pub(super) fn move_checked(
     match first_hit_all(scene, near, from, to, options.probe_reach()) {
         None => to,
         Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
-    }
-}
-
-impl Proxy {
-    /// Follows the objects the proxy keeps by index (its last contact, the surface it
-    /// rests on, the contact it holds) across the removals since the previous tick: an
-    /// index that moved (the last object takes a removed one's place) is updated, and what
-    /// was kept of a removed object is forgotten, so that it never stands for another
-    /// object. A proxy moved to another scene forgets them all.
-    ///
-    /// # Real-time
-    /// No allocation; at most `REMOVALS_KEPT` (`scene/removals.rs`) steps per
-    /// index (a proxy that missed more forgets them).
-    pub(super) fn follow_removals(&mut self, scene: &Scene) {
-        let log = scene.removals();
-        let now = (scene.broad_epoch().0, log.count());
-        let Some(seen) = self.removals_seen.replace(now) else {
-            return;
-        };
-        if seen == now {
-            return;
-        }
-        let follow = |i: usize| (seen.0 == now.0).then(|| log.follow(seen.1, i)).flatten();
-        let follow_ref = |s: SurfaceRef| {
-            follow(s.object).map(|object| SurfaceRef {
-                object,
-                triangle: s.triangle,
-            })
-        };
-        self.under = self.under.and_then(follow_ref);
-        self.rest = self.rest.and_then(follow_ref);
-        self.hold = self.hold.and_then(|mut h| {
-            h.on = follow_ref(h.on)?;
-            Some(h)
-        });
     }
 }

@@ -101,13 +101,16 @@ mod godobject;
 mod hold;
 mod meet;
 mod near;
+mod options;
 mod output;
 mod rest;
 
+pub use constrain::MAX_PROXY_STEPS;
 pub use constraints::MAX_CONSTRAINTS;
 pub use force::MIN_MAX_FORCE;
-pub use godobject::{DEFAULT_SKIN, MAX_PROXY_STEPS, MAX_WORKSPACE_RADIUS, Proxy, ProxyOptions};
+pub use godobject::{MAX_WORKSPACE_RADIUS, Proxy};
 pub use hold::saturation_depth;
+pub use options::{DEFAULT_SKIN, ProxyOptions};
 pub use output::{Contact, TickOutput, TickStatus};
 // The god-object's geometric steps, which the brute-force proxy of `verify` runs too.
 #[cfg(any(test, feature = "testing"))]
