@@ -11,9 +11,10 @@ use std::time::{Duration, Instant};
 use rtrb::RingBuffer;
 
 use super::interference::Counters;
-use super::{
-    RealtimeOptions, RealtimeRun, RealtimeSetup, Run, Schedule, ServoLoop, nanos, period_and_ticks,
-};
+use super::options::RealtimeOptions;
+use super::run::{Run, Schedule, nanos, period_and_ticks};
+use super::servo_loop::{RealtimeRun, ServoLoop};
+use super::thread::RealtimeSetup;
 use crate::servo::device::{Device, DeviceFault};
 use crate::servo::tick::{Servo, ServoError, StopReason};
 use crate::servo::trace::TickRecord;

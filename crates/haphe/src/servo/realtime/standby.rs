@@ -15,7 +15,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use super::interference::{Counters, Interference};
-use super::{Run, Schedule, wait_until};
+use super::run::{Run, Schedule, wait_until};
 use crate::servo::device::Device;
 
 /// How late a tick may start before the standby thread (see
