@@ -5,16 +5,11 @@
 
 use glam::DVec3;
 
-use super::{ReplayDevice, ScriptedDevice, SimulatedHand};
+use super::behaviour::Simulated;
+use super::hand::SimulatedHand;
+use super::replay::ReplayDevice;
+use super::scripted::ScriptedDevice;
 use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceSpec, DeviceState};
-
-/// What differs between the simulated devices.
-pub(super) trait Simulated {
-    /// Position and velocity of the hand point at `t` seconds after the start.
-    fn sample(&mut self, t: f64) -> Result<(DVec3, DVec3), DeviceFault>;
-    /// Takes the force written (zero when the device closes).
-    fn feel(&mut self, force: DVec3);
-}
 
 /// `impl Device` for simulated devices, by way of their [`Simulated`] parts and their
 /// fields `spec: DeviceSpec` and `open: bool`.

@@ -4,8 +4,8 @@
 
 use glam::DVec3;
 
-use super::device::Simulated;
-use super::scripted::simulated_spec;
+use super::behaviour::Simulated;
+use super::spec::simulated_spec;
 use super::trajectory::Trajectory;
 use crate::servo::device::{DeviceFault, DeviceSpec};
 

@@ -3,13 +3,16 @@
 //! [`ScriptedDevice`] (follows a path exactly), the [`ReplayDevice`] (a recorded
 //! [`HipTrace`]), and the scripted paths built over a scene.
 
+mod behaviour;
 mod device;
 mod hand;
 mod replay;
 mod scripted;
+mod spec;
 mod trajectory;
 
 pub use hand::{HandOptions, SimulatedHand};
 pub use replay::{HipTrace, ReplayDevice, TraceError};
-pub use scripted::{PathKind, ScriptedDevice, scene_bounds, scripted_path, simulated_spec};
+pub use scripted::{PathKind, ScriptedDevice, scene_bounds, scripted_path};
+pub use spec::simulated_spec;
 pub use trajectory::{Trajectory, TrajectoryError};

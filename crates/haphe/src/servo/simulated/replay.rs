@@ -4,8 +4,8 @@ use std::io::BufRead;
 
 use glam::DVec3;
 
-use super::device::Simulated;
-use super::scripted::simulated_spec;
+use super::behaviour::Simulated;
+use super::spec::simulated_spec;
 use crate::servo::device::{DeviceFault, DeviceSpec};
 
 /// Why a HIP trace could not be read. Every variant names the file and the line (1-based).

@@ -6,7 +6,8 @@ use std::str::FromStr;
 
 use glam::DVec3;
 
-use super::device::Simulated;
+use super::behaviour::Simulated;
+use super::spec::simulated_spec;
 use super::trajectory::{Trajectory, TrajectoryError};
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
@@ -384,18 +385,6 @@ impl ScriptedDevice {
     /// The last force written, newtons, device frame.
     pub fn last_force(&self) -> DVec3 {
         self.last_force
-    }
-}
-
-/// The specification of every simulated device: like a common desktop device, 3.3 N and
-/// 2000 N/m, with a generous workspace (±0.5 m) so that simulations are not cut off.
-pub fn simulated_spec() -> DeviceSpec {
-    DeviceSpec {
-        name: "simulated",
-        max_force: 3.3,
-        max_stiffness: 2000.0,
-        workspace_min: DVec3::splat(-0.5),
-        workspace_max: DVec3::splat(0.5),
     }
 }
 
