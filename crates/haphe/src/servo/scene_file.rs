@@ -134,19 +134,6 @@ pub struct SceneEntry {
     pub place: String,
 }
 
-/// A scene file that cannot be used: the message names the file, and the object and the
-/// line where there is one.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{message}")]
-pub struct SceneFileError {
-    /// The whole message, starting with the file's name.
-    pub message: String,
-}
-
-fn fail(message: String) -> SceneFileError {
-    SceneFileError { message }
-}
-
 /// Returns a [`SceneFileError`] with the formatted message.
 macro_rules! bail {
     ($($message:tt)*) => {
@@ -154,10 +141,11 @@ macro_rules! bail {
     };
 }
 
+mod error;
 mod grid;
 
-/// Most objects a scene file may hold, its grids' copies included.
-pub const MAX_OBJECTS: usize = 1_000_000;
+use error::fail;
+pub use error::{MAX_OBJECTS, SceneFileError};
 
 /// 1-based line of a byte offset.
 fn line_of(text: &str, offset: usize) -> usize {

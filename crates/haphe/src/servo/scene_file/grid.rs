@@ -17,7 +17,7 @@
 use glam::DVec3;
 use serde::Deserialize;
 
-use super::{MAX_OBJECTS, SceneFileError, fail};
+use super::error::{MAX_OBJECTS, SceneFileError, fail};
 
 /// The `grid` table of an object.
 #[derive(Deserialize, Debug)]
