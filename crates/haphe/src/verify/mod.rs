@@ -13,6 +13,7 @@
 mod fixtures;
 mod friction;
 mod hold;
+mod limits;
 mod oracle;
 mod paths;
 mod proxy;
@@ -22,6 +23,7 @@ mod strikes;
 pub use fixtures::{one_object_scene, sphere_scene};
 pub use friction::friction_step;
 pub use hold::{HeldContact, hand_deeper_than, saturation_depth_of};
+pub use limits::{KEPT_FAILURES, ON_SURFACE_M};
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
 pub use paths::{haptic_path, haptic_path_in_contact};
 pub use proxy::{BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy};
@@ -41,13 +43,6 @@ use crate::query::{
     Feature, Side, WalkStatus, classify_point, closest_point_triangle, first_crossing,
     nearest_point_brute_force, walk_to_nearest,
 };
-
-/// Points closer than this to the surface (metres) may be classified either way: the
-/// inside/outside and leak checks excuse them.
-pub const ON_SURFACE_M: f64 = 1e-9;
-
-/// How many failing samples a check keeps, to reproduce them.
-pub const KEPT_FAILURES: usize = 5;
 
 /// Segment crossing against brute force for one kind of segment.
 #[derive(Debug, Clone, PartialEq, Serialize)]

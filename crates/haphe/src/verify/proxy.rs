@@ -17,8 +17,9 @@ use std::sync::Arc;
 
 use super::friction::friction_step;
 use super::hold::{HeldContact, hand_deeper_than, saturation_depth_of};
+use super::limits::KEPT_FAILURES;
 use super::oracle::TriangleBounds;
-use super::{KEPT_FAILURES, distance_to_surface};
+use super::oracle::distance_to_surface;
 use crate::mesh::TriId;
 use crate::proxy::{
     Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, advance_to_plane, clamp_to_radius,

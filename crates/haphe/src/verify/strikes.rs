@@ -311,10 +311,10 @@ pub fn check_strikes(
         check.shallow_by_speed[class].add(&shallow);
         check.deep.add(&deep);
         check.deep_by_speed[class].add(&deep);
-        if !deep.held_back() && check.failures.len() < super::KEPT_FAILURES {
+        if !deep.held_back() && check.failures.len() < super::limits::KEPT_FAILURES {
             check.failures.push((index, angle, speed, depth));
         }
-        if !shallow.clean() && check.shallow_pushing.len() < super::KEPT_FAILURES {
+        if !shallow.clean() && check.shallow_pushing.len() < super::limits::KEPT_FAILURES {
             check.shallow_pushing.push((index, angle, speed, depth));
         }
     }
