@@ -340,18 +340,7 @@ impl BruteProxy {
         }
         let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
         let previous_hip = self.previous_hip.replace(hip);
-        // Carry by moving objects.
-        let mut p = self.position;
-        for i in 0..self.objects.len() {
-            let o = &self.objects[i];
-            if o.pose == o.previous_pose {
-                continue;
-            }
-            let from = o.pose.to_world(o.previous_pose.to_object(p));
-            if let Some(h) = self.hit(i, from, p) {
-                p = advance_to_plane(from, p, &self.plane(&h, from, p));
-            }
-        }
+        let p = self.carried(self.position);
         // Beyond the saturation depth of the held plane, the proxy moves by constraint
         // steps toward the hold's goal, without friction.
         if let Some(hold) = self.hold.take()
@@ -360,7 +349,48 @@ impl BruteProxy {
             return (p, true);
         }
         let held = p;
-        // Constraint steps.
+        let step = self.constrained(p, hip);
+        let mut p = step.position;
+        self.rest = step.rest;
+        let Some(touch_down) = step.touch_down else {
+            self.position = p;
+            self.in_contact = false;
+            self.sticking = false;
+            return (p, false);
+        };
+        // Friction, with the material of the object met last.
+        let material = self.objects[step.object].material;
+        p = self.with_friction(
+            p,
+            hip,
+            &material,
+            if self.in_contact { held } else { touch_down },
+        );
+        if let Some(p) = self.hold_if_deep(p, hip, previous_hip, &step, &material) {
+            return (p, true);
+        }
+        self.position = p;
+        self.in_contact = true;
+        (p, true)
+    }
+
+    /// `p` carried by the objects that moved since the previous tick.
+    fn carried(&self, mut p: DVec3) -> DVec3 {
+        for (i, o) in self.objects.iter().enumerate() {
+            if o.pose == o.previous_pose {
+                continue;
+            }
+            let from = o.pose.to_world(o.previous_pose.to_object(p));
+            if let Some(h) = self.hit(i, from, p) {
+                p = advance_to_plane(from, p, &self.plane(&h, from, p));
+            }
+        }
+        p
+    }
+
+    /// The constraint steps from `p` toward `hip`, starting on the surface touched when
+    /// the proxy was just placed there.
+    fn constrained(&mut self, p: DVec3, hip: DVec3) -> Steps {
         let mut from = Steps::from(p);
         if std::mem::take(&mut self.placed)
             && let Some(h) = self.touching(p)
@@ -371,79 +401,69 @@ impl BruteProxy {
                 from.met(p, &h, plane);
             }
         }
-        let step = self.steps(p, hip, from);
-        p = step.position;
-        let Steps {
-            touch_down,
-            first,
-            object: last_object,
-            plane: last_plane,
-            rest,
-            ..
-        } = step;
-        self.rest = rest;
-        let Some(touch_down) = touch_down else {
-            self.position = p;
-            self.in_contact = false;
+        self.steps(p, hip, from)
+    }
+
+    /// `p` after the friction step of `material` from `anchor` (where the proxy was held,
+    /// or touched down this tick), stopped at the first surface on the way.
+    fn with_friction(&mut self, p: DVec3, hip: DVec3, material: &Material, anchor: DVec3) -> DVec3 {
+        if material.static_friction <= 0.0 {
             self.sticking = false;
-            return (p, false);
+            return p;
+        }
+        let was = !self.in_contact || self.sticking;
+        let (target, sticking) = friction_step(anchor, p, hip, material, was);
+        self.sticking = sticking;
+        if target == p {
+            return p;
+        }
+        match self.first_hit(p, target) {
+            None => target,
+            Some(h) => advance_to_plane(p, target, &self.plane(&h, p, target)),
+        }
+    }
+
+    /// Beyond the saturation depth the proxy holds: from where it first met a surface
+    /// this tick when the hand is that deep behind that surface too (the proxy of that
+    /// hold step is returned), else from here on the next tick.
+    fn hold_if_deep(
+        &mut self,
+        p: DVec3,
+        hip: DVec3,
+        previous_hip: Option<DVec3>,
+        step: &Steps,
+        material: &Material,
+    ) -> Option<DVec3> {
+        let (Some(plane), Some(_)) = (step.plane, step.rest) else {
+            return None;
         };
-        // Friction, with the material of the object met last.
-        let material = self.objects[last_object].material;
-        if material.static_friction > 0.0 {
-            let (anchor, was) = if self.in_contact {
-                (held, self.sticking)
-            } else {
-                (touch_down, true)
-            };
-            let (target, sticking) = friction_step(anchor, p, hip, &material, was);
-            if target != p {
-                p = match self.first_hit(p, target) {
-                    None => target,
-                    Some(h) => advance_to_plane(p, target, &self.plane(&h, p, target)),
-                };
-            }
-            self.sticking = sticking;
-        } else {
-            self.sticking = false;
+        let depth = saturation_depth_of(material, self.options.max_force);
+        if !hand_deeper_than(p, hip, plane.normal, depth) {
+            return None;
         }
-        // Beyond the saturation depth the proxy holds: from where it first met a surface
-        // this tick when the hand is that deep behind that surface too, else from here on
-        // the next tick.
         let motion = previous_hip.map(|q| hip - q);
-        if let (Some(plane), Some(_)) = (last_plane, rest)
-            && hand_deeper_than(
-                p,
-                hip,
-                plane.normal,
-                saturation_depth_of(&material, self.options.max_force),
-            )
-        {
-            if let Some((at, first_plane)) = first {
-                let hold = HeldContact::new(
-                    &self.objects[at.object].pose,
-                    at.object,
-                    (touch_down, first_plane.normal),
-                    previous_hip.unwrap_or(hip),
-                    motion,
-                );
-                let rest = self.rest.replace(at);
-                if let Some(p) = self.hold_step(touch_down, hip, hold) {
-                    return (p, true);
-                }
-                self.rest = rest;
-            }
-            self.hold = Some(HeldContact::new(
-                &self.objects[last_object].pose,
-                last_object,
-                (p, plane.normal),
-                hip,
+        if let (Some((at, first_plane)), Some(touch_down)) = (step.first, step.touch_down) {
+            let hold = HeldContact::new(
+                &self.objects[at.object].pose,
+                at.object,
+                (touch_down, first_plane.normal),
+                previous_hip.unwrap_or(hip),
                 motion,
-            ));
+            );
+            let rest = self.rest.replace(at);
+            if let Some(p) = self.hold_step(touch_down, hip, hold) {
+                return Some(p);
+            }
+            self.rest = rest;
         }
-        self.position = p;
-        self.in_contact = true;
-        (p, true)
+        self.hold = Some(HeldContact::new(
+            &self.objects[step.object].pose,
+            step.object,
+            (p, plane.normal),
+            hip,
+            motion,
+        ));
+        None
     }
 }
 

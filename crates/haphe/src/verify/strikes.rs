@@ -24,10 +24,11 @@ use glam::DVec3;
 use serde::Serialize;
 
 use super::hold::saturation_depth_of;
+use super::limits::KEPT_FAILURES;
 use super::oracle::{BruteCrossing, WindingOracle, distance_to_surface};
 use crate::proxy::{Proxy, ProxyOptions};
 use crate::rng::SplitMix64;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneObject};
 
 /// Largest force along the strike direction a check accepts, newtons (rounding).
 pub const STRIKE_FORCE_TOLERANCE_N: f64 = 1e-6;
@@ -242,6 +243,66 @@ pub fn check_strikes(
     let winding = WindingOracle::new(surface);
     let saturation = saturation_depth_of(&o.material, options.max_force);
     for index in 0..count {
+        let strike = Strike::draw(&mut random, o, max_depth);
+        if !strike.enters(o, &crossing, &winding) {
+            check.skipped += 1;
+            continue;
+        }
+        check.strikes += 1;
+        let (path, last_moving) = strike_path(
+            strike.start(),
+            strike.dir,
+            strike.speed,
+            RUN_UP_M + strike.depth,
+            rate_hz,
+        );
+        // The hand passes the entry after the run-up; it is deep from `deep_from` on.
+        let step = strike.speed / rate_hz;
+        let deep_from = saturation
+            .and_then(|d| hand_goes_deep(scene, &winding, &path[..=last_moving], step, d))
+            .unwrap_or(usize::MAX);
+        let window = ((RUN_UP_M / step).floor() as usize, last_moving, deep_from);
+        let [shallow, deep] =
+            run_strike(scene, options, &strike, &path, window, rate_hz, &mut check);
+        let class = STRIKE_SPEED_CLASSES[1..4]
+            .iter()
+            .take_while(|&&edge| strike.speed >= edge)
+            .count();
+        check.shallow.add(&shallow);
+        check.shallow_by_speed[class].add(&shallow);
+        check.deep.add(&deep);
+        check.deep_by_speed[class].add(&deep);
+        let kept = (index, strike.angle, strike.speed, strike.depth);
+        if !deep.held_back() && check.failures.len() < KEPT_FAILURES {
+            check.failures.push(kept);
+        }
+        if !shallow.clean() && check.shallow_pushing.len() < KEPT_FAILURES {
+            check.shallow_pushing.push(kept);
+        }
+    }
+    check.min_deep_strikes =
+        ((check.strikes as f64 * MIN_DEEP_STRIKE_SHARE).ceil() as usize).max(1);
+    check
+}
+
+/// One strike drawn: where it enters the object, along which direction, how fast and how
+/// deep.
+struct Strike {
+    entry: DVec3,
+    dir: DVec3,
+    /// The direction's part along the surface (zero for a strike along the normal).
+    tangent: DVec3,
+    angle: f64,
+    speed: f64,
+    depth: f64,
+}
+
+impl Strike {
+    /// A strike at a random point of a random triangle of `o`, at an angle up to
+    /// [`MAX_STRIKE_ANGLE_DEG`] from the inward normal, a speed in [`STRIKE_SPEEDS`]
+    /// (uniform in its logarithm) and a depth up to `max_depth`.
+    fn draw(random: &mut SplitMix64, o: &SceneObject, max_depth: f64) -> Strike {
+        let surface = o.shape.surface();
         let t = crate::mesh::TriId(random.index(surface.triangle_count()) as u32);
         let [a, b, c] = surface.corners(t);
         let (u, v) = (random.range(0.05, 0.9), random.range(0.05, 0.9));
@@ -261,64 +322,66 @@ pub fn check_strikes(
             + random.next_unit() * (STRIKE_SPEEDS.1 / STRIKE_SPEEDS.0).ln())
         .exp();
         let depth = random.range(0.0, max_depth);
-        let start = entry - RUN_UP_M * dir;
-        let (start_object, past_entry) = (
-            o.pose.to_object(start),
-            o.pose.to_object(entry + 1e-4 * dir),
-        );
-        let enters_here = crossing
-            .first_crossing(start_object, past_entry)
-            .is_some_and(|h| o.pose.to_world(h.point).distance(entry) < 1e-7);
-        let outside = winding.winding(start_object) == 0;
-        if !(enters_here && outside && tangent != DVec3::ZERO) {
-            check.skipped += 1;
-            continue;
-        }
-        check.strikes += 1;
-        let (path, last_moving) = strike_path(start, dir, speed, RUN_UP_M + depth, rate_hz);
-        // The hand passes the entry after the run-up; it is deep from `deep_from` on.
-        let step = speed / rate_hz;
-        let entered = (RUN_UP_M / step).floor() as usize;
-        let deep_from = saturation
-            .and_then(|d| hand_goes_deep(scene, &winding, &path[..=last_moving], step, d))
-            .unwrap_or(usize::MAX);
-        let mut proxy = Proxy::new(start, options);
-        let mut ticks = [StrikeTicks::default(); 2];
-        let mut previous = start;
-        for (k, &hip) in path.iter().enumerate() {
-            let out = proxy.tick(scene, hip, (hip - previous) * rate_hz);
-            previous = hip;
-            check.ticks += 1;
-            check.held_ticks += usize::from(out.status.deep_hold);
-            if k < entered || k > last_moving {
-                continue;
-            }
-            let t = &mut ticks[usize::from(k >= deep_from)];
-            t.strikes = 1;
-            t.ticks += 1;
-            let push = out.force.dot(dir);
-            t.max_push_n = t.max_push_n.max(push);
-            t.pushes_on += usize::from(push > STRIKE_FORCE_TOLERANCE_N);
-            t.far_side += usize::from(out.contact.is_some_and(|c| c.normal.dot(dir) > 0.0));
-            t.no_contact += usize::from(out.contact.is_none());
-        }
-        let class = STRIKE_SPEED_CLASSES[1..4]
-            .iter()
-            .take_while(|&&edge| speed >= edge)
-            .count();
-        let [shallow, deep] = ticks;
-        check.shallow.add(&shallow);
-        check.shallow_by_speed[class].add(&shallow);
-        check.deep.add(&deep);
-        check.deep_by_speed[class].add(&deep);
-        if !deep.held_back() && check.failures.len() < super::limits::KEPT_FAILURES {
-            check.failures.push((index, angle, speed, depth));
-        }
-        if !shallow.clean() && check.shallow_pushing.len() < super::limits::KEPT_FAILURES {
-            check.shallow_pushing.push((index, angle, speed, depth));
+        Strike {
+            entry,
+            dir,
+            tangent,
+            angle,
+            speed,
+            depth,
         }
     }
-    check.min_deep_strikes =
-        ((check.strikes as f64 * MIN_DEEP_STRIKE_SHARE).ceil() as usize).max(1);
-    check
+
+    /// Where the hand starts: the run-up before the entry.
+    fn start(&self) -> DVec3 {
+        self.entry - RUN_UP_M * self.dir
+    }
+
+    /// Whether the strike starts outside `o` and first enters it at its entry point (a
+    /// strike that would enter elsewhere first, or has no tangent, is skipped).
+    fn enters(&self, o: &SceneObject, crossing: &BruteCrossing, winding: &WindingOracle) -> bool {
+        let start_object = o.pose.to_object(self.start());
+        let past_entry = o.pose.to_object(self.entry + 1e-4 * self.dir);
+        let enters_here = crossing
+            .first_crossing(start_object, past_entry)
+            .is_some_and(|h| o.pose.to_world(h.point).distance(self.entry) < 1e-7);
+        let outside = winding.winding(start_object) == 0;
+        enters_here && outside && self.tangent != DVec3::ZERO
+    }
+}
+
+/// Ticks a proxy along a strike's `path`, counting every tick in `check`; returns the
+/// ticks of the strike's window `(entered, last_moving, deep_from)` before and from
+/// `deep_from` (shallow, deep).
+fn run_strike(
+    scene: &Scene,
+    options: ProxyOptions,
+    strike: &Strike,
+    path: &[DVec3],
+    (entered, last_moving, deep_from): (usize, usize, usize),
+    rate_hz: f64,
+    check: &mut StrikeCheck,
+) -> [StrikeTicks; 2] {
+    let start = strike.start();
+    let mut proxy = Proxy::new(start, options);
+    let mut ticks = [StrikeTicks::default(); 2];
+    let mut previous = start;
+    for (k, &hip) in path.iter().enumerate() {
+        let out = proxy.tick(scene, hip, (hip - previous) * rate_hz);
+        previous = hip;
+        check.ticks += 1;
+        check.held_ticks += usize::from(out.status.deep_hold);
+        if k < entered || k > last_moving {
+            continue;
+        }
+        let t = &mut ticks[usize::from(k >= deep_from)];
+        t.strikes = 1;
+        t.ticks += 1;
+        let push = out.force.dot(strike.dir);
+        t.max_push_n = t.max_push_n.max(push);
+        t.pushes_on += usize::from(push > STRIKE_FORCE_TOLERANCE_N);
+        t.far_side += usize::from(out.contact.is_some_and(|c| c.normal.dot(strike.dir) > 0.0));
+        t.no_contact += usize::from(out.contact.is_none());
+    }
+    ticks
 }
