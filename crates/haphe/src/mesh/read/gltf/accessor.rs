@@ -194,37 +194,7 @@ impl<'a> Accessors<'a> {
                 accessors.len()
             ))
         })?;
-        let kind = match accessor.type_ {
-            Checked::Valid(t) if t == expect.kind => t,
-            Checked::Valid(t) => {
-                return Err(invalid(format!(
-                    "{} must be {}, not {}",
-                    expect.what,
-                    type_name(expect.kind),
-                    type_name(t)
-                )));
-            }
-            Checked::Invalid => return Err(invalid("the accessor's type is not valid".into())),
-        };
-        let c = match accessor.component_type {
-            Checked::Valid(c) if expect.components.contains(&c.0) => c.0,
-            Checked::Valid(c) => {
-                let allowed: Vec<_> = expect
-                    .components
-                    .iter()
-                    .map(|&c| component_name(c))
-                    .collect();
-                return Err(invalid(format!(
-                    "{} cannot have {} components (it may have {})",
-                    expect.what,
-                    component_name(c.0),
-                    allowed.join(", ")
-                )));
-            }
-            Checked::Invalid => {
-                return Err(invalid("the accessor's componentType is not valid".into()));
-            }
-        };
+        let (kind, c) = checked_kind(accessor, expect, at)?;
         let components = kind.multiplicity();
         let size = c.size();
         let element = components * size;
@@ -366,4 +336,51 @@ impl<'a> Accessors<'a> {
             .get(index)
             .is_some_and(|a| a.buffer_view.is_some() || a.sparse.is_some())
     }
+}
+
+/// The type and component type of `accessor`, when they are ones `expect` allows.
+///
+/// # Errors
+/// Naming the accessor (`at`): another type or component type, or one glTF does not define.
+fn checked_kind(
+    accessor: &json::Accessor,
+    expect: &Expect,
+    at: GltfPlace,
+) -> Result<(Type, ComponentType), ReadErrorKind> {
+    let invalid = |message: String| ReadErrorKind::Invalid {
+        at: place(at),
+        message,
+    };
+    let kind = match accessor.type_ {
+        Checked::Valid(t) if t == expect.kind => t,
+        Checked::Valid(t) => {
+            return Err(invalid(format!(
+                "{} must be {}, not {}",
+                expect.what,
+                type_name(expect.kind),
+                type_name(t)
+            )));
+        }
+        Checked::Invalid => return Err(invalid("the accessor's type is not valid".into())),
+    };
+    let c = match accessor.component_type {
+        Checked::Valid(c) if expect.components.contains(&c.0) => c.0,
+        Checked::Valid(c) => {
+            let allowed: Vec<_> = expect
+                .components
+                .iter()
+                .map(|&c| component_name(c))
+                .collect();
+            return Err(invalid(format!(
+                "{} cannot have {} components (it may have {})",
+                expect.what,
+                component_name(c.0),
+                allowed.join(", ")
+            )));
+        }
+        Checked::Invalid => {
+            return Err(invalid("the accessor's componentType is not valid".into()));
+        }
+    };
+    Ok((kind, c))
 }

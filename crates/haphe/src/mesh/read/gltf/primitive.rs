@@ -100,82 +100,123 @@ pub(super) fn read_mesh(
             });
             continue;
         }
-        let Some(position) = primitive
-            .attributes
-            .get(&Checked::Valid(Semantic::Positions))
-            .map(|a| a.value())
-        else {
-            return Err(invalid(
-                "a triangle primitive without a POSITION attribute".to_owned(),
-            ));
-        };
-        let draco = primitive
-            .extensions
-            .as_ref()
-            .is_some_and(|e| e.others.contains_key(DRACO));
-        if draco && !accessors.has_view(position) {
-            return Err(ReadErrorKind::Unsupported {
-                at: place(at),
-                message: format!(
-                    "the primitive is compressed with {DRACO} (Draco), which haphe does not \
-                     decode; export the file without Draco compression"
-                ),
-            });
-        }
-        let positions = accessors.read(position, &POSITIONS, at)?;
-        let vertex_count = positions.len() / 3;
+        let position = position_accessor(accessors, primitive, at)?;
         let base = out.vertices.len();
-        let too_large = |message: String| ReadErrorKind::TooLarge {
-            at: place(at),
-            message,
-        };
-        if base + vertex_count > u32::MAX as usize {
-            return Err(too_large(format!(
-                "{} vertices in the mesh, more than 32-bit indices hold",
-                base + vertex_count
-            )));
-        }
-        if let Some(e) = positions.iter().position(|v| !v.is_finite()) {
-            return Err(ReadErrorKind::Invalid {
-                at: place(GltfPlace {
-                    accessor: Some((ix(position), "POSITION")),
-                    ..at
-                }),
-                message: format!("element {}: a coordinate is NaN or infinite", e / 3),
-            });
-        }
-        out.vertices.extend(
-            positions
-                .chunks_exact(3)
-                .map(|c| DVec3::new(c[0], c[1], c[2])),
-        );
-        let sequence: Vec<u32> = match primitive.indices {
-            None => (0..vertex_count as u32).collect(),
-            Some(indices) => {
-                let indices = indices.value();
-                let values = accessors.read(indices, &INDICES, at)?;
-                let mut sequence = Vec::with_capacity(values.len());
-                for v in values {
-                    // Read from unsigned integers of at most 32 bits: exact.
-                    let v = v as u32;
-                    if v as usize >= vertex_count {
-                        return Err(ReadErrorKind::IndexOutOfRange {
-                            at: place(GltfPlace {
-                                accessor: Some((ix(indices), "indices")),
-                                ..at
-                            }),
-                            index: i64::from(v),
-                            count: vertex_count,
-                        });
-                    }
-                    sequence.push(base as u32 + v);
-                }
-                sequence
-            }
-        };
+        let vertex_count = read_positions(accessors, position, at, &mut out.vertices)?;
+        let sequence = read_sequence(accessors, primitive, at, base, vertex_count)?;
         assemble(mode, &sequence, &mut out.triangles);
     }
     Ok(compact(out))
+}
+
+/// The `POSITION` accessor of a triangle primitive.
+///
+/// # Errors
+/// A primitive without one, or compressed with Draco and no uncompressed data.
+fn position_accessor(
+    accessors: &Accessors<'_>,
+    primitive: &json::mesh::Primitive,
+    at: GltfPlace,
+) -> Result<usize, ReadErrorKind> {
+    let Some(position) = primitive
+        .attributes
+        .get(&Checked::Valid(Semantic::Positions))
+        .map(|a| a.value())
+    else {
+        return Err(ReadErrorKind::Invalid {
+            at: place(at),
+            message: "a triangle primitive without a POSITION attribute".to_owned(),
+        });
+    };
+    let draco = primitive
+        .extensions
+        .as_ref()
+        .is_some_and(|e| e.others.contains_key(DRACO));
+    if draco && !accessors.has_view(position) {
+        return Err(ReadErrorKind::Unsupported {
+            at: place(at),
+            message: format!(
+                "the primitive is compressed with {DRACO} (Draco), which haphe does not \
+                 decode; export the file without Draco compression"
+            ),
+        });
+    }
+    Ok(position)
+}
+
+/// Appends the positions of accessor `position` to `vertices`; returns how many.
+///
+/// # Errors
+/// A bad accessor, more vertices than 32-bit indices hold, a non-finite coordinate.
+fn read_positions(
+    accessors: &mut Accessors<'_>,
+    position: usize,
+    at: GltfPlace,
+    vertices: &mut Vec<DVec3>,
+) -> Result<usize, ReadErrorKind> {
+    let positions = accessors.read(position, &POSITIONS, at)?;
+    let vertex_count = positions.len() / 3;
+    let base = vertices.len();
+    if base + vertex_count > u32::MAX as usize {
+        return Err(ReadErrorKind::TooLarge {
+            at: place(at),
+            message: format!(
+                "{} vertices in the mesh, more than 32-bit indices hold",
+                base + vertex_count
+            ),
+        });
+    }
+    if let Some(e) = positions.iter().position(|v| !v.is_finite()) {
+        return Err(ReadErrorKind::Invalid {
+            at: place(GltfPlace {
+                accessor: Some((ix(position), "POSITION")),
+                ..at
+            }),
+            message: format!("element {}: a coordinate is NaN or infinite", e / 3),
+        });
+    }
+    vertices.extend(
+        positions
+            .chunks_exact(3)
+            .map(|c| DVec3::new(c[0], c[1], c[2])),
+    );
+    Ok(vertex_count)
+}
+
+/// The vertex sequence of a primitive whose `vertex_count` vertices start at `base`: its
+/// indices offset by `base`, or `0..vertex_count` when it has none.
+///
+/// # Errors
+/// A bad accessor, an index past the primitive's vertices.
+fn read_sequence(
+    accessors: &mut Accessors<'_>,
+    primitive: &json::mesh::Primitive,
+    at: GltfPlace,
+    base: usize,
+    vertex_count: usize,
+) -> Result<Vec<u32>, ReadErrorKind> {
+    let Some(indices) = primitive.indices else {
+        return Ok((0..vertex_count as u32).collect());
+    };
+    let indices = indices.value();
+    let values = accessors.read(indices, &INDICES, at)?;
+    let mut sequence = Vec::with_capacity(values.len());
+    for v in values {
+        // Read from unsigned integers of at most 32 bits: exact.
+        let v = v as u32;
+        if v as usize >= vertex_count {
+            return Err(ReadErrorKind::IndexOutOfRange {
+                at: place(GltfPlace {
+                    accessor: Some((ix(indices), "indices")),
+                    ..at
+                }),
+                index: i64::from(v),
+                count: vertex_count,
+            });
+        }
+        sequence.push(base as u32 + v);
+    }
+    Ok(sequence)
 }
 
 /// `mesh` with only the vertices its triangles use, in the order first used.
