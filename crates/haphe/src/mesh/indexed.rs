@@ -7,9 +7,9 @@ use super::{Place, ReadErrorKind};
 
 /// An indexed triangle mesh: positions in metres (object frame) and vertex triples.
 ///
-/// This is plain data with no invariant beyond what [`read_mesh`] guarantees: every index is
+/// This is plain data with no invariant beyond what [`read_mesh`](super::read_mesh) guarantees: every index is
 /// in range and every coordinate is finite. It may be open, non-manifold, inconsistently
-/// oriented or degenerate; [`MeshReport::of`] says which, and [`Surface::new`] turns it into
+/// oriented or degenerate; [`MeshReport::of`](super::MeshReport::of) says which, and [`Surface::new`](super::Surface::new) turns it into
 /// the navigable form.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh {
@@ -23,7 +23,7 @@ impl Mesh {
     /// The three corner positions of triangle `t` (metres, object frame).
     ///
     /// # Panics
-    /// If `t` or one of its indices is out of range (never for a mesh from [`read_mesh`]).
+    /// If `t` or one of its indices is out of range (never for a mesh from [`read_mesh`](super::read_mesh)).
     #[inline]
     pub fn corners(&self, t: usize) -> [DVec3; 3] {
         let [a, b, c] = self.triangles[t];

@@ -13,7 +13,7 @@ pub(crate) const PROBE_REACH_OF_SKIN: f64 = 0.25;
 /// (about 1e-15 m), far below what a hand can feel.
 pub const DEFAULT_SKIN: f64 = 1e-6;
 
-/// Settings of a [`Proxy`], every value within its domain (see
+/// Settings of a [`Proxy`](super::Proxy), every value within its domain (see
 /// [`Param`](crate::scene::Param)).
 ///
 /// Built from [`ProxyOptions::default`] by the `with_*` builders, each of which checks its
@@ -82,7 +82,7 @@ impl ProxyOptions {
     ///
     /// # Errors
     /// [`ParamError`] naming `workspace_radius` outside its domain (above 0, at most
-    /// [`MAX_WORKSPACE_RADIUS`]).
+    /// [`MAX_WORKSPACE_RADIUS`](super::MAX_WORKSPACE_RADIUS)).
     pub fn with_workspace_radius(self, workspace_radius: f64) -> Result<ProxyOptions, ParamError> {
         Ok(ProxyOptions {
             workspace_radius: Param::WorkspaceRadius.check(workspace_radius)?,

@@ -6,7 +6,7 @@ use super::material::Material;
 use super::object::{ObjectId, SceneObject};
 use super::pose::Pose;
 
-/// Most edits applied in one [`Scene::begin_tick`]; the rest wait for the next tick.
+/// Most edits applied in one [`Scene::begin_tick`](super::Scene::begin_tick); the rest wait for the next tick.
 pub const MAX_EDITS_PER_TICK: usize = 16;
 
 /// A change to a scene, sent from another thread.
@@ -52,7 +52,7 @@ pub(super) struct Inbox {
     returns: Producer<Returned>,
 }
 
-/// Changes a [`Scene`] from another thread: edits go through a wait-free ring buffer and are
+/// Changes a [`Scene`](super::Scene) from another thread: edits go through a wait-free ring buffer and are
 /// applied at the start of the next servo tick; objects leaving the scene come back here
 /// to be dropped ([`SceneEditor::collect`]), so no shape is ever freed on the servo thread.
 #[derive(Debug)]

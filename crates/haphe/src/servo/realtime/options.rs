@@ -46,7 +46,7 @@ pub struct RealtimeOptions {
     pub(crate) standby_core: Option<usize>,
     /// Stop the run (zero force, [`StopReason::Overruns`]) once more deadlines than this
     /// were missed (overruns and skipped deadlines together, see
-    /// [`TickStats::missed`](super::TickStats::missed)); `None` (the
+    /// [`TickStats::missed`](crate::servo::TickStats::missed)); `None` (the
     /// default): never. A real device should have one: a servo that keeps missing its
     /// deadlines renders unstable walls.
     pub(crate) overrun_budget: Option<u64>,

@@ -39,7 +39,7 @@ pub struct RealtimeRun<D: Device> {
 /// Tick `k` has the absolute deadline `start + k · period`. The thread sleeps until
 /// shortly before it and spins the rest, reads the clock (lateness = now − deadline),
 /// runs the tick, and records compute time and lateness in the servo's
-/// [`TickStats`](super::TickStats) (preallocated histograms). A tick that ends after
+/// [`TickStats`](crate::servo::TickStats) (preallocated histograms). A tick that ends after
 /// the next deadline is an **overrun**; when the loop falls more than a period behind, it
 /// skips the deadlines already past (counted as `skipped`) instead of racing to catch up.
 /// Each tick's [`TickRecord`] goes to the reading thread through a wait-free ring
