@@ -88,6 +88,13 @@ def main():
 
     names = reexports(args.src)
     print(f"names in `pub use` lines without #[doc(hidden)] in {os.path.relpath(args.src, ROOT)}: {len(names)}")
+    by_module = {}
+    for file, _, _ in names:
+        rel = os.path.relpath(os.path.join(ROOT, file), args.src).split(os.sep)
+        top = rel[0] if len(rel) > 1 else rel[0][:-3]
+        by_module[top] = by_module.get(top, 0) + 1
+    for top, n in sorted(by_module.items()):
+        print(f"  {n:4}  {top}")
     if args.names:
         for file, line, name in names:
             print(f"  {file}:{line}  {name}")

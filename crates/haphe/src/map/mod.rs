@@ -60,21 +60,28 @@ mod walk;
 pub use crate::array::MapBytes;
 pub(crate) use cast::{CellPart, Found};
 pub(crate) use cells::CellBox;
-pub use file::{FORMAT_VERSION, decode, decode_in_place, encode, looks_like_map};
+#[doc(hidden)]
+pub use file::FORMAT_VERSION;
+pub use file::{decode, decode_in_place, encode, looks_like_map};
 pub use file_error::MapFileError;
 use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
+#[doc(hidden)]
+pub use grid::Grid;
+#[doc(hidden)]
+pub use grid::MAX_CELLS_PER_AXIS;
 #[doc(hidden)]
 pub use grid::OVERLAP_TOLERANCE_REL;
 #[cfg(any(test, feature = "testing"))]
 pub(crate) use grid::clip_to_box;
-pub use grid::{Grid, MAX_CELLS_PER_AXIS};
 #[doc(hidden)]
 pub use overlap::overlap_triangle_box;
 #[doc(hidden)]
 pub use provenance::MAX_SOURCE_NAME_BYTES;
 pub use provenance::Provenance;
 use voxel_map::BRICK_SIDE;
-pub use voxel_map::{MAX_BRICKS, MapStats, VoxelMap};
+#[doc(hidden)]
+pub use voxel_map::MAX_BRICKS;
+pub use voxel_map::{MapStats, VoxelMap};
 #[doc(hidden)]
 pub use walk::{CellStep, CellWalk};
 
@@ -83,12 +90,15 @@ pub use walk::{CellStep, CellWalk};
 /// with millimetre cells a device point far from the object may move 14 mm before the map
 /// needs to be consulted again. Fits the brick layout: two bricks of exact distances
 /// around every brick that holds surface cells.
+#[doc(hidden)]
 pub const MAX_CLEARANCE: u8 = 15;
 
 /// The default target of [`MapOptions::triangles_per_cell`].
+#[doc(hidden)]
 pub const DEFAULT_TRIANGLES_PER_CELL: f64 = 4.0;
 
 /// The default of [`MapOptions::memory_budget_bytes`]: 1 GiB.
+#[doc(hidden)]
 pub const DEFAULT_MEMORY_BUDGET_BYTES: usize = 1 << 30;
 
 /// What a cell of a [`VoxelMap`] is.

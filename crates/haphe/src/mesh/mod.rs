@@ -29,27 +29,32 @@ mod weld;
 mod winding;
 
 pub use error::{GltfPlace, Place, ReadError, ReadErrorKind};
+#[doc(hidden)]
 pub use frame::TriFrame;
 #[doc(hidden)]
 pub use frame::relative_height;
 pub(crate) use frame::{DEGENERATE_MAX_RELATIVE_HEIGHT, is_degenerate_triangle};
 pub use ids::{NONE, TriId, VertId};
 pub use indexed::Mesh;
+#[doc(hidden)]
 pub use limits::MAX_COORDINATE;
 #[doc(hidden)]
 pub use read::gltf::MAX_TRIANGLES as GLTF_MAX_TRIANGLES;
+#[doc(hidden)]
 pub use read::gltf::{
     GltfNode, GltfNodeSummary, GltfScene, GltfSummary, NoSideCars, Resolve, SkippedPrimitive,
     SkippedSummary, read_gltf,
 };
 pub use read::{
-    Format, ReadMesh, ReadOptions, Units, read_mesh, read_mesh_resolving, read_mesh_with_stats,
-    read_unwelded, read_unwelded_with,
+    Format, ReadMesh, ReadOptions, Units, read_mesh, read_mesh_with_stats, read_unwelded,
 };
+#[doc(hidden)]
+pub use read::{read_mesh_resolving, read_unwelded_with};
 pub use report::{MeshReport, Usability};
 #[doc(hidden)]
 pub use solid_angle::solid_angle;
 pub(crate) use topology::{OwnedSurfaceParts, SurfaceParts, SurfacePartsRef};
 pub use topology::{Surface, SurfaceError, SurfaceOptions};
 pub use weld::{Weld, WeldStats, weld};
+#[doc(hidden)]
 pub use winding::winding_number;

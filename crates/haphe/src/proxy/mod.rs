@@ -105,10 +105,16 @@ mod options;
 mod output;
 mod rest;
 
+#[doc(hidden)]
 pub use constrain::MAX_PROXY_STEPS;
+#[doc(hidden)]
 pub use constraints::MAX_CONSTRAINTS;
+#[doc(hidden)]
 pub use force::MIN_MAX_FORCE;
-pub use godobject::{MAX_WORKSPACE_RADIUS, Proxy};
+#[doc(hidden)]
+pub use godobject::MAX_WORKSPACE_RADIUS;
+pub use godobject::Proxy;
+#[doc(hidden)]
 pub use hold::saturation_depth;
 pub use options::{DEFAULT_SKIN, ProxyOptions};
 pub use output::{Contact, TickOutput, TickStatus};

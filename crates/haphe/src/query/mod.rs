@@ -21,15 +21,19 @@ pub mod validation;
 mod walk;
 mod zone;
 
+#[doc(hidden)]
+pub use batch::first_crossing_batch;
 pub use batch::{
-    BatchError, NonFinite, check_rows, first_crossing_batch, for_each_point, for_each_segment,
-    inside_batch,
+    BatchError, NonFinite, check_rows, for_each_point, for_each_segment, inside_batch,
 };
 pub(crate) use closest::distance_to_segment;
+#[doc(hidden)]
 pub use closest::{ClosestPoint, Feature, closest_point_triangle};
 pub use crossing::{Crossing, first_crossing};
 pub use inside::{Side, SideStatus, classify_point};
-pub use near::{MAX_NEAR_CELLS_PER_AXIS, NearTriangle, nearest_within};
+#[doc(hidden)]
+pub use near::MAX_NEAR_CELLS_PER_AXIS;
+pub use near::{NearTriangle, nearest_within};
 pub(crate) use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use self_intersect::{
@@ -37,7 +41,10 @@ pub use self_intersect::{
     self_intersections,
 };
 pub use validation::Validation;
-pub use walk::{MAX_FAN_SCAN, MAX_WALK_STEPS, SurfacePoint, WalkStatus, walk_to_nearest};
+#[doc(hidden)]
+pub use walk::{MAX_FAN_SCAN, MAX_WALK_STEPS};
+#[doc(hidden)]
+pub use walk::{SurfacePoint, WalkStatus, walk_to_nearest};
 
 // The kernels and oracles the tests, benches and fuzz targets compare against, and the
 // clear zones a scene computes for the proxy: public for them, not part of the documented

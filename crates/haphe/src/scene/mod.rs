@@ -42,12 +42,19 @@ mod removals;
 mod shape;
 mod world;
 
+#[doc(hidden)]
 pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};
-pub use domain::{ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M, Domain, DomainKind};
-pub use handoff::{Edit, EditError, MAX_EDITS_PER_TICK, Returned, SceneEditor};
+#[doc(hidden)]
+pub use domain::{ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M};
+#[doc(hidden)]
+pub use domain::{Domain, DomainKind};
+#[doc(hidden)]
+pub use handoff::MAX_EDITS_PER_TICK;
+pub use handoff::{Edit, EditError, Returned, SceneEditor};
 pub(crate) use hit::{Hit, SurfaceRef};
 pub use invalid::ParamError;
 pub use material::{Material, MaterialBuilder};
+#[doc(hidden)]
 pub use moves::ObjectKey;
 pub use object::{ObjectId, SceneObject, Sides};
 pub use param::Param;

@@ -94,7 +94,8 @@ pub use simulated::{
 #[doc(hidden)]
 pub use tick::MAX_MOTION_AMPLITUDE;
 pub use tick::{
-    Histogram, MAX_RATE_HZ, MIN_RATE_HZ, Motion, ObjectMotion, Servo, ServoError, ServoOptions,
-    StopReason, TickStats,
+    Histogram, Motion, ObjectMotion, Servo, ServoError, ServoOptions, StopReason, TickStats,
 };
+#[doc(hidden)]
+pub use tick::{MAX_RATE_HZ, MIN_RATE_HZ};
 pub use trace::{CSV_HEADER, Phase, STATUS_NAMES, TickRecord, write_csv_header};

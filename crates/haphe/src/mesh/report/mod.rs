@@ -10,8 +10,10 @@ pub(crate) use analyse::analyse_with_edges;
 pub use findings::{ComponentReport, Defects, EdgeUse, MeshReport, Usability};
 mod nesting;
 mod text;
+#[doc(hidden)]
 pub use text::ReportText;
 
+#[doc(hidden)]
 pub use super::frame::{DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT};
 
 use super::Mesh;

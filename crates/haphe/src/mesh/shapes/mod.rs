@@ -49,13 +49,22 @@ mod length;
 mod sphere;
 mod torus;
 
-pub use blob::{MAX_BLOB_AMPLITUDE_FRACTION, blob, geodesic_blob};
+pub use blob::blob;
+#[doc(hidden)]
+pub use blob::{MAX_BLOB_AMPLITUDE_FRACTION, geodesic_blob};
+#[doc(hidden)]
 pub use boxes::{
     MAX_CONCAVE_CORNER_DIVISIONS, MAX_CUBOID_DIVISIONS, concave_corner, cuboid, thin_plate,
 };
-pub use catalog::{Catalog, MAX_SHAPE_TRIANGLES, ParseShapeError};
-pub use sphere::{MAX_SPHERE_FREQUENCY, MAX_SPHERE_SUBDIVISIONS, geodesic_sphere, sphere};
-pub use torus::{MAX_TORUS_SEGMENTS, MIN_TORUS_SEGMENTS, torus};
+#[doc(hidden)]
+pub use catalog::MAX_SHAPE_TRIANGLES;
+pub use catalog::{Catalog, ParseShapeError};
+pub use sphere::sphere;
+#[doc(hidden)]
+pub use sphere::{MAX_SPHERE_FREQUENCY, MAX_SPHERE_SUBDIVISIONS, geodesic_sphere};
+pub use torus::torus;
+#[doc(hidden)]
+pub use torus::{MAX_TORUS_SEGMENTS, MIN_TORUS_SEGMENTS};
 
 /// Puts the faces of `mesh` in a random order fixed by `seed` (a Fisher–Yates shuffle; the
 /// vertices and each face's corners stay as they are): the same triangles as a file from
