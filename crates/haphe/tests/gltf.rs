@@ -147,6 +147,23 @@ fn strips_fans_and_lists_of_every_index_type_read_the_same_triangles() {
     let mesh = w.mesh(json!([{"attributes": {"POSITION": position}, "mode": 6}]));
     w.root(json!({"mesh": mesh}));
     assert_eq!(triangle_set(&scene_of(&w.glb()).flatten()), expected);
+    // Two primitives without indices in one mesh: the second draws its own vertices, not
+    // the first's (the square, then the same square moved up by 2).
+    let mut w = Writer::new();
+    let lifted = SQUARE.map(|[x, y, z]| [x, y, z + 2.0]);
+    let (first, second) = (w.positions(&fan), w.positions(&lifted));
+    let mesh = w.mesh(json!([
+        {"attributes": {"POSITION": first}, "mode": 6},
+        {"attributes": {"POSITION": second}, "mode": 6},
+    ]));
+    w.root(json!({"mesh": mesh}));
+    let mut both = expected.clone();
+    let mut lifted_list = Writer::new();
+    let m = lifted_list.triangle_mesh(&lifted, &[[0, 1, 2], [0, 2, 3]]);
+    lifted_list.root(json!({"mesh": m}));
+    both.extend(triangle_set(&scene_of(&lifted_list.glb()).flatten()));
+    both.sort();
+    assert_eq!(triangle_set(&scene_of(&w.glb()).flatten()), both);
 }
 
 #[test]

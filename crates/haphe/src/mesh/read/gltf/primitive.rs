@@ -184,7 +184,8 @@ fn read_positions(
 }
 
 /// The vertex sequence of a primitive whose `vertex_count` vertices start at `base`: its
-/// indices offset by `base`, or `0..vertex_count` when it has none.
+/// indices offset by `base`, or its vertices in order (`base..base + vertex_count`) when it
+/// has none.
 ///
 /// # Errors
 /// A bad accessor, an index past the primitive's vertices.
@@ -196,7 +197,8 @@ fn read_sequence(
     vertex_count: usize,
 ) -> Result<Vec<u32>, ReadErrorKind> {
     let Some(indices) = primitive.indices else {
-        return Ok((0..vertex_count as u32).collect());
+        // `read_positions` kept `base + vertex_count` within u32.
+        return Ok((base as u32..(base + vertex_count) as u32).collect());
     };
     let indices = indices.value();
     let values = accessors.read(indices, &INDICES, at)?;
