@@ -110,8 +110,9 @@ pub struct ModelArgs {
     /// origin.
     #[arg(long, value_name = "FILE")]
     pub mesh: Option<PathBuf>,
-    /// A scene file (TOML): objects, poses, materials, motions (see docs/guide.md).
-    #[arg(long, value_name = "FILE.toml")]
+    /// A scene file (TOML): objects, poses, materials, motions (see docs/guide.md); or a
+    /// glTF file (`.glb`, `.gltf`): one object per node with a mesh.
+    #[arg(long, value_name = "FILE.toml|FILE.glb")]
     pub scene: Option<PathBuf>,
     /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
     #[arg(long, value_name = "NAME")]

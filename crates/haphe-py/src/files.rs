@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use haphe::map::{decode, encode};
-use haphe::mesh::{ReadOptions, Surface, Units, Weld, read_mesh_with_stats};
+use haphe::mesh::{ReadOptions, Resolve, Surface, Units, Weld, read_mesh_resolving};
 use haphe::query::Validation;
 use pyo3::prelude::*;
 
@@ -30,6 +30,44 @@ pub fn read_options(units: &str, weld_tolerance: Option<f64>) -> PyResult<ReadOp
         weld,
         format: None,
     })
+}
+
+/// The most bytes a glTF side-car buffer file may have: 2 GiB, as for a mesh file.
+const MAX_SIDE_CAR_BYTES: u64 = 2 << 30;
+
+/// Side-car files of a `.gltf` (its `.bin` buffers), read from its folder: only as many
+/// bytes as the buffer declares, within [`MAX_SIDE_CAR_BYTES`]. A URI is a relative
+/// reference: an absolute path is refused.
+pub struct Folder<'a>(pub &'a Path);
+
+impl Folder<'_> {
+    /// The folder of the mesh file at `path`.
+    pub fn of(path: &Path) -> Folder<'_> {
+        Folder(path.parent().unwrap_or(Path::new(".")))
+    }
+}
+
+impl Resolve for Folder<'_> {
+    fn resolve(&mut self, uri: &str, byte_length: u64) -> Result<Vec<u8>, String> {
+        use std::io::Read;
+        if Path::new(uri).has_root() {
+            return Err(format!(
+                "'{uri}' is an absolute path; a glTF names its side-car files relative to itself"
+            ));
+        }
+        if byte_length > MAX_SIDE_CAR_BYTES {
+            return Err(format!(
+                "the buffer declares {byte_length} bytes, more than the limit of \
+                 {MAX_SIDE_CAR_BYTES}"
+            ));
+        }
+        let file = std::fs::File::open(self.0.join(uri)).map_err(|e| e.to_string())?;
+        let mut bytes = Vec::new();
+        file.take(byte_length)
+            .read_to_end(&mut bytes)
+            .map_err(|e| e.to_string())?;
+        Ok(bytes)
+    }
 }
 
 /// Reads the bytes of `path`.
@@ -64,7 +102,7 @@ pub fn load_map(path: &Path) -> PyResult<(Surface, haphe::map::VoxelMap)> {
 /// validate(path, units="m", weld_tolerance=None, self_intersections=True)
 /// --
 ///
-/// Validates a mesh file (OBJ, STL, PLY or OFF, told apart by content) and returns the
+/// Validates a mesh file (OBJ, STL, PLY, OFF or glTF, told apart by content) and returns the
 /// record ``haphe validate --json`` prints: ``file``, ``format``, ``seconds``, ``weld``,
 /// the report (``triangles``, ``vertices``, ``closed``, ``usable_as``, ``volume``, …,
 /// ``defects``) and ``self_intersections``, ``self_intersections_crossing``,
@@ -87,7 +125,8 @@ pub fn validate<'py>(
     let bytes = read_bytes(&path)?;
     let name = path.display().to_string();
     let json = py.detach(|| -> Result<String, String> {
-        let loaded = read_mesh_with_stats(&name, &bytes, &options).map_err(|e| e.to_string())?;
+        let loaded = read_mesh_resolving(&name, &bytes, &options, &mut Folder::of(&path))
+            .map_err(|e| e.to_string())?;
         let validation =
             Validation::of(loaded.mesh, self_intersections).map_err(|e| format!("{name}: {e}"))?;
         let seconds = start.elapsed().as_secs_f64();

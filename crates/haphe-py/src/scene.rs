@@ -5,11 +5,13 @@ use haphe::DVec3;
 use haphe::glam::{DMat3, DQuat};
 use haphe::proxy::{self, ProxyOptions};
 use haphe::scene::{self as hs, Material, ObjectId, Param, Pose, SceneObject};
+use std::collections::BTreeMap;
 use std::sync::{Mutex, PoisonError};
 
 use pyo3::prelude::*;
 
 use crate::errors::{haphe_error, param_error};
+use crate::files::{Folder, read_bytes, read_options};
 use crate::shape::Shape;
 
 /// Objects the proxy touches: shapes placed in the world (metres) with a material.
@@ -24,6 +26,8 @@ pub struct Scene {
     /// has the scene exclusively (`&mut self`) and reaches it with `get_mut`, no lock.
     inner: Mutex<hs::Scene>,
     next_id: u32,
+    /// The names of the objects that have one (from a glTF file's nodes), by id.
+    names: BTreeMap<u32, String>,
 }
 
 /// A rotation from a quaternion ``(x, y, z, w)`` (the order of SciPy's ``as_quat``) or a
@@ -66,7 +70,80 @@ impl Scene {
         Scene {
             inner: Mutex::new(hs::Scene::local(capacity)),
             next_id: 0,
+            names: BTreeMap::new(),
         }
+    }
+
+    /// Scene.from_gltf(path, units="m", weld_tolerance=None, capacity=None, stiffness=500.0, damping=0.0, friction=0.0, dynamic_friction=None)
+    /// --
+    ///
+    /// A scene from a glTF 2.0 file (``.glb``, or ``.gltf`` with its ``.bin`` files beside
+    /// it): one object per node of the default scene that holds a mesh, at the node's world
+    /// pose (a non-uniform scale is baked into the object's shape), named after the node
+    /// (``names``), ids from 0 in the scene's order. Nodes that use one mesh the same way
+    /// share one shape. The material is the node's ``extras`` (``stiffness``, ``damping``,
+    /// ``friction``, ``static_friction``, ``dynamic_friction``) where they give one, else
+    /// the arguments. ``capacity`` defaults to the number of objects (at least 64).
+    ///
+    /// Raises ``HapheError`` naming the file and the place (node, mesh, primitive,
+    /// accessor, buffer) for bad content or a bad argument, ``OSError`` when the file
+    /// cannot be read.
+    #[staticmethod]
+    #[pyo3(signature = (path, units = "m", weld_tolerance = None, capacity = None, stiffness = 500.0, damping = 0.0, friction = 0.0, dynamic_friction = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn from_gltf(
+        py: Python<'_>,
+        path: std::path::PathBuf,
+        units: &str,
+        weld_tolerance: Option<f64>,
+        capacity: Option<usize>,
+        stiffness: f64,
+        damping: f64,
+        friction: f64,
+        dynamic_friction: Option<f64>,
+    ) -> PyResult<Scene> {
+        let options = read_options(units, weld_tolerance)?;
+        let material = Material::builder()
+            .stiffness(stiffness)
+            .damping(damping)
+            .friction(friction, dynamic_friction.unwrap_or(friction))
+            .build()
+            .map_err(param_error)?;
+        let bytes = read_bytes(&path)?;
+        let name = path.display().to_string();
+        let objects = py
+            .detach(|| {
+                let read =
+                    haphe::mesh::read_gltf(&name, &bytes, options.units, &mut Folder::of(&path))
+                        .map_err(|e| e.to_string())?;
+                let objects = hs::gltf_objects(&read).map_err(|e| format!("{name}: {e}"))?;
+                objects
+                    .build(
+                        options.weld,
+                        &haphe::map::MapOptions::default(),
+                        material,
+                        0,
+                    )
+                    .map_err(|e| format!("{name}: {e}"))
+            })
+            .map_err(|e| haphe_error("", e))?;
+        let mut scene = Scene::new(capacity.unwrap_or(objects.len().max(64)));
+        for (object_name, object) in objects {
+            let id = object.id.0;
+            scene
+                .scene()
+                .insert(object)
+                .map_err(|(e, _)| haphe_error("scene", e))?;
+            scene.names.insert(id, object_name);
+            scene.next_id = id + 1;
+        }
+        Ok(scene)
+    }
+
+    /// The names of the objects read from a glTF file, by id (``{id: name}``).
+    #[getter]
+    fn names(&self) -> BTreeMap<u32, String> {
+        self.names.clone()
     }
 
     /// add(shape, position=(0, 0, 0), rotation=None, stiffness=500.0, damping=0.0, friction=0.0, dynamic_friction=None, two_sided=None)
@@ -139,6 +216,7 @@ impl Scene {
     ///
     /// Removes object ``id``. Raises ``KeyError`` for an unknown id.
     fn remove(&mut self, id: u32) -> PyResult<()> {
+        self.names.remove(&id);
         self.scene()
             .remove(ObjectId(id))
             .map(|_| ())

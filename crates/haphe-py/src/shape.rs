@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use haphe::DVec3;
 use haphe::map::{MapFileError, MapOptions, decode, encode};
-use haphe::mesh::{Mesh, Surface, SurfaceOptions, read_mesh_with_stats};
+use haphe::mesh::{Mesh, Surface, SurfaceOptions, read_mesh_resolving};
 use haphe::query::{
     first_crossing, first_crossing_brute_force, for_each_point, for_each_segment, inside_batch,
     nearest_within,
@@ -20,7 +20,7 @@ use pyo3::types::{PyBytes, PyDict};
 
 use crate::arrays::{self, batch_error, rows, rows_argument};
 use crate::errors::haphe_error;
-use crate::files::{load_map, read_bytes, read_options, save_map};
+use crate::files::{Folder, load_map, read_bytes, read_options, save_map};
 
 /// A shape: a mesh's surface (topology, normals) and its voxel map, immutable and shared
 /// by every scene it is placed in. Build it from a mesh file (``Shape.from_file``), from
@@ -56,7 +56,9 @@ impl Shape {
     /// Shape.from_file(path, units="m", weld_tolerance=None)
     /// --
     ///
-    /// Reads a mesh file (OBJ, STL, PLY or OFF, told apart by content), welds it (exactly,
+    /// Reads a mesh file (OBJ, STL, PLY, OFF or glTF, told apart by content; a glTF's
+    /// default scene flattened into one mesh in world coordinates, a ``.gltf``'s ``.bin``
+    /// files read from its folder), welds it (exactly,
     /// or within ``weld_tolerance`` metres), scales it to metres (``units``: ``"m"``,
     /// ``"mm"``, ``"cm"``, ``"in"`` or metres per file unit) and builds its voxel map.
     ///
@@ -75,8 +77,8 @@ impl Shape {
         let name = path.display().to_string();
         let inner = py
             .detach(|| {
-                let loaded =
-                    read_mesh_with_stats(&name, &bytes, &options).map_err(|e| e.to_string())?;
+                let loaded = read_mesh_resolving(&name, &bytes, &options, &mut Folder::of(&path))
+                    .map_err(|e| e.to_string())?;
                 build(&name, loaded.mesh)
             })
             .map_err(|e| haphe_error("", e))?;

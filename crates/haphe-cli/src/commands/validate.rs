@@ -5,11 +5,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use haphe::mesh::{ReadOptions, Units};
+use haphe::mesh::{GltfSummary, ReadOptions, Units};
 use haphe::query::{SELF_INTERSECTION_BUDGET_PER_TRIANGLE, Validation, self_intersection_budget};
 
 use crate::args::{parse_units, weld_mode};
-use crate::input::mesh::load;
+use crate::input::mesh::load_reported;
 
 /// Shown after `haphe validate --help`.
 pub const EXIT_CODES: &str = "\
@@ -32,12 +32,14 @@ JSON (--json) prints one object per file and line: file, format, seconds, weld, 
   each other: a closed mesh with any is not a valid solid), self_intersection_pairs (the
   first 100 pairs), self_intersections_complete (false when the search stopped at its
   budget of 256 candidate pairs per triangle: the counts are then lower bounds).
+  A glTF file adds gltf: scene, nodes (node, name, mesh, triangles, closed, translation,
+  rotation [x, y, z, w], scale, exact_trs) and skipped (mesh, primitive, mode).
   An unreadable file gives {\"file\": ..., \"error\": ...}.";
 
 /// Arguments of `haphe validate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Mesh files (OBJ, STL, PLY, OFF; the format is detected from the content).
+    /// Mesh files (OBJ, STL, PLY, OFF, glTF; the format is detected from the content).
     #[arg(required = true)]
     files: Vec<PathBuf>,
     /// Print one JSON object per file instead of the text report.
@@ -67,7 +69,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut worst = 0u8;
     for path in &args.files {
         let start = Instant::now();
-        let code = match load(path, &options) {
+        let code = match load_reported(path, &options) {
             Err(failure) => {
                 if args.json {
                     let line = serde_json::json!({
@@ -94,6 +96,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         loaded.weld,
                         seconds,
                     );
+                    let mut line = serde_json::to_value(&line)?;
+                    if let (Some(gltf), Some(object)) = (&loaded.gltf, line.as_object_mut()) {
+                        object.insert("gltf".into(), serde_json::to_value(gltf)?);
+                    }
                     writeln!(out, "{}", serde_json::to_string(&line)?)?;
                 } else {
                     writeln!(
@@ -107,6 +113,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         loaded.weld.unreferenced,
                     )?;
                     print_text(&mut out, triangles, &validation)?;
+                    if let Some(gltf) = &loaded.gltf {
+                        print_gltf(&mut out, gltf)?;
+                    }
                     writeln!(out)?;
                 }
                 validation.exit_code()
@@ -177,6 +186,51 @@ fn print_text(
         writeln!(
             out,
             "  problem: the surface passes through itself: inside and outside are not defined where it does"
+        )?;
+    }
+    Ok(())
+}
+
+/// The nodes of a glTF file's scene: each one's mesh, triangles, closedness and world
+/// transform; then the primitives skipped.
+fn print_gltf(out: &mut impl Write, gltf: &GltfSummary) -> std::io::Result<()> {
+    let scene = gltf.scene.map_or_else(
+        || "no scene, root nodes".to_owned(),
+        |s| format!("scene {s}"),
+    );
+    writeln!(
+        out,
+        "  glTF {scene}: {} node(s) with a mesh",
+        gltf.nodes.len()
+    )?;
+    for n in &gltf.nodes {
+        // The quaternion with w >= 0: the same rotation by an angle of at most 180°.
+        let [x, y, z, w] = if n.rotation[3] < 0.0 {
+            n.rotation.map(|c| -c)
+        } else {
+            n.rotation
+        };
+        let angle = 2.0 * w.clamp(-1.0, 1.0).acos().to_degrees();
+        let axis = haphe::DVec3::new(x, y, z).normalize_or_zero();
+        writeln!(
+            out,
+            "    node {} '{}': mesh {}, {} triangles, {}; at {:?} m, turned {angle:.1}° about {:?}, scale {:?}{}",
+            n.node,
+            n.name,
+            n.mesh,
+            n.triangles,
+            if n.closed { "closed" } else { "open" },
+            n.translation,
+            axis.to_array(),
+            n.scale,
+            if n.exact_trs { "" } else { " (with shear)" },
+        )?;
+    }
+    for s in &gltf.skipped {
+        writeln!(
+            out,
+            "  skipped: mesh {} primitive {} ({}): points and lines have no surface to touch",
+            s.mesh, s.primitive, s.mode
         )?;
     }
     Ok(())

@@ -4,7 +4,10 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use crate::input::files::{self, read_input};
-use haphe::mesh::{Format, Mesh, ReadError, ReadOptions, WeldStats, read_unwelded, weld};
+use haphe::mesh::{
+    Format, GltfSummary, Mesh, ReadError, ReadOptions, Resolve, WeldStats, read_gltf,
+    read_unwelded, weld,
+};
 
 /// A mesh read from a file, with what it took.
 pub struct Loaded {
@@ -16,6 +19,33 @@ pub struct Loaded {
     pub weld: WeldStats,
     /// Time to parse and weld.
     pub elapsed: Duration,
+    /// For a glTF file read by [`load_reported`]: its scene's nodes (triangles,
+    /// transform, closed) and the primitives skipped.
+    pub gltf: Option<GltfSummary>,
+}
+
+/// The side-car files of the glTF file at a path (its `.bin` buffers), read from its
+/// folder once each, within the mesh file limit. A URI is a relative reference: an
+/// absolute path is refused.
+pub struct SideCars<'a>(pub &'a Path);
+
+impl Resolve for SideCars<'_> {
+    fn resolve(&mut self, uri: &str, byte_length: u64) -> Result<Vec<u8>, String> {
+        if Path::new(uri).has_root() {
+            return Err(format!(
+                "'{uri}' is an absolute path; a glTF names its side-car files relative to itself"
+            ));
+        }
+        if byte_length > files::MESH.bytes {
+            return Err(format!(
+                "the buffer declares {byte_length} bytes, more than the {} limit of {} bytes",
+                files::MESH.what,
+                files::MESH.bytes
+            ));
+        }
+        let folder = self.0.parent().unwrap_or(Path::new("."));
+        read_input(&folder.join(uri), files::MESH).map_err(|e| format!("{e:#}"))
+    }
 }
 
 /// Why a file could not be loaded.
@@ -41,8 +71,25 @@ pub fn load(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
     load_bytes(path, &bytes, options)
 }
 
-/// Parses and welds the bytes of the mesh file at `path`.
+/// As [`load`], and for a glTF file also the report of its scene's nodes
+/// ([`Loaded::gltf`]: each distinct mesh welded and analysed once more).
+pub fn load_reported(path: &Path, options: &ReadOptions) -> Result<Loaded, LoadFailure> {
+    let bytes = read_input(path, files::MESH).map_err(LoadFailure::Io)?;
+    parse(path, &bytes, options, true)
+}
+
+/// Parses and welds the bytes of the mesh file at `path` (a `.gltf`'s side-car files are
+/// read from its folder).
 pub fn load_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<Loaded, LoadFailure> {
+    parse(path, bytes, options, false)
+}
+
+fn parse(
+    path: &Path,
+    bytes: &[u8],
+    options: &ReadOptions,
+    report_gltf: bool,
+) -> Result<Loaded, LoadFailure> {
     let name = path.display().to_string();
     // Whatever its extension, a map file is recognised by its header in every command
     // (even a damaged one, which is reported as such: the same answer as `query`'s).
@@ -71,12 +118,29 @@ pub fn load_bytes(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<Lo
         format: Some(format),
         ..*options
     };
-    let raw = read_unwelded(&name, bytes, &options).map_err(LoadFailure::Read)?;
+    let (raw, gltf) = if format == Format::Gltf {
+        // Read here rather than by `read_unwelded`: the report needs the nodes apart.
+        let scene = read_gltf(&name, bytes, options.units, &mut SideCars(path))
+            .map_err(LoadFailure::Read)?;
+        let report = report_gltf.then(|| scene.summary(options.weld));
+        let mesh = scene.flatten();
+        mesh.check_indices_and_finite().map_err(|kind| {
+            LoadFailure::Read(ReadError {
+                file: name.clone(),
+                kind,
+            })
+        })?;
+        (mesh, report)
+    } else {
+        let raw = read_unwelded(&name, bytes, &options).map_err(LoadFailure::Read)?;
+        (raw, None)
+    };
     let (mesh, weld) = weld(&raw, options.weld);
     Ok(Loaded {
         mesh,
         format,
         weld,
         elapsed: start.elapsed(),
+        gltf,
     })
 }

@@ -9,12 +9,12 @@ use std::sync::Arc;
 use anyhow::{Context, anyhow};
 use haphe::map::MapOptions;
 use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{ReadOptions, Surface, SurfaceOptions, Units};
-use haphe::scene::{SceneObject, Shape};
+use haphe::mesh::{ReadOptions, Surface, SurfaceOptions, Units, Weld};
+use haphe::scene::{Material, SceneObject, Shape};
 use haphe::servo::ObjectMotion;
 use haphe::servo::scene_file::{ObjectSource, parse_scene};
 
-use crate::input::mesh::load;
+use crate::input::mesh::{SideCars, load};
 
 /// One object of a loaded scene file.
 pub struct LoadedObject {
@@ -28,7 +28,17 @@ pub struct LoadedObject {
 
 /// Reads a scene file and builds every object (shapes shared between objects that name
 /// the same shape and size or the same mesh file).
+///
+/// A glTF file (`.glb`, `.gltf`) is a scene too: one object per node with a mesh (see
+/// [`load_gltf_scene`]).
 pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObject>> {
+    let is_gltf = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb") || e.eq_ignore_ascii_case("gltf"));
+    if is_gltf {
+        return load_gltf_scene(path, map);
+    }
     let text = crate::input::files::read_text(path, crate::input::files::SCENE)?;
     let entries = parse_scene(path, &text)?;
     let mut shapes: Vec<(ObjectSource, Arc<Shape>)> = Vec::new();
@@ -50,6 +60,27 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
         });
     }
     Ok(out)
+}
+
+/// A glTF file as a scene: one object per node of its default scene that holds a mesh, at
+/// the node's world pose, named after the node, its material from the node's `extras`
+/// (else the default); nodes that use one mesh the same way share one shape.
+pub fn load_gltf_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObject>> {
+    let name = path.display().to_string();
+    let bytes = crate::input::files::read_input(path, crate::input::files::MESH)?;
+    let scene = haphe::mesh::read_gltf(&name, &bytes, Units::Metres, &mut SideCars(path))?;
+    let objects = haphe::scene::gltf_objects(&scene).with_context(|| name.clone())?;
+    let built = objects
+        .build(Weld::Exact, map, Material::default(), 0)
+        .with_context(|| name.clone())?;
+    Ok(built
+        .into_iter()
+        .map(|(name, object)| LoadedObject {
+            name,
+            object,
+            motion: None,
+        })
+        .collect())
 }
 
 fn build_shape(source: &ObjectSource, map: &MapOptions) -> anyhow::Result<Shape> {

@@ -101,6 +101,19 @@ class Scene:
     """Shapes placed in the world with materials."""
 
     def __init__(self, capacity: int = 64) -> None: ...
+    @staticmethod
+    def from_gltf(
+        path: _Path,
+        units: str = "m",
+        weld_tolerance: Optional[float] = None,
+        capacity: Optional[int] = None,
+        stiffness: float = 500.0,
+        damping: float = 0.0,
+        friction: float = 0.0,
+        dynamic_friction: Optional[float] = None,
+    ) -> Scene: ...
+    @property
+    def names(self) -> Dict[int, str]: ...
     def add(
         self,
         shape: Shape,
