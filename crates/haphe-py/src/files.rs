@@ -36,8 +36,8 @@ pub fn read_options(units: &str, weld_tolerance: Option<f64>) -> PyResult<ReadOp
 const MAX_SIDE_CAR_BYTES: u64 = 2 << 30;
 
 /// Side-car files of a `.gltf` (its `.bin` buffers), read from its folder: only as many
-/// bytes as the buffer declares, within [`MAX_SIDE_CAR_BYTES`]. A URI is a relative
-/// reference: an absolute path is refused.
+/// bytes as the buffer declares, within [`MAX_SIDE_CAR_BYTES`] (the reader has refused
+/// absolute paths).
 pub struct Folder<'a>(pub &'a Path);
 
 impl Folder<'_> {
@@ -50,11 +50,6 @@ impl Folder<'_> {
 impl Resolve for Folder<'_> {
     fn resolve(&mut self, uri: &str, byte_length: u64) -> Result<Vec<u8>, String> {
         use std::io::Read;
-        if Path::new(uri).has_root() {
-            return Err(format!(
-                "'{uri}' is an absolute path; a glTF names its side-car files relative to itself"
-            ));
-        }
         if byte_length > MAX_SIDE_CAR_BYTES {
             return Err(format!(
                 "the buffer declares {byte_length} bytes, more than the limit of \

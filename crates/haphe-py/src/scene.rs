@@ -62,6 +62,22 @@ fn pose(position: [f64; 3], rotation: Option<&Bound<'_, PyAny>>) -> PyResult<Pos
     Pose::new(self::rotation(rotation)?, DVec3::from_array(position)).map_err(param_error)
 }
 
+/// A material from the keyword arguments, checked by the library (`dynamic_friction`
+/// defaults to `friction`).
+fn material(
+    stiffness: f64,
+    damping: f64,
+    friction: f64,
+    dynamic_friction: Option<f64>,
+) -> PyResult<Material> {
+    Material::builder()
+        .stiffness(stiffness)
+        .damping(damping)
+        .friction(friction, dynamic_friction.unwrap_or(friction))
+        .build()
+        .map_err(param_error)
+}
+
 #[pymethods]
 impl Scene {
     #[new]
@@ -103,12 +119,7 @@ impl Scene {
         dynamic_friction: Option<f64>,
     ) -> PyResult<Scene> {
         let options = read_options(units, weld_tolerance)?;
-        let material = Material::builder()
-            .stiffness(stiffness)
-            .damping(damping)
-            .friction(friction, dynamic_friction.unwrap_or(friction))
-            .build()
-            .map_err(param_error)?;
+        let material = material(stiffness, damping, friction, dynamic_friction)?;
         let bytes = read_bytes(&path)?;
         let name = path.display().to_string();
         let objects = py
@@ -169,12 +180,7 @@ impl Scene {
         two_sided: Option<bool>,
     ) -> PyResult<u32> {
         let pose = pose(position, rotation)?;
-        let material = Material::builder()
-            .stiffness(stiffness)
-            .damping(damping)
-            .friction(friction, dynamic_friction.unwrap_or(friction))
-            .build()
-            .map_err(param_error)?;
+        let material = material(stiffness, damping, friction, dynamic_friction)?;
         let id = ObjectId(self.next_id);
         let mut object = SceneObject::new(id, shape.inner.clone(), pose, material);
         if let Some(two) = two_sided {

@@ -105,9 +105,18 @@ def write_scene(path, nodes=NODES, copies=None):
     if str(path).endswith(".glb"):
         gltf.save_binary(str(path))
     else:
-        gltf.convert_buffers(g.BufferFormat.BINFILE)
-        gltf.save(str(path))
+        write_side_car(gltf, path, blob)
     return path
+
+
+def write_side_car(gltf, path, blob, name=None):
+    """Saves `gltf` as the JSON file `path` with its buffer `blob` in the file `name`
+    beside it (default: `path` with the suffix .bin)."""
+    side_car = path.with_name(name) if name else path.with_suffix(".bin")
+    side_car.write_bytes(blob)
+    gltf.buffers[0].uri = side_car.name
+    gltf.destroy_binary_blob()
+    gltf.save_json(str(path))
 
 
 def brute_force_inside(points):
@@ -180,10 +189,7 @@ def write_khronos_box(path):
     if str(path).endswith(".glb"):
         gltf.save_binary(str(path))
     else:
-        gltf.buffers[0].uri = "Box0.bin"
-        (path.parent / "Box0.bin").write_bytes(blob)
-        gltf._glb_data = None
-        gltf.save_json(str(path))
+        write_side_car(gltf, path, blob, "Box0.bin")
     return path
 
 
