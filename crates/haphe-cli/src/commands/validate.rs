@@ -58,6 +58,15 @@ pub struct Args {
     skip_self_intersections: bool,
 }
 
+/// One line of `--json`: the record's fields in their order, then a glTF file's `gltf`.
+#[derive(serde::Serialize)]
+struct Line<'a, R: serde::Serialize> {
+    #[serde(flatten)]
+    record: R,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gltf: Option<&'a GltfSummary>,
+}
+
 /// Runs the command; the exit code is the worst file's.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let mut out = std::io::stdout().lock();
@@ -96,10 +105,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                         loaded.weld,
                         seconds,
                     );
-                    let mut line = serde_json::to_value(&line)?;
-                    if let (Some(gltf), Some(object)) = (&loaded.gltf, line.as_object_mut()) {
-                        object.insert("gltf".into(), serde_json::to_value(gltf)?);
-                    }
+                    let line = Line {
+                        record: line,
+                        gltf: loaded.gltf.as_ref(),
+                    };
                     writeln!(out, "{}", serde_json::to_string(&line)?)?;
                 } else {
                     writeln!(
