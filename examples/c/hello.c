@@ -73,7 +73,7 @@ int main(int argc, char **argv) {
     haphe_shape_free(shape); /* the scene keeps its own reference */
     double top[3] = {0.0, 2.0, 0.0};
     HapheProxy *proxy = NULL;
-    CHECK(haphe_proxy_new(top, 3.3, &proxy));
+    CHECK(haphe_proxy_new(top, haphe_default_max_force(), &proxy));
     HapheTick tick;
     CHECK(haphe_proxy_tick(proxy, scene, top, NULL, &tick));
 #ifdef HAPHE_COUNT_ALLOCATIONS
@@ -100,7 +100,7 @@ int main(int argc, char **argv) {
     uint64_t ticks = 0;
     CHECK(haphe_run(scene, "hand", "press", 1.0, 1000.0, on_tick, &most, &ticks));
     printf("servo: %llu ticks, largest force %.3f N\n", (unsigned long long)ticks, most);
-    if (ticks != 1000 || most <= 0.0 || most > 3.3 + 1e-9) return 1;
+    if (ticks != 1000 || most <= 0.0 || most > haphe_default_max_force() + 1e-9) return 1;
 
     haphe_proxy_free(proxy);
     haphe_scene_free(scene);

@@ -44,7 +44,7 @@ int main(int argc, char **argv) try {
 
     const double start[3] = {0.0, 2.0, 0.0};
     HapheProxy *raw_proxy = nullptr;
-    check(haphe_proxy_new(start, 3.3, &raw_proxy), "proxy");
+    check(haphe_proxy_new(start, haphe_default_max_force(), &raw_proxy), "proxy");
     std::unique_ptr<HapheProxy, ProxyFree> proxy(raw_proxy);
     HapheTick tick{};
     int touching = 0;

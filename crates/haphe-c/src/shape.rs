@@ -6,9 +6,7 @@ use std::sync::Arc;
 
 use haphe_lib::DVec3;
 use haphe_lib::map::{MapOptions, decode, encode};
-use haphe_lib::mesh::{
-    Mesh, ReadOptions, Surface, SurfaceOptions, Units, Weld, read_mesh_with_stats, weld,
-};
+use haphe_lib::mesh::{Mesh, ReadOptions, Units, Weld, weld};
 use haphe_lib::query::{
     BatchError, NonFinite, Side, check_rows, classify_point, first_crossing, for_each_point,
     for_each_segment,
@@ -83,7 +81,6 @@ fn give(out: *mut *mut HapheShape, shape: Shape) -> Result<(), Failure> {
     if out.is_null() {
         return Err(Failure::argument("out is null"));
     }
-    shape.prepare_clear_zones();
     let handle = Box::into_raw(Box::new(HapheShape {
         inner: Arc::new(shape),
     }));
@@ -98,11 +95,10 @@ pub(crate) fn shape<'a>(s: *const HapheShape) -> Result<&'a HapheShape, Failure>
     unsafe { s.as_ref() }.ok_or_else(|| Failure::argument("shape is null"))
 }
 
-/// Builds the surface and map of `mesh`; errors are prefixed with `name`.
+/// The shape of `mesh` ([`Shape::from_mesh`]); errors are prefixed with `name`.
 fn build(name: &str, mesh: Mesh) -> Result<Shape, Failure> {
-    let fail = |e: &dyn std::fmt::Display| Failure(HapheStatus::Format, format!("{name}: {e}"));
-    let surface = Surface::new(mesh, &SurfaceOptions::default()).map_err(|e| fail(&e))?;
-    Shape::build(surface, &MapOptions::default()).map_err(|e| fail(&e))
+    Shape::from_mesh(name, mesh, &MapOptions::default())
+        .map_err(|e| Failure(HapheStatus::Format, e.to_string()))
 }
 
 /// Reads the file at `path`.
@@ -137,9 +133,9 @@ pub extern "C" fn haphe_shape_from_file(
             weld: Weld::Exact,
             format: None,
         };
-        let loaded = read_mesh_with_stats(path, &bytes, &options)
+        let shape = Shape::read(path, &bytes, &options, &MapOptions::default())
             .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
-        give(out, build(path, loaded.mesh)?)
+        give(out, shape)
     })
 }
 
@@ -191,7 +187,7 @@ pub extern "C" fn haphe_shape_load(path: *const c_char, out: *mut *mut HapheShap
         let bytes = read(path)?;
         let (surface, map) =
             decode(&bytes).map_err(|e| Failure(HapheStatus::Format, format!("{path}: {e}")))?;
-        give(out, Shape::new(surface, map))
+        give(out, Shape::new(surface, map).with_clear_zones())
     })
 }
 
@@ -204,14 +200,8 @@ pub extern "C" fn haphe_shape_save(shape: *const HapheShape, path: *const c_char
         let s = self::shape(shape)?;
         let path = text("path", path)?;
         let bytes = encode(s.inner.surface(), s.inner.map());
-        let temporary = format!("{path}.{}.tmp", std::process::id());
-        let io =
-            |e: std::io::Error, p: &str| Failure(HapheStatus::Io, format!("cannot write {p}: {e}"));
-        std::fs::write(&temporary, &bytes).map_err(|e| io(e, &temporary))?;
-        std::fs::rename(&temporary, Path::new(path)).map_err(|e| {
-            let _ = std::fs::remove_file(&temporary);
-            io(e, path)
-        })
+        haphe_files::write_replacing(Path::new(path), &bytes)
+            .map_err(|e| Failure(HapheStatus::Io, e.message()))
     })
 }
 

@@ -124,16 +124,16 @@ pub struct ModelArgs {
     #[arg(long, default_value = "m", value_parser = parse_units)]
     pub units: Units,
     /// Stiffness of a --mesh or --shape object, N/m.
-    #[arg(long, default_value_t = 600.0)]
+    #[arg(long, default_value_t = Material::DEFAULT.stiffness())]
     pub stiffness: f64,
     /// Damping of a --mesh or --shape object, N·s/m.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = Material::DEFAULT.damping())]
     pub damping: f64,
     /// Static friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.3)]
+    #[arg(long, default_value_t = Material::DEFAULT.static_friction())]
     pub static_friction: f64,
     /// Dynamic friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = Material::DEFAULT.dynamic_friction())]
     pub dynamic_friction: f64,
 }
 

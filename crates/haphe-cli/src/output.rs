@@ -1,51 +1,22 @@
 //! Writing output files: never in place. Each output is written to a temporary file in the
 //! target's directory, flushed and synced, and renamed over the target only when complete;
-//! on any failure the temporary file is removed and an existing target is left as it was.
+//! on any failure the temporary file is removed and an existing target is left as it was
+//! ([`haphe_files`], shared with the Python and C bindings). Here: the checks before any
+//! long work, and the command's writers.
 
-use std::fs::Permissions;
-use std::io::{BufWriter, Write};
-use std::os::unix::fs::{MetadataExt, PermissionsExt};
+use std::io::Write;
+use std::os::unix::fs::MetadataExt;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
-use tempfile::NamedTempFile;
+pub use haphe_files::Staged;
+use haphe_files::{directory_of, temporary_beside};
 
 /// An output path checked by [`check_outputs`].
 #[derive(Debug, Clone)]
 pub struct Output {
     /// The path as given.
     pub path: PathBuf,
-}
-
-/// The directory a file at `path` goes into (`.` for a bare name).
-fn directory_of(path: &Path) -> &Path {
-    match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    }
-}
-
-/// A new temporary file beside `path`, named after it (`.name.XXXXXX.ext`, the extension
-/// kept so that writers choosing a format by extension see the right one).
-fn temporary_beside(path: &Path) -> anyhow::Result<NamedTempFile> {
-    let directory = directory_of(path);
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let suffix = path
-        .extension()
-        .map(|e| format!(".{}", e.to_string_lossy()))
-        .unwrap_or_default();
-    tempfile::Builder::new()
-        .prefix(&format!(".{name}."))
-        .suffix(&suffix)
-        .permissions(Permissions::from_mode(0o666))
-        .tempfile_in(directory)
-        .with_context(|| {
-            format!(
-                "cannot write {}: cannot create a file in {}",
-                path.display(),
-                directory.display()
-            )
-        })
 }
 
 /// Checks, before any long work, that every output can be written: its directory exists
@@ -117,63 +88,7 @@ pub fn write_output(
 ) -> anyhow::Result<()> {
     let mut staged = Staged::create(path)?;
     write(staged.writer()).with_context(|| format!("cannot write {}", path.display()))?;
-    staged.commit()
-}
-
-fn persist(temporary: NamedTempFile, path: &Path) -> anyhow::Result<()> {
-    temporary
-        .as_file()
-        .sync_all()
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    temporary
-        .persist(path)
-        .map_err(|e| e.error)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(())
-}
-
-/// An output being written: a buffered temporary file beside the target, which replaces
-/// the target at [`Staged::commit`] and is removed if dropped before.
-pub struct Staged {
-    writer: BufWriter<NamedTempFile>,
-    path: PathBuf,
-}
-
-impl Staged {
-    /// Starts writing `path`.
-    ///
-    /// # Errors
-    /// When no file can be created in the target's directory.
-    pub fn create(path: &Path) -> anyhow::Result<Staged> {
-        Ok(Staged {
-            writer: BufWriter::with_capacity(1 << 20, temporary_beside(path)?),
-            path: path.to_owned(),
-        })
-    }
-
-    /// The writer to write the contents to.
-    pub fn writer(&mut self) -> &mut impl Write {
-        &mut self.writer
-    }
-
-    /// The target path.
-    pub fn path(&self) -> &Path {
-        &self.path
-    }
-
-    /// Flushes, syncs and renames the file over the target.
-    ///
-    /// # Errors
-    /// A write, sync or rename failure, naming the target.
-    pub fn commit(self) -> anyhow::Result<()> {
-        let path = self.path;
-        let temporary = self
-            .writer
-            .into_inner()
-            .map_err(|e| e.into_error())
-            .with_context(|| format!("cannot write {}", path.display()))?;
-        persist(temporary, &path)
-    }
+    Ok(staged.commit()?)
 }
 
 /// Draws a `width` × `height` RGB picture in memory with `draw` and writes it to `path` as

@@ -36,8 +36,12 @@ pub fn param_error(e: ParamError) -> PyErr {
 
 /// An I/O error on `path` as the matching `OSError` subclass, naming the file.
 pub fn io_error(what: &str, path: &Path, e: &std::io::Error) -> PyErr {
-    let message = format!("cannot {what} {}: {e}", path.display());
-    match e.kind() {
+    os_error(e.kind(), format!("cannot {what} {}: {e}", path.display()))
+}
+
+/// The `OSError` subclass for an error of `kind`, with `message`.
+pub fn os_error(kind: std::io::ErrorKind, message: String) -> PyErr {
+    match kind {
         std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(message),
         std::io::ErrorKind::PermissionDenied => PyPermissionError::new_err(message),
         _ => PyOSError::new_err(message),

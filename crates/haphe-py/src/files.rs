@@ -8,7 +8,7 @@ use haphe::mesh::{ReadOptions, Resolve, Surface, Units, Weld, read_mesh_resolvin
 use haphe::query::Validation;
 use pyo3::prelude::*;
 
-use crate::errors::{haphe_error, io_error};
+use crate::errors::{haphe_error, io_error, os_error};
 
 /// The read options for a `units` string (`m`, `mm`, `cm`, `in` or metres per file unit)
 /// and a weld tolerance in metres (`None` or 0: exact).
@@ -71,16 +71,9 @@ pub fn read_bytes(path: &Path) -> PyResult<Vec<u8>> {
 }
 
 /// Writes `bytes` to `path` through a new file renamed over it, so that a reader of the
-/// old file never sees a half-written one.
+/// old file never sees a half-written one ([`haphe_files::write_replacing`]).
 pub fn write_replacing(path: &Path, bytes: &[u8]) -> PyResult<()> {
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(format!(".{}.tmp", std::process::id()));
-    let temporary = path.with_file_name(name);
-    std::fs::write(&temporary, bytes).map_err(|e| io_error("write", &temporary, &e))?;
-    std::fs::rename(&temporary, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temporary);
-        io_error("replace", path, &e)
-    })
+    haphe_files::write_replacing(path, bytes).map_err(|e| os_error(e.io().kind(), e.message()))
 }
 
 /// Saves a surface and its map as a map file (the format of `haphe build`).

@@ -32,6 +32,7 @@ fn haphe_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Proxy>()?;
     m.add_class::<scene::Contact>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("DEFAULT_MAX_FORCE", haphe::scene::DEFAULT_MAX_FORCE_N)?;
     Ok(())
 }
 

@@ -166,7 +166,7 @@ impl Scene {
     /// (default: equal to ``friction``). A closed solid is touched from outside only, an
     /// open surface from both sides, unless ``two_sided`` says otherwise. Returns the
     /// object's id.
-    #[pyo3(signature = (shape, position = [0.0; 3], rotation = None, stiffness = 500.0, damping = 0.0, friction = 0.0, dynamic_friction = None, two_sided = None))]
+    #[pyo3(signature = (shape, position = [0.0; 3], rotation = None, stiffness = Material::DEFAULT.stiffness(), damping = Material::DEFAULT.damping(), friction = Material::DEFAULT.static_friction(), dynamic_friction = None, two_sided = None))]
     #[allow(clippy::too_many_arguments)]
     fn add(
         &mut self,
@@ -302,12 +302,14 @@ fn tuple(v: DVec3) -> (f64, f64, f64) {
 /// tick toward the device point (HIP) and stopped and slid by the surfaces it meets; the
 /// force pulls the device toward it.
 ///
-/// ``Proxy(position=(0, 0, 0), max_force=3.3, skin=1e-6, workspace_radius=1000.0)``:
+/// ``Proxy(position=(0, 0, 0), max_force=DEFAULT_MAX_FORCE, skin=1e-6,
+/// workspace_radius=1000.0)``:
 /// the start position (metres, normally the device point at start-up), the largest force
-/// rendered (N), the distance kept from a touched surface (m), and the radius beyond which
-/// device points are pulled back (m). A value outside its domain (the library's table:
-/// a force above 0 and at most 100 N, a skin above 0 and at most 1 mm, a radius above 0)
-/// raises ``HapheError`` naming it.
+/// rendered (N; ``haphe.DEFAULT_MAX_FORCE``, that of a common desktop device, by default),
+/// the distance kept from a touched surface (m), and the radius beyond which device points
+/// are pulled back (m). A value outside its domain (the library's table: a force above 0
+/// and at most 100 N, a skin above 0 and at most 1 mm, a radius above 0) raises
+/// ``HapheError`` naming it.
 #[pyclass(module = "haphe")]
 pub struct Proxy {
     inner: proxy::Proxy,
@@ -316,7 +318,7 @@ pub struct Proxy {
 #[pymethods]
 impl Proxy {
     #[new]
-    #[pyo3(signature = (position = [0.0; 3], max_force = 3.3, skin = proxy::DEFAULT_SKIN, workspace_radius = 1e3))]
+    #[pyo3(signature = (position = [0.0; 3], max_force = haphe::scene::DEFAULT_MAX_FORCE_N, skin = proxy::DEFAULT_SKIN, workspace_radius = 1e3))]
     fn new(
         position: [f64; 3],
         max_force: f64,

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use haphe::DVec3;
 use haphe::map::{MapFileError, MapOptions, decode, encode};
-use haphe::mesh::{Mesh, Surface, SurfaceOptions, read_mesh_resolving};
+use haphe::mesh::{Mesh, read_mesh_resolving};
 use haphe::query::{
     first_crossing, first_crossing_brute_force, for_each_point, for_each_segment, inside_batch,
     nearest_within,
@@ -41,16 +41,6 @@ type Reduced<'py> = (Bound<'py, PyAny>, (Bound<'py, PyBytes>, String));
 /// An `(N, 3)` array of points handed to Python.
 type Points<'py> = Bound<'py, numpy::PyArray2<f64>>;
 
-/// Builds the surface and map of `mesh`; errors are prefixed with `name`.
-fn build(name: &str, mesh: Mesh) -> Result<scene::Shape, String> {
-    let surface =
-        Surface::new(mesh, &SurfaceOptions::default()).map_err(|e| format!("{name}: {e}"))?;
-    let shape =
-        scene::Shape::build(surface, &MapOptions::default()).map_err(|e| format!("{name}: {e}"))?;
-    shape.prepare_clear_zones();
-    Ok(shape)
-}
-
 #[pymethods]
 impl Shape {
     /// Shape.from_file(path, units="m", weld_tolerance=None)
@@ -79,7 +69,8 @@ impl Shape {
             .detach(|| {
                 let loaded = read_mesh_resolving(&name, &bytes, &options, &mut Folder::of(&path))
                     .map_err(|e| e.to_string())?;
-                build(&name, loaded.mesh)
+                scene::Shape::from_mesh(&name, loaded.mesh, &MapOptions::default())
+                    .map_err(|e| e.to_string())
             })
             .map_err(|e| haphe_error("", e))?;
         Ok(Shape {
@@ -140,7 +131,7 @@ impl Shape {
         let name = "arrays".to_owned();
         let (mesh, _) = haphe::mesh::weld(&mesh, haphe::mesh::Weld::Exact);
         let inner = py
-            .detach(|| build(&name, mesh))
+            .detach(|| scene::Shape::from_mesh(&name, mesh, &MapOptions::default()))
             .map_err(|e| haphe_error("", e))?;
         Ok(Shape {
             inner: Arc::new(inner),
@@ -157,11 +148,7 @@ impl Shape {
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Shape> {
         let (surface, map) = load_map(&path)?;
         let name = path.display().to_string();
-        let inner = py.detach(|| {
-            let shape = scene::Shape::new(surface, map);
-            shape.prepare_clear_zones();
-            shape
-        });
+        let inner = py.detach(|| scene::Shape::new(surface, map).with_clear_zones());
         Ok(Shape {
             inner: Arc::new(inner),
             name,
@@ -205,9 +192,7 @@ impl Shape {
         let inner = py
             .detach(|| -> Result<scene::Shape, MapFileError> {
                 let (surface, map) = decode(data)?;
-                let shape = scene::Shape::new(surface, map);
-                shape.prepare_clear_zones();
-                Ok(shape)
+                Ok(scene::Shape::new(surface, map).with_clear_zones())
             })
             .map_err(|e: MapFileError| haphe_error(&name, e))?;
         Ok(Shape {

@@ -36,7 +36,7 @@ pub use live::{FRAME_RATE_HZ, Frame, LiveRun, LiveSource, Published, STATS_WINDO
 pub use model::{MESH_MAGIC, Model, ObjectInfo, ObjectMesh};
 pub use mouse::{MOUSE_MAX_FORCE_N, MOUSE_VELOCITY_TAU_S, MouseDevice, MouseHandle};
 pub use poses::{ObjectPose, POSE_VALUES, encode_poses, poses_at};
-pub use replay::{ROW_VALUES, STATUS_NAMES, Trace, TraceError, TraceRow};
+pub use replay::{ROW_VALUES, STATUS_NAMES, Trace, TraceError, TraceRow, encode_trace};
 pub use timing::{TIMING_CAPACITY, Timed};
 
 use std::net::{SocketAddr, TcpListener};
@@ -180,7 +180,7 @@ impl ViewServer {
             poses: trace
                 .as_ref()
                 .map(|t| encode_poses(&model.motions, t.rows.iter().map(|r| r.t))),
-            trace: trace.map(|t| t.encode()),
+            trace: trace.map(|t| encode_trace(&t)),
             frames: frames.clone(),
             mouse: mouse.map(Mutex::new),
             closing: closing_rx.clone(),

@@ -14,7 +14,7 @@ pub const MOUSE_VELOCITY_TAU_S: f64 = 0.02;
 
 /// Largest force the mouse device reports it can render, newtons: the simulated device's,
 /// so that a scene feels (and is drawn) as in `haphe simulate`.
-pub const MOUSE_MAX_FORCE_N: f64 = 3.3;
+pub const MOUSE_MAX_FORCE_N: f64 = haphe::scene::DEFAULT_MAX_FORCE_N;
 
 /// The writing end: the server sets the device point (metres, world frame) here.
 #[derive(Debug)]

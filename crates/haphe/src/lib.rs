@@ -40,7 +40,7 @@
 //!         strongest = strongest.max(tick.force.length());
 //!     });
 //!     println!("{contact_ticks} ticks in contact; strongest force {strongest:.2} N");
-//!     assert!(contact_ticks > 0 && strongest <= 3.3 + 1e-9);
+//!     assert!(contact_ticks > 0 && strongest <= haphe::scene::DEFAULT_MAX_FORCE_N + 1e-9);
 //!     Ok(())
 //! }
 //! ```

@@ -137,7 +137,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         fifo: true,
         standby_core: None,
         seed: 3,
-        max_force: 3.3,
+        max_force: haphe::scene::DEFAULT_MAX_FORCE_N,
         out: args.out.clone(),
         plot: Some(args.plot.clone()),
     };

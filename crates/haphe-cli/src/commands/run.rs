@@ -48,7 +48,7 @@ pub struct Args {
     #[command(flatten)]
     output: OutputArgs,
     /// Largest force rendered, N (lowered to the device's maximum).
-    #[arg(long, default_value_t = 3.3)]
+    #[arg(long, default_value_t = haphe::scene::DEFAULT_MAX_FORCE_N)]
     max_force: f64,
 }
 

@@ -66,8 +66,8 @@ pub struct Args {
     /// Seed of the explore path.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Largest force rendered, N (the simulated device's maximum is 3.3 N).
-    #[arg(long, default_value_t = 3.3)]
+    /// Largest force rendered, N (the simulated device's maximum is the default).
+    #[arg(long, default_value_t = haphe::scene::DEFAULT_MAX_FORCE_N)]
     max_force: f64,
 }
 

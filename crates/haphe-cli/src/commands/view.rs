@@ -9,7 +9,7 @@ use anyhow::{anyhow, bail};
 use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Catalog;
-use haphe::scene::{ObjectId, Pose, SceneObject};
+use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe_view::{Model, Source, Trace};
 
 use crate::args::{MappingArgs, parse_units};
@@ -56,13 +56,13 @@ pub struct Args {
     #[command(flatten)]
     mapping: MappingArgs,
     /// Stiffness of a --mesh or --shape object, N/m.
-    #[arg(long, default_value_t = 600.0)]
+    #[arg(long, default_value_t = Material::DEFAULT.stiffness())]
     stiffness: f64,
     /// Static friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.3)]
+    #[arg(long, default_value_t = Material::DEFAULT.static_friction())]
     static_friction: f64,
     /// Dynamic friction coefficient of a --mesh or --shape object.
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = Material::DEFAULT.dynamic_friction())]
     dynamic_friction: f64,
     #[command(flatten)]
     serve: Serve,
@@ -73,7 +73,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let map = MapOptions::default();
     let material = crate::args::material_of_flags(
         args.stiffness,
-        1.0,
+        Material::DEFAULT.damping(),
         args.static_friction,
         args.dynamic_friction,
     )?;

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use anyhow::{Context, anyhow};
 use haphe::map::MapOptions;
 use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{ReadOptions, Surface, SurfaceOptions, Units, Weld};
+use haphe::mesh::{ReadOptions, Units, Weld};
 use haphe::scene::{Material, SceneObject, Shape};
 use haphe::servo::ObjectMotion;
 use haphe::servo::scene_file::{ObjectSource, parse_scene};
@@ -91,17 +91,13 @@ fn build_shape(source: &ObjectSource, map: &MapOptions) -> anyhow::Result<Shape>
 }
 
 /// A built-in procedural shape with about `triangles` triangles, with its map and its
-/// clear zones (see [`ready`]).
+/// clear zones ([`Shape::from_mesh`]).
 pub fn shape_of(which: Catalog, triangles: usize, map: &MapOptions) -> anyhow::Result<Shape> {
-    let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
-    Ok(ready(Shape::build(surface, map)?))
-}
-
-/// `shape` with every triangle's clear zone computed, here rather than on the servo
-/// thread at the first contact with each triangle.
-fn ready(shape: Shape) -> Shape {
-    shape.prepare_clear_zones();
-    shape
+    Ok(Shape::from_mesh(
+        which.name(),
+        which.with_triangles(triangles),
+        map,
+    )?)
 }
 
 /// A shape from a mesh file, with its map and clear zones.
@@ -111,8 +107,9 @@ pub fn mesh_shape(path: &Path, units: Units, map: &MapOptions) -> anyhow::Result
         ..ReadOptions::default()
     };
     let loaded = load(path, &read).map_err(|e| anyhow!("{e}"))?;
-    let surface = Surface::new(loaded.mesh, &SurfaceOptions::default())
-        .with_context(|| path.display().to_string())?;
-    let shape = Shape::build(surface, map).with_context(|| path.display().to_string())?;
-    Ok(ready(shape))
+    Ok(Shape::from_mesh(
+        &path.display().to_string(),
+        loaded.mesh,
+        map,
+    )?)
 }

@@ -38,6 +38,6 @@ impl TraceOut {
             return Err(e)
                 .with_context(|| format!("cannot write {}", self.staged.path().display()));
         }
-        self.staged.commit()
+        Ok(self.staged.commit()?)
     }
 }

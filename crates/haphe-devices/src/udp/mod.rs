@@ -50,13 +50,14 @@ pub struct UdpOptions {
 }
 
 impl Default for UdpOptions {
-    /// The default timeouts, a 0.2 m cube workspace centred on the origin, 3.3 N.
+    /// The default timeouts, a 0.2 m cube workspace centred on the origin,
+    /// [`DEFAULT_MAX_FORCE_N`](haphe::scene::DEFAULT_MAX_FORCE_N).
     fn default() -> UdpOptions {
         UdpOptions {
             timeout_s: UDP_TIMEOUT_S,
             first_timeout_s: UDP_FIRST_TIMEOUT_S,
             workspace: (DVec3::splat(-0.1), DVec3::splat(0.1)),
-            max_force: 3.3,
+            max_force: haphe::scene::DEFAULT_MAX_FORCE_N,
         }
     }
 }

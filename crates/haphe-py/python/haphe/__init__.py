@@ -10,6 +10,7 @@ outside. Triangle indices are always the face indices of the mesh as given.
 """
 
 from ._haphe import (
+    DEFAULT_MAX_FORCE,
     Contact,
     DeviceError,
     HapheError,
@@ -23,6 +24,7 @@ from ._haphe import (
 )
 
 __all__ = [
+    "DEFAULT_MAX_FORCE",
     "Contact",
     "DeviceError",
     "HapheError",

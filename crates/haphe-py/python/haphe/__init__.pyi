@@ -7,6 +7,8 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+# The largest force rendered unless told otherwise, newtons (the library's default).
+DEFAULT_MAX_FORCE: float
 
 _Path = Union[str, PathLike[str]]
 _Vec3 = Union[Sequence[float], npt.NDArray[np.float64]]
@@ -146,7 +148,7 @@ class Proxy:
     def __init__(
         self,
         position: _Vec3 = (0.0, 0.0, 0.0),
-        max_force: float = 3.3,
+        max_force: float = DEFAULT_MAX_FORCE,
         skin: float = 1e-6,
         workspace_radius: float = 1000.0,
     ) -> None: ...

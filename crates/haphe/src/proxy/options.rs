@@ -44,11 +44,12 @@ pub struct ProxyOptions {
 }
 
 impl Default for ProxyOptions {
-    /// A micrometre of skin, 3.3 N (a common desktop device), a 1 km workspace.
+    /// A micrometre of skin, [`DEFAULT_MAX_FORCE_N`](crate::scene::DEFAULT_MAX_FORCE_N)
+    /// (a common desktop device), a 1 km workspace.
     fn default() -> ProxyOptions {
         ProxyOptions {
             skin: DEFAULT_SKIN,
-            max_force: 3.3,
+            max_force: crate::scene::DEFAULT_MAX_FORCE_N,
             workspace_radius: 1e3,
         }
     }

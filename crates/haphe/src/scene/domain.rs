@@ -46,6 +46,12 @@ pub struct Domain {
 /// The largest force accepted, newtons: desktop devices render a few newtons, the largest
 /// arms a few tens.
 pub const ABSURD_FORCE_N: f64 = 100.0;
+/// The largest force a device renders unless told otherwise, newtons: that of a common
+/// desktop device (a 3D Systems Touch renders 3.3 N), inside [`Param::MaxForce`]. The
+/// default of the proxy ([`ProxyOptions`](crate::proxy::ProxyOptions)), the simulated
+/// devices, the network device, the mouse, the command's `--max-force` and the Python and
+/// C bindings.
+pub const DEFAULT_MAX_FORCE_N: f64 = 3.3;
 /// The largest stiffness accepted, N/m: desktop devices render a few thousand.
 pub const ABSURD_STIFFNESS_N_PER_M: f64 = 1e6;
 /// The farthest distance from the world origin accepted, metres (positions, centres,
@@ -178,6 +184,14 @@ impl fmt::Display for Domain {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_default_maximum_force_is_inside_its_domain() {
+        assert_eq!(
+            Param::MaxForce.check(DEFAULT_MAX_FORCE_N),
+            Ok(DEFAULT_MAX_FORCE_N)
+        );
+    }
 
     #[test]
     fn the_table_is_in_the_order_of_the_params() {

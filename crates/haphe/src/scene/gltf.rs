@@ -19,7 +19,7 @@ use super::object::{ObjectId, SceneObject};
 use super::pose::Pose;
 use super::shape::Shape;
 use crate::map::MapOptions;
-use crate::mesh::{GltfNode, GltfScene, Mesh, Surface, SurfaceOptions, Weld, weld};
+use crate::mesh::{GltfNode, GltfScene, Mesh, Weld, weld};
 
 /// Why a glTF file's nodes do not make a scene: the message names the node.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -128,10 +128,11 @@ impl GltfObjects {
                 }
             };
             let (welded, _) = weld(mesh, weld_mode);
-            let surface = Surface::new(welded, &SurfaceOptions::default())
-                .map_err(|e| fail(e.to_string()))?;
-            let shape = Shape::build(surface, map).map_err(|e| fail(e.to_string()))?;
-            shape.prepare_clear_zones();
+            // The node names the shape in the error; the message is what failed.
+            let shape = Shape::from_mesh("", welded, map).map_err(|e| {
+                let cause = std::error::Error::source(&e).map(ToString::to_string);
+                fail(cause.unwrap_or_else(|| e.to_string()))
+            })?;
             shapes.push(Arc::new(shape));
         }
         Ok(self

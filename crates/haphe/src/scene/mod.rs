@@ -44,6 +44,7 @@ mod world;
 
 #[doc(hidden)]
 pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};
+pub use domain::DEFAULT_MAX_FORCE_N;
 #[doc(hidden)]
 pub use domain::{ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M};
 #[doc(hidden)]
@@ -59,7 +60,7 @@ pub use moves::ObjectKey;
 pub use object::{ObjectId, SceneObject, Sides};
 pub use param::Param;
 pub use pose::Pose;
-pub use shape::Shape;
+pub use shape::{Shape, ShapeError};
 pub use world::Scene;
 
 pub(crate) use broad::Near;

@@ -5,8 +5,37 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use glam::DVec3;
 
 use crate::map::{MapError, MapOptions, VoxelMap};
-use crate::mesh::{Surface, TriId};
+use crate::mesh::{
+    Mesh, ReadError, ReadOptions, Surface, SurfaceError, SurfaceOptions, TriId,
+    read_mesh_with_stats,
+};
 use crate::query::{ClearZone, zone_from_bits, zone_height};
+
+/// Why a mesh could not become a [`Shape`]: its file is not a mesh, or the mesh has no
+/// usable surface, or its map cannot be built. The last two name the mesh.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ShapeError {
+    /// The bytes are not a mesh (the error names the file and the place).
+    #[error(transparent)]
+    Read(#[from] ReadError),
+    /// The mesh cannot become a [`Surface`].
+    #[error("{name}: {source}")]
+    Surface {
+        /// The mesh's name (its file, or what the caller calls it).
+        name: String,
+        /// What is wrong.
+        source: SurfaceError,
+    },
+    /// The map of the surface cannot be built.
+    #[error("{name}: {source}")]
+    Map {
+        /// The mesh's name.
+        name: String,
+        /// What is wrong.
+        source: MapError,
+    },
+}
 
 /// An immutable collision shape: a [`Surface`] with its [`VoxelMap`] and a bounding sphere,
 /// in the object frame. Shared between objects (and threads) behind an
@@ -58,6 +87,51 @@ impl Shape {
     pub fn build(surface: Surface, options: &MapOptions) -> Result<Shape, MapError> {
         let map = VoxelMap::build(&surface, options)?;
         Ok(Shape::new(surface, map))
+    }
+
+    /// The shape of `mesh` ready for a servo loop, the recipe every front end follows: its
+    /// [`Surface`] (default [`SurfaceOptions`]), its [`VoxelMap`] and every triangle's
+    /// clear zone computed now ([`Shape::prepare_clear_zones`]), so that no tick computes
+    /// one. `name` (a file, or what the caller calls the mesh) is in the errors.
+    ///
+    /// # Errors
+    /// [`ShapeError::Surface`] (no triangle with area, or an invalid hand-built mesh) or
+    /// [`ShapeError::Map`] (map options out of range, a grid too large).
+    pub fn from_mesh(name: &str, mesh: Mesh, options: &MapOptions) -> Result<Shape, ShapeError> {
+        let surface = Surface::new(mesh, &SurfaceOptions::default()).map_err(|source| {
+            ShapeError::Surface {
+                name: name.to_owned(),
+                source,
+            }
+        })?;
+        let shape = Shape::build(surface, options).map_err(|source| ShapeError::Map {
+            name: name.to_owned(),
+            source,
+        })?;
+        Ok(shape.with_clear_zones())
+    }
+
+    /// Reads the mesh file `file` whose contents are `bytes` (the format from `read`, or
+    /// told apart by content) and makes its shape as [`Shape::from_mesh`] does.
+    ///
+    /// # Errors
+    /// [`ShapeError::Read`] naming the file and the place, or those of
+    /// [`Shape::from_mesh`].
+    pub fn read(
+        file: &str,
+        bytes: &[u8],
+        read: &ReadOptions,
+        options: &MapOptions,
+    ) -> Result<Shape, ShapeError> {
+        let loaded = read_mesh_with_stats(file, bytes, read)?;
+        Shape::from_mesh(file, loaded.mesh, options)
+    }
+
+    /// The shape with every triangle's clear zone computed ([`Shape::prepare_clear_zones`]):
+    /// for a surface and map loaded from a file, as [`Shape::from_mesh`] does for a mesh.
+    pub fn with_clear_zones(self) -> Shape {
+        self.prepare_clear_zones();
+        self
     }
 
     /// The surface (object frame, metres).

@@ -307,7 +307,7 @@ mod tests {
     fn spec() -> DeviceSpec {
         DeviceSpec {
             name: "test",
-            max_force: 3.3,
+            max_force: crate::scene::DEFAULT_MAX_FORCE_N,
             max_stiffness: 2000.0,
             workspace_min: DVec3::new(-0.08, -0.06, -0.035),
             workspace_max: DVec3::new(0.08, 0.06, 0.035),

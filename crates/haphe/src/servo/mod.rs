@@ -88,8 +88,8 @@ pub use realtime::{
 #[doc(hidden)]
 pub use simulated::simulated_spec;
 pub use simulated::{
-    HandOptions, HipTrace, PathKind, ReplayDevice, ScriptedDevice, SimulatedHand, TraceError,
-    Trajectory, TrajectoryError, scene_bounds, scripted_path,
+    HandOptions, PathKind, ReplayDevice, ScriptedDevice, SimulatedHand, Trajectory,
+    TrajectoryError, scene_bounds, scripted_path,
 };
 #[doc(hidden)]
 pub use tick::MAX_MOTION_AMPLITUDE;
@@ -98,4 +98,5 @@ pub use tick::{
 };
 #[doc(hidden)]
 pub use tick::{MAX_RATE_HZ, MIN_RATE_HZ};
+pub use trace::read::{HipTrace, TickTrace, TraceError, TraceRow};
 pub use trace::{CSV_HEADER, Phase, STATUS_NAMES, TickRecord, write_csv_header};

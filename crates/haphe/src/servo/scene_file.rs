@@ -57,30 +57,44 @@ struct ObjectSpec {
     grid: Option<grid::GridSpec>,
 }
 
+/// A material table: each field missing takes [`Material::DEFAULT`]'s.
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 struct MaterialSpec {
     #[serde(default = "default_stiffness")]
     stiffness: f64,
-    #[serde(default)]
+    #[serde(default = "default_damping")]
     damping: f64,
-    #[serde(default)]
+    #[serde(default = "default_static_friction")]
     static_friction: f64,
-    #[serde(default)]
+    #[serde(default = "default_dynamic_friction")]
     dynamic_friction: f64,
 }
 
 fn default_stiffness() -> f64 {
-    Material::default().stiffness()
+    Material::DEFAULT.stiffness()
+}
+
+fn default_damping() -> f64 {
+    Material::DEFAULT.damping()
+}
+
+fn default_static_friction() -> f64 {
+    Material::DEFAULT.static_friction()
+}
+
+fn default_dynamic_friction() -> f64 {
+    Material::DEFAULT.dynamic_friction()
 }
 
 impl Default for MaterialSpec {
     fn default() -> MaterialSpec {
+        let m = Material::DEFAULT;
         MaterialSpec {
-            stiffness: default_stiffness(),
-            damping: 0.0,
-            static_friction: 0.0,
-            dynamic_friction: 0.0,
+            stiffness: m.stiffness,
+            damping: m.damping,
+            static_friction: m.static_friction,
+            dynamic_friction: m.dynamic_friction,
         }
     }
 }

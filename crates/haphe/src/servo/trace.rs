@@ -1,4 +1,7 @@
-//! What the servo loop records every tick, and the CSV form of it.
+//! What the servo loop records every tick, and the CSV form of it; reading traces back is
+//! [`read`], beside it.
+
+pub(crate) mod read;
 
 use std::io::{self, Write};
 

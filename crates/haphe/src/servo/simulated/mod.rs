@@ -12,7 +12,7 @@ mod spec;
 mod trajectory;
 
 pub use hand::{HandOptions, SimulatedHand};
-pub use replay::{HipTrace, ReplayDevice, TraceError};
+pub use replay::ReplayDevice;
 pub use scripted::{PathKind, ScriptedDevice, scene_bounds, scripted_path};
 pub use spec::simulated_spec;
 pub use trajectory::{Trajectory, TrajectoryError};
