@@ -45,7 +45,12 @@ fn material_flags_are_checked_like_a_scene_file() {
             "--spin-us must be a finite number from 0 to 1000000 µs, not -5",
         ),
     ] {
-        let o = simulate_sphere(&[flag, value]);
+        // The default dynamic friction is 0: ask for more than the static coefficient.
+        let o = if flag == "--static-friction" {
+            simulate_sphere(&[flag, value, "--dynamic-friction", "0.2"])
+        } else {
+            simulate_sphere(&[flag, value])
+        };
         assert_error(&o, &[says]);
     }
     let dir = scratch("material");
