@@ -171,10 +171,16 @@ enum HapheStatus haphe_scene_set_pose(struct HapheScene *scene,
                                       const double *position,
                                       const double *rotation);
 
+// The largest force a device renders unless told otherwise, newtons: the library's
+// default, that of a common desktop device. Pass it as `haphe_proxy_new`'s `max_force`
+// when the device's own maximum is not known.
+double haphe_default_max_force(void);
+
 // A new proxy at `position` (3 doubles, metres; null: the origin), rendering at most
-// `max_force` newtons. On success `*out` is owned by the caller: free it with
-// `haphe_proxy_free`. Errors: `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()`
-// naming `max_force` (above 0, at most 100 N) or `position`.
+// `max_force` newtons (`haphe_default_max_force()` unless the device says otherwise).
+// On success `*out` is owned by the caller: free it with `haphe_proxy_free`. Errors:
+// `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()` naming `max_force` (above 0, at
+// most 100 N) or `position`.
 enum HapheStatus haphe_proxy_new(const double *position, double max_force, struct HapheProxy **out);
 
 // Frees a proxy (null is ignored).
