@@ -191,7 +191,12 @@ impl Proxy {
         // 4. Contact and force.
         let on = (hit.surface(), plane.normal, sweep.planes.len() as u8);
         let (contact, force) = self.contact_and_force(scene, on, p, &hand, &material, &mut status);
-        // 5. Deep penetration: the hold begins.
+        // 5. Deep penetration: the hold begins. Tested before the output is built, so that
+        // the common case builds it once, in place.
+        let depth = saturation_depth(&material, self.options.max_force);
+        if !is_deep(p, hand.hip, plane.normal, depth) {
+            return self.output(p, force, contact, status);
+        }
         let out = self.output(p, force, contact, status);
         self.hold_if_deep(scene, &sweep, (&hit, plane.normal, &material), &hand, out)
     }
