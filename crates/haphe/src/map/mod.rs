@@ -62,7 +62,11 @@ pub(crate) use cast::{CellPart, Found};
 pub(crate) use cells::CellBox;
 #[doc(hidden)]
 pub use file::FORMAT_VERSION;
-pub use file::{decode, decode_in_place, encode, looks_like_map};
+pub use file::{decode, decode_in_place, encode};
+// How the command tells a map file from a mesh file by its first bytes: public for it, not
+// part of the documented interface.
+#[doc(hidden)]
+pub use file::looks_like_map;
 pub use file_error::MapFileError;
 use free_space::{BLOCK_SIDE, InBrick, Look, REGION_SIDE, RegionLook};
 #[doc(hidden)]

@@ -116,7 +116,11 @@ pub use godobject::MAX_WORKSPACE_RADIUS;
 pub use godobject::Proxy;
 #[doc(hidden)]
 pub use hold::saturation_depth;
-pub use options::{DEFAULT_SKIN, ProxyOptions};
+// The skin's default, which the Python binding names in its signature (`ProxyOptions::default`
+// states it: a micrometre).
+#[doc(hidden)]
+pub use options::DEFAULT_SKIN;
+pub use options::ProxyOptions;
 pub use output::{Contact, TickOutput, TickStatus};
 // The god-object's geometric steps, which the brute-force proxy of `verify` runs too.
 #[cfg(any(test, feature = "testing"))]

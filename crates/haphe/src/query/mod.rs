@@ -17,6 +17,9 @@ mod probe;
 mod segment_triangle;
 mod self_intersect;
 mod triangle_triangle;
+// The record the front ends print for `validate` (the command, Python's `validate`): public
+// for them, not part of the documented interface.
+#[doc(hidden)]
 pub mod validation;
 mod walk;
 mod zone;
@@ -36,10 +39,8 @@ pub use near::MAX_NEAR_CELLS_PER_AXIS;
 pub use near::{NearTriangle, nearest_within};
 pub(crate) use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
-pub use self_intersect::{
-    SELF_INTERSECTION_BUDGET_PER_TRIANGLE, SelfIntersections, self_intersection_budget,
-    self_intersections,
-};
+pub use self_intersect::{SelfIntersections, self_intersections};
+#[doc(hidden)]
 pub use validation::Validation;
 #[doc(hidden)]
 pub use walk::{MAX_FAN_SCAN, MAX_WALK_STEPS};
@@ -61,7 +62,9 @@ pub use near::nearest_within_brute_force;
 #[doc(hidden)]
 pub use segment_triangle::{Segment, SegmentHit, intersect_segment_triangle};
 #[doc(hidden)]
-pub use self_intersect::SELF_INTERSECTION_BUDGET_MIN;
+pub use self_intersect::{
+    SELF_INTERSECTION_BUDGET_MIN, SELF_INTERSECTION_BUDGET_PER_TRIANGLE, self_intersection_budget,
+};
 #[doc(hidden)]
 pub use triangle_triangle::intersect_triangle_triangle;
 #[doc(hidden)]

@@ -36,7 +36,8 @@ pub struct SelfIntersections {
     /// share all their corners); each copy's intersections with other triangles are.
     pub coincident: usize,
     /// Whether every candidate pair was tested. `false` when the candidates exceeded the
-    /// work budget ([`self_intersection_budget`]): `count` is then a lower bound.
+    /// work budget (256 candidate pairs per triangle, at least 2²¹): `count` is then a
+    /// lower bound.
     pub complete: bool,
 }
 
@@ -67,9 +68,9 @@ pub fn self_intersection_budget(triangles: usize) -> usize {
 ///
 /// # Performance
 /// Offline: parallel; proportional to the number of pairs sharing a cell (about ten per
-/// triangle with the map's default cell size), and never more than
-/// [`self_intersection_budget`] of them: a surface whose triangles are stacked in a few
-/// cells stops there, with [`SelfIntersections::complete`] false.
+/// triangle with the map's default cell size), and never more than 256 of them per
+/// triangle (at least 2²¹ in all; `self_intersection_budget`): a surface whose triangles
+/// are stacked in a few cells stops there, with [`SelfIntersections::complete`] false.
 pub fn self_intersections(surface: &Surface, map: &VoxelMap) -> SelfIntersections {
     let triangles = surface.triangles();
     let Coincident {

@@ -83,8 +83,11 @@ pub use device::{
 };
 pub use realtime::{
     DeviceClock, Interference, RealtimeOptions, RealtimeRun, RealtimeSetup, ServoLoop,
-    StandbyReport, check_core,
+    StandbyReport,
 };
+// The command's early check of `--standby-core` (`ServoLoop::spawn` checks the core itself).
+#[doc(hidden)]
+pub use realtime::check_core;
 #[doc(hidden)]
 pub use simulated::simulated_spec;
 pub use simulated::{

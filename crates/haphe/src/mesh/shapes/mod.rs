@@ -68,7 +68,9 @@ pub use torus::{MAX_TORUS_SEGMENTS, MIN_TORUS_SEGMENTS};
 
 /// Puts the faces of `mesh` in a random order fixed by `seed` (a Fisher–Yates shuffle; the
 /// vertices and each face's corners stay as they are): the same triangles as a file from
-/// a tool that scattered them, for testing and measuring what face order costs.
+/// a tool that scattered them, for testing and measuring what face order costs (the tests,
+/// `haphe generate --shuffle-faces`): not part of the documented interface.
+#[doc(hidden)]
 pub fn shuffle_faces(mesh: &mut Mesh, seed: u64) {
     let mut rng = crate::rng::SplitMix64::new(seed);
     for i in (1..mesh.triangles.len()).rev() {
