@@ -11,7 +11,9 @@
     python3 tools/public_names.py [--doc DIR] [--src DIR] [--names] [--max N]
 
 `--names` lists the names as well. It exits 1 when rustdoc lists more than `--max` items
-(default 120, the bound ARCHITECTURE.md states); CI runs it after building the docs.
+(default 120, the bound ARCHITECTURE.md states), or when a documented page links to an
+item rustdoc does not list (a `#[doc(hidden)]` one: the link would lead nowhere); CI runs
+it after building the docs.
 """
 
 import argparse
@@ -40,6 +42,24 @@ def rustdoc_items(all_html):
         names = [html.unescape(re.sub(r"<[^>]+>", "", a)).strip() for a in re.findall(r"<a [^>]*>(.*?)</a>", m.group(3), re.S)]
         kinds[heading] = names
     return kinds
+
+
+def links_to_hidden(doc):
+    """[(page, target)] of the links in the crate's pages that rustdoc left as a Rust path
+    (`super::X`, `crate::m::X`): it does so for an intra-doc link to an item it does not
+    list (one under `#[doc(hidden)]`), which then leads nowhere."""
+    found = []
+    for dirpath, dirnames, filenames in os.walk(doc):
+        dirnames.sort()
+        for name in sorted(filenames):
+            if not name.endswith(".html"):
+                continue
+            path = os.path.join(dirpath, name)
+            with open(path, encoding="utf-8") as f:
+                text = f.read()
+            for target in re.findall(r'href="((?:crate|super|self)::[^"]*)"', text):
+                found.append((os.path.relpath(path, doc), html.unescape(target)))
+    return found
 
 
 def reexports(src):
@@ -101,6 +121,11 @@ def main():
     if args.names:
         for file, line, name in names:
             print(f"  {file}:{line}  {name}")
+    broken = links_to_hidden(args.doc)
+    for page, target in broken:
+        print(f"public_names.py: {page} links to {target}, which rustdoc does not list (hidden): name it in code quotes instead", file=sys.stderr)
+    if broken:
+        return 1
     if total > args.max:
         print(
             f"public_names.py: rustdoc lists {total} items, more than {args.max}: a name a "

@@ -20,7 +20,7 @@ pub enum MapFileError {
     UnsupportedVersion {
         /// The version in the file.
         found: u32,
-        /// The version this build reads ([`FORMAT_VERSION`](super::FORMAT_VERSION)).
+        /// The version this build reads (`FORMAT_VERSION`).
         supported: u32,
     },
     /// The file is shorter than its header says (or than a header).

@@ -17,7 +17,7 @@ use glam::DVec3;
 /// The answer is exact for exactly representable intermediate values (for example small
 /// integer or dyadic coordinates); otherwise rounding can decide configurations within a
 /// few units in the last place of touching either way, which is why the voxel map enlarges
-/// its cells slightly before testing ([`OVERLAP_TOLERANCE_REL`](super::OVERLAP_TOLERANCE_REL)).
+/// its cells slightly before testing (`OVERLAP_TOLERANCE_REL`).
 /// Work relative to the box (or in cell units, as the map does) to keep rounding small.
 ///
 /// # Performance

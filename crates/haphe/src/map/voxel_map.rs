@@ -129,7 +129,7 @@ pub(crate) fn cell_in_brick(bc: [u32; 3], local: usize) -> [u32; 3] {
 /// - every cell outside the grid, and every padding cell (the outer layer), is
 ///   [`CellState::Outside`]; so is every point outside the grid box;
 /// - a cell is [`CellState::Surface`] exactly when at least one triangle overlaps it
-///   (enlarged by [`OVERLAP_TOLERANCE_REL`](super::OVERLAP_TOLERANCE_REL)), and
+///   (enlarged by `OVERLAP_TOLERANCE_REL`), and
 ///   [`triangles_in`](VoxelMap::triangles_in) lists every such triangle once, ordered along
 ///   the direction of the cell's slab (by the height of their centroids, then by index;
 ///   the order a segment crossing the cell that way meets them); other cells list none;
@@ -142,7 +142,7 @@ pub(crate) fn cell_in_brick(bc: [u32; 3], local: usize) -> [u32; 3] {
 ///   any other surface no cell is inside;
 /// - [`clearance`](VoxelMap::clearance) of a non-surface cell is `k ≥ 1` such that every
 ///   cell at Chebyshev distance below `k` (in cells) is a non-surface cell. It is exactly
-///   the Chebyshev distance to the nearest surface cell, capped at [`MAX_CLEARANCE`](super::MAX_CLEARANCE), in
+///   the Chebyshev distance to the nearest surface cell, capped at `MAX_CLEARANCE`, in
 ///   every brick that holds a surface cell or touches one (faces, edges or corners); in
 ///   bricks farther away, where every cell is at least 9 cells from the surface, it is the
 ///   smallest clearance of the brick's cells.
@@ -314,7 +314,7 @@ impl VoxelMap {
     }
 
     /// The clearance of cell `c`, in cells: 0 for a surface cell and for any index outside
-    /// the grid; otherwise `k` in `1..=`[`MAX_CLEARANCE`](super::MAX_CLEARANCE) such that every cell within
+    /// the grid; otherwise `k` in `1..=MAX_CLEARANCE` such that every cell within
     /// Chebyshev distance `k − 1` of `c` is a non-surface cell. A point in `c` can therefore
     /// move by up to `(k − 1)` cell sizes along every axis (a cube of side `2k − 1` cells
     /// around `c`) without meeting a triangle.
@@ -330,7 +330,7 @@ impl VoxelMap {
     /// any index outside the grid; otherwise `k ≥ 1` such that every cell within Chebyshev
     /// distance `k − 1` of `c` is a non-surface cell, as for [`clearance`](Self::clearance),
     /// but without its cap. Where the clearance is below
-    /// [`MAX_CLEARANCE`](super::MAX_CLEARANCE) the two are equal; farther from the surface,
+    /// `MAX_CLEARANCE` the two are equal; farther from the surface,
     /// in bricks at least three bricks from any brick holding a surface cell, the reach is
     /// `8 (D − 1) + 1` for a brick `D` bricks from the nearest such brick (Chebyshev
     /// distance), so a segment crossing empty space skips it in a few strides however

@@ -24,7 +24,7 @@ pub struct CellStep {
 /// segment passes exactly through a cell edge or corner, the walk steps one axis at a time
 /// and visits one of the cells around it with an empty interval. Rounding can attribute a
 /// point within about `1e-16` relative of a cell face to the neighbouring cell; the map
-/// lists triangles with [`OVERLAP_TOLERANCE_REL`](super::OVERLAP_TOLERANCE_REL) to spare,
+/// lists triangles with `OVERLAP_TOLERANCE_REL` to spare,
 /// so a triangle that the segment meets is listed in a cell the walk visits.
 ///
 /// A walk can also skip a block of cells known to list no triangle

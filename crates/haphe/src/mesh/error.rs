@@ -129,7 +129,7 @@ pub enum ReadErrorKind {
         /// The vertex (or its line).
         at: Place,
     },
-    /// A vertex coordinate is larger than [`MAX_COORDINATE`](super::limits::MAX_COORDINATE)
+    /// A vertex coordinate is larger than `MAX_COORDINATE`
     /// (areas and volumes of such a mesh overflow).
     #[error(
         "{at}: a vertex coordinate of {value:e} m is beyond the {limit:e} m haphe accepts (after scaling to metres)",

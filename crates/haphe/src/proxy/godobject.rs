@@ -133,7 +133,7 @@ impl Proxy {
     ///
     /// # Real-time
     /// No allocation, no lock, no panic for any input; at most one carry query per moved
-    /// object, one resting test (one triangle), [`MAX_PROXY_STEPS`](super::MAX_PROXY_STEPS) crossing queries and as
+    /// object, one resting test (one triangle), `MAX_PROXY_STEPS` crossing queries and as
     /// many touching searches (plus one on the first tick after [`Proxy::new`] or
     /// [`Proxy::reset`]), one friction query and one walk; before each crossing query one
     /// clear-zone test (and before the first, one triangle test under the proxy that can

@@ -83,9 +83,9 @@
 //! cap: the objects of the scene (its fixed capacity), [`MAX_PROXY_STEPS`] constraint legs
 //! of at most [`MAX_CONSTRAINTS`] planes, the cells of a segment walk (the grid's
 //! `dims[0] + dims[1] + dims[2]`), the cells around a point in a touching search
-//! ([`MAX_NEAR_CELLS_PER_AXIS`](crate::query::MAX_NEAR_CELLS_PER_AXIS) per axis), and the
-//! surface walk's [`MAX_WALK_STEPS`](crate::query::MAX_WALK_STEPS) and
-//! [`MAX_FAN_SCAN`](crate::query::MAX_FAN_SCAN). Reaching a cap returns a valid proxy
+//! (`MAX_NEAR_CELLS_PER_AXIS` per axis), and the
+//! surface walk's `MAX_WALK_STEPS` and
+//! `MAX_FAN_SCAN`. Reaching a cap returns a valid proxy
 //! (outside every object) and says so in the status. The force is finite and never above
 //! [`ProxyOptions::max_force`].
 //!

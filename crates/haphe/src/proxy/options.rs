@@ -60,7 +60,7 @@ impl ProxyOptions {
     ///
     /// # Errors
     /// [`ParamError`] naming `max_force` outside its domain (above 0, at most
-    /// [`ABSURD_FORCE_N`](crate::scene::ABSURD_FORCE_N)).
+    /// `ABSURD_FORCE_N`).
     pub fn with_max_force(self, max_force: f64) -> Result<ProxyOptions, ParamError> {
         Ok(ProxyOptions {
             max_force: Param::MaxForce.check(max_force)?,
@@ -83,7 +83,7 @@ impl ProxyOptions {
     ///
     /// # Errors
     /// [`ParamError`] naming `workspace_radius` outside its domain (above 0, at most
-    /// [`MAX_WORKSPACE_RADIUS`](super::MAX_WORKSPACE_RADIUS)).
+    /// `MAX_WORKSPACE_RADIUS`).
     pub fn with_workspace_radius(self, workspace_radius: f64) -> Result<ProxyOptions, ParamError> {
         Ok(ProxyOptions {
             workspace_radius: Param::WorkspaceRadius.check(workspace_radius)?,

@@ -59,7 +59,7 @@ pub struct TickStatus {
     pub input_clamped: bool,
     /// The force was larger than the maximum and was scaled down to it.
     pub force_clamped: bool,
-    /// A cap on the constraint steps ([`MAX_PROXY_STEPS`](super::MAX_PROXY_STEPS), or a
+    /// A cap on the constraint steps (`MAX_PROXY_STEPS`, or a
     /// fourth plane) stopped the proxy early; it is valid but may not be the closest point.
     pub step_cap_hit: bool,
     /// The active planes left no point to move to (a very narrow wedge): the proxy stayed.

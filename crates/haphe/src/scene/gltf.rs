@@ -46,7 +46,7 @@ pub enum GltfSceneError {
         source: ParamError,
     },
     /// The node's world placement is outside the domain of a pose (a translation farther
-    /// than [`ABSURD_DISTANCE_M`](super::ABSURD_DISTANCE_M) from the origin).
+    /// than `ABSURD_DISTANCE_M` from the origin).
     #[error("node {node} ('{name}'): placement: {source}")]
     Placement {
         /// The node's index in the file.

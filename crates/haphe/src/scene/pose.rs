@@ -39,7 +39,7 @@ impl Pose {
     /// # Errors
     /// [`ParamError`] naming `rotation` for a quaternion that is not finite or of zero
     /// length, or `position` for a translation that is not finite or farther than
-    /// [`ABSURD_DISTANCE_M`](super::ABSURD_DISTANCE_M) from the origin.
+    /// `ABSURD_DISTANCE_M` from the origin.
     ///
     /// ```
     /// use haphe::glam::{DQuat, DVec3};

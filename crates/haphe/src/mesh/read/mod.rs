@@ -34,7 +34,7 @@ pub enum Format {
     /// Object File Format (text), with or without counts on the `OFF` line.
     Off,
     /// glTF 2.0: a `.gltf` (JSON) or a `.glb` (binary), its default scene flattened into
-    /// one mesh in world coordinates ([`read_gltf`](crate::mesh::read_gltf)).
+    /// one mesh in world coordinates (`read_gltf`).
     Gltf,
 }
 

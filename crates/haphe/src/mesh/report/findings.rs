@@ -50,7 +50,7 @@ pub struct Defects {
     pub orientation_conflicts: Vec<EdgeUse>,
     /// Triangles with (practically) zero area or a repeated vertex.
     pub degenerate_triangles: Vec<u32>,
-    /// Long thin triangles (see [`SLIVER_MAX_RELATIVE_HEIGHT`](super::SLIVER_MAX_RELATIVE_HEIGHT)).
+    /// Long thin triangles (see `SLIVER_MAX_RELATIVE_HEIGHT`).
     pub sliver_triangles: Vec<u32>,
     /// Pairs `[first, duplicate]` of triangles with the same three vertices.
     pub duplicate_faces: Vec<[u32; 2]>,
