@@ -299,6 +299,37 @@ fn verify_runs_deep_strikes_alone() {
         assert!(text.contains(line), "{line}: {text}");
     }
     assert!(text.contains("PASSED"), "{text}");
+    // The count of deep strikes is printed, with its minimum (half the strikes run), and
+    // the count is what passed: at least half of the 20 went deep.
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("deep strikes: "))
+        .unwrap_or_else(|| panic!("no count of deep strikes: {text}"));
+    let numbers: Vec<usize> = line
+        .split(|c: char| !c.is_ascii_digit())
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    let [deep, run, required, out_of_contact] = numbers[..] else {
+        panic!("{line}");
+    };
+    assert!(run > 0 && run <= 20, "{line}");
+    assert_eq!(required, run.div_ceil(2), "{line}");
+    assert!(deep >= required && deep <= run, "{line}");
+    assert_eq!(out_of_contact, 0, "{line}");
+    // The same numbers in the JSON report.
+    let out = haphe(&[
+        "verify",
+        &mesh,
+        "--samples",
+        "0",
+        "--strikes",
+        "20",
+        "--json",
+    ]);
+    let report: serde_json::Value = serde_json::from_str(&stdout(&out)).expect("JSON");
+    let strikes = &report["strikes"];
+    assert_eq!(strikes["deep"]["strikes"], deep, "{strikes}");
+    assert_eq!(strikes["min_deep_strikes"], required, "{strikes}");
     // A map file says which mesh it was built from.
     let map = dir.join("t.hmap").display().to_string();
     assert!(haphe(&["build", &mesh, "-o", &map]).status.success());

@@ -344,8 +344,13 @@ fn print_strikes(out: &mut impl Write, s: &proxy::StrikeReport) -> std::io::Resu
     )?;
     writeln!(
         out,
-        "{} strikes ({} drawn not run), {} ticks, {} held. Deep ticks, from the one a strike first goes deeper than the saturation depth until the hand stops, must never push the hand on along the strike (above 1e-6 N) nor face the far side. Shallow ticks, from the first touch until then, are the physical range: past a crest the surface pushes the hand on along its normal, as a rigid one does.\n",
+        "{} strikes ({} drawn not run), {} ticks, {} held. Deep ticks, from the one where the hand first lies deeper than the saturation depth inside the model (by its path and brute force) until it stops, must stay in contact and never push the hand on along the strike (above 1e-6 N) nor face the far side. Shallow ticks, from the entry until then, are the physical range: past a crest the surface pushes the hand on along its normal, as a rigid one does.\n",
         c.strikes, c.skipped, c.ticks, c.held_ticks
+    )?;
+    writeln!(
+        out,
+        "deep strikes: {} of {} (at least {} required); deep ticks out of contact: {}\n",
+        c.deep.strikes, c.strikes, c.min_deep_strikes, c.deep.no_contact
     )?;
     writeln!(
         out,

@@ -107,13 +107,14 @@ pub struct StrikeReport {
 }
 
 impl StrikeReport {
-    /// Whether no tick of a strike that went deeper than the saturation depth pulled the
-    /// hand on or faced the far side. (A grazing strike that never goes that deep stays in
-    /// the physical range, where the proxy is the god-object: it slides over the surface
-    /// and may be pushed on by it past a crest, as by a real surface; those strikes are
-    /// counted apart.)
+    /// Whether at least half the strikes went deeper than the saturation depth (by the
+    /// hand's path) and no tick from the one a strike went that deep lost contact, pulled
+    /// the hand on or faced the far side (see [`StrikeCheck::passed`]). (A grazing strike
+    /// that never goes that deep stays in the physical range, where the proxy is the
+    /// god-object: it slides over the surface and may be pushed on by it past a crest, as
+    /// by a real surface; those strikes are counted apart.)
     pub fn passed(&self) -> bool {
-        self.check.deep.clean()
+        self.check.passed()
     }
 }
 
