@@ -1,6 +1,7 @@
 //! The servo path allocates nothing: 10^5 proxy ticks over several meshes, with moving
 //! objects, scene edits arriving from another thread, friction, and bad input mixed in,
-//! one shape loaded in place from saved map bytes, run under a counting allocator.
+//! one shape loaded in place from saved map bytes, and deep strikes that make the proxy
+//! hold, run under a counting allocator.
 
 use std::sync::Arc;
 
@@ -11,7 +12,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::{Edit, Material, ObjectId, Pose, Scene, SceneObject, Shape};
-use haphe::verify::haptic_path;
+use haphe::verify::{WindingOracle, hand_goes_deep, haptic_path, strike_path};
 
 fn shape(which: Catalog, triangles: usize) -> Arc<Shape> {
     let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())
@@ -75,7 +76,42 @@ fn proxy_ticks_allocate_nothing() {
         .expect("room");
         hips.extend(haptic_path(&one, 25_000, (0.01, 10.0), 1e3, 40 + i as u64));
     }
-    for k in (0..hips.len()).step_by(997) {
+    // Strikes through the blob, beyond the saturation depth (6.6 mm for 3.3 N and 500 N/m;
+    // 4.1 mm for this 800 N/m): from the tick its hand first lies that deep inside (by its
+    // path, brute force) to the end of the strike, the proxy must hold on every tick, and
+    // those ticks run under the counter like the rest.
+    let blob = {
+        let mut one = Scene::local(1);
+        one.insert(SceneObject::new(
+            ObjectId(0),
+            shapes[0].clone(),
+            scene.objects()[0].pose,
+            material,
+        ))
+        .expect("room");
+        one
+    };
+    let winding = WindingOracle::new(shapes[0].surface());
+    let saturation = ProxyOptions::default().max_force / material.stiffness;
+    let mut must_hold = Vec::new();
+    for (k, angle) in [0.0f64, 35.0].into_iter().enumerate() {
+        let dir = DVec3::new(angle.to_radians().sin(), 0.0, -angle.to_radians().cos());
+        let start = DVec3::new(0.01 * k as f64, 0.0, 0.2) - 0.05 * dir;
+        let (path, last) = strike_path(start, dir, 1.0 + k as f64, 0.35, 1e3);
+        let deep = hand_goes_deep(
+            &blob,
+            &winding,
+            &path[..=last],
+            (1.0 + k as f64) / 1e3,
+            saturation,
+        )
+        .expect("the strike goes deep");
+        // Every tick from there to the end of the strike (the hand comes to rest deep).
+        must_hold.push((hips.len() + deep, hips.len() + path.len()));
+        hips.extend(path);
+    }
+    let strikes_start = 100_000;
+    for k in (0..strikes_start).step_by(997) {
         hips[k] = match k % 3 {
             0 => DVec3::NAN,
             1 => DVec3::splat(1e300),
@@ -86,6 +122,9 @@ fn proxy_ticks_allocate_nothing() {
     let mut proxy = Proxy::new(hips[0], ProxyOptions::default());
     let mut previous = hips[0];
     let mut contacts = 0usize;
+    let mut held = 0usize;
+    let mut held_where_due = 0usize;
+    let mut tick = 0usize;
     let mut spare = Some(spare);
     let chunk = 1_000;
     let mut total_allocations = 0;
@@ -112,6 +151,11 @@ fn proxy_ticks_allocate_nothing() {
                 previous = hip;
                 let out = proxy.tick(&scene, hip, velocity);
                 contacts += usize::from(out.contact.is_some());
+                held += usize::from(out.status.deep_hold);
+                held_where_due += usize::from(
+                    out.status.deep_hold && must_hold.iter().any(|&(a, b)| (a..b).contains(&tick)),
+                );
+                tick += 1;
                 assert!(out.force.is_finite());
                 assert!(out.force.length() <= proxy.options().max_force() * (1.0 + 1e-12));
             }
@@ -124,7 +168,11 @@ fn proxy_ticks_allocate_nothing() {
             }
         }
     }
-    assert_eq!(hips.len(), 100_000);
+    let due: usize = must_hold.iter().map(|&(a, b)| b - a).sum();
+    assert_eq!(tick, hips.len());
+    assert!(hips.len() > strikes_start && due > 0, "{due}");
     assert!(contacts > 20_000, "{contacts}");
+    // The hold ran under the counter on every tick where it was due.
+    assert_eq!(held_where_due, due, "held {held} ticks in all");
     assert_eq!(total_allocations, 0, "the servo path allocated");
 }
