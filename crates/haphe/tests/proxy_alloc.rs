@@ -92,12 +92,13 @@ fn proxy_ticks_allocate_nothing() {
         one
     };
     let winding = WindingOracle::new(shapes[0].surface());
-    let saturation = ProxyOptions::default().max_force / material.stiffness;
+    let saturation = ProxyOptions::default().max_force() / material.stiffness();
     let mut must_hold = Vec::new();
     for (k, angle) in [0.0f64, 35.0].into_iter().enumerate() {
         let dir = DVec3::new(angle.to_radians().sin(), 0.0, -angle.to_radians().cos());
-        let start = DVec3::new(0.01 * k as f64, 0.0, 0.2) - 0.05 * dir;
-        let (path, last) = strike_path(start, dir, 1.0 + k as f64, 0.35, 1e3);
+        // Aimed near the blob's centre (radius 0.1 m), coming to rest 5 cm past it.
+        let start = DVec3::new(0.01 * k as f64, 0.0, 0.0) - 0.25 * dir;
+        let (path, last) = strike_path(start, dir, 1.0 + k as f64, 0.3, 1e3);
         let deep = hand_goes_deep(
             &blob,
             &winding,
