@@ -44,13 +44,11 @@ fn random_pose(rng: &mut SplitMix64, side: f64, turned: bool) -> Pose {
     Pose::new(r, t).expect("a valid pose")
 }
 
-/// What a comparison examined: ticks in contact, and ticks where the hand lay inside one
-/// of the scene's first objects (by each object's own inside query, not the broad phase;
-/// the objects inserted during the run are left out, since one may appear around the
-/// hand).
+/// What a comparison examined: ticks where the hand lay inside one of the scene's first
+/// objects (by each object's own inside query, not the broad phase; the objects inserted
+/// during the run are left out, since one may appear around the hand).
 #[derive(Debug)]
 struct Examined {
-    contacts: usize,
     hand_inside: usize,
 }
 
@@ -112,7 +110,6 @@ fn compare(
     let mut velocity = (target - start).normalize_or_zero() * 0.5;
     let rate = 500.0;
     let mut next_id = objects as u32;
-    let mut contacts = 0;
     let mut hand_inside = 0;
     // Every other mover is moved by a key made once (found by name on its first use).
     let mut keys: Vec<ObjectKey> = (0..movers.min(objects))
@@ -176,7 +173,6 @@ fn compare(
         if a.force.distance(b.force) > 1e-6 {
             return Err(format!("tick {tick}: force {} vs {}", a.force, b.force));
         }
-        contacts += usize::from(a.contact.is_some());
         let inside = inside_any(&scene, hip);
         hand_inside += usize::from(inside);
         // In a static scene, a hand inside an object has a proxy held back at its surface:
@@ -188,10 +184,7 @@ fn compare(
             ));
         }
     }
-    Ok(Examined {
-        contacts,
-        hand_inside,
-    })
+    Ok(Examined { hand_inside })
 }
 
 /// The comparison of a fixed scene examined the pile in contact: the hand was inside an
