@@ -324,8 +324,9 @@ impl Shape {
     ///
     /// The nearest surface point to each point of an ``(N, 3)`` array (converted as
     /// ``numpy.asarray(points, dtype=float64)`` does) among those within ``max_distance``
-    /// metres (searched in the map cells next to the point's: exact for a radius up to a
-    /// map cell). Returns a dict of arrays: ``distance`` (N,) metres (inf where none),
+    /// metres, exact for any ``max_distance`` (the map's cells are searched ring by ring
+    /// out to the nearest surface found, or every triangle is tested when that is less
+    /// work). Returns a dict of arrays: ``distance`` (N,) metres (inf where none),
     /// ``triangle`` (N,) the file's face index (-1 where none), ``point`` (N, 3) (NaN where
     /// none). Runs without the GIL.
     ///

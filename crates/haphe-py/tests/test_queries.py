@@ -2,6 +2,7 @@
 shared models."""
 
 import json
+from pathlib import Path
 import subprocess
 
 import numpy as np
@@ -146,3 +147,62 @@ def test_crossings_equal_brute_force_on_adversarial_segments(kind, models):
     np.testing.assert_array_equal(fast["entering"], brute["entering"])
     with pytest.raises(haphe.HapheError, match="unknown segment kind"):
         shape.sample_segments("sideways", 1)
+
+
+def obj_triangles(path):
+    """The triangles of a triangulated OBJ file, an (F, 3, 3) array, read here without
+    haphe."""
+    vertices, faces = [], []
+    for line in Path(path).read_text().splitlines():
+        words = line.split()
+        if words[:1] == ["v"]:
+            vertices.append([float(w) for w in words[1:4]])
+        elif words[:1] == ["f"]:
+            faces.append([int(w.split("/")[0]) - 1 for w in words[1:4]])
+    return np.array(vertices)[np.array(faces)]
+
+
+def distance_to_triangles(p, tri):
+    """The distance from p to the nearest of the triangles (F, 3, 3): the minimum over
+    each triangle's interior (when p projects into it) and its three edges."""
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    n = np.cross(b - a, c - a)
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    h = np.einsum("ij,ij->i", p - a, n)
+    q = p - h[:, None] * n
+    inside = np.ones(len(tri), dtype=bool)
+    for u, v in ((a, b), (b, c), (c, a)):
+        inside &= np.einsum("ij,ij->i", np.cross(v - u, q - u), n) >= 0
+    best = np.where(inside, np.abs(h), np.inf)
+    for u, v in ((a, b), (b, c), (c, a)):
+        e = v - u
+        t = np.clip(np.einsum("ij,ij->i", p - u, e) / np.einsum("ij,ij->i", e, e), 0, 1)
+        best = np.minimum(best, np.linalg.norm(p - (u + t[:, None] * e), axis=1))
+    return best.min()
+
+
+def test_nearest_is_exact_far_beyond_a_map_cell(models):
+    # The point 0.1 m outside spot along its top's normal, with max_distance=1.0: many
+    # map cells away, and well within the distance asked.
+    path = models / "spot.obj"
+    shape = haphe.Shape.from_file(path)
+    tri = obj_triangles(path)
+    lo, hi = (np.array(b) for b in shape.bounds)
+    top = np.array([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2]])
+    points = np.array([top + [0, 0, 0.1], hi + 0.1, lo - [0.3, 0.0, 0.0]])
+    near = shape.nearest(points, 1.0)
+    within = 0
+    for i, p in enumerate(points):
+        expected = distance_to_triangles(p, tri)
+        assert expected > 0.09
+        if expected > 1.0:
+            assert np.isinf(near["distance"][i]) and near["triangle"][i] == -1
+            continue
+        within += 1
+        np.testing.assert_allclose(near["distance"][i], expected, rtol=1e-9)
+        assert near["triangle"][i] >= 0
+        np.testing.assert_allclose(np.linalg.norm(near["point"][i] - p), expected, rtol=1e-9)
+    assert within >= 2
+    # Asked for less than the distance: none.
+    short = shape.nearest(points, 0.05)
+    assert np.isinf(short["distance"]).all() and (short["triangle"] == -1).all()

@@ -22,7 +22,7 @@ use haphe::mesh::{Surface, SurfaceOptions, TriId};
 use haphe::proxy::ProxyOptions;
 use haphe::query::{
     Segment, classify_point, closest_point_triangle, first_crossing, intersect_segment_triangle,
-    nearest_within, walk_to_nearest,
+    nearest_within_bounded, walk_to_nearest,
 };
 use haphe::verify::{bounds, trajectory};
 
@@ -110,10 +110,14 @@ fn query_stage(c: &mut Criterion) {
     });
     let reach = ProxyOptions::default().probe_reach();
     group.bench_function("nearest_within_reach_near_surface", |b| {
-        b.iter(cycle(&steps, |s| nearest_within(surface, map, s.to, reach)))
+        b.iter(cycle(&steps, |s| {
+            nearest_within_bounded(surface, map, s.to, reach)
+        }))
     });
     group.bench_function("nearest_within_reach_on_surface", |b| {
-        b.iter(cycle(&steps, |s| nearest_within(surface, map, s.on, reach)))
+        b.iter(cycle(&steps, |s| {
+            nearest_within_bounded(surface, map, s.on, reach)
+        }))
     });
     group.finish();
 }

@@ -108,6 +108,56 @@ impl VoxelMap {
         }
     }
 
+    /// Calls `visit` with each cell of `within` (clipped to the grid) at Chebyshev distance
+    /// exactly `ring` from the cell `centre` (which may lie outside the grid) that lists
+    /// triangles, and its triangles; returns the number of cells looked up (the work
+    /// done). The search of [`nearest_within`](crate::query::nearest_within), ring by ring.
+    ///
+    /// # Real-time
+    /// No allocation, no panic; at most `(2·ring + 1)³ − (2·ring − 1)³` cell lookups.
+    pub(crate) fn visit_ring(
+        &self,
+        centre: [i64; 3],
+        ring: i64,
+        within: CellBox,
+        mut visit: impl FnMut([u32; 3], &[u32]),
+    ) -> u64 {
+        let ring_box = CellBox {
+            lo: centre.map(|c| c.saturating_sub(ring)),
+            hi: centre.map(|c| c.saturating_add(ring)),
+        };
+        let Some(cells) = self.clip_cells(ring_box.intersect(within)) else {
+            return 0;
+        };
+        let mut looked_up = 0;
+        let mut look = |c: [i64; 3]| {
+            looked_up += 1;
+            let c = c.map(|x| x as u32);
+            let triangles = self.triangles_in(c);
+            if !triangles.is_empty() {
+                visit(c, triangles);
+            }
+        };
+        for x in cells.lo[0]..=cells.hi[0] {
+            for y in cells.lo[1]..=cells.hi[1] {
+                if (x - centre[0]).abs() == ring || (y - centre[1]).abs() == ring {
+                    for z in cells.lo[2]..=cells.hi[2] {
+                        look([x, y, z]);
+                    }
+                } else {
+                    // Only the two faces of the ring along z (distinct: here `ring > 0`),
+                    // where they are in the box.
+                    for z in [centre[2] - ring, centre[2] + ring] {
+                        if (cells.lo[2]..=cells.hi[2]).contains(&z) {
+                            look([x, y, z]);
+                        }
+                    }
+                }
+            }
+        }
+        looked_up
+    }
+
     /// The nearest cell to `cell` (by Chebyshev ring up to `max_ring`, then by distance,
     /// then by index order) whose winding number is known: not a surface cell nor an
     /// [overlap cell](VoxelMap::is_overlap); with its state. The start of an inside/outside

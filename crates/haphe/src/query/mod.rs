@@ -36,6 +36,9 @@ pub use crossing::{Crossing, first_crossing};
 pub use inside::{Side, SideStatus, classify_point};
 #[doc(hidden)]
 pub use near::MAX_NEAR_CELLS_PER_AXIS;
+/// The servo's bounded variant of [`nearest_within`], for the scene and the benches.
+#[doc(hidden)]
+pub use near::nearest_within_bounded;
 pub use near::{NearTriangle, nearest_within};
 pub(crate) use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;

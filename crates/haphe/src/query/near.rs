@@ -1,5 +1,6 @@
-//! The nearest triangle within a small radius of a point: how the proxy notices a surface
-//! it has come to rest on without crossing it.
+//! The nearest triangle within a radius of a point: exact for any radius
+//! ([`nearest_within`]), and bounded for a tick ([`nearest_within_bounded`]: how the proxy
+//! notices a surface it has come to rest on without crossing it).
 
 use glam::DVec3;
 
@@ -18,32 +19,104 @@ pub struct NearTriangle {
     pub distance: f64,
 }
 
-/// Most cells searched along each axis by [`nearest_within`]: the cell of the point and its
-/// two neighbours.
+/// Most cells searched along each axis by [`nearest_within_bounded`], the servo's
+/// variant: the cell of the point and its two neighbours.
 pub const MAX_NEAR_CELLS_PER_AXIS: u32 = 3;
 
-/// The triangle nearest to `p` (metres, object frame) among those within `radius` metres of
-/// it, found through the map's cells that overlap the cube of half-side `radius` around
-/// `p`; the lowest triangle index among equally near ones. Equals
-/// [`nearest_within_brute_force`] whenever `radius` is at most a cell (the proxy asks for
-/// a fraction of a micrometre); a larger radius is searched only in the cells next to
-/// `p`'s ([`MAX_NEAR_CELLS_PER_AXIS`]).
+/// Cell lookups [`nearest_within`] may spend per triangle of the surface before it tests
+/// every triangle instead: past that, the rings of cells cost more than the brute force.
+const NEAR_CELLS_PER_TRIANGLE: u64 = 8;
+
+/// The triangle nearest to `p` (metres, object frame) among those within `radius` metres
+/// of it; the lowest triangle index among equally near ones. Exact for any radius: equals
+/// [`nearest_within_brute_force`], whatever the map's cell size. `None` when no triangle
+/// is within `radius`, or for non-finite input.
 ///
-/// # Real-time
-/// No allocation, no lock, no panic. Visits the cells the cube overlaps: at most 8 when
-/// `radius` is below a cell, never more than 27; each triangle listed there costs one
-/// plane height and, when that is within `radius`, one closest-point kernel. Non-finite
-/// input gives `None`.
+/// # Work
+/// Searches the map's cells in Chebyshev rings around `p`'s cell, starting past the free
+/// space its clearance ([`VoxelMap::reach`]) vouches for, and stops once the next ring
+/// lies farther than the nearest triangle found or than `radius` (a triangle is listed
+/// in every cell it overlaps, so one in ring `k + 1` or beyond is at least `k` cells
+/// away). Near a surface this visits a few cells; when the rings would take more than
+/// eight cell lookups per triangle, it tests every triangle instead. No allocation, no
+/// lock, no panic, but the work grows with the radius: a tick calls the bounded variant,
+/// `nearest_within_bounded`, which searches only the cells next to the point's (exact
+/// for a radius up to a cell).
 pub fn nearest_within(
     surface: &Surface,
     map: &VoxelMap,
     p: DVec3,
     radius: f64,
 ) -> Option<NearTriangle> {
-    if !(p.is_finite() && radius >= 0.0 && radius.is_finite())
-        // Beyond the box by more than the radius (and the rounding of the distances).
-        || super::bounds::beyond_bounds(surface, p, p, radius + 1e-12 * p.abs().max_element())
-    {
+    if nothing_within(surface, p, radius) {
+        return None;
+    }
+    let grid = map.grid();
+    let h = grid.cell_size();
+    let r = DVec3::splat(radius);
+    // Every cell a triangle within `radius` of `p` may be listed in.
+    let search = map.clip_cells(CellBox::around(grid, p - r, p + r))?;
+    let centre = CellBox::around(grid, p, p).lo;
+    // Rings nearer than the search box, or than the free space around `p`'s cell, hold
+    // no listed cell.
+    let to_box = (0..3)
+        .map(|k| {
+            (search.lo[k] - centre[k])
+                .max(centre[k] - search.hi[k])
+                .max(0)
+        })
+        .max()
+        .unwrap_or(0);
+    let free = match centre.map(u32::try_from) {
+        [Ok(x), Ok(y), Ok(z)] => i64::from(map.reach([x, y, z])),
+        _ => 0,
+    };
+    let last = (0..3)
+        .map(|k| (search.hi[k] - centre[k]).max(centre[k] - search.lo[k]))
+        .max()
+        .unwrap_or(0);
+    let budget = NEAR_CELLS_PER_TRIANGLE.saturating_mul(surface.triangle_count() as u64);
+    let mut spent = 0u64;
+    let mut best: Option<NearTriangle> = None;
+    for ring in to_box.max(free)..=last {
+        // Every triangle not yet seen lies in ring `ring` or beyond: at least `ring − 1`
+        // cells from `p` (less a rounding margin).
+        let farther = (ring - 1) as f64 * h * (1.0 - 1e-9);
+        if farther > radius || best.is_some_and(|b| farther > b.distance) {
+            break;
+        }
+        spent += map.visit_ring(centre, ring, search, |_, triangles| {
+            for &t in triangles {
+                consider(surface, TriId(t), p, radius, &mut best);
+            }
+        });
+        if spent > budget {
+            return nearest_within_brute_force(surface, p, radius);
+        }
+    }
+    best
+}
+
+/// [`nearest_within`] for a tick: the triangle nearest to `p` (metres, object frame)
+/// among those within `radius` metres of it, searched in the map's cells that overlap
+/// the cube of half-side `radius` around `p` and lie no farther than one cell from `p`'s
+/// ([`MAX_NEAR_CELLS_PER_AXIS`]); the lowest triangle index among equally near ones.
+/// Equals [`nearest_within_brute_force`] whenever `radius` is at most a cell (the proxy
+/// asks for a fraction of a micrometre); a triangle farther than a cell is not found even
+/// within a larger radius.
+///
+/// # Real-time
+/// No allocation, no lock, no panic. Visits the cells the cube overlaps: at most 8 when
+/// `radius` is below a cell, never more than 27; each triangle listed there costs one
+/// plane height and, when that is within `radius`, one closest-point kernel. Non-finite
+/// input gives `None`.
+pub fn nearest_within_bounded(
+    surface: &Surface,
+    map: &VoxelMap,
+    p: DVec3,
+    radius: f64,
+) -> Option<NearTriangle> {
+    if nothing_within(surface, p, radius) {
         return None;
     }
     // The cells the cube overlaps, no farther than one cell from `p`'s.
@@ -60,6 +133,15 @@ pub fn nearest_within(
         }
     });
     best
+}
+
+/// Whether no triangle can be within `radius` of `p`: non-finite input, a negative
+/// radius, or `p` beyond the surface's box by more than `radius` (and the rounding of the
+/// distances).
+#[inline]
+fn nothing_within(surface: &Surface, p: DVec3, radius: f64) -> bool {
+    !(p.is_finite() && radius >= 0.0 && radius.is_finite())
+        || super::bounds::beyond_bounds(surface, p, p, radius + 1e-12 * p.abs().max_element())
 }
 
 /// [`nearest_within`] by testing every triangle: the oracle.

@@ -14,8 +14,8 @@ use super::object::{BOUND_SLACK, ObjectId, SceneObject, sphere_of};
 use super::removals::RemovalLog;
 use super::{EditError, Material};
 use crate::query::{
-    Probe, SurfacePoint, WalkStatus, distance_to_segment, first_crossing_where, nearest_within,
-    walk_to_nearest,
+    Probe, SurfacePoint, WalkStatus, distance_to_segment, first_crossing_where,
+    nearest_within_bounded, walk_to_nearest,
 };
 
 /// The objects the proxy renders, owned by the servo thread.
@@ -282,7 +282,7 @@ impl Scene {
     /// none, or when `i` is out of range.
     ///
     /// # Real-time
-    /// A bounding-sphere test, then [`nearest_within`] in the object frame.
+    /// A bounding-sphere test, then [`nearest_within_bounded`] in the object frame.
     pub(crate) fn touching(&self, i: usize, p: DVec3, radius: f64) -> Option<Hit> {
         let o = self.objects.get(i)?;
         let shape = &*o.shape;
@@ -290,7 +290,8 @@ impl Scene {
         if p.distance(centre) > shape.bound_radius() * BOUND_SLACK + radius {
             return None;
         }
-        let near = nearest_within(shape.surface(), shape.map(), o.pose.to_object(p), radius)?;
+        let near =
+            nearest_within_bounded(shape.surface(), shape.map(), o.pose.to_object(p), radius)?;
         Some(Hit {
             t: 1.0,
             object: i,
