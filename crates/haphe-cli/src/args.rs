@@ -72,6 +72,20 @@ pub fn parse_point(s: &str) -> Result<DVec3, String> {
     }
 }
 
+/// Parses a `--plot` path: plots are PNG images, so the name must end in `.png` (any
+/// case); another extension is refused naming the one written, rather than PNG bytes
+/// written under a name that says otherwise.
+pub fn parse_png_path(s: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(s);
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("png") => Ok(path),
+        Some(e) => Err(format!(
+            "plots are written as PNG only, not .{e}: give a file name ending in .png"
+        )),
+        None => Err("plots are written as PNG only: give a file name ending in .png".into()),
+    }
+}
+
 /// Parses a `--units` value.
 pub fn parse_units(s: &str) -> Result<Units, String> {
     s.parse()
@@ -223,6 +237,6 @@ pub struct OutputArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
     /// Draw force, penetration and the side view of the path to this PNG.
-    #[arg(long, value_name = "FILE.png")]
+    #[arg(long, value_name = "FILE.png", value_parser = parse_png_path)]
     pub plot: Option<PathBuf>,
 }

@@ -80,24 +80,58 @@ fn a_built_in_shape_and_a_scene_file_object_get_the_same_material() {
     let shape_args = ["simulate", "--shape", "box", "--triangles", "2000"];
     let from_shape = ok(&[&shape_args[..], &run[..]].concat());
     let from_scene = ok(&[&["simulate", "--scene", scene.as_str()][..], &run[..]].concat());
-    let m = Material::DEFAULT;
-    let expected = format!(
-        "{:.0} N/m, friction {}/{})",
-        m.stiffness(),
-        m.static_friction(),
-        m.dynamic_friction()
-    );
+    let expected = default_material_text();
     assert_eq!(material_of(&from_shape), expected, "{from_shape}");
     assert_eq!(material_of(&from_scene), expected, "{from_scene}");
     // And the run renders at most the default maximum, which it reports.
     for text in [&from_shape, &from_scene] {
-        let line = text
-            .lines()
-            .find(|l| l.trim_start().starts_with("max force"))
-            .expect("a max force line");
-        assert!(
-            line.contains(&format!("(device maximum {DEFAULT_MAX_FORCE_N} N;")),
-            "{line}"
-        );
+        assert_default_maximum(text);
+    }
+}
+
+/// How an object line of the summary shows [`Material::DEFAULT`].
+fn default_material_text() -> String {
+    let m = Material::DEFAULT;
+    format!(
+        "{:.0} N/m, friction {}/{})",
+        m.stiffness(),
+        m.static_friction(),
+        m.dynamic_friction()
+    )
+}
+
+/// Asserts that a run's summary reports the library's default maximum force.
+fn assert_default_maximum(summary: &str) {
+    let line = summary
+        .lines()
+        .find(|l| l.trim_start().starts_with("max force"))
+        .expect("a max force line");
+    assert!(
+        line.contains(&format!("(device maximum {DEFAULT_MAX_FORCE_N} N;")),
+        "{line}"
+    );
+}
+
+#[test]
+fn a_mesh_file_and_a_scene_file_mesh_object_get_the_same_material() {
+    let dir = scratch("defaults-mesh");
+    let mesh = write(&dir, "tet.obj", common::tetrahedron(0.0));
+    let scene = write(&dir, "tet.toml", format!("[[object]]\nmesh = {mesh:?}\n"));
+    let run = ["--path", "press", "--seconds", "0.5"];
+    let from_mesh = ok(&[&["simulate", "--mesh", mesh.as_str()][..], &run[..]].concat());
+    let from_scene = ok(&[&["simulate", "--scene", scene.as_str()][..], &run[..]].concat());
+    let from_run = ok(&[
+        "run",
+        "--device",
+        "hand",
+        "--mesh",
+        mesh.as_str(),
+        "--seconds",
+        "0.5",
+    ]);
+    let expected = default_material_text();
+    for text in [&from_mesh, &from_scene, &from_run] {
+        assert_eq!(material_of(text), expected, "{text}");
+        assert_default_maximum(text);
     }
 }

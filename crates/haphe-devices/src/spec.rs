@@ -35,7 +35,10 @@ pub enum DeviceKind {
 #[non_exhaustive]
 pub enum SpecError {
     /// The specification names no device.
-    #[error("unknown device {0:?}: expected dhd, openhaptics, udp:HOST:PORT or hand")]
+    #[error(
+        "unknown device {0:?}{hint}: expected dhd, openhaptics, udp:HOST:PORT or hand",
+        hint = did_you_mean_device(.0)
+    )]
     Unknown(String),
     /// The vendor library could not be loaded.
     #[error(transparent)]
@@ -46,6 +49,45 @@ pub enum SpecError {
     /// The simulated hand's path could not be made.
     #[error("cannot make the simulated hand's path: {0}")]
     Path(String),
+}
+
+/// Product and vendor names people type for a device, and the specification that drives
+/// it (the SDK that each product uses).
+const PRODUCT_NAMES: [(&str, &str); 12] = [
+    ("phantom", "openhaptics"),
+    ("touch", "openhaptics"),
+    ("geomagic", "openhaptics"),
+    ("3dsystems", "openhaptics"),
+    ("sensable", "openhaptics"),
+    ("falcon", "dhd"),
+    ("novint", "dhd"),
+    ("omega", "dhd"),
+    ("delta", "dhd"),
+    ("sigma", "dhd"),
+    ("lambda", "dhd"),
+    ("simulated", "hand"),
+];
+
+/// `" (did you mean 'X'?)"` for an unknown device: the specification of a product named
+/// in it (`phantom` → `openhaptics`), else the closest specification's spelling.
+fn did_you_mean_device(given: &str) -> String {
+    let lower = given.to_lowercase();
+    let product = PRODUCT_NAMES
+        .iter()
+        .find(|(product, _)| lower.contains(product))
+        .map(|(_, spec)| *spec)
+        .or_else(|| lower.starts_with("udp").then_some("udp:127.0.0.1:7700"));
+    let meant = product.or_else(|| {
+        haphe::names::closest(
+            &lower,
+            &["dhd", "forcedimension", "openhaptics", "hand", "udp"],
+        )
+        .map(|name| match name {
+            "udp" => "udp:127.0.0.1:7700",
+            other => other,
+        })
+    });
+    meant.map_or_else(String::new, |spec| format!(" (did you mean '{spec}'?)"))
 }
 
 impl FromStr for DeviceKind {

@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use haphe::DVec3;
 use haphe::map::{decode, encode};
 use haphe::mesh::{ReadOptions, Resolve, Surface, Units, Weld, read_mesh_resolving};
 use haphe::query::Validation;
@@ -30,6 +31,29 @@ pub fn read_options(units: &str, weld_tolerance: Option<f64>) -> PyResult<ReadOp
         weld,
         format: None,
     })
+}
+
+/// The units warning of a mesh read in `units` with the bounding box `bounds`, when its
+/// size suggests the wrong unit (the library's rule, [`haphe::mesh::units_hint`]), with
+/// the argument to add spelt for Python; `None` when its size is plausible.
+pub fn units_warning(name: &str, bounds: Option<(DVec3, DVec3)>, units: Units) -> Option<String> {
+    let (lo, hi) = bounds?;
+    let hint = haphe::mesh::units_hint(lo, hi, units)?;
+    Some(format!(
+        "{name}: {}",
+        hint.advice(|u| format!("`units=\"{u}\"`"))
+    ))
+}
+
+/// Issues `message` (if any) as a Python `UserWarning` pointing at the caller's line.
+pub fn warn(py: Python<'_>, message: Option<String>) -> PyResult<()> {
+    let Some(message) = message else {
+        return Ok(());
+    };
+    let text = std::ffi::CString::new(message.replace('\0', " "))
+        .map_err(|e| haphe_error("", e.to_string()))?;
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    PyErr::warn(py, category.as_any(), &text, 1)
 }
 
 /// The most bytes a glTF side-car buffer file may have: 2 GiB, as for a mesh file.
@@ -97,6 +121,9 @@ pub fn load_map(path: &Path) -> PyResult<(Surface, haphe::map::VoxelMap)> {
 /// ``self_intersection_pairs`` (``None`` when skipped or the mesh is unusable), plus
 /// ``exit_code`` (0 a valid solid, 1 a surface only, 2 unusable).
 ///
+/// Warns (``UserWarning``) when the model spans more than 2 m or less than 5 mm, naming
+/// the ``units`` to give.
+///
 /// Raises ``HapheError`` (naming the file and the place) for an unreadable file and
 /// ``OSError`` when the file cannot be read.
 #[pyfunction]
@@ -112,9 +139,10 @@ pub fn validate<'py>(
     let start = Instant::now();
     let bytes = read_bytes(&path)?;
     let name = path.display().to_string();
-    let json = py.detach(|| -> Result<String, String> {
+    let json = py.detach(|| -> Result<(String, Option<String>), String> {
         let loaded = read_mesh_resolving(&name, &bytes, &options, &mut Folder::of(&path))
             .map_err(|e| e.to_string())?;
+        let warning = units_warning(&name, loaded.mesh.bounds(), options.units);
         let validation =
             Validation::of(loaded.mesh, self_intersections).map_err(|e| format!("{name}: {e}"))?;
         let seconds = start.elapsed().as_secs_f64();
@@ -124,9 +152,10 @@ pub fn validate<'py>(
         if let Some(object) = value.as_object_mut() {
             object.insert("exit_code".into(), validation.exit_code().into());
         }
-        Ok(value.to_string())
+        Ok((value.to_string(), warning))
     });
-    let json = json.map_err(|e| haphe_error("", e))?;
+    let (json, warning) = json.map_err(|e| haphe_error("", e))?;
+    warn(py, warning)?;
     // The record goes through Python's json module, so that it is made of plain dicts,
     // lists, numbers and None exactly as `json.loads` of the command's output would be.
     py.import("json")?.getattr("loads")?.call1((json,))

@@ -20,7 +20,7 @@ use pyo3::types::{PyBytes, PyDict};
 
 use crate::arrays::{self, batch_error, rows, rows_argument};
 use crate::errors::haphe_error;
-use crate::files::{Folder, load_map, read_bytes, read_options, save_map};
+use crate::files::{Folder, load_map, read_bytes, read_options, save_map, units_warning, warn};
 
 /// A shape: a mesh's surface (topology, normals) and its voxel map, immutable and shared
 /// by every scene it is placed in. Build it from a mesh file (``Shape.from_file``), from
@@ -52,6 +52,10 @@ impl Shape {
     /// or within ``weld_tolerance`` metres), scales it to metres (``units``: ``"m"``,
     /// ``"mm"``, ``"cm"``, ``"in"`` or metres per file unit) and builds its voxel map.
     ///
+    /// Warns (``UserWarning``) when the model spans more than 2 m or less than 5 mm, the
+    /// mark of a wrong unit, naming the ``units`` to give ("looks like millimetres: add
+    /// ``units="mm"``").
+    ///
     /// Raises ``HapheError`` naming the file and the place for bad content, ``OSError``
     /// when the file cannot be read.
     #[staticmethod]
@@ -65,14 +69,17 @@ impl Shape {
         let options = read_options(units, weld_tolerance)?;
         let bytes = read_bytes(&path)?;
         let name = path.display().to_string();
-        let inner = py
+        let (inner, warning) = py
             .detach(|| {
                 let loaded = read_mesh_resolving(&name, &bytes, &options, &mut Folder::of(&path))
                     .map_err(|e| e.to_string())?;
+                let warning = units_warning(&name, loaded.mesh.bounds(), options.units);
                 scene::Shape::from_mesh(&name, loaded.mesh, &MapOptions::default())
+                    .map(|shape| (shape, warning))
                     .map_err(|e| e.to_string())
             })
             .map_err(|e| haphe_error("", e))?;
+        warn(py, warning)?;
         Ok(Shape {
             inner: Arc::new(inner),
             name,

@@ -98,6 +98,7 @@
 mod array;
 pub mod map;
 pub mod mesh;
+pub mod names;
 mod par;
 pub mod proxy;
 pub mod query;

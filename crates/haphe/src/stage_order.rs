@@ -1,6 +1,6 @@
 //! The stages depend on each other in one direction: a stage's code names (`crate::…`) only
 //! the stages numbered before it in the crate's documentation, and the support modules
-//! (`array`, `par`, `rng`). The oracles of [`crate::verify`] sit above every stage: a stage's tests
+//! (`array`, `names`, `par`, `rng`). The oracles of [`crate::verify`] sit above every stage: a stage's tests
 //! may use them, its code may not.
 
 use std::path::Path;
@@ -9,7 +9,7 @@ use std::path::Path;
 const STAGES: [&str; 6] = ["mesh", "map", "query", "scene", "proxy", "servo"];
 
 /// Modules every stage may use.
-const SUPPORT: [&str; 3] = ["array", "par", "rng"];
+const SUPPORT: [&str; 4] = ["array", "names", "par", "rng"];
 
 /// The modules named by `crate::name` paths in the code of `text` (not in comments, not
 /// in a test module: the code after the first `#[cfg(test)]`).

@@ -30,7 +30,7 @@ pub struct Args {
     #[arg(long, default_value_t = 1000.0)]
     rate: f64,
     /// Where to draw the run (PNG).
-    #[arg(long, default_value = "haphe-demo.png")]
+    #[arg(long, default_value = "haphe-demo.png", value_parser = crate::args::parse_png_path)]
     plot: PathBuf,
     /// Also write every tick to this CSV file.
     #[arg(long, value_name = "FILE.csv")]

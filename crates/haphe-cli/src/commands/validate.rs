@@ -9,7 +9,7 @@ use haphe::mesh::{GltfSummary, ReadOptions, Units};
 use haphe::query::{SELF_INTERSECTION_BUDGET_PER_TRIANGLE, Validation, self_intersection_budget};
 
 use crate::args::{parse_units, weld_mode};
-use crate::input::mesh::load_reported;
+use crate::input::mesh::{UnitsGiven, load_reported, warn_units};
 
 /// Shown after `haphe validate --help`.
 pub const EXIT_CODES: &str = "\
@@ -93,6 +93,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 2
             }
             Ok(loaded) => {
+                if let Some(bounds) = loaded.mesh.bounds() {
+                    let name = path.display().to_string();
+                    warn_units(&name, bounds, args.units, UnitsGiven::Flag);
+                }
                 let triangles = loaded.mesh.triangles.len();
                 let validated = Instant::now();
                 let validation = Validation::of(loaded.mesh, !args.skip_self_intersections)?;

@@ -14,6 +14,7 @@ use haphe_view::{Model, Source, Trace};
 
 use crate::args::{MappingArgs, parse_units};
 use crate::input::files::{self, read_input};
+use crate::input::mesh::UnitsGiven;
 use crate::input::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
 use crate::session::device::view_choice;
 use crate::session::live::{HAND_SECONDS, Serve, ViewDevice, live, scene_of, serve};
@@ -89,7 +90,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     } else if let Some(file) = &args.mesh {
         single(
             file.display().to_string(),
-            mesh_shape(file, args.units, &map)?,
+            mesh_shape(file, args.units, &map, UnitsGiven::Flag)?,
         )
     } else if let Some(name) = &args.shape {
         let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;

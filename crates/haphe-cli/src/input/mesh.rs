@@ -4,9 +4,10 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use crate::input::files::{self, read_input};
+use haphe::DVec3;
 use haphe::mesh::{
-    Format, GltfSummary, Mesh, ReadError, ReadOptions, Resolve, WeldStats, read_gltf,
-    read_unwelded, weld,
+    Format, GltfSummary, Mesh, ReadError, ReadOptions, Resolve, Units, WeldStats, read_gltf,
+    read_unwelded, units_hint, weld,
 };
 
 /// A mesh read from a file, with what it took.
@@ -39,6 +40,28 @@ impl Resolve for SideCars<'_> {
         }
         let folder = self.0.parent().unwrap_or(Path::new("."));
         read_input(&folder.join(uri), files::MESH).map_err(|e| format!("{e:#}"))
+    }
+}
+
+/// Where a mesh file's unit was given, for the units warning's advice.
+#[derive(Debug, Clone, Copy)]
+pub enum UnitsGiven {
+    /// The `--units` flag.
+    Flag,
+    /// An object's `units` field in a scene file.
+    SceneField,
+}
+
+/// Warns, on standard error, when the model of `name`, read in `units` with the bounding
+/// box `lo`..`hi`, looks read in the wrong unit (the library's [`units_hint`]), saying
+/// what to add.
+pub fn warn_units(name: &str, (lo, hi): (DVec3, DVec3), units: Units, given: UnitsGiven) {
+    if let Some(hint) = units_hint(lo, hi, units) {
+        let advice = hint.advice(|u| match given {
+            UnitsGiven::Flag => format!("`--units {u}`"),
+            UnitsGiven::SceneField => format!("`units = \"{u}\"` to its object in the scene file"),
+        });
+        eprintln!("haphe: warning: {name}: {advice}");
     }
 }
 

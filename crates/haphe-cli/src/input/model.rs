@@ -10,6 +10,7 @@ use haphe::mesh::Units;
 use haphe::mesh::shapes::Catalog;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 
+use crate::input::mesh::UnitsGiven;
 use crate::input::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
 
 /// Where the objects of a run come from: one of a scene file, a mesh file, a built-in shape.
@@ -31,7 +32,7 @@ pub fn load_model(
     Ok(if let Some(file) = model.scene {
         (load_scene(file, &map)?, file.display().to_string())
     } else if let Some(file) = model.mesh {
-        let shape = Arc::new(mesh_shape(file, model.units, &map)?);
+        let shape = Arc::new(mesh_shape(file, model.units, &map, UnitsGiven::Flag)?);
         // The paths explore the workspace around the origin: the mesh is placed there.
         let (lo, hi) = shape.surface().bounds();
         let centre = (lo + hi) * 0.5;

@@ -14,7 +14,7 @@ use haphe::scene::{Material, SceneObject, Shape};
 use haphe::servo::ObjectMotion;
 use haphe::servo::scene_file::{ObjectSource, parse_scene};
 
-use crate::input::mesh::{SideCars, load};
+use crate::input::mesh::{SideCars, UnitsGiven, load, warn_units};
 
 /// One object of a loaded scene file.
 pub struct LoadedObject {
@@ -86,7 +86,7 @@ pub fn load_gltf_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<Load
 fn build_shape(source: &ObjectSource, map: &MapOptions) -> anyhow::Result<Shape> {
     match source {
         ObjectSource::Shape { which, triangles } => shape_of(*which, *triangles, map),
-        ObjectSource::Mesh { path, units } => mesh_shape(path, *units, map),
+        ObjectSource::Mesh { path, units } => mesh_shape(path, *units, map, UnitsGiven::SceneField),
     }
 }
 
@@ -100,13 +100,22 @@ pub fn shape_of(which: Catalog, triangles: usize, map: &MapOptions) -> anyhow::R
     )?)
 }
 
-/// A shape from a mesh file, with its map and clear zones.
-pub fn mesh_shape(path: &Path, units: Units, map: &MapOptions) -> anyhow::Result<Shape> {
+/// A shape from a mesh file, with its map and clear zones; warns when its size suggests
+/// the wrong unit ([`warn_units`], the unit `given` as a flag or a scene file's field).
+pub fn mesh_shape(
+    path: &Path,
+    units: Units,
+    map: &MapOptions,
+    given: UnitsGiven,
+) -> anyhow::Result<Shape> {
     let read = ReadOptions {
         units,
         ..ReadOptions::default()
     };
     let loaded = load(path, &read).map_err(|e| anyhow!("{e}"))?;
+    if let Some(bounds) = loaded.mesh.bounds() {
+        warn_units(&path.display().to_string(), bounds, units, given);
+    }
     Ok(Shape::from_mesh(
         &path.display().to_string(),
         loaded.mesh,

@@ -16,9 +16,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, bail};
 use haphe::scene::Scene;
 use haphe::servo::{
-    Device, DeviceClock, HandOptions, HipTrace, Interference, ObjectMotion, PathKind,
-    RealtimeOptions, RealtimeSetup, ReplayDevice, ScriptedDevice, Servo, ServoLoop, ServoOptions,
-    SimulatedHand, StandbyReport, StopReason, TickRecord, TickStats, scripted_path,
+    Device, DeviceClock, DeviceMapping, DeviceSpec, HandOptions, HipTrace, Interference,
+    ObjectMotion, PathKind, RealtimeOptions, RealtimeSetup, ReplayDevice, STIFFNESS_RATED_AT_HZ,
+    ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand, StandbyReport, StopReason,
+    TickRecord, TickStats, scripted_path,
 };
 
 use self::device::VendorChoice;
@@ -149,13 +150,14 @@ impl Session {
         let (device, vendor) = open_device(self.device, &scene, seconds, self.seed)?;
         let mapping = match &vendor {
             Some(v) => device::mapping(&v.choice, &device.spec(), &scene)?,
-            None => haphe::servo::DeviceMapping::IDENTITY,
+            None => DeviceMapping::IDENTITY,
         };
         let options = ServoOptions::new(self.rate_hz)
             .map_err(|e| anyhow!("{}", e.named("--rate")))?
             .with_proxy(proxy_options(self.max_force)?)
             .with_mapping(mapping);
         let stiffness = stiffest(&scene);
+        warn_stiffness(stiffness, &mapping, &device.spec(), self.rate_hz);
         let mut servo = Servo::new(device, scene, options)?;
         servo.set_motions(motions);
         let max_force = servo.options().proxy().max_force();
@@ -208,6 +210,7 @@ impl Session {
             &ran.stats,
             &RunInfo {
                 rate_hz: self.rate_hz,
+                scale: mapping.scale(),
                 realtime,
                 max_force,
                 stop: ran.stop,
@@ -219,7 +222,16 @@ impl Session {
         )?;
         write_files(out, trace, self.plot.as_deref(), &self.title, &summary)?;
         let said = report.as_ref().and_then(|r| r());
-        outcome(out, ran.stop, said, summary.contact_ticks == 0 && !replay)
+        let touch = if replay || summary.contact_ticks > 0 {
+            Touch::Touched
+        } else if summary.held_ticks > 0 && summary.free_ticks == 0 {
+            Touch::HeldThroughout
+        } else if summary.held_ticks > 0 {
+            Touch::LeftWithoutTouching
+        } else {
+            Touch::Never
+        };
+        outcome(out, ran.stop, said, touch)
     }
 }
 
@@ -310,6 +322,27 @@ fn write_files(
     Ok(())
 }
 
+/// Warns on standard error when the stiffest object, felt at the device through
+/// `mapping`, is above what the device renders stably at `rate_hz`
+/// ([`DeviceSpec::stable_stiffness`], the passivity rule of a sampled wall).
+fn warn_stiffness(stiffness: f64, mapping: &DeviceMapping, spec: &DeviceSpec, rate_hz: f64) {
+    let at_device = mapping.stiffness_at_device(stiffness);
+    let stable = spec.stable_stiffness(rate_hz);
+    if at_device > stable {
+        let felt = if mapping.scale() == 1.0 {
+            String::new()
+        } else {
+            format!(", felt as {at_device:.0} N/m at the device")
+        };
+        eprintln!(
+            "haphe: warning: stiffness {stiffness} N/m{felt} is above the {stable:.0} N/m the device ({}, rated {:.0} N/m at {STIFFNESS_RATED_AT_HZ:.0} Hz) renders stably at {rate_hz} Hz \
+             (passivity of a sampled wall, K < K_rated · rate / {STIFFNESS_RATED_AT_HZ:.0} Hz): \
+             expect a buzzing wall; lower --stiffness or --scale, or raise --rate",
+            spec.name, spec.max_stiffness
+        );
+    }
+}
+
 /// The largest stiffness of the scene's objects, N/m (0 for none).
 pub fn stiffest(scene: &Scene) -> f64 {
     scene
@@ -383,23 +416,46 @@ fn run_realtime(
     Ok((ran, report))
 }
 
-/// Prints what the device `said` after the run and a warning when it never touched an
-/// object (`untouched`, not said of a replay); the session's error when the device
-/// faulted (with what it said) or the servo missed too many deadlines.
+/// Whether the device touched an object during a run, for the warning after it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Touch {
+    /// It did (or the run replayed a trace: nothing to say).
+    Touched,
+    /// Never: it stayed outside every object.
+    Never,
+    /// It started inside an object and the safe start held it there for the whole run.
+    HeldThroughout,
+    /// It started inside an object, was held, left it, and touched nothing after.
+    LeftWithoutTouching,
+}
+
+/// Prints what the device `said` after the run and one warning when it did not `touch`
+/// an object (the one that is true: never touching, or held by the safe start); the
+/// session's error when the device faulted (with what it said) or the servo missed too
+/// many deadlines.
 fn outcome(
     out: &mut impl Write,
     stop: StopReason,
     said: Option<String>,
-    untouched: bool,
+    touch: Touch,
 ) -> anyhow::Result<()> {
     if let Some(line) = &said {
         writeln!(out, "{line}")?;
     }
-    if untouched {
-        writeln!(
-            out,
-            "warning: the device never touched any object (the path stays outside them all)"
-        )?;
+    let warning = match touch {
+        Touch::Touched => None,
+        Touch::Never => {
+            Some("the device never touched any object (the path stays outside them all)")
+        }
+        Touch::HeldThroughout => Some(
+            "the device was inside an object for the whole run, so the safe start held the force at zero; start outside the objects (docs/devices.md, Safety)",
+        ),
+        Touch::LeftWithoutTouching => Some(
+            "the device started inside an object (held at zero force until it left) and touched no object after",
+        ),
+    };
+    if let Some(w) = warning {
+        writeln!(out, "warning: {w}")?;
     }
     if let StopReason::Fault(f) = stop
         && f != haphe::servo::DeviceFault::Ended

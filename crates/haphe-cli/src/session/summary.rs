@@ -8,6 +8,19 @@ use haphe::servo::{
     Histogram, Interference, Phase, RealtimeSetup, StandbyReport, StopReason, TickRecord, TickStats,
 };
 
+/// The fastest a hand moves a haptic device's handle, metres per second of the device
+/// (world speed over the mapping's scale). The fastest human arm movements short of
+/// throwing peak at about 3 to 5 m/s at the hand, and desktop devices are built for
+/// much less (their handles' rated speeds are around 1 m/s); a faster run is not a
+/// hand's, most often a model in the wrong unit that the simulated hand's path scaled up.
+pub const MAX_HAND_SPEED_M_S: f64 = 5.0;
+
+/// The deepest a hand can press into an object, metres of the device (world depth over
+/// the mapping's scale): the largest desktop workspaces are about 0.4 m across, and a
+/// hand pressing against even the lowest force limit is stopped within a fraction of it;
+/// 0.1 m is beyond any device. Deeper is, again, most often a model in the wrong unit.
+pub const MAX_PENETRATION_M: f64 = 0.1;
+
 /// Most samples kept for the plot; longer runs are decimated evenly.
 pub const PLOT_SAMPLES: usize = 20_000;
 
@@ -31,6 +44,9 @@ pub struct Summary {
     pub sticking_ticks: u64,
     pub clamped_ticks: u64,
     pub held_ticks: u64,
+    /// Ticks that placed a proxy (ramping or running): the device was out of every
+    /// object.
+    pub free_ticks: u64,
     pub max_penetration: f64,
     pub penetration_sum: f64,
     pub max_force: f64,
@@ -71,6 +87,7 @@ impl Summary {
         self.sticking_ticks += u64::from(r.status.sticking);
         self.clamped_ticks += u64::from(r.status.force_clamped);
         self.held_ticks += u64::from(r.phase == Phase::Holding);
+        self.free_ticks += u64::from(matches!(r.phase, Phase::Ramping | Phase::Running));
         self.max_penetration = self.max_penetration.max(r.penetration);
         self.max_force = self.max_force.max(r.force.length());
         self.max_speed = self.max_speed.max(r.velocity.length());
@@ -126,6 +143,8 @@ fn quantiles(h: &Histogram) -> String {
 /// How a run was made, for the report.
 pub struct RunInfo<'a> {
     pub rate_hz: f64,
+    /// World metres per device metre (1 for the simulated devices).
+    pub scale: f64,
     pub realtime: bool,
     pub max_force: f64,
     pub stop: StopReason,
@@ -162,6 +181,18 @@ fn print_interference(
     Ok(())
 }
 
+/// The flag of a figure no real hand on a device reaches: `value` (SI, at the device)
+/// above `limit` (in the unit shown, `per_si` of it per SI unit).
+fn impossible(value: f64, limit: f64, per_si: f64, unit: &str) -> String {
+    if value * per_si > limit {
+        format!(
+            " (impossible for a hand on a device, over {limit} {unit}: is the model in the wrong unit?)"
+        )
+    } else {
+        String::new()
+    }
+}
+
 /// Prints the summary.
 pub fn print(
     out: &mut impl Write,
@@ -194,7 +225,8 @@ pub fn print(
             StopReason::Requested => " (stopped)".into(),
             StopReason::Overruns =>
                 " (stopped: the overrun budget was exceeded, zero force written)".into(),
-            StopReason::Fault(haphe::servo::DeviceFault::Ended) => " (the trace ended)".into(),
+            StopReason::Fault(haphe::servo::DeviceFault::Ended) =>
+                " (ended by the device: its trace or path ended, or its peer sent stop)".into(),
             StopReason::Fault(f) =>
                 format!(" (stopped by a device fault: {f}; zero force written)"),
         }
@@ -223,9 +255,15 @@ pub fn print(
     };
     writeln!(
         out,
-        "  max penetration   {:.3} mm (mean in contact {:.3} mm)",
+        "  max penetration   {:.3} mm (mean in contact {:.3} mm){}",
         s.max_penetration * 1e3,
-        mean * 1e3
+        mean * 1e3,
+        impossible(
+            s.max_penetration / info.scale,
+            MAX_PENETRATION_M * 1e3,
+            1e3,
+            "mm deep"
+        )
     )?;
     writeln!(
         out,
@@ -242,7 +280,12 @@ pub fn print(
             0.0
         }
     )?;
-    writeln!(out, "  fastest hand      {:.3} m/s", s.max_speed)?;
+    writeln!(
+        out,
+        "  fastest hand      {:.3} m/s{}",
+        s.max_speed,
+        impossible(s.max_speed / info.scale, MAX_HAND_SPEED_M_S, 1.0, "m/s")
+    )?;
     writeln!(
         out,
         "  safe start        held {} tick(s) at zero force (device inside an object)",

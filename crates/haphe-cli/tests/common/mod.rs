@@ -3,20 +3,26 @@
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 /// Runs `haphe` with `args`, killing it (and failing the test) after `limit`. Its output
 /// is read while it runs (a full pipe would stop it).
 pub fn haphe_within(args: &[&str], limit: Duration) -> Output {
-    use std::io::Read;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_haphe"))
+    let child = Command::new(env!("CARGO_BIN_EXE_haphe"))
         .args(args)
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .expect("the haphe binary runs");
+    finish_within(child, limit, &format!("haphe {args:?}"))
+}
+
+/// Waits for `child` (started with piped standard output and error), reading its output
+/// meanwhile; kills it and fails the test, naming it as `what`, after `limit`.
+pub fn finish_within(mut child: Child, limit: Duration, what: &str) -> Output {
+    use std::io::Read;
     let drain = |mut pipe: Box<dyn Read + Send>| {
         std::thread::spawn(move || {
             let mut bytes = Vec::new();
@@ -34,7 +40,7 @@ pub fn haphe_within(args: &[&str], limit: Duration) -> Output {
         if start.elapsed() > limit {
             let _ = child.kill();
             let _ = child.wait();
-            panic!("haphe {args:?} ran longer than {limit:?}");
+            panic!("{what} ran longer than {limit:?}");
         }
         std::thread::sleep(Duration::from_millis(20));
     };

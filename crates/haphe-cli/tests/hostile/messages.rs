@@ -95,3 +95,102 @@ fn a_map_named_like_a_mesh_is_recognised_everywhere() {
     let o = haphe(&["query", map.to_str().unwrap(), "--inside", &points]);
     assert_eq!(crate::common::stdout(&o), "inside\n", "{}", stderr(&o));
 }
+
+/// A misspelt shape, unit or device gets the closest known name; a product name gets the
+/// specification that drives it (a Phantom runs through OpenHaptics).
+#[test]
+fn unknown_names_are_answered_with_what_was_meant() {
+    let o = haphe(&["simulate", "--shape", "spehre"]);
+    assert_error(&o, &["unknown shape 'spehre'", "did you mean 'sphere'?"]);
+    let o = simulate_sphere(&["--units", "milimetres"]);
+    assert_error(
+        &o,
+        &["--units", "unknown unit 'milimetres'", "did you mean 'mm'?"],
+    );
+    for (given, meant) in [
+        ("phantom", "openhaptics"),
+        ("openhaptic", "openhaptics"),
+        ("falcon", "dhd"),
+        ("hnad", "hand"),
+    ] {
+        let o = haphe(&["run", "--device", given, "--shape", "sphere"]);
+        assert_error(
+            &o,
+            &[
+                &format!("unknown device \"{given}\""),
+                &format!("did you mean '{meant}'?"),
+            ],
+        );
+    }
+    // Nothing close: no guess.
+    let o = haphe(&["simulate", "--shape", "teapot"]);
+    assert_error(&o, &["unknown shape 'teapot'"]);
+    assert!(!stderr(&o).contains("did you mean"), "{}", stderr(&o));
+}
+
+/// A unit factor of zero or below is a value out of its domain, not an unknown name.
+#[test]
+fn a_unit_factor_must_be_positive() {
+    for factor in ["0", "-0.001", "-1"] {
+        let o = simulate_sphere(&["--units", factor]);
+        assert_error(&o, &["--units", "must be positive", factor]);
+        assert!(!stderr(&o).contains("unknown unit"), "{}", stderr(&o));
+    }
+}
+
+/// Plots are PNG: another extension is refused before any work, naming the one written.
+#[test]
+fn a_plot_is_refused_an_extension_it_does_not_write() {
+    let dir = scratch("plot-extension");
+    for name in ["out.jpg", "out.svg", "out"] {
+        let path = dir.join(name);
+        let path = path.to_str().expect("UTF-8");
+        for args in [
+            vec!["simulate", "--shape", "sphere", "--plot", path],
+            vec!["demo", "--fast", "--plot", path],
+        ] {
+            let o = haphe(&args);
+            assert_error(&o, &["--plot", "PNG only", ".png"]);
+        }
+        assert!(!dir.join(name).exists(), "{name} was written");
+    }
+    let png = dir.join("OUT.PNG");
+    let o = simulate_sphere(&["--seconds", "0.1", "--plot", png.to_str().expect("UTF-8")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        std::fs::read(&png)
+            .expect("written")
+            .starts_with(b"\x89PNG")
+    );
+}
+
+/// A stiffness above what the device renders stably at the servo rate is warned about,
+/// naming the bound; at or below it, nothing is said. The bound is the simulated
+/// device's rated stiffness scaled by the rate (the passivity rule of a sampled wall).
+#[test]
+fn a_stiffness_beyond_the_stable_bound_is_warned() {
+    let spec = haphe::servo::simulated_spec();
+    for rate in [1000.0, 2000.0] {
+        let stable = spec.max_stiffness * rate / haphe::servo::STIFFNESS_RATED_AT_HZ;
+        for (stiffness, warned) in [(stable, false), (stable * 1.5, true)] {
+            let o = simulate_sphere(&[
+                "--seconds",
+                "0.1",
+                "--rate",
+                &rate.to_string(),
+                "--stiffness",
+                &stiffness.to_string(),
+            ]);
+            let err = stderr(&o);
+            assert!(o.status.success(), "{err}");
+            assert_eq!(
+                err.contains("renders stably"),
+                warned,
+                "{stiffness} N/m at {rate} Hz: {err}"
+            );
+            if warned {
+                assert!(err.contains(&format!("the {stable:.0} N/m")), "{err}");
+            }
+        }
+    }
+}

@@ -46,7 +46,8 @@ pub use read::gltf::{
     SkippedSummary, read_gltf,
 };
 pub use read::{
-    Format, ReadMesh, ReadOptions, Units, read_mesh, read_mesh_with_stats, read_unwelded,
+    Format, LARGEST_LIKELY_SPAN_M, ReadMesh, ReadOptions, SMALLEST_LIKELY_SPAN_M, UNIT_NAMES,
+    Units, UnitsHint, read_mesh, read_mesh_with_stats, read_unwelded, units_hint,
 };
 #[doc(hidden)]
 pub use read::{read_mesh_resolving, read_unwelded_with};

@@ -24,7 +24,32 @@ pub struct DeviceSpec {
     pub workspace_max: DVec3,
 }
 
+/// The servo rate at which a device's [`DeviceSpec::max_stiffness`] is taken to be
+/// rated, Hz: vendors quote it for their 1 kHz servo loop (OpenHaptics'
+/// `HD_NOMINAL_MAX_STIFFNESS`, Force Dimension's manuals).
+pub const STIFFNESS_RATED_AT_HZ: f64 = 1000.0;
+
 impl DeviceSpec {
+    /// The largest wall stiffness the device renders stably at `rate_hz`, N/m at the
+    /// device; infinite when the device reports no maximum.
+    ///
+    /// The rule is the passivity condition of a sampled virtual wall (Colgate and
+    /// Schenkel, "Passivity of a class of sampled-data systems: application to haptic
+    /// interfaces", J. Robotic Systems 14(1), 1997): a wall of stiffness `K` and damping
+    /// `B` rendered every `T` seconds on a device of physical damping `b` is passive if
+    /// `b > K·T/2 + |B|`. The device's physical damping is taken from its rated maximum,
+    /// `b = max_stiffness · T₀ / 2` at [`STIFFNESS_RATED_AT_HZ`], which gives
+    /// `K < max_stiffness · rate / 1000 Hz`: twice the rate renders twice the stiffness.
+    /// The wall's damping is left out: the hand holding the device adds physical damping
+    /// of its own (a few N·s/m), which the rule does not count either, and counting `B`
+    /// alone would warn on walls that render well.
+    pub fn stable_stiffness(&self, rate_hz: f64) -> f64 {
+        if !self.max_stiffness.is_finite() {
+            return f64::INFINITY;
+        }
+        self.max_stiffness * rate_hz / STIFFNESS_RATED_AT_HZ
+    }
+
     /// Centre of the workspace box, metres, device frame.
     pub fn workspace_centre(&self) -> DVec3 {
         0.5 * (self.workspace_min + self.workspace_max)

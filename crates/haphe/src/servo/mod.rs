@@ -80,6 +80,7 @@ mod trace;
 
 pub use device::{
     Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
+    STIFFNESS_RATED_AT_HZ,
 };
 pub use realtime::{
     DeviceClock, Interference, RealtimeOptions, RealtimeRun, RealtimeSetup, ServoLoop,

@@ -15,7 +15,9 @@ mod stl;
 mod text;
 mod units;
 
-pub use units::Units;
+pub use units::{
+    LARGEST_LIKELY_SPAN_M, SMALLEST_LIKELY_SPAN_M, UNIT_NAMES, Units, UnitsHint, units_hint,
+};
 
 use self::gltf::{NoSideCars, Resolve};
 use self::text::{skip_ascii_whitespace, starts_with_word};

@@ -214,7 +214,8 @@ impl FromStr for Catalog {
 /// A shape name that [`Catalog::from_str`] does not know.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "unknown shape '{name}' (expected one of: sphere, torus, box, thin-plate, concave-corner, blob)"
+    "unknown shape '{name}' (expected one of: sphere, torus, box, thin-plate, concave-corner, blob){}",
+    crate::names::did_you_mean(name, &Catalog::ALL.map(Catalog::name))
 )]
 pub struct ParseShapeError {
     /// The name as given.
