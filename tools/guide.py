@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerate (or check) the command outputs shown in README.md and docs/guide.md.
+"""Regenerate (or check) the command outputs shown in README.md and the docs (FILES).
 
 A block of example output is a ```text fence right after a line `<!-- output -->`
 (`<!-- output slow -->` for one that takes long). In it, lines starting with `$ ` are
@@ -10,6 +10,13 @@ one block writes is there for the next), with `haphe` on the PATH meaning the bi
 by --bin, and writes what they print back into the block. `cargo run --release -p
 haphe-cli -- ARGS` in a command runs `haphe ARGS` the same way. Only standard output is
 kept (progress bars go to standard error), then `exit code: N` when it is not 0.
+
+A fenced block right after a line `<!-- file NAME -->` (a program shown in the docs, such
+as a Python peer) is written to NAME in the scratch directory before the commands that
+follow it run, so an output block can run the program exactly as the docs show it.
+`python3` in the commands is the interpreter given by --python (default: this one), which
+must import the `haphe` package for the docs that use it (CI passes its virtual
+environment's).
 
     python3 tools/guide.py --bin target/release/haphe          # rewrite the outputs
     python3 tools/guide.py --bin target/debug/haphe --check    # CI: do they still hold?
@@ -30,9 +37,10 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-FILES = ["README.md", "docs/guide.md"]
+FILES = ["README.md", "docs/guide.md", "docs/devices.md", "docs/python.md"]
 CARGO_RUN = "cargo run --release -p haphe-cli -- "
 MARKER = re.compile(r"^<!-- output( slow)? -->$")
+FILE_MARKER = re.compile(r"^<!-- file (\S+) -->$")
 MASKS = [
     (re.compile(r"\d[\d.]*(e-?\d+)? ?(ns|µs|us|ms|s)\b"), "#time"),
     (re.compile(r"\d[\d.]* ticks/s"), "# ticks/s"),
@@ -72,6 +80,13 @@ def regenerate(path, scratch, env, fast):
         line = lines[i]
         out.append(line)
         i += 1
+        named = FILE_MARKER.match(line)
+        if named:
+            if i >= len(lines) or not lines[i].startswith("```"):
+                sys.exit(f"{path}:{i}: a file marker must be followed by a fenced block")
+            end = lines.index("```", i + 1)
+            (Path(scratch) / named.group(1)).write_text("\n".join(lines[i + 1:end]) + "\n")
+            continue
         m = MARKER.match(line)
         if not m:
             continue
@@ -99,6 +114,8 @@ def main():
     parser.add_argument("--bin", default="target/release/haphe", help="the haphe binary")
     parser.add_argument("--check", action="store_true", help="compare, do not rewrite")
     parser.add_argument("--fast", action="store_true", help="skip blocks marked slow")
+    parser.add_argument("--python", default=sys.executable,
+                        help="the interpreter `python3` means in the commands")
     args = parser.parse_args()
     binary = (ROOT / args.bin).resolve() if not Path(args.bin).is_absolute() else Path(args.bin)
     if not binary.is_file():
@@ -110,6 +127,10 @@ def main():
             bindir = Path(scratch) / ".bin"
             bindir.mkdir()
             (bindir / "haphe").symlink_to(binary)
+            # A script, not a link: a virtual environment is found from the path it runs as.
+            shim = bindir / "python3"
+            shim.write_text(f'#!/bin/sh\nexec "{Path(args.python).absolute()}" "$@"\n')
+            shim.chmod(0o755)
             for linked in ["meshes", "scenes"]:
                 (Path(scratch) / linked).symlink_to(ROOT / linked)
             env = {k: v for k, v in os.environ.items() if not k.startswith("CARGO")}

@@ -243,6 +243,7 @@ fn the_view_shows_a_udp_peer_and_sigterm_sends_it_zero_force() {
                 timestamp_us: started.elapsed().as_micros() as u64,
                 position,
                 buttons: 0,
+                stop: false,
             };
             let _ = peer.send_to(&datagram.encode(), ("127.0.0.1", port));
             let mut buf = [0u8; 64];

@@ -83,6 +83,7 @@ fn udp_ticks_allocate_nothing() {
                 timestamp_us: k * 100,
                 position: r.hip,
                 buttons: 0,
+                stop: false,
             };
             let _ = socket.send_to(&d.encode(), address);
             if k.is_multiple_of(7) {

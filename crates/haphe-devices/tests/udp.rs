@@ -60,6 +60,7 @@ fn udp_peer() {
             timestamp_us: (r.t * 1e6) as u64,
             position: r.hip,
             buttons: 0,
+            stop: false,
         }
         .encode()
     };

@@ -6,7 +6,7 @@
 //! | --- | --- | --- |
 //! | 0 | 4 bytes | magic `HPHP` |
 //! | 4 | u16 | version, [`VERSION`] |
-//! | 6 | u16 | reserved, 0 |
+//! | 6 | u16 | flags: bit 0 [`FLAG_STOP`] (the peer is done: the run ends cleanly); the other bits 0 |
 //! | 8 | u64 | sequence number, increasing by one per datagram |
 //! | 16 | u64 | timestamp, microseconds of the sender's clock |
 //! | 24 | 3 × f64 | position x, y, z, metres, device frame |
@@ -32,6 +32,11 @@ pub const POSITION_MAGIC: [u8; 4] = *b"HPHP";
 pub const FORCE_MAGIC: [u8; 4] = *b"HPHF";
 /// Version of both datagrams.
 pub const VERSION: u16 = 1;
+/// Bit of a position datagram's flags (offset 6, once reserved and always 0, so a peer
+/// that never sets it is unchanged): the peer is done. haphe uses the datagram's position
+/// as any other, answers with a zero force of status [`Status::Stopped`] and ends the run
+/// as a replay ends ([`haphe::servo::DeviceFault::Ended`]): a clean stop, exit code 0.
+pub const FLAG_STOP: u16 = 1;
 /// Bytes of a position datagram.
 pub const POSITION_LEN: usize = 56;
 /// Bytes of a force datagram.
@@ -60,6 +65,8 @@ pub struct PositionDatagram {
     pub position: DVec3,
     /// Buttons held, bit 0 the first.
     pub buttons: u32,
+    /// The peer is done ([`FLAG_STOP`]).
+    pub stop: bool,
 }
 
 /// A force datagram.
@@ -106,6 +113,8 @@ impl PositionDatagram {
         let mut b = [0u8; POSITION_LEN];
         b[0..4].copy_from_slice(&POSITION_MAGIC);
         b[4..6].copy_from_slice(&VERSION.to_le_bytes());
+        let flags = if self.stop { FLAG_STOP } else { 0 };
+        b[6..8].copy_from_slice(&flags.to_le_bytes());
         b[8..16].copy_from_slice(&self.sequence.to_le_bytes());
         b[16..24].copy_from_slice(&self.timestamp_us.to_le_bytes());
         put_vec(&mut b, 24, self.position);
@@ -131,6 +140,7 @@ impl PositionDatagram {
             timestamp_us: u64_at(bytes, 16),
             position,
             buttons: u32_at(bytes, 48),
+            stop: u16_at(bytes, 6) & FLAG_STOP != 0,
         })
     }
 }
@@ -182,9 +192,18 @@ mod tests {
             timestamp_us: 123_456,
             position: DVec3::new(0.01, -0.02, 0.03),
             buttons: 0b101,
+            stop: false,
         };
         let b = p.encode();
         assert_eq!(PositionDatagram::decode(&b), Some(p));
+        assert_eq!(
+            &b[6..8],
+            &[0, 0],
+            "no flag: the bytes of a peer that never stops"
+        );
+        let last = PositionDatagram { stop: true, ..p };
+        assert_eq!(&last.encode()[6..8], &FLAG_STOP.to_le_bytes());
+        assert_eq!(PositionDatagram::decode(&last.encode()), Some(last));
         assert_eq!(&b[0..4], b"HPHP");
         assert_eq!(u64::from_le_bytes(b[8..16].try_into().expect("8")), 7);
         assert!(PositionDatagram::decode(&b[..55]).is_none());

@@ -10,7 +10,10 @@
 //! counted; gaps in the sequence are counted as lost. A tick with nothing new holds the
 //! last position (counted as late). When no new position came for
 //! [`UdpOptions::timeout_s`], the device faults: a zero force datagram with status
-//! [`Status::Timeout`] is sent and the servo stops.
+//! [`Status::Timeout`] is sent and the servo stops. A position datagram with the stop
+//! flag ([`datagram::FLAG_STOP`]) ends the run cleanly: a zero force datagram with status
+//! [`Status::Stopped`], and the device reports [`DeviceFault::Ended`] as a replay that
+//! ended does.
 
 pub mod datagram;
 
@@ -81,6 +84,8 @@ pub struct UdpCounters {
     pub send_failed: AtomicU64,
     /// 1 once the device faulted for want of positions.
     pub timed_out: AtomicU64,
+    /// 1 once the peer sent the stop flag.
+    pub stopped_by_peer: AtomicU64,
 }
 
 impl UdpCounters {
@@ -99,6 +104,8 @@ impl UdpCounters {
             g(&self.send_failed),
             if g(&self.timed_out) > 0 {
                 "; timed out: no position within the timeout"
+            } else if g(&self.stopped_by_peer) > 0 {
+                "; the peer sent stop"
             } else {
                 ""
             }
@@ -122,6 +129,7 @@ pub struct UdpDevice {
     velocity: DVec3,
     sent: u64,
     faulted: bool,
+    stopped: bool,
     counters: Arc<UdpCounters>,
 }
 
@@ -147,6 +155,7 @@ impl UdpDevice {
             velocity: DVec3::ZERO,
             sent: 0,
             faulted: false,
+            stopped: false,
             counters: Arc::new(UdpCounters::default()),
         })
     }
@@ -212,6 +221,10 @@ impl UdpDevice {
                 };
             }
             self.counters.received.fetch_add(1, Ordering::Relaxed);
+            if d.stop {
+                self.stopped = true;
+                self.counters.stopped_by_peer.store(1, Ordering::Relaxed);
+            }
             self.last = Some(d);
             self.peer = Some(from);
             fresh = true;
@@ -283,12 +296,20 @@ impl Device for UdpDevice {
         if self.faulted {
             return Err(DeviceFault::Disconnected);
         }
+        if self.stopped {
+            self.send(Status::Stopped, DVec3::ZERO);
+            return Err(DeviceFault::Ended);
+        }
         let Some(_) = self.socket else {
             return Err(DeviceFault::NotOpen);
         };
         let now = Instant::now();
         if self.drain() {
             self.last_at = now;
+            if self.stopped {
+                self.send(Status::Stopped, DVec3::ZERO);
+                return Err(DeviceFault::Ended);
+            }
         } else {
             self.counters.late_ticks.fetch_add(1, Ordering::Relaxed);
             if now.saturating_duration_since(self.last_at).as_secs_f64() > self.options.timeout_s {
@@ -309,6 +330,10 @@ impl Device for UdpDevice {
     }
 
     fn write_force(&mut self, force: DVec3) -> Result<(), DeviceFault> {
+        if self.stopped {
+            self.send(Status::Stopped, DVec3::ZERO);
+            return Ok(());
+        }
         if self.faulted {
             self.send(Status::Timeout, DVec3::ZERO);
             return Ok(());
