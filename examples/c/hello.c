@@ -4,7 +4,7 @@
  *
  *   cargo build --release -p haphe-c
  *   cc -std=c11 -O2 examples/c/hello.c -Icrates/haphe-c/include -Ltarget/release -lhaphe -lm -o hello
- *   LD_LIBRARY_PATH=target/release ./hello ../shared/meshes/models/spot.obj
+ *   LD_LIBRARY_PATH=target/release ./hello meshes/models/spot.obj
  *
  * Built with -DHAPHE_COUNT_ALLOCATIONS against a library built with
  * `--features count-allocations`, it also checks that the tick loop allocates nothing. */

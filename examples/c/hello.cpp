@@ -1,7 +1,7 @@
 // The C API from C++: RAII handles over libhaphe, one inside query and a short tick loop.
 //
 //   c++ -std=c++17 -O2 examples/c/hello.cpp -Icrates/haphe-c/include -Ltarget/release -lhaphe -o hello-cpp
-//   LD_LIBRARY_PATH=target/release ./hello-cpp ../shared/meshes/models/spot.obj
+//   LD_LIBRARY_PATH=target/release ./hello-cpp meshes/models/spot.obj
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
