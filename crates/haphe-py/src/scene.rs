@@ -11,7 +11,7 @@ use std::sync::{Mutex, PoisonError};
 use pyo3::prelude::*;
 
 use crate::errors::{haphe_error, param_error};
-use crate::files::{Folder, read_bytes, read_options};
+use crate::files::{Folder, read_bytes, read_options, units_warning, warn};
 use crate::shape::Shape;
 
 /// Objects the proxy touches: shapes placed in the world (metres) with a material.
@@ -101,6 +101,9 @@ impl Scene {
     /// ``friction``, ``static_friction``, ``dynamic_friction``) where they give one, else
     /// the arguments. ``capacity`` defaults to the number of objects (at least 64).
     ///
+    /// Warns (``UserWarning``) when the scene spans more than 2 m or less than 5 mm, naming
+    /// the ``units`` to give.
+    ///
     /// Raises ``HapheError`` naming the file and the place (node, mesh, primitive,
     /// accessor, buffer) for bad content or a bad argument, ``OSError`` when the file
     /// cannot be read.
@@ -122,11 +125,12 @@ impl Scene {
         let material = material(stiffness, damping, friction, dynamic_friction)?;
         let bytes = read_bytes(&path)?;
         let name = path.display().to_string();
-        let objects = py
+        let (objects, warning) = py
             .detach(|| {
                 let read =
                     haphe::mesh::read_gltf(&name, &bytes, options.units, &mut Folder::of(&path))
                         .map_err(|e| e.to_string())?;
+                let warning = units_warning(&name, read.flatten().bounds(), options.units);
                 let objects = hs::gltf_objects(&read).map_err(|e| format!("{name}: {e}"))?;
                 objects
                     .build(
@@ -135,9 +139,11 @@ impl Scene {
                         material,
                         0,
                     )
+                    .map(|built| (built, warning))
                     .map_err(|e| format!("{name}: {e}"))
             })
             .map_err(|e| haphe_error("", e))?;
+        warn(py, warning)?;
         let mut scene = Scene::new(capacity.unwrap_or(objects.len().max(64)));
         for (object_name, object) in objects {
             let id = object.id.0;
