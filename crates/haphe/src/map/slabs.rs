@@ -124,54 +124,64 @@ fn fine_bounds(slab: u64) -> (f64, f64) {
     )
 }
 
+/// Three corners of a triangle, metres.
+type Corners = [DVec3; 3];
+
+/// What [`VoxelMap::derive_slabs`] finds for a detailed brick: its surface cells' slabs,
+/// its own slab, its cells' lists ordered along their slabs, and its triangles (each
+/// once, in index order).
+type PerBrick = (Vec<u32>, u32, Vec<u32>, Vec<u32>);
+
+/// The corners of `triangles`, in `out` (emptied first): read once from the surface for
+/// the slab's passes and the list's order.
+fn gather(surface: &Surface, triangles: &[u32], out: &mut Vec<Corners>) {
+    out.clear();
+    out.extend(triangles.iter().map(|&t| surface.corners(TriId(t))));
+}
+
 /// The slab of a block (a surface cell or a brick) with centre `centre` (metres) and side
-/// `h` (metres) whose cells list `triangles`: along the sum of their normals, or along the
+/// `h` (metres) over triangles of `corners`: along the sum of their normals, or along the
 /// dominant axis of the normals where that gives a thinner slab.
-fn slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u32 {
-    slab_steps(surface, centre, h, triangles, LEVELS, false).map_or(FULL_SLAB, |(code, lo, hi)| {
+fn slab_of(corners: &[Corners], centre: DVec3, h: f64) -> u32 {
+    slab_steps(corners, centre, h, LEVELS, false).map_or(FULL_SLAB, |(code, lo, hi)| {
         code | ((lo as u32) << 16) | ((hi as u32) << 24)
     })
 }
 
 /// The slab of a region, as [`slab_of`] with bounds of 16 bits; both directions are tried
 /// (a tilt of the sum's direction, which bounds of a byte hide, would thicken it).
-fn fine_slab_of(surface: &Surface, centre: DVec3, h: f64, triangles: &[u32]) -> u64 {
-    slab_steps(surface, centre, h, triangles, FINE_LEVELS, true)
-        .map_or(FULL_FINE_SLAB, |(code, lo, hi)| {
-            u64::from(code) | (lo << 16) | (hi << 32)
-        })
+fn fine_slab_of(corners: &[Corners], centre: DVec3, h: f64) -> u64 {
+    slab_steps(corners, centre, h, FINE_LEVELS, true).map_or(FULL_FINE_SLAB, |(code, lo, hi)| {
+        u64::from(code) | (lo << 16) | (hi << 32)
+    })
 }
 
 /// A slab before packing: the direction's two bytes and the bounds in steps.
 type Steps = (u32, u64, u64);
 
-/// The slab of a block over `triangles`, bounds in steps of `levels`: along the sum of
-/// their normals when it follows a smooth patch (unless `both`), else the thinner of that
-/// and the dominant axis of the normals. `None` without triangles or when products
-/// overflow.
+/// The slab of a block over triangles of `corners`, bounds in steps of `levels`: along
+/// the sum of their normals when it follows a smooth patch (unless `both`), else the
+/// thinner of that and the dominant axis of the normals. `None` without triangles or
+/// when products overflow.
 fn slab_steps(
-    surface: &Surface,
+    corners: &[Corners],
     centre: DVec3,
     h: f64,
-    triangles: &[u32],
     levels: f64,
     both: bool,
 ) -> Option<Steps> {
-    let &first = triangles.first()?;
+    let first = corners.first()?;
     // Area-weighted normals from the corners (the frames would be one more array to
     // read), each turned to the side of the first.
-    let normal = |t: u32| {
-        let [a, b, c] = surface.corners(TriId(t));
-        (b - a).cross(c - a)
-    };
+    let normal = |&[a, b, c]: &Corners| (b - a).cross(c - a);
     let reference = normal(first);
     let (mut sum, mut total) = (DVec3::ZERO, 0.0);
-    for &t in triangles {
+    for t in corners {
         let n = normal(t);
         sum += if n.dot(reference) < 0.0 { -n } else { n };
         total += n.length();
     }
-    let along_sum = slab_along(surface, centre, h, triangles, sum, levels);
+    let along_sum = slab_along(corners, centre, h, sum, levels);
     // The sum gives a smooth patch's normal (then it is nearly as long as the normals
     // together) but cancels out, or turns sideways, where faces meet at an angle (the
     // rim of a thin plate: its top and bottom faces turned to the side of a rim
@@ -184,7 +194,7 @@ fn slab_steps(
         return Some(steps);
     }
     let mut moment = DMat3::ZERO;
-    for &t in triangles {
+    for t in corners {
         let n = normal(t);
         let length = n.length();
         if length > 0.0 {
@@ -192,7 +202,7 @@ fn slab_steps(
         }
     }
     let axis = dominant_axis(moment);
-    let along_moment = slab_along(surface, centre, h, triangles, axis, levels);
+    let along_moment = slab_along(corners, centre, h, axis, levels);
     [along_sum, along_moment]
         .into_iter()
         .flatten()
@@ -219,44 +229,39 @@ fn dominant_axis(moment: DMat3) -> DVec3 {
 }
 
 /// The slab of direction `n` (non-zero) of a block with centre `centre` and side `h`
-/// over the corners of `triangles`, bounds in steps of `levels`; `None` when `n` is zero
-/// or not finite or a product overflows.
-fn slab_along(
-    surface: &Surface,
-    centre: DVec3,
-    h: f64,
-    triangles: &[u32],
-    n: DVec3,
-    levels: f64,
-) -> Option<Steps> {
+/// over `corners`, bounds in steps of `levels`; `None` when `n` is zero or not finite or
+/// a product overflows.
+fn slab_along(corners: &[Corners], centre: DVec3, h: f64, n: DVec3, levels: f64) -> Option<Steps> {
     if !(n.is_finite() && n.length_squared() > 0.0) {
         return None;
     }
     let code = encode_direction(n);
-    let (lo, hi) = steps_along(surface, centre, h, triangles, code, levels)?;
+    let (lo, hi) = steps_along(corners, centre, h, code, levels)?;
     Some((code, lo, hi))
 }
 
-/// The bounds, in steps of `levels` over the range, of the corners of `triangles` along
-/// the direction of `code`, from `centre`, in units of `h`: outward to the step, then one
-/// step more, far beyond the rounding of the products. `None` without triangles or when a
-/// product overflows.
+/// The bounds, in steps of `levels` over the range, of `corners` along the direction of
+/// `code`, from `centre`, in units of `h`: outward to the step, then one step more, far
+/// beyond the rounding of the products. `None` without corners or when a product
+/// overflows.
 fn steps_along(
-    surface: &Surface,
+    corners: &[Corners],
     centre: DVec3,
     h: f64,
-    triangles: &[u32],
     code: u32,
     levels: f64,
 ) -> Option<(u64, u64)> {
     let n = direction(code);
-    let (lo, hi) = triangles
+    let (lo, hi) = corners
         .iter()
-        .flat_map(|&t| surface.corners(TriId(t)))
-        .map(|corner| n.dot(corner - centre) / h)
+        .flatten()
+        .map(|&corner| n.dot(corner - centre))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
             (lo.min(s), hi.max(s))
         });
+    // In units of `h` after the extremes are found: a division by a positive number
+    // keeps the order, so this is the extreme of the quotients, one division for two.
+    let (lo, hi) = (lo / h, hi / h);
     if !(lo.is_finite() && hi.is_finite()) {
         return None;
     }
@@ -353,12 +358,15 @@ fn interval_along(
 /// mostly the first it tests: the near face of a thin plate before the far one, whose
 /// filter then skips it on the part before the crossing (see
 /// [`first_crossing`](crate::query::first_crossing)). Any order gives the same answers.
-fn order_along(surface: &Surface, n: DVec3, listed: &[u32], keyed: &mut Vec<(f64, u32)>) {
+/// `corners` are those of `listed`, in its order.
+fn order_along(n: DVec3, listed: &[u32], corners: &[Corners], keyed: &mut Vec<(f64, u32)>) {
     keyed.clear();
-    keyed.extend(listed.iter().map(|&t| {
-        let [a, b, c] = surface.corners(TriId(t));
-        (n.dot(a + b + c), t)
-    }));
+    keyed.extend(
+        listed
+            .iter()
+            .zip(corners)
+            .map(|(&t, &[a, b, c])| (n.dot(a + b + c), t)),
+    );
     keyed.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
 }
 
@@ -370,8 +378,9 @@ impl VoxelMap {
     pub(crate) fn derive_slabs(&mut self, surface: &Surface) {
         let h = self.grid.cell_size();
         let side = f64::from(BRICK_SIDE) * h;
-        // Per detailed brick: its cells' slabs, its own slab and its cells' lists, ordered.
-        let per_brick: Vec<(Vec<u32>, u32, Vec<u32>)> = (0..self.bricks.len())
+        // Per detailed brick: its cells' slabs, its own slab, its cells' lists, ordered, and
+        // its triangles (each once).
+        let per_brick: Vec<PerBrick> = (0..self.bricks.len())
             .into_par_iter()
             .filter(|&b| self.bricks[b] & UNIFORM == 0)
             .map(|b| {
@@ -379,9 +388,9 @@ impl VoxelMap {
                 let bc = brick_coords(b, self.brick_dims);
                 let (mut slabs, mut triangles, mut ordered) = (Vec::new(), Vec::new(), Vec::new());
                 let Some(bits) = self.surface_bits.get(brick) else {
-                    return (slabs, FULL_SLAB, ordered);
+                    return (slabs, FULL_SLAB, ordered, triangles);
                 };
-                let mut keyed = Vec::new();
+                let (mut keyed, mut corners) = (Vec::new(), Vec::new());
                 for (word, &bits) in bits.iter().enumerate() {
                     let mut rest = bits;
                     while rest != 0 {
@@ -389,25 +398,27 @@ impl VoxelMap {
                         rest &= rest - 1;
                         let (lo, hi) = self.grid.cell_bounds(cell_in_brick(bc, local));
                         let listed = self.listed(brick, local).unwrap_or(&[]);
-                        let slab = slab_of(surface, 0.5 * (lo + hi), h, listed);
+                        gather(surface, listed, &mut corners);
+                        let slab = slab_of(&corners, 0.5 * (lo + hi), h);
                         slabs.push(slab);
                         triangles.extend_from_slice(listed);
-                        order_along(surface, direction(slab), listed, &mut keyed);
+                        order_along(direction(slab), listed, &corners, &mut keyed);
                         ordered.extend(keyed.iter().map(|&(_, t)| t));
                     }
                 }
                 triangles.sort_unstable();
                 triangles.dedup();
                 let (lo, _) = self.grid.cell_bounds(cell_in_brick(bc, 0));
-                let brick_slab = slab_of(surface, lo + DVec3::splat(0.5 * side), side, &triangles);
-                (slabs, brick_slab, ordered)
+                gather(surface, &triangles, &mut corners);
+                let brick_slab = slab_of(&corners, lo + DVec3::splat(0.5 * side), side);
+                (slabs, brick_slab, ordered, triangles)
             })
             .collect();
         // The lists follow each other in the same order of surface cells, so the ordered
         // ones replace them whole.
         let refs: Vec<u32> = per_brick
             .iter()
-            .flat_map(|(_, _, o)| o.iter().copied())
+            .flat_map(|(_, _, o, _)| o.iter().copied())
             .collect();
         debug_assert_eq!(refs.len(), self.triangle_refs.len());
         if refs.len() == self.triangle_refs.len() {
@@ -415,12 +426,12 @@ impl VoxelMap {
         }
         self.brick_slabs = per_brick
             .iter()
-            .map(|&(_, s, _)| s)
+            .map(|&(_, s, _, _)| s)
             .collect::<Vec<_>>()
             .into();
         self.slabs = per_brick
-            .into_iter()
-            .flat_map(|(slabs, _, _)| slabs)
+            .iter()
+            .flat_map(|(slabs, _, _, _)| slabs.iter().copied())
             .collect::<Vec<_>>()
             .into();
         let dims = region_dims(self.brick_dims);
@@ -430,7 +441,7 @@ impl VoxelMap {
             .into_par_iter()
             .map(|r| {
                 let region = [r % rx, r / rx % ry, r / (rx * ry)].map(|v| v as u32);
-                let mut triangles = Vec::new();
+                let mut triangles: Vec<u32> = Vec::new();
                 // The bricks of the region, those of the grid.
                 let per_side = REGION_SIDE / BRICK_SIDE;
                 let [bx, by, bz] = self.brick_dims;
@@ -438,10 +449,13 @@ impl VoxelMap {
                     for y in region[1] * per_side..((region[1] + 1) * per_side).min(by) {
                         for x in region[0] * per_side..((region[0] + 1) * per_side).min(bx) {
                             let b = ((z * by + y) * bx + x) as usize;
+                            // A detailed brick's entry is its index among them, that of
+                            // `per_brick`.
                             if let Some(&entry) = self.bricks.get(b)
                                 && entry & UNIFORM == 0
+                                && let Some((_, _, _, listed)) = per_brick.get(entry as usize)
                             {
-                                self.brick_triangles(entry as usize, &mut triangles);
+                                triangles.extend_from_slice(listed);
                             }
                         }
                     }
@@ -452,26 +466,12 @@ impl VoxelMap {
                 triangles.sort_unstable();
                 triangles.dedup();
                 let (lo, _) = self.grid.cell_bounds(region.map(|v| v * REGION_SIDE));
-                fine_slab_of(surface, lo + DVec3::splat(0.5 * side), side, &triangles)
+                let mut corners = Vec::new();
+                gather(surface, &triangles, &mut corners);
+                fine_slab_of(&corners, lo + DVec3::splat(0.5 * side), side)
             })
             .collect::<Vec<_>>()
             .into();
-    }
-
-    /// Appends the triangles listed by the surface cells of detailed brick `brick` to
-    /// `out` (with repeats).
-    fn brick_triangles(&self, brick: usize, out: &mut Vec<u32>) {
-        let Some(bits) = self.surface_bits.get(brick) else {
-            return;
-        };
-        for (word, &bits) in bits.iter().enumerate() {
-            let mut rest = bits;
-            while rest != 0 {
-                let local = word * 64 + rest.trailing_zeros() as usize;
-                rest &= rest - 1;
-                out.extend_from_slice(self.listed(brick, local).unwrap_or(&[]));
-            }
-        }
     }
 
     /// The slab of detailed brick `brick` ([`FULL_SLAB`] when out of range): where in the
