@@ -177,3 +177,32 @@ fn a_live_view_and_a_replay_serve_and_stop_on_ctrl_c() {
     );
     let _ = std::fs::remove_file(&trace);
 }
+
+/// A mesh in millimetres read as metres is warned about in the view as in `simulate`
+/// (the device named next is refused, after the mesh was read).
+#[test]
+fn a_millimetre_mesh_is_warned_about_in_the_view_too() {
+    let cube = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../meshes/models/20mm-xyz-cube.stl"
+    );
+    let out = haphe(&["view", "--mesh", cube, "--device", "phantom", "--no-open"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("spans 20 m") && err.contains("looks like millimetres: add `--units mm`"),
+        "{err}"
+    );
+    let out = haphe(&[
+        "view",
+        "--mesh",
+        cube,
+        "--units",
+        "mm",
+        "--device",
+        "phantom",
+        "--no-open",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("warning"), "{err}");
+}
