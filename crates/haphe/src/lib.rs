@@ -98,6 +98,8 @@
 mod array;
 pub mod map;
 pub mod mesh;
+// "Did you mean": the front ends' (command, Python, devices) spelling suggestions.
+#[doc(hidden)]
 pub mod names;
 mod par;
 pub mod proxy;

@@ -46,9 +46,13 @@ pub use read::gltf::{
     SkippedSummary, read_gltf,
 };
 pub use read::{
-    Format, LARGEST_LIKELY_SPAN_M, ReadMesh, ReadOptions, SMALLEST_LIKELY_SPAN_M, UNIT_NAMES,
-    Units, UnitsHint, read_mesh, read_mesh_with_stats, read_unwelded, units_hint,
+    Format, ReadMesh, ReadOptions, Units, UnitsHint, read_mesh, read_mesh_with_stats,
+    read_unwelded, units_hint,
 };
+// The units rule's bounds and the unit names, for the front ends' messages and tests
+// (`units_hint` states the bounds).
+#[doc(hidden)]
+pub use read::{LARGEST_LIKELY_SPAN_M, SMALLEST_LIKELY_SPAN_M, UNIT_NAMES};
 #[doc(hidden)]
 pub use read::{read_mesh_resolving, read_unwelded_with};
 pub use report::{MeshReport, Usability};

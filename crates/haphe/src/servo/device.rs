@@ -38,7 +38,7 @@ impl DeviceSpec {
     /// interfaces", J. Robotic Systems 14(1), 1997): a wall of stiffness `K` and damping
     /// `B` rendered every `T` seconds on a device of physical damping `b` is passive if
     /// `b > K·T/2 + |B|`. The device's physical damping is taken from its rated maximum,
-    /// `b = max_stiffness · T₀ / 2` at [`STIFFNESS_RATED_AT_HZ`], which gives
+    /// `b = max_stiffness · T₀ / 2` at 1 kHz, which gives
     /// `K < max_stiffness · rate / 1000 Hz`: twice the rate renders twice the stiffness.
     /// The wall's damping is left out: the hand holding the device adds physical damping
     /// of its own (a few N·s/m), which the rule does not count either, and counting `B`

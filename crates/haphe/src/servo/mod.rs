@@ -78,9 +78,11 @@ mod simulated;
 mod tick;
 mod trace;
 
+// The rule's constant, for the command's message; `DeviceSpec::stable_stiffness` says it.
+#[doc(hidden)]
+pub use device::STIFFNESS_RATED_AT_HZ;
 pub use device::{
     Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
-    STIFFNESS_RATED_AT_HZ,
 };
 pub use realtime::{
     DeviceClock, Interference, RealtimeOptions, RealtimeRun, RealtimeSetup, ServoLoop,
@@ -90,10 +92,12 @@ pub use realtime::{
 #[doc(hidden)]
 pub use realtime::check_core;
 #[doc(hidden)]
+pub use simulated::scene_bounds;
+#[doc(hidden)]
 pub use simulated::simulated_spec;
 pub use simulated::{
     HandOptions, PathKind, ReplayDevice, ScriptedDevice, SimulatedHand, Trajectory,
-    TrajectoryError, scene_bounds, scripted_path,
+    TrajectoryError, scripted_path,
 };
 #[doc(hidden)]
 pub use tick::MAX_MOTION_AMPLITUDE;
@@ -103,4 +107,7 @@ pub use tick::{
 #[doc(hidden)]
 pub use tick::{MAX_RATE_HZ, MIN_RATE_HZ};
 pub use trace::read::{HipTrace, TickTrace, TraceError, TraceRow};
-pub use trace::{CSV_HEADER, Phase, STATUS_NAMES, TickRecord, write_csv_header};
+// The status columns' names, for the view's replay.
+#[doc(hidden)]
+pub use trace::STATUS_NAMES;
+pub use trace::{CSV_HEADER, Phase, TickRecord, write_csv_header};

@@ -115,9 +115,8 @@ pub struct UnitsHint {
     pub span_m: f64,
     /// The unit it was read in.
     pub read_as: Units,
-    /// A named unit that brings the span between [`SMALLEST_LIKELY_SPAN_M`] and
-    /// [`LARGEST_LIKELY_SPAN_M`] (millimetres first, then metres, centimetres, inches),
-    /// when one does.
+    /// A named unit that brings the span between 5 mm and 2 m (millimetres first, then
+    /// metres, centimetres, inches), when one does.
     pub suggested: Option<Units>,
 }
 
@@ -171,8 +170,9 @@ fn unit_name(u: Units) -> String {
 }
 
 /// Whether a model whose bounding box is `lo`..`hi` (metres, as read in `units`) looks
-/// read in the wrong unit: its longest side is above [`LARGEST_LIKELY_SPAN_M`] or below
-/// [`SMALLEST_LIKELY_SPAN_M`]. The one rule of every front end's units warning.
+/// read in the wrong unit: its longest side is above 2 m or below 5 mm (`haphe::mesh`'s
+/// `LARGEST_LIKELY_SPAN_M` and `SMALLEST_LIKELY_SPAN_M`). The one rule of every front
+/// end's units warning.
 ///
 /// ```
 /// use haphe::DVec3;

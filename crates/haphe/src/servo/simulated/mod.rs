@@ -13,6 +13,9 @@ mod trajectory;
 
 pub use hand::{HandOptions, SimulatedHand};
 pub use replay::ReplayDevice;
-pub use scripted::{PathKind, ScriptedDevice, scene_bounds, scripted_path};
+// The box of a scene's objects, for the devices' mapping.
+#[doc(hidden)]
+pub use scripted::scene_bounds;
+pub use scripted::{PathKind, ScriptedDevice, scripted_path};
 pub use spec::simulated_spec;
 pub use trajectory::{Trajectory, TrajectoryError};

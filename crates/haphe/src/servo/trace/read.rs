@@ -221,7 +221,7 @@ pub struct TraceRow {
     pub object: Option<u32>,
     /// Triangle in contact (face index of the object's file).
     pub triangle: Option<u32>,
-    /// Index into [`STATUS_NAMES`].
+    /// Index into the trace's status names.
     pub status: u8,
     /// Penetration, metres.
     pub penetration: f64,
