@@ -30,7 +30,8 @@ pub use proxy::{BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy};
 pub use samples::{SegmentKind, bounds, point_on, points, segments, trajectory};
 pub use strikes::{
     MAX_STRIKE_ANGLE_DEG, MIN_DEEP_STRIKE_SHARE, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEED_CLASSES,
-    STRIKE_SPEEDS, StrikeCheck, StrikeTicks, check_strikes, hand_goes_deep, strike_path,
+    STRIKE_SPEEDS, StrikeCheck, StrikeEntry, StrikeTicks, check_strikes, hand_goes_deep,
+    strike_path,
 };
 
 use crate::par::*;

@@ -3,8 +3,9 @@
 //!
 //! A solid never pulls the hand on into itself: from the tick a strike first goes deeper
 //! than the saturation depth until the hand stops, the force must have no component along
-//! the strike direction, and the proxy must stay on the side of entry (never on a surface
-//! that faces along the strike, the side the hand leaves through). Before that tick the
+//! the strike direction, and the proxy must stay on the side of entry: never on the far
+//! side, a surface facing along the strike behind the plane the strike entered through
+//! (where the hand leaves; see [`StrikeEntry::far_side`]). Before that tick the
 //! hand is within the saturation depth, the physical range, where the proxy is the
 //! god-object: a grazing strike slides over the surface, and past a crest a frictionless
 //! surface's normal leans along the strike and pushes the hand on, as a rigid surface
@@ -18,7 +19,11 @@
 //! god-object could have reached (its closest feasible point lies on the surface, at least
 //! that far away), so the rule of `docs/deep-penetration.md` has the proxy holding. A proxy
 //! that slid round the object instead (the old bug) therefore lands in the deep class,
-//! where its pushes are counted as failures, whatever penetration it reports.
+//! where its pushes are counted as failures, whatever penetration it reports. (In a
+//! concave crease or corner the god-object rests against two or three planes and tests
+//! the depth behind the last one it met, which the hand may lie in front of: there it
+//! holds from a later tick, or not at all, pinned in the corner. The check asserts what
+//! the hand feels, not the hold: in contact, no push on, not on the far side.)
 
 use glam::DVec3;
 use serde::Serialize;
@@ -90,8 +95,9 @@ pub struct StrikeTicks {
     pub ticks: usize,
     /// Checked ticks with a force along the strike above [`STRIKE_FORCE_TOLERANCE_N`].
     pub pushes_on: usize,
-    /// Checked ticks where the proxy's contact plane faces along the strike (the far
-    /// side).
+    /// Checked ticks where the proxy is on the far side: its contact plane faces along
+    /// the strike and lies behind the plane the strike entered through
+    /// ([`StrikeEntry::far_side`]).
     pub far_side: usize,
     /// Checked ticks where the proxy touched nothing (a proxy that fell through renders no
     /// force, which would otherwise look clean).
@@ -158,8 +164,7 @@ pub struct StrikeCheck {
     /// Strikes (index, angle in degrees, speed m/s, depth m) with a deep tick that is not
     /// in contact or not clean, a few.
     pub failures: Vec<(usize, f64, f64, f64)>,
-    /// Strikes (the same) with a shallow tick pushing on or facing along the strike, a
-    /// few.
+    /// Strikes (the same) with a shallow tick pushing on or on the far side, a few.
     pub shallow_pushing: Vec<(usize, f64, f64, f64)>,
 }
 
@@ -285,10 +290,50 @@ pub fn check_strikes(
     check
 }
 
+/// Where a strike enters a solid: the point, the outward normal of the triangle it enters
+/// through and the direction it goes on in, world frame. It says which contacts are on the
+/// object's far side for this strike.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StrikeEntry {
+    /// The entry point: the strike line's first crossing of the surface.
+    pub point: DVec3,
+    /// The unit outward normal of the triangle the strike enters through.
+    pub normal: DVec3,
+    /// The strike's unit direction (into the solid: `dir · normal < 0`).
+    pub dir: DVec3,
+}
+
+impl StrikeEntry {
+    /// Whether a contact at `point` whose contact plane has the unit `normal` is on the
+    /// far side: the plane faces along the strike (`normal · dir > 0`) and the point lies
+    /// behind the entry plane (the plane through the entry point with the entry
+    /// triangle's normal) by more than `skin` metres (the proxy's skin, its distance off a
+    /// surface it rests on).
+    ///
+    /// The strike line past the entry lies wholly behind the entry plane (it goes in at
+    /// most [`MAX_STRIKE_ANGLE_DEG`] from the inward normal), so every surface it leaves
+    /// the object through lies behind it: those surfaces, and any other facing along the
+    /// strike back there, are the far side, where a proxy that crawled round the object
+    /// ends up. A surface facing along the strike on or in front of the entry plane is on
+    /// the side of entry: a wall of a notch or an overhang beside the entry (the raised
+    /// letters of `20mm-xyz-cube.stl` meet the cube's face in 57° notches, whose
+    /// downward-facing wall lies 89° from a strike into the upward-facing one). A
+    /// god-object whose path toward the hand is blocked there rests against that wall,
+    /// with the force still back along the strike. On a convex solid every surface point
+    /// off the entry plane lies behind it, so there this is the plane facing along the
+    /// strike alone.
+    #[inline]
+    pub fn far_side(&self, point: DVec3, normal: DVec3, skin: f64) -> bool {
+        normal.dot(self.dir) > 0.0 && (self.point - point).dot(self.normal) > skin
+    }
+}
+
 /// One strike drawn: where it enters the object, along which direction, how fast and how
 /// deep.
 struct Strike {
     entry: DVec3,
+    /// The unit outward normal of the entry triangle, world frame.
+    normal: DVec3,
     dir: DVec3,
     /// The direction's part along the surface (zero for a strike along the normal).
     tangent: DVec3,
@@ -324,11 +369,21 @@ impl Strike {
         let depth = random.range(0.0, max_depth);
         Strike {
             entry,
+            normal: n,
             dir,
             tangent,
             angle,
             speed,
             depth,
+        }
+    }
+
+    /// Where it enters and in which direction.
+    fn line(&self) -> StrikeEntry {
+        StrikeEntry {
+            point: self.entry,
+            normal: self.normal,
+            dir: self.dir,
         }
     }
 
@@ -365,6 +420,7 @@ fn run_strike(
     let start = strike.start();
     let mut proxy = Proxy::new(start, options);
     let mut ticks = [StrikeTicks::default(); 2];
+    let line = strike.line();
     let mut previous = start;
     for (k, &hip) in path.iter().enumerate() {
         let out = proxy.tick(scene, hip, (hip - previous) * rate_hz);
@@ -380,7 +436,10 @@ fn run_strike(
         let push = out.force.dot(strike.dir);
         t.max_push_n = t.max_push_n.max(push);
         t.pushes_on += usize::from(push > STRIKE_FORCE_TOLERANCE_N);
-        t.far_side += usize::from(out.contact.is_some_and(|c| c.normal.dot(strike.dir) > 0.0));
+        t.far_side += usize::from(
+            out.contact
+                .is_some_and(|c| line.far_side(c.point, c.normal, options.skin())),
+        );
         t.no_contact += usize::from(out.contact.is_none());
     }
     ticks

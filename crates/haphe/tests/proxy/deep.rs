@@ -6,8 +6,8 @@ use haphe::mesh::shapes::Catalog;
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::Material;
 use haphe::verify::{
-    MIN_DEEP_STRIKE_SHARE, STRIKE_FORCE_TOLERANCE_N, StrikeCheck, StrikeTicks, WindingOracle,
-    check_proxy, check_strikes, hand_goes_deep, strike_path,
+    MIN_DEEP_STRIKE_SHARE, STRIKE_FORCE_TOLERANCE_N, StrikeCheck, StrikeEntry, StrikeTicks,
+    WindingOracle, bounds, check_proxy, check_strikes, hand_goes_deep, strike_path,
 };
 
 use super::{fit_to_hand_size, scene_of, shape, support};
@@ -170,6 +170,118 @@ fn deep_ticks_are_decided_by_the_hand_path() {
     // is nearer than 45 mm by the time the top is that far) never go that deep.
     assert_eq!(examined, 7);
     assert_eq!(found, 5);
+}
+
+/// The far side of a strike is what faces along it behind the plane it entered through,
+/// where a proxy that crawled round the object ends up. The strike of the
+/// deep-penetration report (35°, 1.5 m/s, through a 0.2 m sphere of 2 000 triangles):
+/// the plain god-object (a device whose force never saturates, so it never holds) slides
+/// round the sphere after the hand and pulls it on, and [`StrikeEntry::far_side`] flags
+/// its deep ticks there: on a convex solid every surface point off the entry plane lies
+/// behind it, so they are exactly the ticks whose contact plane faces along the strike.
+/// The holding proxy has no tick there, pushes nothing on and stays in contact.
+#[test]
+fn far_side_contacts_are_caught_behind_the_entry_plane() {
+    let scene = scene_of(
+        shape(Catalog::Sphere.with_triangles(2_000)),
+        Material::default(),
+    );
+    let surface = scene.objects()[0].shape.surface();
+    let dir = DVec3::new(35f64.to_radians().sin(), 0.0, -35f64.to_radians().cos());
+    let start = DVec3::new(0.0, 0.0, 0.13);
+    let speed = 1.5;
+    let (path, last) = strike_path(start, dir, speed, 0.45, 1e3);
+    let hit = haphe::verify::BruteCrossing::new(surface)
+        .first_crossing(start, path[last])
+        .expect("the strike enters the sphere");
+    let entry = StrikeEntry {
+        point: hit.point,
+        normal: surface.frame(hit.triangle).normal,
+        dir,
+    };
+    let options = ProxyOptions::default();
+    let saturation = options.max_force() / Material::default().stiffness();
+    let winding = WindingOracle::new(surface);
+    let deep_from = hand_goes_deep(&scene, &winding, &path[..=last], speed / 1e3, saturation)
+        .expect("the strike goes deep");
+    // 50 N at 500 N/m saturates 0.1 m behind a plane: the sphere's radius.
+    let never_saturates = options.with_max_force(50.0).expect("a valid force");
+    let skin = options.skin();
+    // Per proxy: deep ticks on the far side, pushing the hand on.
+    let mut counts = [[0; 2]; 2];
+    for (p, proxy_options) in [never_saturates, options].into_iter().enumerate() {
+        let mut proxy = Proxy::new(start, proxy_options);
+        let mut previous = start;
+        for (k, &hip) in path.iter().enumerate() {
+            let out = proxy.tick(&scene, hip, (hip - previous) * 1e3);
+            previous = hip;
+            if k < deep_from || k > last {
+                continue;
+            }
+            // The god-object lets go once the hand is out of the far side; the holding
+            // proxy never does.
+            let Some(c) = out.contact else {
+                assert_eq!(p, 0, "holding proxy out of contact on tick {k}");
+                continue;
+            };
+            let far = entry.far_side(c.point, c.normal, skin);
+            assert_eq!(far, c.normal.dot(dir) > 0.0, "proxy {p}, tick {k}: {c:?}");
+            counts[p][0] += usize::from(far);
+            counts[p][1] += usize::from(out.force.dot(dir) > STRIKE_FORCE_TOLERANCE_N);
+        }
+    }
+    println!(
+        "deep ticks {}: god-object (far side, pushing on) {:?}, holding {:?}",
+        last + 1 - deep_from,
+        counts[0],
+        counts[1]
+    );
+    let [god, held] = counts;
+    assert!(god[0] > 0 && god[1] > 0, "{counts:?}");
+    assert_eq!(held, [0, 0], "{counts:?}");
+}
+
+/// `meshes/models/20mm-xyz-cube.stl` as `haphe verify --strikes` runs it: welded, scaled
+/// so that its largest side is 0.2 m from its lowest corner, with verify's material
+/// (800 N/m, 1 N·s/m, no friction; saturation depth 4.1 mm).
+fn xyz_cube_as_verify_runs_it() -> haphe::scene::Scene {
+    let path = support::in_tree_meshes().join("models/20mm-xyz-cube.stl");
+    let bytes = std::fs::read(&path).expect("readable");
+    let mesh = haphe::mesh::read_mesh(&path.to_string_lossy(), &bytes, &Default::default())
+        .expect("a mesh");
+    let surface = haphe::mesh::Surface::new(mesh, &Default::default()).expect("a usable surface");
+    let (lo, hi, _) = bounds(&surface);
+    let scale = 0.2 / (hi - lo).max_element();
+    let scaled = haphe::mesh::Mesh {
+        vertices: surface
+            .vertices()
+            .iter()
+            .map(|&v| (v - lo) * scale)
+            .collect(),
+        triangles: surface.triangles().to_vec(),
+    };
+    let material = Material::builder()
+        .stiffness(800.0)
+        .damping(1.0)
+        .friction(0.0, 0.0)
+        .build()
+        .expect("a valid material");
+    scene_of(shape(scaled), material)
+}
+
+/// The strikes `haphe verify --strikes 2000 --seed 1` runs on the 20 mm calibration cube
+/// (the first 200 are those of `--strikes 200 --seed 1`), which the in-tree family (20
+/// strikes, seed 3, another material) does not draw. The cube's raised letters meet its
+/// face in acute notches: a strike into a notch's wall leaves the god-object pinned in
+/// the notch against two or three planes, the hand beyond the saturation depth by its
+/// path, and the contact plane the notch's other wall, facing 89° from the strike, on
+/// the entry plane. The check used to count those ticks as the far side; the force there
+/// points back along the strike. Every deep tick holds the hand back.
+#[test]
+fn deep_strikes_on_the_xyz_cube_as_verify_runs_them() {
+    let scene = xyz_cube_as_verify_runs_it();
+    let check = check_strikes(&scene, ProxyOptions::default(), 2000, 0.25, 1e3, 1);
+    assert_holds("20mm-xyz-cube.stl", &check);
 }
 
 /// A family whose strikes never go deeper than the saturation depth fails, whatever its
