@@ -1,11 +1,12 @@
 //! The scene the servo, device and view tests and examples share: one sphere of the
-//! shape catalog at the origin; and a scene of any one shape.
+//! shape catalog at the origin; a scene of any one shape; a model scaled to a hand's
+//! size, as `haphe verify` checks the proxy on it.
 
 use std::sync::Arc;
 
 use crate::map::MapOptions;
 use crate::mesh::shapes::Catalog;
-use crate::mesh::{Surface, SurfaceOptions};
+use crate::mesh::{Mesh, Surface, SurfaceOptions};
 use crate::scene::{EditError, Material, ObjectId, Pose, Scene, SceneObject, Shape};
 
 /// A scene of one object, [`ObjectId`] 0: the catalog's sphere of about `triangles`
@@ -47,4 +48,24 @@ pub fn one_object_scene(
         ))
         .map_err(|(e, _)| e)?;
     Ok(scene)
+}
+
+/// Size a model is scaled to for the proxy checks of `haphe verify`, metres: device
+/// speeds (m/s) and depths mean something only at the scale of a hand.
+pub const HAND_SCALE_M: f64 = 0.2;
+
+/// The mesh of `surface` scaled to a hand's size: its largest side [`HAND_SCALE_M`], its
+/// lowest corner at the origin; and the scale.
+pub fn hand_sized(surface: &Surface) -> (Mesh, f64) {
+    let (lo, hi, _) = super::bounds(surface);
+    let scale = HAND_SCALE_M / (hi - lo).max_element();
+    let mesh = Mesh {
+        vertices: surface
+            .vertices()
+            .iter()
+            .map(|&v| (v - lo) * scale)
+            .collect(),
+        triangles: surface.triangles().to_vec(),
+    };
+    (mesh, scale)
 }

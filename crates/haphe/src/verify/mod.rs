@@ -20,7 +20,7 @@ mod proxy;
 mod samples;
 mod strikes;
 
-pub use fixtures::{one_object_scene, sphere_scene};
+pub use fixtures::{HAND_SCALE_M, hand_sized, one_object_scene, sphere_scene};
 pub use friction::friction_step;
 pub use hold::{HeldContact, hand_deeper_than, saturation_depth_of};
 pub use limits::{KEPT_FAILURES, ON_SURFACE_M};

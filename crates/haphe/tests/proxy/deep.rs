@@ -7,7 +7,7 @@ use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::Material;
 use haphe::verify::{
     MIN_DEEP_STRIKE_SHARE, STRIKE_FORCE_TOLERANCE_N, StrikeCheck, StrikeEntry, StrikeTicks,
-    WindingOracle, bounds, check_proxy, check_strikes, hand_goes_deep, strike_path,
+    WindingOracle, check_proxy, check_strikes, hand_goes_deep, hand_sized, strike_path,
 };
 
 use super::{fit_to_hand_size, scene_of, shape, support};
@@ -250,16 +250,7 @@ fn xyz_cube_as_verify_runs_it() -> haphe::scene::Scene {
     let mesh = haphe::mesh::read_mesh(&path.to_string_lossy(), &bytes, &Default::default())
         .expect("a mesh");
     let surface = haphe::mesh::Surface::new(mesh, &Default::default()).expect("a usable surface");
-    let (lo, hi, _) = bounds(&surface);
-    let scale = 0.2 / (hi - lo).max_element();
-    let scaled = haphe::mesh::Mesh {
-        vertices: surface
-            .vertices()
-            .iter()
-            .map(|&v| (v - lo) * scale)
-            .collect(),
-        triangles: surface.triangles().to_vec(),
-    };
+    let (scaled, _) = hand_sized(&surface);
     let material = Material::builder()
         .stiffness(800.0)
         .damping(1.0)

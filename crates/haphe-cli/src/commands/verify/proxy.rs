@@ -4,19 +4,15 @@
 use std::time::Instant;
 
 use haphe::map::MapOptions;
-use haphe::mesh::{Mesh, Surface, SurfaceOptions};
+use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
 use haphe::verify::{
-    ProxyCheck, StrikeCheck, bounds, check_proxy, check_strikes, haptic_path,
+    ProxyCheck, StrikeCheck, check_proxy, check_strikes, hand_sized, haptic_path,
     haptic_path_in_contact,
 };
 use rayon::prelude::*;
 use serde::Serialize;
-
-/// Size the model is scaled to for the proxy check, metres: device speeds (m/s) and
-/// depths mean something only at the scale of a hand.
-pub const HAND_SCALE_M: f64 = 0.2;
 
 /// Ticks per independent path; longer runs use several paths with their own seeds, run
 /// in parallel and summed in order.
@@ -37,7 +33,8 @@ pub struct ProxyRow {
 /// The proxy check of one model.
 #[derive(Debug, Serialize)]
 pub struct ProxyReport {
-    /// Scale applied to the model (its largest side becomes [`HAND_SCALE_M`]).
+    /// Scale applied to the model (its largest side becomes
+    /// [`HAND_SCALE_M`](haphe::verify::HAND_SCALE_M)).
     pub scale: f64,
     /// One row per kind of path.
     pub rows: Vec<ProxyRow>,
@@ -63,19 +60,10 @@ fn verify_material() -> Material {
         .expect("800 N/m, 1 N·s/m and 0.5 / 0.3 are in their domains")
 }
 
-/// `surface` scaled to a hand's size (its largest side [`HAND_SCALE_M`]) and mapped, and
-/// the scale.
+/// `surface` scaled to a hand's size (its largest side
+/// [`HAND_SCALE_M`](haphe::verify::HAND_SCALE_M)) and mapped, and the scale.
 fn scaled_shape(surface: &Surface) -> anyhow::Result<(std::sync::Arc<Shape>, f64)> {
-    let (lo, hi, _) = bounds(surface);
-    let scale = HAND_SCALE_M / (hi - lo).max_element();
-    let mesh = Mesh {
-        vertices: surface
-            .vertices()
-            .iter()
-            .map(|&v| (v - lo) * scale)
-            .collect(),
-        triangles: surface.triangles().to_vec(),
-    };
+    let (mesh, scale) = hand_sized(surface);
     let shape = Shape::build(
         Surface::new(mesh, &SurfaceOptions::default())?,
         &MapOptions::default(),
