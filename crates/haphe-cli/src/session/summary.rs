@@ -193,6 +193,35 @@ fn impossible(value: f64, limit: f64, per_si: f64, unit: &str) -> String {
     }
 }
 
+/// How the run stopped, after its ticks: nothing when it finished.
+fn stop_note(stop: StopReason) -> String {
+    match stop {
+        StopReason::Finished => String::new(),
+        StopReason::Requested => " (stopped)".into(),
+        StopReason::Overruns => {
+            " (stopped: the overrun budget was exceeded, zero force written)".into()
+        }
+        StopReason::Fault(haphe::servo::DeviceFault::Ended) => {
+            " (ended by the device: its trace or path ended, or its peer sent stop)".into()
+        }
+        StopReason::Fault(f) => format!(" (stopped by a device fault: {f}; zero force written)"),
+    }
+}
+
+/// The contact time of each object touched, after the contact line: nothing when none was.
+fn per_object(s: &Summary, period: f64) -> String {
+    let objects: Vec<String> = s
+        .per_object
+        .iter()
+        .map(|(id, n)| format!("object {id}: {:.3} s", *n as f64 * period))
+        .collect();
+    if objects.is_empty() {
+        String::new()
+    } else {
+        format!("; {}", objects.join(", "))
+    }
+}
+
 /// Prints the summary.
 pub fn print(
     out: &mut impl Write,
@@ -220,33 +249,15 @@ pub fn print(
         s.ticks,
         info.rate_hz,
         seconds,
-        match info.stop {
-            StopReason::Finished => String::new(),
-            StopReason::Requested => " (stopped)".into(),
-            StopReason::Overruns =>
-                " (stopped: the overrun budget was exceeded, zero force written)".into(),
-            StopReason::Fault(haphe::servo::DeviceFault::Ended) =>
-                " (ended by the device: its trace or path ended, or its peer sent stop)".into(),
-            StopReason::Fault(f) =>
-                format!(" (stopped by a device fault: {f}; zero force written)"),
-        }
+        stop_note(info.stop)
     )?;
-    let objects: Vec<String> = s
-        .per_object
-        .iter()
-        .map(|(id, n)| format!("object {id}: {:.3} s", *n as f64 * period))
-        .collect();
     writeln!(
         out,
         "  contact           {:.3} s ({:.1} % of ticks), {} touch(es){}",
         s.contact_ticks as f64 * period,
         pct(s.contact_ticks),
         s.touches,
-        if objects.is_empty() {
-            String::new()
-        } else {
-            format!("; {}", objects.join(", "))
-        }
+        per_object(s, period)
     )?;
     let mean = if s.contact_ticks > 0 {
         s.penetration_sum / s.contact_ticks as f64
