@@ -61,6 +61,23 @@ pub fn directory_of(path: &Path) -> &Path {
     }
 }
 
+/// The mesh file a map file at `map` was built from, when it is beside the map: the file
+/// named `recorded` (the name the map's provenance records, without a folder) in the map's
+/// directory. `None` when there is no such file, when the name has a folder in it, or when
+/// it is the map itself. Every front end that takes a map in place of a mesh checks it
+/// against this file.
+pub fn source_beside(map: &Path, recorded: &str) -> Option<PathBuf> {
+    if recorded.is_empty() || recorded.contains(['/', '\\']) || recorded == ".." {
+        return None;
+    }
+    let source = map.with_file_name(recorded);
+    let same = match (std::fs::canonicalize(map), std::fs::canonicalize(&source)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    (source.is_file() && !same).then_some(source)
+}
+
 /// A new temporary file beside `path`, named after it (`.name.XXXXXX.ext`, the extension
 /// kept so that writers choosing a format by extension see the right one), with the
 /// permissions a new file gets (0666 less the umask).

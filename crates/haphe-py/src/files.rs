@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use haphe::DVec3;
-use haphe::map::{decode, encode};
+use haphe::map::{check_source, decode, encode};
 use haphe::mesh::{ReadOptions, Resolve, Surface, Units, Weld, read_mesh_resolving};
 use haphe::query::Validation;
 use pyo3::prelude::*;
@@ -108,7 +108,23 @@ pub fn save_map(path: &Path, surface: &Surface, map: &haphe::map::VoxelMap) -> P
 /// Loads a map file written by `save` or `haphe build`.
 pub fn load_map(path: &Path) -> PyResult<(Surface, haphe::map::VoxelMap)> {
     let bytes = read_bytes(path)?;
-    decode(&bytes).map_err(|e| haphe_error(&path.display().to_string(), e))
+    decode_map(path, &bytes)
+}
+
+/// Decodes the map file at `path` whose content is `bytes` (checked: checksum and
+/// invariants), and checks it against its source mesh, the file its provenance names,
+/// when that file is beside it: refused when the mesh changed since the map was built.
+pub fn decode_map(path: &Path, bytes: &[u8]) -> PyResult<(Surface, haphe::map::VoxelMap)> {
+    let name = path.display().to_string();
+    let (surface, map) = decode(bytes).map_err(|e| haphe_error(&name, e))?;
+    if let Some(p) = map.provenance()
+        && let Some(source) = haphe_files::source_beside(path, &p.file)
+    {
+        let mesh = read_bytes(&source)?;
+        check_source(&name, Some(p), &source.display().to_string(), &mesh)
+            .map_err(|e| haphe_error("", e))?;
+    }
+    Ok((surface, map))
 }
 
 /// validate(path, units="m", weld_tolerance=None, self_intersections=True)

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use haphe::DVec3;
-use haphe::map::{MapFileError, MapOptions, decode, encode};
-use haphe::mesh::{Mesh, read_mesh_resolving};
+use haphe::map::{MapFileError, MapOptions, decode, encode, looks_like_map};
+use haphe::mesh::{Mesh, Units, read_mesh_resolving};
 use haphe::query::{
     first_crossing, first_crossing_brute_force, for_each_point, for_each_segment, inside_batch,
     nearest_within,
@@ -20,7 +20,9 @@ use pyo3::types::{PyBytes, PyDict};
 
 use crate::arrays::{self, batch_error, rows, rows_argument};
 use crate::errors::haphe_error;
-use crate::files::{Folder, load_map, read_bytes, read_options, save_map, units_warning, warn};
+use crate::files::{
+    Folder, decode_map, load_map, read_bytes, read_options, save_map, units_warning, warn,
+};
 
 /// A shape: a mesh's surface (topology, normals) and its voxel map, immutable and shared
 /// by every scene it is placed in. Build it from a mesh file (``Shape.from_file``), from
@@ -56,6 +58,10 @@ impl Shape {
     /// mark of a wrong unit, naming the ``units`` to give ("looks like millimetres: add
     /// ``units="mm"``").
     ///
+    /// A map file written by ``haphe build`` or ``shape.save`` (recognised by its header,
+    /// whatever its name) is loaded as ``Shape.load`` loads it, in metres: checked, and
+    /// refused when the mesh it was built from is beside it and has changed since.
+    ///
     /// Raises ``HapheError`` naming the file and the place for bad content, ``OSError``
     /// when the file cannot be read.
     #[staticmethod]
@@ -69,6 +75,20 @@ impl Shape {
         let options = read_options(units, weld_tolerance)?;
         let bytes = read_bytes(&path)?;
         let name = path.display().to_string();
+        if looks_like_map(&bytes, bytes.len() as u64) {
+            if options.units != Units::default() {
+                return Err(haphe_error(
+                    "units",
+                    format!("{name} is a map file, in metres: units apply to mesh files"),
+                ));
+            }
+            let (surface, map) = decode_map(&path, &bytes)?;
+            let inner = py.detach(|| scene::Shape::new(surface, map).with_clear_zones());
+            return Ok(Shape {
+                inner: Arc::new(inner),
+                name,
+            });
+        }
         let (inner, warning) = py
             .detach(|| {
                 let loaded = read_mesh_resolving(&name, &bytes, &options, &mut Folder::of(&path))
@@ -150,7 +170,9 @@ impl Shape {
     /// --
     ///
     /// Loads a map file saved by ``shape.save`` or ``haphe build`` (checked: checksum and
-    /// invariants). Raises ``HapheError`` naming the file for a damaged or foreign file.
+    /// invariants; and against the mesh it was built from, when that file is beside it).
+    /// Raises ``HapheError`` naming the file for a damaged or foreign file, and naming
+    /// both files for a map whose mesh has changed since it was built.
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Shape> {
         let (surface, map) = load_map(&path)?;

@@ -206,3 +206,26 @@ def test_nearest_is_exact_far_beyond_a_map_cell(models):
     # Asked for less than the distance: none.
     short = shape.nearest(points, 0.05)
     assert np.isinf(short["distance"]).all() and (short["triangle"] == -1).all()
+
+
+def test_from_file_takes_a_map_and_refuses_a_stale_one(models, haphe_cli, tmp_path):
+    source = tmp_path / "spot.obj"
+    source.write_bytes((models / "spot.obj").read_bytes())
+    saved = tmp_path / "spot.map"
+    subprocess.run([haphe_cli, "build", str(source), "-o", str(saved)],
+                   check=True, capture_output=True)
+    mesh = haphe.Shape.from_file(source)
+    for shape in (haphe.Shape.from_file(saved), haphe.Shape.load(saved)):
+        assert shape.triangles == mesh.triangles
+        points = random_points(mesh, 3000, 8)
+        np.testing.assert_array_equal(shape.inside(points), mesh.inside(points))
+        a, b = shape.nearest(points, 0.05), mesh.nearest(points, 0.05)
+        np.testing.assert_array_equal(a["distance"], b["distance"])
+        np.testing.assert_array_equal(a["triangle"], b["triangle"])
+    with pytest.raises(haphe.HapheError, match="in metres"):
+        haphe.Shape.from_file(saved, units="mm")
+    # The source beside the map changes: the map is refused, naming both files.
+    source.write_bytes(source.read_bytes() + b"# edited\n")
+    for load in (haphe.Shape.from_file, haphe.Shape.load):
+        with pytest.raises(haphe.HapheError, match=r"spot\.map was built from spot\.obj.*haphe build"):
+            load(saved)

@@ -115,7 +115,7 @@ fn parse(
         return Err(LoadFailure::Io(
             match crate::input::map::decode_map(path, &map) {
                 Ok(_) => anyhow::anyhow!(
-                    "{name}: a map file written by `haphe build`, not a mesh file (query and verify read map files)"
+                    "{name}: a map file written by `haphe build`, not a mesh file (query, verify, simulate, run, view and scene files read map files)"
                 ),
                 Err(e) => e,
             },

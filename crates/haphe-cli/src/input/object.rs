@@ -99,17 +99,34 @@ pub fn check_source(path: &Path, object: &Object, mesh: Option<&Path>) -> anyhow
         ));
     }
     let bytes = files::read_input(mesh, files::MESH)?;
-    match object.map.provenance() {
-        None => Err(anyhow!(
-            "{map_name} records no source mesh, so it cannot be checked against {mesh_name}: \
-             rebuild it with `haphe build {mesh_name} -o {map_name}`"
-        )),
-        Some(p) if !p.matches(&bytes) => Err(anyhow!(
-            "{map_name} was built from {p}, not from {mesh_name} ({} bytes, xxh3-128 {}): \
-             rebuild it with `haphe build {mesh_name} -o {map_name}`",
-            bytes.len(),
-            haphe::map::Provenance::of(&mesh_name.to_string(), &bytes).hash_hex()
-        )),
-        Some(_) => Ok(()),
+    haphe::map::check_source(
+        &map_name.to_string(),
+        object.map.provenance(),
+        &mesh_name.to_string(),
+        &bytes,
+    )?;
+    Ok(())
+}
+
+/// A map file opened where a mesh is taken (`simulate`, `run`, `view`, scene files):
+/// checked against its source mesh, the file its provenance names, when that file is
+/// beside it (refused when the mesh changed since the map was built, as [`check_source`]
+/// refuses it), and said on stderr either way.
+///
+/// # Errors
+/// [`check_source`]'s, naming both files and how to rebuild the map.
+pub fn check_beside(path: &Path, object: &Object) -> anyhow::Result<()> {
+    let map = path.display();
+    let Some(p) = object.map.provenance() else {
+        eprintln!("haphe: {map}: a map that records no source mesh (not checked)");
+        return Ok(());
+    };
+    match haphe_files::source_beside(path, &p.file) {
+        Some(source) => {
+            check_source(path, object, Some(&source))?;
+            eprintln!("haphe: {map}: a map of {} (checked)", source.display());
+        }
+        None => eprintln!("haphe: {map}: a map of {p} (that file is not beside it: not checked)"),
     }
+    Ok(())
 }

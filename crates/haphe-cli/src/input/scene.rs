@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use anyhow::{Context, anyhow};
+use anyhow::Context;
 use haphe::map::MapOptions;
 use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{ReadOptions, Units, Weld};
@@ -14,7 +14,8 @@ use haphe::scene::{Material, SceneObject, Shape};
 use haphe::servo::ObjectMotion;
 use haphe::servo::scene_file::{ObjectSource, parse_scene};
 
-use crate::input::mesh::{SideCars, UnitsGiven, load, warn_units};
+use crate::input::mesh::{SideCars, UnitsGiven, warn_units};
+use crate::input::object::{check_beside, open};
 
 /// One object of a loaded scene file.
 pub struct LoadedObject {
@@ -100,8 +101,11 @@ pub fn shape_of(which: Catalog, triangles: usize, map: &MapOptions) -> anyhow::R
     )?)
 }
 
-/// A shape from a mesh file, with its map and clear zones; warns when its size suggests
-/// the wrong unit ([`warn_units`], the unit `given` as a flag or a scene file's field).
+/// A shape from a mesh file, with its map and clear zones, warning when its size suggests
+/// the wrong unit ([`warn_units`], the unit `given` as a flag or a scene file's field); or
+/// from a map file written by `haphe build` (recognised by its header, whatever its name),
+/// checked against its source mesh when that is beside it ([`check_beside`]; map files are
+/// in metres, `units` applies to mesh files).
 pub fn mesh_shape(
     path: &Path,
     units: Units,
@@ -112,13 +116,16 @@ pub fn mesh_shape(
         units,
         ..ReadOptions::default()
     };
-    let loaded = load(path, &read).map_err(|e| anyhow!("{e}"))?;
-    if let Some(bounds) = loaded.mesh.bounds() {
-        warn_units(&path.display().to_string(), bounds, units, given);
+    let object = open(path, &read, map)?;
+    if object.from_map_file {
+        check_beside(path, &object)?;
+    } else {
+        warn_units(
+            &path.display().to_string(),
+            object.surface.bounds(),
+            units,
+            given,
+        );
     }
-    Ok(Shape::from_mesh(
-        &path.display().to_string(),
-        loaded.mesh,
-        map,
-    )?)
+    Ok(Shape::new(object.surface, object.map).with_clear_zones())
 }

@@ -165,3 +165,75 @@ fn verify_on_an_all_degenerate_mesh_names_the_file() {
     let o = haphe(&["verify", &mesh, "--samples", "10"]);
     assert_error(&o, &["flat.obj"]);
 }
+
+/// `simulate --mesh`, `run --mesh` and scene files take a map file where they take a mesh:
+/// the same run, trace byte for byte, as the mesh's; checked against the mesh beside it,
+/// and refused, naming both files, once that mesh has changed, as `query --mesh` refuses
+/// it.
+#[test]
+fn simulate_and_scene_files_take_a_map_checked_against_its_mesh() {
+    let dir = scratch("map-simulate");
+    let mesh = dir.join("ball.obj");
+    crate::common::generate_sphere(&mesh, 2000);
+    let mesh = mesh.display().to_string();
+    let map = build(&mesh, &dir, "ball.map");
+    let trace = |args: &[&str], name: &str| {
+        let out = dir.join(name).display().to_string();
+        let mut all = vec!["simulate", "--seconds", "1", "--out", &out];
+        all.extend_from_slice(args);
+        let o = haphe(&all);
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+        (std::fs::read(&out).expect("trace"), stderr(&o))
+    };
+    let (of_mesh, _) = trace(&["--mesh", &mesh], "mesh.csv");
+    let (of_map, said) = trace(&["--mesh", &map], "map.csv");
+    assert!(of_mesh.len() > 10_000 && of_mesh == of_map, "{said}");
+    assert!(
+        said.contains("ball.map: a map of") && said.contains("(checked)"),
+        "{said}"
+    );
+    let scene_of =
+        |object: &str, name: &str| write(&dir, name, format!("[[object]]\nmesh = \"{object}\"\n"));
+    let (scene_mesh, scene_map) = (
+        scene_of("ball.obj", "mesh.toml"),
+        scene_of("ball.map", "map.toml"),
+    );
+    let (a, _) = trace(&["--scene", &scene_mesh], "scene-mesh.csv");
+    let (b, _) = trace(&["--scene", &scene_map], "scene-map.csv");
+    assert!(a.len() > 10_000 && a == b);
+    // `run` takes it as well (the simulated hand, on the wall clock).
+    let run = |seconds| {
+        vec![
+            "run",
+            "--device",
+            "hand",
+            "--mesh",
+            map.as_str(),
+            "--seconds",
+            seconds,
+        ]
+    };
+    let o = haphe(&run("0.2"));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("ball.map"), "{}", stdout(&o));
+
+    // The mesh changes after the build: every entry point refuses the map.
+    let mut text = std::fs::read(&mesh).unwrap();
+    text.extend_from_slice(b"# edited\n");
+    std::fs::write(&mesh, &text).unwrap();
+    let points = write(&dir, "p.csv", "0,0,0\n");
+    for args in [
+        vec!["simulate", "--mesh", &map, "--seconds", "0.1"],
+        vec!["simulate", "--scene", &scene_map, "--seconds", "0.1"],
+        run("0.1"),
+        vec!["query", &map, "--mesh", &mesh, "--inside", &points],
+    ] {
+        assert_error(
+            &haphe(&args),
+            &[
+                "ball.map was built from ball.obj",
+                "rebuild it with `haphe build",
+            ],
+        );
+    }
+}

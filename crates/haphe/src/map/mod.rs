@@ -82,6 +82,9 @@ pub use overlap::overlap_triangle_box;
 #[doc(hidden)]
 pub use provenance::MAX_SOURCE_NAME_BYTES;
 pub use provenance::Provenance;
+/// The check of a map against its source mesh, shared by the command and the bindings.
+#[doc(hidden)]
+pub use provenance::{SourceError, check_source};
 use voxel_map::BRICK_SIDE;
 #[doc(hidden)]
 pub use voxel_map::MAX_BRICKS;

@@ -95,6 +95,67 @@ impl std::fmt::Display for Provenance {
     }
 }
 
+/// Why a map file cannot be used as the map of a mesh file: the check every front end
+/// makes before it takes a saved map in place of a mesh ([`check_source`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SourceError {
+    /// The map records no source, so it cannot be checked.
+    #[error(
+        "{map} records no source mesh, so it cannot be checked against {mesh}: rebuild it \
+         with `haphe build {mesh} -o {map}`"
+    )]
+    Unrecorded {
+        /// The map file.
+        map: String,
+        /// The mesh file it was checked against.
+        mesh: String,
+    },
+    /// The map was built from other bytes (the mesh changed since, or another mesh).
+    #[error(
+        "{map} was built from {recorded}, not from {mesh} ({bytes} bytes, xxh3-128 {hash}): \
+         rebuild it with `haphe build {mesh} -o {map}`"
+    )]
+    Stale {
+        /// The map file.
+        map: String,
+        /// The mesh file it was checked against.
+        mesh: String,
+        /// What the map records.
+        recorded: Provenance,
+        /// The mesh file's size now.
+        bytes: u64,
+        /// Its hash now.
+        hash: String,
+    },
+}
+
+/// Checks that the map file `map` (its recorded `provenance`) was built from the mesh file
+/// `mesh` whose content is `mesh_bytes`: same size and hash (the name may differ).
+///
+/// # Errors
+/// [`SourceError`], naming both files and how to rebuild the map.
+pub fn check_source(
+    map: &str,
+    provenance: Option<&Provenance>,
+    mesh: &str,
+    mesh_bytes: &[u8],
+) -> Result<(), SourceError> {
+    match provenance {
+        None => Err(SourceError::Unrecorded {
+            map: map.to_owned(),
+            mesh: mesh.to_owned(),
+        }),
+        Some(p) if !p.matches(mesh_bytes) => Err(SourceError::Stale {
+            map: map.to_owned(),
+            mesh: mesh.to_owned(),
+            recorded: p.clone(),
+            bytes: mesh_bytes.len() as u64,
+            hash: Provenance::of(mesh, mesh_bytes).xxh3_128,
+        }),
+        Some(_) => Ok(()),
+    }
+}
+
 fn hex(h: u128) -> String {
     format!("{h:032x}")
 }
