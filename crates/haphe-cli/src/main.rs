@@ -17,7 +17,7 @@ use commands::bench;
 use commands::missing;
 #[cfg(feature = "view")]
 use commands::view;
-use commands::{build, demo, devices, generate, query, run, simulate, validate, verify};
+use commands::{build, demo, devices, generate, query, repair, run, simulate, validate, verify};
 
 /// haphe: real-time haptic rendering against triangle meshes.
 #[derive(Parser, Debug)]
@@ -32,6 +32,9 @@ enum Command {
     /// Read mesh files and report every defect with where it is.
     #[command(after_help = validate::EXIT_CODES)]
     Validate(validate::Args),
+    /// Repair a mesh into a closed solid (weld, drop degenerate and duplicate faces,
+    /// orient, fill small holes), reporting each change; writes a new file.
+    Repair(repair::Args),
     /// Build the voxel map of a mesh and save surface and map as one file.
     Build(build::Args),
     /// Answer inside/outside and segment-crossing queries from CSV files.
@@ -66,6 +69,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Validate(args) => validate::run(&args),
+        Command::Repair(args) => repair::run(&args),
         Command::Build(args) => build::run(&args),
         Command::Query(args) => query::run(&args),
         Command::Verify(args) => verify::run(&args),

@@ -11,6 +11,7 @@ pub mod generate;
 #[cfg(not(all(feature = "view", feature = "bench")))]
 pub mod missing;
 pub mod query;
+pub mod repair;
 pub mod run;
 pub mod simulate;
 pub mod validate;

@@ -10,5 +10,6 @@ mod maps;
 mod messages;
 mod outputs;
 mod queries;
+mod repair;
 mod validate;
 mod values;

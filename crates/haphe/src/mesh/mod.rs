@@ -21,6 +21,7 @@ mod limits;
 mod normals;
 mod order;
 mod read;
+mod repair;
 pub mod report;
 pub mod shapes;
 mod solid_angle;
@@ -55,6 +56,12 @@ pub use read::{
 pub use read::{LARGEST_LIKELY_SPAN_M, SMALLEST_LIKELY_SPAN_M, UNIT_NAMES};
 #[doc(hidden)]
 pub use read::{read_mesh_resolving, read_unwelded_with};
+/// Repairing a mesh into a closed solid: what `haphe repair` runs.
+#[doc(hidden)]
+pub use repair::{
+    Change, DEFAULT_MAX_HOLE_EDGES, DEFAULT_WELD_RELATIVE, RepairError, RepairOptions, Repaired,
+    repair,
+};
 pub use report::{MeshReport, Usability};
 #[doc(hidden)]
 pub use solid_angle::solid_angle;

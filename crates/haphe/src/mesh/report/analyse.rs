@@ -11,6 +11,7 @@ use crate::mesh::edges::{EdgeTable, HalfEdge, has_distinct_corners};
 use crate::mesh::frame::{
     DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT, relative_height,
 };
+use crate::mesh::repair::{faces_to_flip, hole_loops};
 use crate::mesh::weld::{find, union};
 
 /// Per-triangle measures: area (m²), signed volume of the tetrahedron with the origin (m³),
@@ -50,6 +51,12 @@ pub(crate) fn analyse_with_edges(mesh: &Mesh) -> (MeshReport, EdgeTable) {
     defects.nonmanifold_vertices =
         nonmanifold_vertices(tris, &mut corner_parent, mesh.vertices.len());
     defects.duplicate_faces = duplicate_faces(tris, &table);
+    if !defects.orientation_conflicts.is_empty() {
+        defects.faces_to_flip = faces_to_flip(tris, &table);
+    }
+    if !defects.boundary_edges.is_empty() {
+        defects.holes = hole_loops(&table);
+    }
 
     let (mut component_list, component_of) =
         components(mesh, &table, &measures, &mut component_parent, &defects);

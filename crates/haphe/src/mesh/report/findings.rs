@@ -54,6 +54,16 @@ pub struct Defects {
     pub sliver_triangles: Vec<u32>,
     /// Pairs `[first, duplicate]` of triangles with the same three vertices.
     pub duplicate_faces: Vec<[u32; 2]>,
+    /// The triangles to flip for a consistent orientation (where
+    /// [`orientation_conflicts`](Defects::orientation_conflicts) are): in each part, the
+    /// smaller of the two classes its conflicts split it into. Empty when oriented.
+    #[serde(default)]
+    pub faces_to_flip: Vec<u32>,
+    /// The holes: the [boundary edges](Defects::boundary_edges) joined into loops, each
+    /// the list of its vertices (as many as its edges), in the direction its triangles
+    /// run them.
+    #[serde(default)]
+    pub holes: Vec<Vec<u32>>,
     /// Indices into [`MeshReport::component_list`] of inside-out components.
     pub inverted_components: Vec<u32>,
     /// Indices into [`MeshReport::component_list`] of solids that lie inside another solid

@@ -96,6 +96,9 @@ impl fmt::Display for ReportText<'_> {
             None => writeln!(f)?,
         }
         let d = &report.defects;
+        if !d.holes.is_empty() {
+            writeln!(f, "  holes: {}", super::holes_text(&d.holes))?;
+        }
         list(f, "boundary edges", &d.boundary_edges)?;
         // An edge shared by thousands of triangles shows its first few and their count.
         let edges = |uses: &[super::EdgeUse]| {
@@ -123,6 +126,11 @@ impl fmt::Display for ReportText<'_> {
             f,
             "orientation conflicts [edge] [triangles]",
             &edges(&d.orientation_conflicts),
+        )?;
+        list(
+            f,
+            "triangles to flip for a consistent orientation",
+            &d.faces_to_flip,
         )?;
         list(f, "inside-out components", &d.inverted_components)?;
         list(
