@@ -395,7 +395,13 @@ fn run_realtime(
         clock = v.clock;
         report = Some(v.report);
         if limit.is_none() {
-            writeln!(out, "running until Ctrl-C")?;
+            // A network peer can also end the run (the stop flag of its datagram).
+            let or_peer = if v.choice.spec.starts_with("udp") {
+                " or the peer sends stop"
+            } else {
+                ""
+            };
+            writeln!(out, "running until Ctrl-C{or_peer}")?;
         }
     }
     out.flush()?;
