@@ -206,26 +206,7 @@ pub fn repair(mesh: &Mesh, options: &RepairOptions) -> Result<Repaired, RepairEr
     let mut origin: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
 
     // Degenerate, then duplicate triangles.
-    let report = MeshReport::of(&mesh);
-    let degenerate = report.defects.degenerate_triangles.clone();
-    if !degenerate.is_empty() {
-        keep_except(&mut mesh, &mut origin, &degenerate);
-        changes.push(Change::DroppedDegenerate {
-            triangles: degenerate,
-        });
-    }
-    let report = MeshReport::of(&mesh);
-    let duplicates: Vec<u32> = report
-        .defects
-        .duplicate_faces
-        .iter()
-        .map(|&[_, dup]| dup)
-        .collect();
-    if !duplicates.is_empty() {
-        let dropped = duplicates.iter().map(|&t| origin[t as usize]).collect();
-        keep_except(&mut mesh, &mut origin, &duplicates);
-        changes.push(Change::DroppedDuplicate { triangles: dropped });
-    }
+    drop_unusable(&mut mesh, &mut origin, &mut changes);
 
     // Orientation.
     let flips = faces_to_flip(&mesh.triangles, &EdgeTable::build(&mesh.triangles));
@@ -257,32 +238,7 @@ pub fn repair(mesh: &Mesh, options: &RepairOptions) -> Result<Repaired, RepairEr
     }
 
     // Inside-out closed parts turned outward.
-    let report = MeshReport::of(&mesh);
-    if !report.defects.inverted_components.is_empty() {
-        let part = parts(&mesh.triangles);
-        for &c in &report.defects.inverted_components {
-            let Some(first) = report
-                .component_list
-                .get(c as usize)
-                .map(|c| c.first_triangle)
-            else {
-                continue;
-            };
-            let which = part[first as usize];
-            let members: Vec<u32> = (0..mesh.triangles.len() as u32)
-                .filter(|&t| part[t as usize] == which)
-                .collect();
-            for &t in &members {
-                mesh.triangles[t as usize].swap(1, 2);
-            }
-            changes.push(Change::TurnedOutward {
-                triangles: members
-                    .iter()
-                    .map(|&t| origin.get(t as usize).copied().unwrap_or(t))
-                    .collect(),
-            });
-        }
-    }
+    turn_outward(&mut mesh, &origin, &mut changes);
     let report = MeshReport::of(&mesh);
     if report.usable_as != Usability::Solid {
         return Err(RepairError::NotSolid {
@@ -294,6 +250,63 @@ pub fn repair(mesh: &Mesh, options: &RepairOptions) -> Result<Repaired, RepairEr
         changes,
         report,
     })
+}
+
+/// Drops the degenerate triangles, then the duplicates, of `mesh` (with their entries of
+/// `origin`), saying so in `changes`.
+fn drop_unusable(mesh: &mut Mesh, origin: &mut Vec<u32>, changes: &mut Vec<Change>) {
+    let report = MeshReport::of(mesh);
+    let degenerate = report.defects.degenerate_triangles.clone();
+    if !degenerate.is_empty() {
+        let dropped = degenerate.iter().map(|&t| origin[t as usize]).collect();
+        keep_except(mesh, origin, &degenerate);
+        changes.push(Change::DroppedDegenerate { triangles: dropped });
+    }
+    let report = MeshReport::of(mesh);
+    let duplicates: Vec<u32> = report
+        .defects
+        .duplicate_faces
+        .iter()
+        .map(|&[_, dup]| dup)
+        .collect();
+    if !duplicates.is_empty() {
+        let dropped = duplicates.iter().map(|&t| origin[t as usize]).collect();
+        keep_except(mesh, origin, &duplicates);
+        changes.push(Change::DroppedDuplicate { triangles: dropped });
+    }
+}
+
+/// Flips every triangle of each closed part of `mesh` whose normals point in (inside out,
+/// not a cavity), saying so in `changes` (triangles named by `origin`, the patches by
+/// their own index).
+fn turn_outward(mesh: &mut Mesh, origin: &[u32], changes: &mut Vec<Change>) {
+    let report = MeshReport::of(mesh);
+    if report.defects.inverted_components.is_empty() {
+        return;
+    }
+    let part = parts(&mesh.triangles);
+    for &c in &report.defects.inverted_components {
+        let Some(first) = report
+            .component_list
+            .get(c as usize)
+            .map(|c| c.first_triangle)
+        else {
+            continue;
+        };
+        let which = part[first as usize];
+        let members: Vec<u32> = (0..mesh.triangles.len() as u32)
+            .filter(|&t| part[t as usize] == which)
+            .collect();
+        for &t in &members {
+            mesh.triangles[t as usize].swap(1, 2);
+        }
+        changes.push(Change::TurnedOutward {
+            triangles: members
+                .iter()
+                .map(|&t| origin.get(t as usize).copied().unwrap_or(t))
+                .collect(),
+        });
+    }
 }
 
 /// Drops the triangles `drop` (sorted indices) from `mesh` and their entries of `origin`.

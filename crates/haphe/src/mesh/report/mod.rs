@@ -12,31 +12,12 @@ mod nesting;
 mod text;
 #[doc(hidden)]
 pub use text::ReportText;
+use text::holes_text;
 
 #[doc(hidden)]
 pub use super::frame::{DEGENERATE_MAX_RELATIVE_HEIGHT, SLIVER_MAX_RELATIVE_HEIGHT};
 
 use super::Mesh;
-
-/// "1 hole of 4 edges", "3 holes (of 4, 4 and 12 edges)".
-pub(crate) fn holes_text(holes: &[Vec<u32>]) -> String {
-    match holes {
-        [] => "no hole".to_owned(),
-        [one] => format!("1 hole of {} edges", one.len()),
-        many => {
-            let mut sizes: Vec<String> = many.iter().take(8).map(|h| h.len().to_string()).collect();
-            if many.len() > 8 {
-                sizes.push(format!("… {} more", many.len() - 8));
-            }
-            let last = sizes.pop().unwrap_or_default();
-            format!(
-                "{} holes (of {} and {last} edges)",
-                many.len(),
-                sizes.join(", ")
-            )
-        }
-    }
-}
 
 impl MeshReport {
     /// Validates `mesh` and lists every defect.

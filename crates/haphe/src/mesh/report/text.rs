@@ -97,7 +97,7 @@ impl fmt::Display for ReportText<'_> {
         }
         let d = &report.defects;
         if !d.holes.is_empty() {
-            writeln!(f, "  holes: {}", super::holes_text(&d.holes))?;
+            writeln!(f, "  holes: {}", holes_text(&d.holes))?;
         }
         list(f, "boundary edges", &d.boundary_edges)?;
         // An edge shared by thousands of triangles shows its first few and their count.
@@ -142,5 +142,25 @@ impl fmt::Display for ReportText<'_> {
         list(f, "sliver triangles", &d.sliver_triangles)?;
         list(f, "duplicate faces [first, duplicate]", &d.duplicate_faces)?;
         Ok(())
+    }
+}
+
+/// "1 hole of 4 edges", "3 holes (of 4, 4 and 12 edges)".
+pub(super) fn holes_text(holes: &[Vec<u32>]) -> String {
+    match holes {
+        [] => "no hole".to_owned(),
+        [one] => format!("1 hole of {} edges", one.len()),
+        many => {
+            let mut sizes: Vec<String> = many.iter().take(8).map(|h| h.len().to_string()).collect();
+            if many.len() > 8 {
+                sizes.push(format!("… {} more", many.len() - 8));
+            }
+            let last = sizes.pop().unwrap_or_default();
+            format!(
+                "{} holes (of {} and {last} edges)",
+                many.len(),
+                sizes.join(", ")
+            )
+        }
     }
 }
