@@ -297,11 +297,18 @@ pub fn print(
         s.max_speed,
         impossible(s.max_speed / info.scale, MAX_HAND_SPEED_M_S, 1.0, "m/s")
     )?;
-    writeln!(
-        out,
-        "  safe start        held {} tick(s) at zero force (device inside an object)",
-        s.held_ticks
-    )?;
+    if s.held_ticks > 0 {
+        writeln!(
+            out,
+            "  safe start        held {} tick(s) at zero force (device inside an object)",
+            s.held_ticks
+        )?;
+    } else {
+        writeln!(
+            out,
+            "  safe start        not needed (the device began outside every object)"
+        )?;
+    }
     writeln!(out, "  tick time         {}", quantiles(&stats.compute))?;
     if info.realtime {
         print_realtime(out, stats, info)?;
