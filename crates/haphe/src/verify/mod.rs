@@ -29,9 +29,9 @@ pub use paths::{haptic_path, haptic_path_in_contact};
 pub use proxy::{BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy};
 pub use samples::{SegmentKind, bounds, point_on, points, segments, trajectory};
 pub use strikes::{
-    MAX_STRIKE_ANGLE_DEG, MIN_DEEP_STRIKE_SHARE, STRIKE_FORCE_TOLERANCE_N, STRIKE_SPEED_CLASSES,
-    STRIKE_SPEEDS, StrikeCheck, StrikeEntry, StrikeTicks, check_strikes, hand_goes_deep,
-    strike_path,
+    ENOUGH_DEEP_STRIKES, MAX_STRIKE_ANGLE_DEG, MIN_DEEP_STRIKE_SHARE, STRIKE_FORCE_TOLERANCE_N,
+    STRIKE_SPEED_CLASSES, STRIKE_SPEEDS, StrikeCheck, StrikeEntry, StrikeTicks, check_strikes,
+    hand_goes_deep, required_deep_strikes, strike_path,
 };
 
 use crate::par::*;

@@ -50,8 +50,21 @@ pub const STRIKE_SPEEDS: (f64, f64) = (0.5, 10.0);
 /// range would pass whatever the hold does, and the strikes drawn here (depths up to
 /// 0.25 m on a 0.2 m model) go that deep in 79–96 % of draws on the models of
 /// `docs/deep-penetration.md`. A drawing that stopped reaching that depth (depths or
-/// speeds scaled down, entries all skipped) falls below half.
+/// speeds scaled down, entries all skipped) falls below half. A large family needs no
+/// more than [`ENOUGH_DEEP_STRIKES`].
 pub const MIN_DEEP_STRIKE_SHARE: f64 = 0.5;
+
+/// Deep strikes enough for any family, however many strikes it runs: a thin model (a
+/// plate a few millimetres thick, whose points lie within the saturation depth of its
+/// surface but near its holes and rims) has few points that deep, so a few percent of its
+/// strikes go deep; fifty of them check the hold as well as half of a small family does.
+pub const ENOUGH_DEEP_STRIKES: usize = 50;
+
+/// The fewest deep strikes a family of `strikes` strikes must have:
+/// [`MIN_DEEP_STRIKE_SHARE`] of them, at most [`ENOUGH_DEEP_STRIKES`], at least one.
+pub fn required_deep_strikes(strikes: usize) -> usize {
+    ((strikes as f64 * MIN_DEEP_STRIKE_SHARE).ceil() as usize).clamp(1, ENOUGH_DEEP_STRIKES)
+}
 
 /// How far outside the surface a strike starts, metres.
 const RUN_UP_M: f64 = 0.01;
@@ -132,7 +145,7 @@ impl StrikeTicks {
 /// ticks from the hand passing the entry until it stops, split where the hand first lies
 /// deeper than the saturation depth inside the solid (by the path, [`hand_goes_deep`]).
 /// The *deep* ticks (from that tick on, the proxy holding) must all be in contact and
-/// clean, and at least [`MIN_DEEP_STRIKE_SHARE`] of the strikes must have some. The
+/// clean, and at least [`required_deep_strikes`] of the strikes must have some. The
 /// *shallow* ticks before it are the physical range, where the proxy is the god-object: a
 /// grazing strike slides over the surface, and past a crest a frictionless surface pushes
 /// the hand on along its normal, as a rigid one does.
@@ -158,8 +171,8 @@ pub struct StrikeCheck {
     pub deep_by_speed: [StrikeTicks; 4],
     /// The shallow ticks by the strike's speed class.
     pub shallow_by_speed: [StrikeTicks; 4],
-    /// The fewest deep strikes the check accepts: [`MIN_DEEP_STRIKE_SHARE`] of the
-    /// strikes run, at least one.
+    /// The fewest deep strikes the check accepts ([`required_deep_strikes`] of the
+    /// strikes run).
     pub min_deep_strikes: usize,
     /// Strikes (index, angle in degrees, speed m/s, depth m) with a deep tick that is not
     /// in contact or not clean, a few.
@@ -285,8 +298,7 @@ pub fn check_strikes(
             check.shallow_pushing.push(kept);
         }
     }
-    check.min_deep_strikes =
-        ((check.strikes as f64 * MIN_DEEP_STRIKE_SHARE).ceil() as usize).max(1);
+    check.min_deep_strikes = required_deep_strikes(check.strikes);
     check
 }
 

@@ -95,8 +95,8 @@ pub struct StrikeReport {
 }
 
 impl StrikeReport {
-    /// Whether at least half the strikes went deeper than the saturation depth (by the
-    /// hand's path) and no tick from the one a strike went that deep lost contact, pulled
+    /// Whether enough strikes went deeper than the saturation depth (by the hand's path:
+    /// half of them, or 50) and no tick from the one a strike went that deep lost contact, pulled
     /// the hand on or faced the far side (see [`StrikeCheck::passed`]). (A grazing strike
     /// that never goes that deep stays in the physical range, where the proxy is the
     /// god-object: it slides over the surface and may be pushed on by it past a crest, as
