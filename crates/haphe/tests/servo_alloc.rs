@@ -1,7 +1,8 @@
 //! The servo path allocates nothing with the device and the statistics in the loop: the
-//! simulated hand exploring two objects, one of them moving by script, another moved and
-//! re-inserted by edits from "another thread", with tick timing and counters, run in
-//! simulation mode on this thread under a counting allocator; and the same for replay.
+//! simulated hand exploring two objects (with a clutch held twice), one of them moving by
+//! script, another moved and re-inserted by edits from "another thread", with tick timing
+//! and counters, run in simulation mode on this thread under a counting allocator; and the
+//! same for replay.
 
 use std::sync::Arc;
 
@@ -46,8 +47,13 @@ fn servo_ticks_allocate_nothing() {
         .insert(SceneObject::new(ObjectId(1), plate, plate_pose, material))
         .expect("room");
     let path = scripted_path(PathKind::Explore, &scene, 20.0, 5).expect("a path");
-    let hand = SimulatedHand::new(path, HandOptions::default());
-    let mut servo = Servo::new(hand, scene, ServoOptions::default()).expect("servo");
+    // The clutch held twice: its presses are read and its offset moved on the servo path.
+    let hand = SimulatedHand::new(path, HandOptions::default())
+        .press(0, 3.0, 3.1)
+        .and_then(|h| h.press(0, 11.0, 11.1))
+        .expect("valid presses");
+    let options = ServoOptions::default().with_clutch_button(Some(0));
+    let mut servo = Servo::new(hand, scene, options).expect("servo");
     servo.set_motions(vec![ObjectMotion {
         id: ObjectId(1),
         base: plate_pose,
@@ -99,6 +105,8 @@ fn servo_ticks_allocate_nothing() {
         stats.compute.quantile(0.99),
         stats.compute.max()
     );
+    let clutched = records.iter().filter(|r| r.clutch).count();
+    assert_eq!(clutched, 200, "the clutch was held 0.2 s");
     assert_eq!(n, 20_000);
     assert_eq!(stats.compute.count(), 20_000);
     assert!(contact > 5_000, "{contact}");

@@ -63,6 +63,14 @@ impl Standin {
         assert_eq!(n as usize, samples.len(), "the stand-in holds every sample");
     }
 
+    /// The buttons held at each sample (a bit mask each; none held beyond them).
+    pub fn set_buttons(&self, masks: &[u32]) {
+        let f: unsafe extern "C" fn(*const u32, i32) -> i32 = self.f("standin_set_buttons");
+        // SAFETY: the pointer is to `masks.len()` unsigned ints.
+        let n = unsafe { f(masks.as_ptr(), i32::try_from(masks.len()).expect("fits")) };
+        assert_eq!(n as usize, masks.len(), "the stand-in holds every mask");
+    }
+
     pub fn fail_from(&self, call: i32) {
         let f: unsafe extern "C" fn(i32) = self.f("standin_fail_from");
         // SAFETY: plain int argument.

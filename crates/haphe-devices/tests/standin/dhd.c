@@ -24,7 +24,7 @@ static int calls = 0;
 
 void standin_reset(int device_count) {
   n_samples = 0; current = -1; n_forces = 0; fail_from = -1; devices = device_count;
-  opened = 0; force_enabled = 0; last_error = 0; calls = 0;
+  opened = 0; force_enabled = 0; last_error = 0; calls = 0; n_button_masks = 0;
 }
 int standin_set_path(const double *pv, int n) {
   if (n > STANDIN_MAX) n = STANDIN_MAX;
@@ -74,7 +74,7 @@ int dhdGetLinearVelocity(double *vx, double *vy, double *vz, char id) {
   *vx = samples[current][3]; *vy = samples[current][4]; *vz = samples[current][5];
   return 0;
 }
-unsigned int dhdGetButtonMask(char id) { (void)id; return current >= 0 && current % 1000 < 10 ? 1u : 0u; }
+unsigned int dhdGetButtonMask(char id) { (void)id; return standin_buttons_at(current); }
 int dhdSetForce(double fx, double fy, double fz, char id) {
   (void)id;
   if (!opened) { last_error = DHD_ERROR_COM; return -1; }

@@ -9,6 +9,24 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+
+/* The buttons held at each sample, one bit mask per sample (none held beyond those set):
+ * scripted by the test-only standin_set_buttons, cleared by standin_reset. */
+#define STANDIN_BUTTONS_MAX 400000
+static unsigned int button_masks[STANDIN_BUTTONS_MAX];
+static int n_button_masks = 0;
+
+int standin_set_buttons(const unsigned int *masks, int n) {
+  if (n > STANDIN_BUTTONS_MAX) n = STANDIN_BUTTONS_MAX;
+  memcpy(button_masks, masks, sizeof(unsigned int) * (size_t)n);
+  n_button_masks = n;
+  return n;
+}
+
+static unsigned int standin_buttons_at(int sample) {
+  return sample >= 0 && sample < n_button_masks ? button_masks[sample] : 0u;
+}
 
 static int standin_env_path(double (*samples)[6], int max) {
   const char *name = getenv("HAPHE_STANDIN_PATH");

@@ -59,7 +59,7 @@ static int scheduler_started = 0;
 void standin_reset(int device_present) {
   n_samples = 0; current = -1; n_forces = 0; fail_from = -1; frames = 0; in_frame = 0;
   present = device_present; initialised = 0; force_output = 0; pending = 0; period_ns = 1000000;
-  callback = NULL; callback_data = NULL;
+  callback = NULL; callback_data = NULL; n_button_masks = 0;
 }
 int standin_set_path(const double *pv, int n) {
   if (n > STANDIN_MAX) n = STANDIN_MAX;
@@ -121,7 +121,7 @@ void hdGetDoublev(HDenum what, double *v) {
 }
 void hdGetIntegerv(HDenum what, int *v) {
   if (what == HD_UPDATE_RATE) *v = 1000;
-  else if (what == HD_CURRENT_BUTTONS) *v = 0;
+  else if (what == HD_CURRENT_BUTTONS) *v = (int)standin_buttons_at(current);
   else *v = 0;
 }
 void hdSetDoublev(HDenum what, const double *v) {

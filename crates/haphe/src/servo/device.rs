@@ -280,6 +280,16 @@ impl DeviceMapping {
         DeviceMapping::sanitised(DQuat::IDENTITY, scale, offset)
     }
 
+    /// The same mapping with the device origin at the world point `offset` (a non-finite
+    /// offset keeps the current one): the clutch moves the workspace this way.
+    pub(crate) fn with_offset(self, offset: DVec3) -> DeviceMapping {
+        if offset.is_finite() {
+            DeviceMapping { offset, ..self }
+        } else {
+            self
+        }
+    }
+
     /// World metres per device metre.
     pub fn scale(&self) -> f64 {
         self.scale

@@ -7,7 +7,7 @@ use std::io::{self, Write};
 
 use glam::DVec3;
 
-use super::device::DeviceFault;
+use super::device::{Buttons, DeviceFault};
 use crate::proxy::TickStatus;
 use crate::scene::ObjectId;
 
@@ -75,6 +75,12 @@ pub struct TickRecord {
     pub phase: Phase,
     /// The fault that stopped the loop at this tick, if any.
     pub fault: Option<DeviceFault>,
+    /// The device's buttons held at this tick (none before the device was read).
+    pub buttons: Buttons,
+    /// Whether the clutch was held at this tick (see
+    /// [`ServoOptions::with_clutch_button`](crate::servo::ServoOptions::with_clutch_button)):
+    /// the tool stayed while the device moved.
+    pub clutch: bool,
 }
 
 impl TickRecord {
@@ -139,18 +145,25 @@ impl TickRecord {
         }
         writeln!(
             w,
-            ",{},{},{}",
+            ",{},{},{},{},{}",
             self.status_name(),
             self.penetration,
-            u8::from(self.status.sticking)
+            u8::from(self.status.sticking),
+            self.buttons.0,
+            u8::from(self.clutch)
         )
     }
 }
 
 /// The header of a trace CSV, without the line end: time (s), HIP and proxy (m, world),
 /// force (N, world), contact (0/1), object id and triangle (empty when free), status
-/// ([`TickRecord::status_name`]), penetration (m) and sticking (0/1).
-pub const CSV_HEADER: &str = "t,hip_x,hip_y,hip_z,proxy_x,proxy_y,proxy_z,force_x,force_y,force_z,contact,object,triangle,status,penetration,sticking";
+/// ([`TickRecord::status_name`]), penetration (m), sticking (0/1), the buttons held (an
+/// integer, bit 0 the first button) and the clutch (0/1).
+pub const CSV_HEADER: &str = "t,hip_x,hip_y,hip_z,proxy_x,proxy_y,proxy_z,force_x,force_y,force_z,contact,object,triangle,status,penetration,sticking,buttons,clutch";
+
+/// The header of traces written before the buttons and the clutch were recorded; they
+/// are read with no button held.
+pub(crate) const CSV_HEADER_BEFORE_BUTTONS: &str = "t,hip_x,hip_y,hip_z,proxy_x,proxy_y,proxy_z,force_x,force_y,force_z,contact,object,triangle,status,penetration,sticking";
 
 /// Writes [`CSV_HEADER`] and a line end.
 ///

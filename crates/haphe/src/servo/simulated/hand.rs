@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use super::behaviour::Simulated;
+use super::presses::Presses;
 use super::spec::simulated_spec;
 use super::trajectory::Trajectory;
 use crate::servo::device::{DeviceFault, DeviceSpec};
@@ -68,6 +69,7 @@ pub struct SimulatedHand {
     force: DVec3,
     time: f64,
     pub(super) open: bool,
+    pub(super) presses: Presses,
 }
 
 impl SimulatedHand {
@@ -83,6 +85,7 @@ impl SimulatedHand {
             force: DVec3::ZERO,
             time: 0.0,
             open: false,
+            presses: Presses::default(),
         }
     }
 

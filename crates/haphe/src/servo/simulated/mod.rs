@@ -6,6 +6,7 @@
 mod behaviour;
 mod device;
 mod hand;
+mod presses;
 mod replay;
 mod scripted;
 mod spec;

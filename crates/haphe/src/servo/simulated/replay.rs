@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use super::behaviour::Simulated;
+use super::presses::Presses;
 use super::spec::simulated_spec;
 use crate::servo::device::{DeviceFault, DeviceSpec};
 use crate::servo::trace::read::HipTrace;
@@ -16,6 +17,7 @@ pub struct ReplayDevice {
     trace: HipTrace,
     pub(super) spec: DeviceSpec,
     pub(super) open: bool,
+    pub(super) presses: Presses,
 }
 
 impl ReplayDevice {
@@ -25,6 +27,7 @@ impl ReplayDevice {
             trace,
             spec: simulated_spec(),
             open: false,
+            presses: Presses::default(),
         }
     }
 

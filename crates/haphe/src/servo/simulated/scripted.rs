@@ -368,6 +368,7 @@ pub struct ScriptedDevice {
     pub(super) spec: DeviceSpec,
     pub(super) open: bool,
     last_force: DVec3,
+    pub(super) presses: super::presses::Presses,
 }
 
 impl ScriptedDevice {
@@ -379,6 +380,7 @@ impl ScriptedDevice {
             spec: simulated_spec(),
             open: false,
             last_force: DVec3::ZERO,
+            presses: super::presses::Presses::default(),
         }
     }
 

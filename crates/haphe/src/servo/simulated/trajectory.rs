@@ -25,6 +25,15 @@ pub enum TrajectoryError {
     /// The scene has no object to build a path over.
     #[error("the scene has no object to move over")]
     EmptyScene,
+    /// A button press of a simulated device is not usable: a button beyond 31, or times
+    /// that are not finite, the press before the release.
+    #[error(
+        "press of button {button}: the button must be 0 to 31 and its times finite, the press before the release"
+    )]
+    Press {
+        /// The button (bit index).
+        button: u32,
+    },
 }
 
 /// A timed path: positions (metres) at key times (seconds), joined by cubic Hermite

@@ -2,6 +2,7 @@
 //! write the force — with safe start and fault handling, and a simulation mode that runs
 //! it on a virtual clock.
 
+mod clutch;
 mod motion;
 mod stats;
 
@@ -15,8 +16,9 @@ use glam::DVec3;
 use crate::proxy::{Proxy, ProxyOptions, TickStatus};
 use crate::query::{Side, classify_point};
 use crate::scene::{ObjectKey, Param, ParamError, Scene};
-use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
+use crate::servo::device::{Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
 use crate::servo::trace::{Phase, TickRecord};
+use clutch::Clutch;
 
 /// Lowest servo rate accepted, Hz (the table of domains: [`Param::RateHz`]).
 pub const MIN_RATE_HZ: f64 = Param::RateHz.domain().low;
@@ -40,18 +42,23 @@ pub struct ServoOptions {
     /// Where the device workspace sits in the world.
     mapping: DeviceMapping,
     /// Safe start: after the device point is found outside every object, the force rises
-    /// linearly from zero over this time, seconds (0: at once).
+    /// linearly from zero over this time, seconds (0: at once); the clutch fades the force
+    /// out and back in over the same time.
     ramp_seconds: f64,
+    /// The button that holds the clutch (bit index of [`Buttons`](crate::servo::Buttons)),
+    /// none for no clutch.
+    clutch_button: Option<u32>,
 }
 
 impl Default for ServoOptions {
-    /// 1 kHz, the default proxy, the identity mapping, a 50 ms ramp.
+    /// 1 kHz, the default proxy, the identity mapping, a 50 ms ramp, no clutch.
     fn default() -> ServoOptions {
         ServoOptions {
             rate_hz: 1000.0,
             proxy: ProxyOptions::default(),
             mapping: DeviceMapping::IDENTITY,
             ramp_seconds: 0.05,
+            clutch_button: None,
         }
     }
 }
@@ -87,6 +94,33 @@ impl ServoOptions {
             ramp_seconds: Param::RampSeconds.check(ramp_seconds)?,
             ..self
         })
+    }
+
+    /// The same options with a clutch held by the device's button `button` (0 is the
+    /// first; `None`: no clutch). While it is held, the device moves without moving the
+    /// tool, so the hand can re-centre itself in the workspace (the indexing of haptic
+    /// toolkits):
+    ///
+    /// - the tool (the world point given to the proxy) stays where it was at the last tick
+    ///   before the press, at rest, and the proxy stays against it;
+    /// - the mapping's offset follows the hand (`offset = tool − scale · R · p_device`), so
+    ///   at the release it has moved by minus the hand's travel while held, mapped into the
+    ///   world, and the tool continues from where it stayed ([`Servo::mapping`]);
+    /// - the force fades linearly to zero over [`ramp_seconds`](ServoOptions::ramp_seconds)
+    ///   after the press and rises back over the same time after the release: no jolt at
+    ///   either, and no force from the hand's motion while held.
+    ///
+    /// A button beyond the 32 bits of [`Buttons`](crate::servo::Buttons) is never held.
+    pub fn with_clutch_button(self, button: Option<u32>) -> ServoOptions {
+        ServoOptions {
+            clutch_button: button,
+            ..self
+        }
+    }
+
+    /// The button that holds the clutch, if any.
+    pub fn clutch_button(&self) -> Option<u32> {
+        self.clutch_button
     }
 
     /// Ticks per second, Hz.
@@ -178,6 +212,9 @@ pub struct Servo<D: Device> {
     motion_keys: Vec<ObjectKey>,
     proxy: Proxy,
     options: ServoOptions,
+    /// The mapping in force: the options' until the clutch moves its offset.
+    mapping: DeviceMapping,
+    clutch: Clutch,
     phase: Phase,
     ramp_start: f64,
     stats: TickStats,
@@ -204,6 +241,8 @@ impl<D: Device> Servo<D> {
             motions: Vec::new(),
             motion_keys: Vec::new(),
             proxy: Proxy::new(DVec3::ZERO, options.proxy),
+            mapping: options.mapping,
+            clutch: Clutch::new(options.clutch_button),
             options,
             phase: Phase::Holding,
             ramp_start: 0.0,
@@ -221,6 +260,12 @@ impl<D: Device> Servo<D> {
             self.scene.set_pose_keyed(key, m.pose_at(t));
         }
         self.motions = motions;
+    }
+
+    /// The mapping in force: [`ServoOptions::mapping`] with its offset moved by every use
+    /// of the clutch ([`ServoOptions::with_clutch_button`]).
+    pub fn mapping(&self) -> &DeviceMapping {
+        &self.mapping
     }
 
     /// The settings in use (with the proxy's maximum force lowered to the device's).
@@ -309,6 +354,8 @@ impl<D: Device> Servo<D> {
             status: TickStatus::default(),
             phase: self.phase,
             fault: None,
+            buttons: Buttons::default(),
+            clutch: false,
         };
         self.stats.ticks += 1;
         if self.phase == Phase::Faulted || self.closed {
@@ -323,9 +370,20 @@ impl<D: Device> Servo<D> {
             Ok(s) => s,
             Err(f) => return self.fault(record, f),
         };
-        let mapping = self.options.mapping;
+        record.buttons = state.buttons;
+        record.clutch = self
+            .clutch
+            .engage(state.buttons, state.position, &mut self.mapping);
+        let mapping = self.mapping;
         let hip = mapping.position_to_world(state.position);
-        let velocity = mapping.velocity_to_world(state.velocity);
+        // Held, the tool is at rest.
+        let velocity = if record.clutch {
+            DVec3::ZERO
+        } else {
+            mapping.velocity_to_world(state.velocity)
+        };
+        self.clutch.remember(hip);
+        let fade = self.clutch.gain(self.fade_step());
         record.hip = hip;
         record.velocity = velocity;
         record.proxy = hip;
@@ -356,7 +414,7 @@ impl<D: Device> Servo<D> {
             };
             record.phase = self.phase;
             record.proxy = out.proxy;
-            record.force = out.force * gain;
+            record.force = out.force * (gain * fade);
             record.status = out.status;
             if let Some(c) = out.contact {
                 record.object = Some(c.id);
@@ -418,6 +476,15 @@ impl<D: Device> Servo<D> {
         }
         self.stats.wall_seconds += start.elapsed().as_secs_f64();
         stop
+    }
+
+    /// The clutch's fade per tick: the period over the ramp's time (1: at once).
+    fn fade_step(&self) -> f64 {
+        if self.options.ramp_seconds > 0.0 {
+            self.period() / self.options.ramp_seconds
+        } else {
+            1.0
+        }
     }
 
     /// Writes zero force (ignoring a fault). Called when a run stops.

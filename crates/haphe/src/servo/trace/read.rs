@@ -7,7 +7,7 @@ use std::io::BufRead;
 
 use glam::DVec3;
 
-use super::{CSV_HEADER, STATUS_NAMES};
+use super::{CSV_HEADER, CSV_HEADER_BEFORE_BUTTONS, STATUS_NAMES};
 
 /// Why a trace could not be read. Every variant names the file, and the line (1-based)
 /// where there is one.
@@ -227,6 +227,10 @@ pub struct TraceRow {
     pub penetration: f64,
     /// Friction sticking.
     pub sticking: bool,
+    /// Buttons held, bit 0 the first (0 in a trace written before they were recorded).
+    pub buttons: u32,
+    /// Whether the clutch was held.
+    pub clutch: bool,
 }
 
 /// A trace the servo loop wrote ([`TickRecord::write_csv`](super::TickRecord::write_csv)),
@@ -238,12 +242,13 @@ pub struct TickTrace {
 }
 
 impl TickTrace {
-    /// Reads a trace; `file` names it in errors.
+    /// Reads a trace; `file` names it in errors. A trace written before the columns
+    /// `buttons` and `clutch` existed is read with no button held.
     ///
     /// # Errors
     /// [`TraceError`], naming the file, line and column.
     pub fn read(file: &str, reader: impl BufRead) -> Result<TickTrace, TraceError> {
-        let names: Vec<&'static str> = CSV_HEADER.split(',').collect();
+        let mut names: Vec<&'static str> = CSV_HEADER.split(',').collect();
         let mut rows = Vec::new();
         for (i, line) in reader.lines().enumerate() {
             let line = line.map_err(|source| TraceError::Io {
@@ -252,7 +257,9 @@ impl TickTrace {
             })?;
             let line = line.trim_end_matches('\r');
             if i == 0 {
-                if line != CSV_HEADER {
+                if line == CSV_HEADER_BEFORE_BUTTONS {
+                    names = CSV_HEADER_BEFORE_BUTTONS.split(',').collect();
+                } else if line != CSV_HEADER {
                     return Err(TraceError::Header { file: file.into() });
                 }
                 continue;
@@ -298,6 +305,13 @@ impl TickTrace {
                     other => Err(bad(c, format!("{other:?} is not 0 or 1"))),
                 }
             };
+            let buttons = match fields.get(16) {
+                None => 0,
+                Some(b) => b
+                    .parse::<u32>()
+                    .map_err(|_| bad(16, format!("{b:?} is not a button mask")))?,
+            };
+            let clutch = fields.len() > 17 && flag(17)?;
             let status = STATUS_NAMES
                 .iter()
                 .position(|s| *s == fields[13])
@@ -312,6 +326,8 @@ impl TickTrace {
                 status: status as u8,
                 penetration: num(14)?,
                 sticking: flag(15)?,
+                buttons,
+                clutch,
             });
         }
         if rows.is_empty() {
@@ -374,8 +390,8 @@ mod tests {
     #[test]
     fn reads_what_the_servo_writes() {
         let text = csv(&[
-            "0,0,0,0.2,0,0,0.2,0,0,0,0,,,free,0,0",
-            "0.001,0,0,0.09,0,0,0.1,0,0,3,1,0,17,sticking,0.01,1",
+            "0,0,0,0.2,0,0,0.2,0,0,0,0,,,free,0,0,0,0",
+            "0.001,0,0,0.09,0,0,0.1,0,0,3,1,0,17,sticking,0.01,1,0,0",
         ]);
         let trace = TickTrace::read("t.csv", text.as_bytes()).expect("reads");
         assert_eq!(trace.rows.len(), 2);
@@ -388,6 +404,23 @@ mod tests {
     }
 
     #[test]
+    fn reads_the_buttons_and_traces_written_before_them() {
+        let text = csv(&["0,0,0,0.2,0,0,0.2,0,0,0,0,,,free,0,0,5,1"]);
+        let r = TickTrace::read("b.csv", text.as_bytes())
+            .expect("reads")
+            .rows[0];
+        assert_eq!((r.buttons, r.clutch), (0b101, true));
+        let old = format!("{CSV_HEADER_BEFORE_BUTTONS}\n0,0,0,0.2,0,0,0.2,0,0,0,0,,,free,0,0\n");
+        let r = TickTrace::read("o.csv", old.as_bytes())
+            .expect("reads")
+            .rows[0];
+        assert_eq!((r.buttons, r.clutch), (0, false));
+        let short = format!("{CSV_HEADER}\n0,0,0,0.2,0,0,0.2,0,0,0,0,,,free,0,0\n");
+        let e = TickTrace::read("s.csv", short.as_bytes()).unwrap_err();
+        assert!(e.to_string().contains("16 columns, expected 18"), "{e}");
+    }
+
+    #[test]
     fn bad_files_name_the_line_and_column() {
         let e = TickTrace::read("x.csv", "t,x,y,z\n0,0,0,0\n".as_bytes()).unwrap_err();
         assert!(
@@ -395,7 +428,7 @@ mod tests {
                 .starts_with("x.csv: line 1: not a haphe trace"),
             "{e}"
         );
-        let text = csv(&["0,0,0,0.2,0,0,0.2,0,0,nan,0,,,free,0,0"]);
+        let text = csv(&["0,0,0,0.2,0,0,0.2,0,0,nan,0,,,free,0,0,0,0"]);
         let e = TickTrace::read("x.csv", text.as_bytes()).unwrap_err();
         assert_eq!(
             e.to_string(),
