@@ -102,12 +102,27 @@ typedef struct HapheTickRecord {
   int64_t triangle;
   // Depth of the device point behind the proxy, metres (0 when free).
   double penetration;
+  // The device's buttons held, bit 0 the first.
+  uint32_t buttons;
+  // 1 while the clutch is held (`haphe_run_with_buttons`): the tool (`hip`) stays while
+  // the device moves.
+  uint8_t clutch;
 } HapheTickRecord;
 
 // Called once per tick with the tick's record (valid for the call only) and the caller's
 // `user` pointer. It runs on the servo's thread between ticks: keep it short, and do not
 // let a C++ exception escape it.
 typedef void (*HapheTickCallback)(const struct HapheTickRecord *record, void *user);
+
+// A button of the simulated hand held from `from` until `until`, seconds of the run.
+typedef struct HapheButtonPress {
+  // The button, 0 (the first) to 31.
+  uint32_t button;
+  // When it is pressed, seconds.
+  double from;
+  // When it is released, seconds.
+  double until;
+} HapheButtonPress;
 
 // The first crossing of a segment with a surface.
 typedef struct HapheCrossing {
@@ -215,6 +230,27 @@ enum HapheStatus haphe_run(struct HapheScene *scene,
                            HapheTickCallback callback,
                            void *user,
                            uint64_t *ticks);
+
+// `haphe_run` with buttons: `clutch_button` (0 to 31; -1 for none) is a clutch, and the
+// simulated hand holds the buttons of `presses` (`press_count` of them; may be null when
+// 0). While the clutch is held the device moves without moving the tool: the tool (the
+// records' `hip`) stays where it was, the force fades out over 50 ms and back in after
+// the release, and the tool then continues from where it stayed (the device's origin
+// moved by minus the hand's travel). The records carry the buttons and the clutch.
+// Errors: those of `haphe_run`, and `HAPHE_STATUS_INVALID_ARGUMENT` for a clutch button
+// outside -1 to 31 or a press whose button is beyond 31 or whose times are not finite
+// and increasing.
+enum HapheStatus haphe_run_with_buttons(struct HapheScene *scene,
+                                        const char *device,
+                                        const char *path,
+                                        double seconds,
+                                        double rate_hz,
+                                        int32_t clutch_button,
+                                        const struct HapheButtonPress *presses,
+                                        uintptr_t press_count,
+                                        HapheTickCallback callback,
+                                        void *user,
+                                        uint64_t *ticks);
 
 // Reads a mesh file (OBJ, STL, PLY or OFF, told apart by content), welds its vertices
 // exactly, scales it by `metres_per_unit` (1 for metres, 0.001 for millimetres) and

@@ -25,7 +25,9 @@ pub use scene::{
     HapheMaterial, HapheProxy, HapheScene, HapheTick, haphe_proxy_free, haphe_proxy_new,
     haphe_proxy_tick, haphe_scene_add, haphe_scene_free, haphe_scene_new, haphe_scene_set_pose,
 };
-pub use servo::{HapheTickCallback, HapheTickRecord, haphe_run};
+pub use servo::{
+    HapheButtonPress, HapheTickCallback, HapheTickRecord, haphe_run, haphe_run_with_buttons,
+};
 pub use shape::{
     HAPHE_SKIP_NONFINITE, HapheCrossing, HapheShape, haphe_shape_first_crossing, haphe_shape_free,
     haphe_shape_from_arrays, haphe_shape_from_file, haphe_shape_inside, haphe_shape_load,

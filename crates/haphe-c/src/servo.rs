@@ -30,6 +30,23 @@ pub struct HapheTickRecord {
     pub triangle: i64,
     /// Depth of the device point behind the proxy, metres (0 when free).
     pub penetration: f64,
+    /// The device's buttons held, bit 0 the first.
+    pub buttons: u32,
+    /// 1 while the clutch is held (`haphe_run_with_buttons`): the tool (`hip`) stays while
+    /// the device moves.
+    pub clutch: u8,
+}
+
+/// A button of the simulated hand held from `from` until `until`, seconds of the run.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct HapheButtonPress {
+    /// The button, 0 (the first) to 31.
+    pub button: u32,
+    /// When it is pressed, seconds.
+    pub from: f64,
+    /// When it is released, seconds.
+    pub until: f64,
 }
 
 /// Called once per tick with the tick's record (valid for the call only) and the caller's
@@ -39,19 +56,27 @@ pub type HapheTickCallback =
     Option<extern "C" fn(record: *const HapheTickRecord, user: *mut c_void)>;
 
 /// Opens the device named `device`: `"hand"`, the simulated hand following the scripted
-/// `path`. Hardware devices are added here once the device crate provides them.
+/// `path`, holding the buttons of `presses`. Hardware devices are added here once the
+/// device crate provides them.
 fn open_device(
     device: &str,
     path: &str,
     scene: &haphe_lib::scene::Scene,
     seconds: f64,
+    presses: &[HapheButtonPress],
 ) -> Result<Box<dyn Device>, Failure> {
     match device {
         "hand" => {
             let kind: PathKind = path.parse().map_err(Failure::argument)?;
             let path = scripted_path(kind, scene, seconds, 1)
                 .map_err(|e| Failure(HapheStatus::Device, e.to_string()))?;
-            Ok(Box::new(SimulatedHand::new(path, HandOptions::default())))
+            let mut hand = SimulatedHand::new(path, HandOptions::default());
+            for p in presses {
+                hand = hand
+                    .press(p.button, p.from, p.until)
+                    .map_err(|e| Failure::argument(format!("presses: {e}")))?;
+            }
+            Ok(Box::new(hand))
         }
         other => Err(Failure(
             HapheStatus::Device,
@@ -73,6 +98,8 @@ fn record(r: &TickRecord) -> HapheTickRecord {
         in_contact: u8::from(r.in_contact()),
         triangle: r.triangle.map_or(-1, i64::from),
         penetration: r.penetration,
+        buttons: r.buttons.0,
+        clutch: u8::from(r.clutch),
     }
 }
 
@@ -96,12 +123,67 @@ pub extern "C" fn haphe_run(
     user: *mut c_void,
     ticks: *mut u64,
 ) -> HapheStatus {
+    haphe_run_with_buttons(
+        scene,
+        device,
+        path,
+        seconds,
+        rate_hz,
+        -1,
+        std::ptr::null(),
+        0,
+        callback,
+        user,
+        ticks,
+    )
+}
+
+/// `haphe_run` with buttons: `clutch_button` (0 to 31; -1 for none) is a clutch, and the
+/// simulated hand holds the buttons of `presses` (`press_count` of them; may be null when
+/// 0). While the clutch is held the device moves without moving the tool: the tool (the
+/// records' `hip`) stays where it was, the force fades out over 50 ms and back in after
+/// the release, and the tool then continues from where it stayed (the device's origin
+/// moved by minus the hand's travel). The records carry the buttons and the clutch.
+/// Errors: those of `haphe_run`, and `HAPHE_STATUS_INVALID_ARGUMENT` for a clutch button
+/// outside -1 to 31 or a press whose button is beyond 31 or whose times are not finite
+/// and increasing.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub extern "C" fn haphe_run_with_buttons(
+    scene: *mut HapheScene,
+    device: *const c_char,
+    path: *const c_char,
+    seconds: f64,
+    rate_hz: f64,
+    clutch_button: i32,
+    presses: *const HapheButtonPress,
+    press_count: usize,
+    callback: HapheTickCallback,
+    user: *mut c_void,
+    ticks: *mut u64,
+) -> HapheStatus {
     guard(|| {
         let sc = scene_mut(scene)?;
         let device = text("device", device)?;
         let path = text("path", path)?;
         // The library's table of domains checks the rate.
         let options = ServoOptions::new(rate_hz)?;
+        let clutch = match clutch_button {
+            -1 => None,
+            0..=31 => Some(clutch_button as u32),
+            other => {
+                return Err(Failure::argument(format!(
+                    "clutch_button {other} must be a button from 0 to 31, or -1 for none"
+                )));
+            }
+        };
+        let options = options.with_clutch_button(clutch);
+        let presses: &[HapheButtonPress] = match (presses.is_null(), press_count) {
+            (_, 0) => &[],
+            (true, _) => return Err(Failure::argument("presses is null")),
+            // SAFETY: a non-null `presses` points to `press_count` presses (documented).
+            (false, n) => unsafe { std::slice::from_raw_parts(presses, n) },
+        };
         if !(seconds.is_finite() && seconds > 0.0 && seconds * rate_hz <= 1e9) {
             return Err(Failure::argument(format!(
                 "seconds {seconds} must be positive"
@@ -113,7 +195,7 @@ pub extern "C" fn haphe_run(
             // Cannot fail: room for every object, ids unique.
             let _ = world.insert(o.clone());
         }
-        let dev = open_device(device, path, &world, seconds)?;
+        let dev = open_device(device, path, &world, seconds, presses)?;
         let mut servo = Servo::new(dev, world, options)
             .map_err(|e| Failure(HapheStatus::Device, e.to_string()))?;
         let mut count = 0u64;

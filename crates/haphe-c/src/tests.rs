@@ -182,3 +182,124 @@ fn a_non_finite_row_is_refused_by_name_or_skipped_on_request() {
     }
     haphe_shape_free(shape);
 }
+
+/// The records of a C run of the simulated hand pressing onto a centred cube for 3 s,
+/// with the clutch on button 1 and the presses given.
+fn run_with_buttons(presses: &[HapheButtonPress]) -> Vec<HapheTickRecord> {
+    extern "C" fn keep(record: *const HapheTickRecord, user: *mut std::ffi::c_void) {
+        // SAFETY: `user` is the vector passed below, `record` valid for the call.
+        unsafe { (*user.cast::<Vec<HapheTickRecord>>()).push(*record) };
+    }
+    let scene = cube_scene();
+    let mut records: Vec<HapheTickRecord> = Vec::new();
+    let status = haphe_run_with_buttons(
+        scene,
+        c"hand".as_ptr(),
+        c"press".as_ptr(),
+        3.0,
+        1000.0,
+        1,
+        presses.as_ptr(),
+        presses.len(),
+        Some(keep),
+        (&raw mut records).cast(),
+        std::ptr::null_mut(),
+    );
+    assert_eq!(status, HapheStatus::Ok, "{}", last_error());
+    haphe_scene_free(scene);
+    records
+}
+
+/// A scene holding the unit cube centred on the origin.
+fn cube_scene() -> *mut HapheScene {
+    let shape = cube();
+    let mut scene = std::ptr::null_mut();
+    assert_eq!(haphe_scene_new(2, &mut scene), HapheStatus::Ok);
+    let position = [-0.5, -0.5, -0.5];
+    let status = haphe_scene_add(
+        scene,
+        shape,
+        position.as_ptr(),
+        std::ptr::null(),
+        std::ptr::null(),
+        std::ptr::null_mut(),
+    );
+    assert_eq!(status, HapheStatus::Ok, "{}", last_error());
+    haphe_shape_free(shape);
+    scene
+}
+
+/// Through the C ABI: the records carry the buttons and the clutch; held on the way down
+/// (no force in either run, so the hand moves as without the press), the tool stays and
+/// then continues moved by minus the hand's travel.
+#[test]
+fn the_records_carry_the_buttons_and_the_clutch_keeps_the_tool() {
+    let free = run_with_buttons(&[]);
+    assert!(free.iter().all(|r| r.buttons == 0 && r.clutch == 0));
+    let first_force = free
+        .iter()
+        .position(|r| r.force != [0.0; 3])
+        .expect("the press touches");
+    let (start, end) = (first_force / 4, 3 * first_force / 4);
+    let press = HapheButtonPress {
+        button: 1,
+        from: start as f64 / 1000.0,
+        until: end as f64 / 1000.0,
+    };
+    let held = run_with_buttons(&[press]);
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let norm = |a: [f64; 3]| a.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let before = free[start - 1].hip;
+    let travel = sub(free[end - 1].hip, before);
+    assert!(norm(travel) > 5e-3, "the hand travels {travel:?}");
+    for k in 0..=end {
+        let is_held = (start..end).contains(&k);
+        let r = &held[k];
+        assert_eq!(
+            (r.buttons, r.clutch),
+            (if is_held { 2 } else { 0 }, u8::from(is_held))
+        );
+        let tool = if k < start {
+            free[k].hip
+        } else if is_held {
+            before
+        } else {
+            sub(free[k].hip, travel)
+        };
+        assert!(norm(sub(r.hip, tool)) < 1e-12, "tick {k}");
+    }
+    let bad = HapheButtonPress {
+        button: 32,
+        from: 0.0,
+        until: 1.0,
+    };
+    let scene = cube_scene();
+    let call = |clutch: i32, presses: &[HapheButtonPress]| {
+        haphe_run_with_buttons(
+            scene,
+            c"hand".as_ptr(),
+            c"press".as_ptr(),
+            0.1,
+            1000.0,
+            clutch,
+            presses.as_ptr(),
+            presses.len(),
+            None,
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+        )
+    };
+    assert_eq!(call(32, &[]), HapheStatus::InvalidArgument);
+    assert!(
+        last_error().contains("clutch_button 32"),
+        "{}",
+        last_error()
+    );
+    assert_eq!(call(-1, &[bad]), HapheStatus::InvalidArgument);
+    assert!(
+        last_error().contains("presses: press of button 32"),
+        "{}",
+        last_error()
+    );
+    haphe_scene_free(scene);
+}

@@ -240,3 +240,14 @@ pub struct OutputArgs {
     #[arg(long, value_name = "FILE.png", value_parser = parse_png_path)]
     pub plot: Option<PathBuf>,
 }
+
+/// The clutch of a session's device; shared by `simulate`, `run` and `view`.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct ClutchArgs {
+    /// While this button of the device is held (0 is the first), the device moves without
+    /// moving the tool: a clutch, to re-centre the hand in the workspace. The force fades
+    /// out over 50 ms after the press and back in over 50 ms after the release (default:
+    /// no clutch).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(0..32))]
+    pub clutch_button: Option<u32>,
+}

@@ -42,12 +42,16 @@ pub struct DeviceRun {
     pub centre: Option<DVec3>,
     /// The network device's settings.
     pub udp: UdpOptions,
+    /// The button that holds the clutch, if any.
+    pub clutch_button: Option<u32>,
 }
 
 /// How a run with a real device went.
 pub struct DeviceOutcome {
     /// Every tick.
     pub records: Vec<TickRecord>,
+    /// How far the clutch moved the device's origin in the world, metres.
+    pub offset: DVec3,
     /// The device, as opened.
     pub description: String,
     /// Why the run ended: `finished`, `interrupted`, `overruns` or the fault.
@@ -68,7 +72,8 @@ pub fn run_device(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<Device
         .map_err(param_error)?;
     let options = ServoOptions::new(run.rate_hz)
         .map_err(param_error)?
-        .with_mapping(mapping);
+        .with_mapping(mapping)
+        .with_clutch_button(run.clutch_button);
     let servo = Servo::new(opened.device, scene, options)
         .map_err(|e| DeviceError::new_err(format!("{}: {e}", run.spec)))?;
     let realtime = RealtimeOptions::default().with_overrun_budget(Some(DEFAULT_OVERRUN_BUDGET));
@@ -108,6 +113,7 @@ pub fn run_device(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<Device
         StopReason::Fault(f) => format!("fault: {f}"),
     };
     Ok(DeviceOutcome {
+        offset: finished.servo.mapping().offset() - finished.servo.options().mapping().offset(),
         records,
         description: opened.description,
         stop,

@@ -17,19 +17,27 @@ use crate::device::{DeviceOutcome, DeviceRun, run_device};
 use crate::errors::{haphe_error, param_error};
 use crate::scene::Scene;
 
-/// The simulated hand following the scripted path `path` over `scene` for `seconds`.
+/// The simulated hand following the scripted path `path` over `scene` for `seconds`,
+/// holding the buttons of `presses` (button, from, until).
 fn simulated_hand(
     path: &str,
     scene: &haphe::scene::Scene,
     seconds: f64,
     seed: u64,
+    presses: &[(u32, f64, f64)],
 ) -> Result<Box<dyn Device + Send>, String> {
     let kind: PathKind = path.parse()?;
     let path = scripted_path(kind, scene, seconds, seed).map_err(|e| e.to_string())?;
-    Ok(Box::new(SimulatedHand::new(path, HandOptions::default())))
+    let mut hand = SimulatedHand::new(path, HandOptions::default());
+    for &(button, from, until) in presses {
+        hand = hand
+            .press(button, from, until)
+            .map_err(|e| format!("presses: {e}"))?;
+    }
+    Ok(Box::new(hand))
 }
 
-/// run(scene, device="hand", seconds=2.0, path="explore", rate_hz=1000.0, seed=1, scale=None, centre=None, udp_timeout=0.05, udp_workspace=0.1)
+/// run(scene, device="hand", seconds=2.0, path="explore", rate_hz=1000.0, seed=1, scale=None, centre=None, udp_timeout=0.05, udp_workspace=0.1, clutch_button=None, presses=None)
 /// --
 ///
 /// Runs the servo loop over ``scene`` with a device for ``seconds``: each tick reads the
@@ -50,6 +58,12 @@ fn simulated_hand(
 ///   position stop the run with zero force, ``udp_workspace`` is the half size of the
 ///   peer's workspace cube, metres.
 ///
+/// ``clutch_button`` (0 to 31) makes that button of the device a clutch: while it is held
+/// the device moves without moving the tool (to re-centre the hand in the workspace), the
+/// tool stays where it was and the force fades out over 50 ms, then back in after the
+/// release; the tool then continues from where it stayed. ``presses``, a list of
+/// ``(button, from, until)`` (seconds), holds buttons of the simulated hand.
+///
 /// A real device runs on the wall clock on a real-time thread. Its workspace is mapped
 /// onto the scene as ``haphe run`` maps it: ``scale`` world metres per device metre
 /// (default: the workspace covers the scene's bounds) and its centre at the world point
@@ -58,7 +72,9 @@ fn simulated_hand(
 ///
 /// Returns a dict of arrays, one row per tick: ``t`` (s), ``hip``, ``proxy`` (N, 3) m,
 /// ``force`` (N, 3) N, ``contact`` bool, ``object`` (id, -1 when free), ``triangle``
-/// (the file's face index, -1 when free), ``penetration`` m; and the strings ``device``
+/// (the file's face index, -1 when free), ``penetration`` m, ``buttons`` (uint32, bit 0
+/// the first button), ``clutch`` bool; the ``offset`` (3,) m the clutch moved the device's
+/// origin by in the world; and the strings ``device``
 /// (what was opened), ``stop`` (``finished``, ``overruns`` or ``fault: ...``) and
 /// ``report`` (the device's fault or traffic, or None).
 ///
@@ -66,7 +82,7 @@ fn simulated_hand(
 /// ``OSError``) when the device or its library cannot be opened: the message names the
 /// library, the variable that selects it and the SDK.
 #[pyfunction]
-#[pyo3(signature = (scene, device = "hand", seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1))]
+#[pyo3(signature = (scene, device = "hand", seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1, clutch_button = None, presses = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -80,9 +96,27 @@ pub fn run<'py>(
     centre: Option<[f64; 3]>,
     udp_timeout: f64,
     udp_workspace: f64,
+    clutch_button: Option<u32>,
+    presses: Option<Vec<(u32, f64, f64)>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     // The library's table of domains checks the rate, the scale and the centre.
     let options = ServoOptions::new(rate_hz).map_err(param_error)?;
+    if let Some(b) = clutch_button
+        && b >= 32
+    {
+        return Err(haphe_error(
+            "clutch_button",
+            format!("must be a button from 0 to 31, not {b}"),
+        ));
+    }
+    let options = options.with_clutch_button(clutch_button);
+    let presses = presses.unwrap_or_default();
+    if !presses.is_empty() && device != "hand" {
+        return Err(haphe_error(
+            "presses",
+            format!("holds buttons of the simulated hand only, not of device {device:?}"),
+        ));
+    }
     if !(seconds.is_finite() && seconds > 0.0 && seconds * rate_hz <= 1e8) {
         return Err(haphe_error(
             "seconds",
@@ -108,7 +142,7 @@ pub fn run<'py>(
     drop(scene);
     let outcome = if device == "hand" {
         py.detach(|| -> Result<DeviceOutcome, String> {
-            let hand = simulated_hand(path, &world, seconds, seed)?;
+            let hand = simulated_hand(path, &world, seconds, seed, &presses)?;
             let mut servo = Servo::new(hand, world, options).map_err(|e| e.to_string())?;
             let ticks = (seconds * rate_hz).round() as u64;
             let mut records = Vec::with_capacity(ticks as usize);
@@ -116,6 +150,7 @@ pub fn run<'py>(
             servo.close();
             Ok(DeviceOutcome {
                 records,
+                offset: servo.mapping().offset() - servo.options().mapping().offset(),
                 description: format!("the simulated hand ({path})"),
                 stop: "finished".into(),
                 report: None,
@@ -135,6 +170,7 @@ pub fn run<'py>(
                 workspace: (DVec3::splat(-h), DVec3::splat(h)),
                 ..UdpOptions::default()
             },
+            clutch_button,
         };
         py.detach(|| run_device(request, world))?
     };
@@ -148,6 +184,8 @@ pub fn run<'py>(
     let mut object = Array1::from_elem(n, -1i64);
     let mut triangle = Array1::from_elem(n, -1i64);
     let mut penetration = Array1::zeros(n);
+    let mut buttons = Array1::zeros(n);
+    let mut clutch = Array1::from_elem(n, false);
     for (i, r) in records.iter().enumerate() {
         t[i] = r.t;
         for k in 0..3 {
@@ -159,6 +197,8 @@ pub fn run<'py>(
         object[i] = r.object.map_or(-1, |o| i64::from(o.0));
         triangle[i] = r.triangle.map_or(-1, i64::from);
         penetration[i] = r.penetration;
+        buttons[i] = r.buttons.0;
+        clutch[i] = r.clutch;
     }
     let d = PyDict::new(py);
     d.set_item("t", t.into_pyarray(py))?;
@@ -169,6 +209,12 @@ pub fn run<'py>(
     d.set_item("object", object.into_pyarray(py))?;
     d.set_item("triangle", triangle.into_pyarray(py))?;
     d.set_item("penetration", penetration.into_pyarray(py))?;
+    d.set_item("buttons", buttons.into_pyarray(py))?;
+    d.set_item("clutch", clutch.into_pyarray(py))?;
+    d.set_item(
+        "offset",
+        Array1::from(outcome.offset.to_array().to_vec()).into_pyarray(py),
+    )?;
     d.set_item("device", outcome.description)?;
     d.set_item("stop", outcome.stop)?;
     d.set_item("report", outcome.report)?;

@@ -49,7 +49,7 @@ mod tests {
     #[test]
     fn encodes_every_row() {
         let text = format!(
-            "{}\n0,0,0,0.2,0,0,0.2,0,0,0,0,,,free,0,0\n0.001,0,0,0.09,0,0,0.1,0,0,3,1,0,17,sticking,0.01,1\n",
+            "{}\n0,0,0,0.2,0,0,0.2,0,0,0,0,,,free,0,0,0,0\n0.001,0,0,0.09,0,0,0.1,0,0,3,1,0,17,sticking,0.01,1,0,0\n",
             haphe::servo::CSV_HEADER
         );
         let trace = Trace::read("t.csv", text.as_bytes()).expect("reads");

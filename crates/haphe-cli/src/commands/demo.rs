@@ -136,6 +136,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         spin_seconds: None,
         fifo: true,
         standby_core: None,
+        clutch_button: None,
+        presses: Vec::new(),
         seed: 3,
         max_force: haphe::scene::DEFAULT_MAX_FORCE_N,
         out: args.out.clone(),

@@ -9,7 +9,7 @@ use anyhow::bail;
 use haphe::DVec3;
 use haphe_devices::UdpOptions;
 
-use crate::args::{DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs};
+use crate::args::{ClutchArgs, DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs};
 use crate::input::model::load_model;
 use crate::session::device::VendorChoice;
 use crate::session::wait::catch_interrupts;
@@ -32,6 +32,8 @@ pub struct Args {
     rate: f64,
     #[command(flatten)]
     mapping: MappingArgs,
+    #[command(flatten)]
+    clutch: ClutchArgs,
     /// Stop with zero force once the servo has missed this many deadlines.
     #[arg(long, default_value_t = DEFAULT_OVERRUN_BUDGET)]
     overrun_budget: u64,
@@ -100,6 +102,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         max_force: args.max_force,
         out: args.output.out.clone(),
         plot: args.output.plot.clone(),
+        clutch_button: args.clutch.clutch_button,
+        presses: Vec::new(),
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)

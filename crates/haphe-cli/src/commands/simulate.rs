@@ -10,7 +10,7 @@ use std::time::Instant;
 use anyhow::anyhow;
 use haphe::servo::{HandOptions, HipTrace, PathKind, ServoOptions};
 
-use crate::args::{ModelArgs, OutputArgs, proxy_options, spin};
+use crate::args::{ClutchArgs, ModelArgs, OutputArgs, proxy_options, spin};
 use crate::input::files::{self, read_input};
 use crate::input::model::load_model;
 use crate::output::check_outputs;
@@ -63,12 +63,33 @@ pub struct Args {
     standby_core: Option<usize>,
     #[command(flatten)]
     output: OutputArgs,
+    #[command(flatten)]
+    clutch: ClutchArgs,
+    /// Hold button N of the simulated device from FROM until UNTIL seconds of the run
+    /// (repeatable): for --clutch-button, or to record button states.
+    #[arg(long, value_name = "N@FROM-UNTIL", value_parser = parse_press)]
+    press: Vec<(u32, f64, f64)>,
     /// Seed of the explore path.
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Largest force rendered, N (the simulated device's maximum is the default).
     #[arg(long, default_value_t = haphe::scene::DEFAULT_MAX_FORCE_N)]
     max_force: f64,
+}
+
+/// Parses a `--press` value, `N@FROM-UNTIL`: button N (0 to 31) held from FROM until
+/// UNTIL seconds, finite, FROM before UNTIL.
+fn parse_press(s: &str) -> Result<(u32, f64, f64), String> {
+    let form = || format!("expected N@FROM-UNTIL (button 0 to 31, seconds), not {s:?}");
+    let (button, times) = s.split_once('@').ok_or_else(form)?;
+    let (from, until) = times.split_once('-').ok_or_else(form)?;
+    let button: u32 = button.trim().parse().map_err(|_| form())?;
+    let from: f64 = from.trim().parse().map_err(|_| form())?;
+    let until: f64 = until.trim().parse().map_err(|_| form())?;
+    if button >= 32 || !from.is_finite() || !until.is_finite() || from >= until {
+        return Err(form());
+    }
+    Ok((button, from, until))
 }
 
 /// Runs `haphe simulate`.
@@ -120,6 +141,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         max_force: args.max_force,
         out: args.output.out.clone(),
         plot: args.output.plot.clone(),
+        clutch_button: args.clutch.clutch_button,
+        presses: args.press.clone(),
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)

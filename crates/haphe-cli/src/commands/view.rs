@@ -12,7 +12,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe_view::{Model, Source, Trace};
 
-use crate::args::{MappingArgs, parse_units};
+use crate::args::{ClutchArgs, MappingArgs, parse_units};
 use crate::input::files::{self, read_input};
 use crate::input::mesh::UnitsGiven;
 use crate::input::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
@@ -56,6 +56,8 @@ pub struct Args {
     seconds: Option<f64>,
     #[command(flatten)]
     mapping: MappingArgs,
+    #[command(flatten)]
+    clutch: ClutchArgs,
     /// Stiffness of a --mesh or --shape object, N/m.
     #[arg(long, default_value_t = Material::DEFAULT.stiffness())]
     stiffness: f64,
@@ -118,7 +120,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
                 anyhow!("--device {other:?}: {e} (or mouse, the default, for the view)")
             })?;
             args.mapping.check()?;
-            ViewDevice::Vendor(view_choice(other, args.mapping), args.seconds)
+            ViewDevice::Vendor(
+                view_choice(other, args.mapping),
+                args.seconds,
+                args.clutch.clutch_button,
+            )
         }
     };
     let what = args

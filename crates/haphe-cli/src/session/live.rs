@@ -39,8 +39,8 @@ pub enum ViewDevice {
     /// The simulated hand explores the scene for this many seconds.
     Hand(f64),
     /// A real device (`dhd`, `openhaptics`, `udp:HOST:PORT`), opened and mapped as `haphe
-    /// run` does, for this many seconds or until Ctrl-C.
-    Vendor(VendorChoice, Option<f64>),
+    /// run` does, for this many seconds or until Ctrl-C, with a clutch on this button.
+    Vendor(VendorChoice, Option<f64>, Option<u32>),
 }
 
 /// Builds the scene of `objects`: the scene, the objects' names and their motions.
@@ -73,6 +73,7 @@ pub fn live(
     let model = Model::from_scene(&scene, &names);
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
     let mut mapping = DeviceMapping::IDENTITY;
+    let mut clutch_button = None;
     let mut realtime = RealtimeOptions::default();
     let mut clock = None;
     let mut report = None;
@@ -100,7 +101,8 @@ pub fn live(
                 format!("haphe view: the simulated hand explores {what} for {seconds} s"),
             )
         }
-        ViewDevice::Vendor(choice, seconds) => {
+        ViewDevice::Vendor(choice, seconds, clutch) => {
+            clutch_button = clutch;
             let opened = device::open(&choice, &scene, seconds.unwrap_or(HAND_SECONDS))?;
             mapping = device::mapping(&choice, &opened.device.spec(), &scene)?;
             println!("device: {}", opened.description);
@@ -120,7 +122,9 @@ pub fn live(
     let source = LiveSource {
         device,
         scene,
-        options: options.with_mapping(mapping),
+        options: options
+            .with_mapping(mapping)
+            .with_clutch_button(clutch_button),
         motions,
         seconds,
         realtime,

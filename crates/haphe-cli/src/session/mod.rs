@@ -14,12 +14,13 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail};
+use haphe::DVec3;
 use haphe::scene::Scene;
 use haphe::servo::{
     Device, DeviceClock, DeviceMapping, DeviceSpec, HandOptions, HipTrace, Interference,
     ObjectMotion, PathKind, RealtimeOptions, RealtimeSetup, ReplayDevice, STIFFNESS_RATED_AT_HZ,
     ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand, StandbyReport, StopReason,
-    TickRecord, TickStats, scripted_path,
+    TickRecord, TickStats, TrajectoryError, scripted_path,
 };
 
 use self::device::VendorChoice;
@@ -70,6 +71,10 @@ pub struct Session {
     pub max_force: f64,
     pub out: Option<PathBuf>,
     pub plot: Option<PathBuf>,
+    /// The button that holds the clutch (`--clutch-button`).
+    pub clutch_button: Option<u32>,
+    /// Buttons the simulated devices press: (button, from, until), seconds (`--press`).
+    pub presses: Vec<(u32, f64, f64)>,
 }
 
 /// Objects listed by name in the summary.
@@ -100,6 +105,8 @@ struct Ran {
     interference: Option<Interference>,
     standby: Option<StandbyReport>,
     dropped: u64,
+    /// How far the clutch moved the device's origin in the world, metres.
+    moved: DVec3,
 }
 
 /// Inserts `objects` into a new scene.
@@ -147,7 +154,7 @@ impl Session {
             && self.seconds.is_none();
         let seconds = run_seconds(&self.device, self.seconds, until_stopped, self.rate_hz)?;
         let replay = matches!(self.device, DeviceChoice::Replay(_));
-        let (device, vendor) = open_device(self.device, &scene, seconds, self.seed)?;
+        let (device, vendor) = open_device(self.device, &scene, seconds, self.seed, &self.presses)?;
         let mapping = match &vendor {
             Some(v) => device::mapping(&v.choice, &device.spec(), &scene)?,
             None => DeviceMapping::IDENTITY,
@@ -155,7 +162,8 @@ impl Session {
         let options = ServoOptions::new(self.rate_hz)
             .map_err(|e| anyhow!("{}", e.named("--rate")))?
             .with_proxy(proxy_options(self.max_force)?)
-            .with_mapping(mapping);
+            .with_mapping(mapping)
+            .with_clutch_button(self.clutch_button);
         let stiffness = stiffest(&scene);
         warn_stiffness(stiffness, &mapping, &device.spec(), self.rate_hz);
         let mut servo = Servo::new(device, scene, options)?;
@@ -201,6 +209,7 @@ impl Session {
                 interference: None,
                 standby: None,
                 dropped: 0,
+                moved: moved(&servo),
             }
         };
         writeln!(out, "\nrun:")?;
@@ -218,6 +227,7 @@ impl Session {
                 interference: ran.interference,
                 standby: ran.standby,
                 dropped_records: ran.dropped,
+                clutch: self.clutch_button.map(|b| (b, ran.moved)),
             },
         )?;
         write_files(out, trace, self.plot.as_deref(), &self.title, &summary)?;
@@ -263,28 +273,54 @@ fn run_seconds(
     })
 }
 
-/// The device of `choice`, and when it is named by a specification, what was opened.
+/// How far the clutch moved `servo`'s device origin in the world, metres.
+fn moved<D: Device>(servo: &Servo<D>) -> DVec3 {
+    servo.mapping().offset() - servo.options().mapping().offset()
+}
+
+/// `device` with the buttons `presses` holds: (button, from, until), seconds.
+fn pressing<D>(
+    mut device: D,
+    presses: &[(u32, f64, f64)],
+    press: fn(D, u32, f64, f64) -> Result<D, TrajectoryError>,
+) -> anyhow::Result<D> {
+    for &(button, from, until) in presses {
+        device = press(device, button, from, until).map_err(|e| anyhow!("--press: {e}"))?;
+    }
+    Ok(device)
+}
+
+/// The device of `choice` (a simulated one holding the buttons of `presses`), and when
+/// it is named by a specification, what was opened.
 fn open_device(
     choice: DeviceChoice,
     scene: &Scene,
     seconds: f64,
     seed: u64,
+    presses: &[(u32, f64, f64)],
 ) -> anyhow::Result<(Box<dyn Device>, Option<Vendor>)> {
     Ok(match choice {
-        DeviceChoice::Hand(kind, hand) => (
-            Box::new(SimulatedHand::new(
-                scripted_path(kind, scene, seconds, seed)?,
-                hand,
-            )),
-            None,
-        ),
-        DeviceChoice::Scripted(kind) => (
-            Box::new(ScriptedDevice::new(scripted_path(
-                kind, scene, seconds, seed,
-            )?)),
-            None,
-        ),
-        DeviceChoice::Replay(trace) => (Box::new(ReplayDevice::new(trace)), None),
+        DeviceChoice::Hand(kind, hand) => {
+            let hand = SimulatedHand::new(scripted_path(kind, scene, seconds, seed)?, hand);
+            (
+                Box::new(pressing(hand, presses, SimulatedHand::press)?),
+                None,
+            )
+        }
+        DeviceChoice::Scripted(kind) => {
+            let device = ScriptedDevice::new(scripted_path(kind, scene, seconds, seed)?);
+            (
+                Box::new(pressing(device, presses, ScriptedDevice::press)?),
+                None,
+            )
+        }
+        DeviceChoice::Replay(trace) => {
+            let device = ReplayDevice::new(trace);
+            (
+                Box::new(pressing(device, presses, ReplayDevice::press)?),
+                None,
+            )
+        }
         DeviceChoice::Vendor(choice) => {
             let opened = device::open(&choice, scene, seconds)?;
             let vendor = Vendor {
@@ -418,6 +454,7 @@ fn run_realtime(
         interference: Some(run.interference),
         standby: run.standby,
         dropped: run.dropped_records,
+        moved: moved(&run.servo),
     };
     Ok((ran, report))
 }

@@ -47,6 +47,9 @@ pub struct Summary {
     /// Ticks that placed a proxy (ramping or running): the device was out of every
     /// object.
     pub free_ticks: u64,
+    /// Ticks with the clutch held, and how many times it was pressed.
+    pub clutch_ticks: u64,
+    pub clutch_presses: u64,
     pub max_penetration: f64,
     pub penetration_sum: f64,
     pub max_force: f64,
@@ -55,6 +58,7 @@ pub struct Summary {
     /// Contact ticks per object id.
     pub per_object: Vec<(u32, u64)>,
     was_in_contact: bool,
+    was_clutched: bool,
     every: u64,
     pub plot: Vec<PlotPoint>,
 }
@@ -88,6 +92,9 @@ impl Summary {
         self.clamped_ticks += u64::from(r.status.force_clamped);
         self.held_ticks += u64::from(r.phase == Phase::Holding);
         self.free_ticks += u64::from(matches!(r.phase, Phase::Ramping | Phase::Running));
+        self.clutch_ticks += u64::from(r.clutch);
+        self.clutch_presses += u64::from(r.clutch && !self.was_clutched);
+        self.was_clutched = r.clutch;
         self.max_penetration = self.max_penetration.max(r.penetration);
         self.max_force = self.max_force.max(r.force.length());
         self.max_speed = self.max_speed.max(r.velocity.length());
@@ -153,6 +160,9 @@ pub struct RunInfo<'a> {
     /// What the standby thread did, when there was one.
     pub standby: Option<StandbyReport>,
     pub dropped_records: u64,
+    /// The clutch's button, and how far its use moved the device's origin in the world,
+    /// metres.
+    pub clutch: Option<(u32, DVec3)>,
 }
 
 /// What else ran on the servo's CPU, when the system says: the host's steal time of the
@@ -307,6 +317,18 @@ pub fn print(
         writeln!(
             out,
             "  safe start        not needed (the device began outside every object)"
+        )?;
+    }
+    if let Some((button, moved)) = info.clutch {
+        writeln!(
+            out,
+            "  clutch            button {button} held {} time(s), {:.3} s; the device's origin moved by ({:.1}, {:.1}, {:.1}) mm in the world",
+            s.clutch_presses,
+            s.clutch_ticks as f64 * period,
+            // `+ 0.0`: no "-0.0" for an axis it did not move along.
+            moved.x * 1e3 + 0.0,
+            moved.y * 1e3 + 0.0,
+            moved.z * 1e3 + 0.0
         )?;
     }
     writeln!(out, "  tick time         {}", quantiles(&stats.compute))?;

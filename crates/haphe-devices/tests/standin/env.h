@@ -1,8 +1,9 @@
 /* Scripting a stand-in from the environment, for tests that run haphe as another process
  * (the in-process tests use the standin_* functions instead):
- * - HAPHE_STANDIN_PATH names a text file of samples, six numbers each (position and
- *   velocity, in the library's units and frame), read each time the device is opened
- *   (the path then starts again; standin_env_path returns -1 without the variable);
+ * - HAPHE_STANDIN_PATH names a text file of samples, one a line: six numbers (position and
+ *   velocity, in the library's units and frame) and optionally a seventh, the buttons held
+ *   (a bit mask), read each time the device is opened (the path then starts again;
+ *   standin_env_path returns -1 without the variable);
  * - HAPHE_STANDIN_FORCES names a file that receives, when the device is closed, one line:
  *   the number of forces written, the last force (three numbers), whether force output
  *   was still enabled (1 or 0) and the largest force magnitude written. */
@@ -34,9 +35,16 @@ static int standin_env_path(double (*samples)[6], int max) {
   int n = 0;
   if (!name) return -1;
   if (!f) return 0;
-  while (n < max && fscanf(f, "%lf %lf %lf %lf %lf %lf", &samples[n][0], &samples[n][1],
-                           &samples[n][2], &samples[n][3], &samples[n][4], &samples[n][5]) == 6)
+  char line[1024];
+  while (n < max && fgets(line, sizeof line, f)) {
+    unsigned int mask = 0;
+    int got = sscanf(line, "%lf %lf %lf %lf %lf %lf %u", &samples[n][0], &samples[n][1],
+                     &samples[n][2], &samples[n][3], &samples[n][4], &samples[n][5], &mask);
+    if (got < 6) break;
+    if (n < STANDIN_BUTTONS_MAX) button_masks[n] = got == 7 ? mask : 0u;
     n++;
+  }
+  n_button_masks = n < STANDIN_BUTTONS_MAX ? n : STANDIN_BUTTONS_MAX;
   fclose(f);
   return n;
 }

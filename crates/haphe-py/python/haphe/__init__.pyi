@@ -46,11 +46,16 @@ def run(
     centre: Optional[_Vec3] = None,
     udp_timeout: float = 0.05,
     udp_workspace: float = 0.1,
+    clutch_button: Optional[int] = None,
+    presses: Optional[Sequence[Tuple[int, float, float]]] = None,
 ) -> Dict[str, Any]:
     """Runs the servo loop with a device: "hand" (simulated, simulated clock), "dhd",
     "openhaptics" or "udp:HOST:PORT" (real, wall clock, mapped onto the scene). Arrays t,
-    hip, proxy, force, contact, object, triangle, penetration, one row per tick; strings
-    device, stop and report (or None). Raises DeviceError when the device or its library
+    hip, proxy, force, contact, object, triangle, penetration, buttons (uint32), clutch,
+    one row per tick; offset (3,), how far the clutch moved the device's origin; strings
+    device, stop and report (or None). While button ``clutch_button`` is held, the tool
+    stays and the force fades out (a clutch); ``presses`` (button, from, until) holds
+    buttons of the simulated hand. Raises DeviceError when the device or its library
     cannot be opened; Ctrl-C writes zero force, then raises KeyboardInterrupt."""
 
 class Shape:

@@ -106,10 +106,7 @@ mod tests {
         // Minus the hand's travel, scaled and rotated into the world.
         let travel = 2.0 * (DQuat::from_rotation_z(0.5) * (p1 - p0));
         assert!((mapping.offset() - start + travel).length() < 1e-15);
-        assert_eq!(
-            Clutch::new(None).engage(Buttons(u32::MAX), p1, &mut mapping),
-            false
-        );
+        assert!(!Clutch::new(None).engage(Buttons(u32::MAX), p1, &mut mapping));
     }
 
     #[test]
