@@ -165,6 +165,11 @@ impl Session {
             .with_mapping(mapping)
             .with_clutch_button(self.clutch_button);
         let stiffness = stiffest(&scene);
+        // The objects as placed at the start, for the plot's section (shapes shared).
+        let placed: Vec<haphe::scene::SceneObject> = match &self.plot {
+            Some(_) => scene.objects().to_vec(),
+            None => Vec::new(),
+        };
         warn_stiffness(stiffness, &mapping, &device.spec(), self.rate_hz);
         let mut servo = Servo::new(device, scene, options)?;
         servo.set_motions(motions);
@@ -230,7 +235,8 @@ impl Session {
                 clutch: self.clutch_button.map(|b| (b, ran.moved)),
             },
         )?;
-        write_files(out, trace, self.plot.as_deref(), &self.title, &summary)?;
+        let plot = self.plot.as_deref().map(|p| (p, placed.as_slice()));
+        write_files(out, trace, plot, &self.title, &summary)?;
         let said = report.as_ref().and_then(|r| r());
         let touch = if replay || summary.contact_ticks > 0 {
             Touch::Touched
@@ -338,7 +344,7 @@ fn open_device(
 fn write_files(
     out: &mut impl Write,
     trace: Option<TraceOut>,
-    plot: Option<&Path>,
+    plot: Option<(&Path, &[haphe::scene::SceneObject])>,
     title: &str,
     summary: &Summary,
 ) -> anyhow::Result<()> {
@@ -347,8 +353,8 @@ fn write_files(
         t.finish()?;
         writeln!(out, "trace: {} ({} ticks)", path.display(), summary.ticks)?;
     }
-    if let Some(p) = plot {
-        plot::write(p, title, &summary.plot)?;
+    if let Some((p, objects)) = plot {
+        plot::write(p, title, &summary.plot, objects)?;
         writeln!(
             out,
             "plot: {} (force and penetration over time; the path seen from the side)",

@@ -30,7 +30,7 @@ pub struct PlotPoint {
     pub t: f64,
     pub hip: DVec3,
     pub proxy: DVec3,
-    pub force: f64,
+    pub force: DVec3,
     pub penetration: f64,
     pub contact: bool,
 }
@@ -116,7 +116,7 @@ impl Summary {
                 t: r.t,
                 hip: r.hip,
                 proxy: r.proxy,
-                force: r.force.length(),
+                force: r.force,
                 penetration: r.penetration,
                 contact,
             });
