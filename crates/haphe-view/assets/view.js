@@ -45,6 +45,12 @@ const grid = new THREE.GridHelper(size * 3, 30, 0x3b424b, 0x2b3138);
 grid.rotation.x = Math.PI / 2;
 grid.position.set(centre.x, centre.y, lo[2]);
 scene.add(grid);
+// The grid's scale: 30 cells over three times the scene's size.
+{
+  const cell = (size * 3) / 30;
+  document.getElementById('grid-scale').textContent =
+    cell >= 1 ? `1 cell = ${+cell.toPrecision(3)} m` : `1 cell = ${+(cell * 1e3).toPrecision(3)} mm`;
+}
 
 // The objects: flat-shaded, tinted by the force while touched.
 const objects = new Map();

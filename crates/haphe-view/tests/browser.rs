@@ -120,7 +120,7 @@ fn xy(v: &Value) -> (f64, f64) {
 fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
     let started = Instant::now();
     let scene = sphere_scene();
-    let (_, hi, centre, radius) = sphere_bounds(&scene);
+    let (lo, hi, centre, radius) = sphere_bounds(&scene);
     let model = Model::from_scene(&scene, &["sphere".to_string()]);
     let start = DVec3::new(centre.x, centre.y, hi.z + 0.2 * radius);
     let view = live_view(
@@ -138,6 +138,29 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
         "!!(window.haphe && window.haphe.ready && window.haphe.frames > 2 && window.haphe.connected)",
         Duration::from_secs(40),
         "the page to draw and receive frames",
+    );
+
+    // The floor grid says its scale: 30 cells over three times the scene's largest side.
+    let text = browser.eval("document.getElementById('grid-scale').textContent");
+    let text = text.as_str().expect("text").to_string();
+    let cell_mm = (hi - lo).max_element() * 3.0 / 30.0 * 1e3;
+    let shown: f64 = text
+        .trim_start_matches("1 cell = ")
+        .trim_end_matches(" mm")
+        .parse()
+        .unwrap_or_else(|_| panic!("{text:?}"));
+    assert!(
+        (shown - cell_mm).abs() <= 5e-3 * cell_mm,
+        "{text} vs {cell_mm} mm"
+    );
+    // The chart has a legend naming both lines, each in its line's colour.
+    let legend = browser.eval(
+        "[...document.querySelectorAll('#chart-legend [data-series]')].map(e => e.dataset.series + ':' + e.textContent + ':' + getComputedStyle(e).color).join('|')",
+    );
+    let legend = legend.as_str().expect("text");
+    assert_eq!(
+        legend,
+        "force:force (N, left axis):rgb(255, 179, 71)|penetration:penetration (mm, right axis):rgb(108, 182, 255)"
     );
 
     // The scene is drawn: the sphere's grey-blue fills a good part of the middle of the
