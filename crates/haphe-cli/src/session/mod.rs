@@ -238,16 +238,21 @@ impl Session {
         let plot = self.plot.as_deref().map(|p| (p, placed.as_slice()));
         write_files(out, trace, plot, &self.title, &summary)?;
         let said = report.as_ref().and_then(|r| r());
-        let touch = if replay || summary.contact_ticks > 0 {
-            Touch::Touched
-        } else if summary.held_ticks > 0 && summary.free_ticks == 0 {
-            Touch::HeldThroughout
-        } else if summary.held_ticks > 0 {
-            Touch::LeftWithoutTouching
-        } else {
-            Touch::Never
-        };
-        outcome(out, ran.stop, said, touch)
+        outcome(out, ran.stop, said, touch_of(replay, &summary))
+    }
+}
+
+/// Whether the device touched an object, from the run's summary (a replay's trace is
+/// taken as touching).
+fn touch_of(replay: bool, summary: &Summary) -> Touch {
+    if replay || summary.contact_ticks > 0 {
+        Touch::Touched
+    } else if summary.held_ticks > 0 && summary.free_ticks == 0 {
+        Touch::HeldThroughout
+    } else if summary.held_ticks > 0 {
+        Touch::LeftWithoutTouching
+    } else {
+        Touch::Never
     }
 }
 

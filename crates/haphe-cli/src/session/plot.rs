@@ -115,14 +115,25 @@ fn draw(
     let (top, bottom) = root.split_vertically(420);
     let (force_area, depth_area) = top.split_horizontally(600);
     let t_end = points.last().map_or(1.0, |p| p.t).max(1e-6);
+    draw_force(&force_area, points, t_end)?;
+    draw_depth(&depth_area, points, t_end)?;
+    draw_side(&bottom, points, section)?;
+    root.present()?;
+    Ok(())
+}
 
+/// A part of the picture.
+type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+
+/// The force on the hand over time: its components and its length.
+fn draw_force(area: &Area<'_>, points: &[PlotPoint], t_end: f64) -> Result<(), Box<dyn Error>> {
     let f_max = points
         .iter()
         .map(|p| p.force.length())
         .fold(0.0, f64::max)
         .max(0.1)
         * 1.1;
-    let mut chart = ChartBuilder::on(&force_area)
+    let mut chart = ChartBuilder::on(area)
         .caption("force on the hand", ("sans-serif", 18))
         .margin(10)
         .x_label_area_size(40)
@@ -157,13 +168,18 @@ fn draw(
         .label_font(("sans-serif", 13))
         .draw()?;
 
+    Ok(())
+}
+
+/// The penetration over time.
+fn draw_depth(area: &Area<'_>, points: &[PlotPoint], t_end: f64) -> Result<(), Box<dyn Error>> {
     let d_max = points
         .iter()
         .map(|p| p.penetration * 1e3)
         .fold(0.0, f64::max)
         .max(0.1)
         * 1.1;
-    let mut chart = ChartBuilder::on(&depth_area)
+    let mut chart = ChartBuilder::on(area)
         .caption(
             "penetration (device point behind the proxy)",
             ("sans-serif", 18),
@@ -182,6 +198,15 @@ fn draw(
         DEPTH.stroke_width(1),
     ))?;
 
+    Ok(())
+}
+
+/// The path seen from the side, with the objects' section.
+fn draw_side(
+    area: &Area<'_>,
+    points: &[PlotPoint],
+    section: &[[(f64, f64); 2]],
+) -> Result<(), Box<dyn Error>> {
     // Side view, millimetres, equal scale on both axes.
     let (x0, x1) = range(
         points.iter().flat_map(|p| [p.hip.x * 1e3, p.proxy.x * 1e3]),
@@ -197,7 +222,7 @@ fn draw(
     let half_z = (0.5 * (z1 - z0)).max(0.5 * (x1 - x0) / aspect);
     let half_x = half_z * aspect;
     let (x_digits, z_digits) = (decimals(2.0 * half_x), decimals(2.0 * half_z));
-    let mut chart = ChartBuilder::on(&bottom)
+    let mut chart = ChartBuilder::on(area)
         .caption(
             "the path seen from the side (dark grey: the objects' section, blue: proxy, orange: device point, red dots: contact)",
             ("sans-serif", 18),
@@ -242,6 +267,5 @@ fn draw(
             .filter(|[a, b]| inside(*a) || inside(*b))
             .map(|ends| PathElement::new(ends, SECTION.stroke_width(2))),
     )?;
-    root.present()?;
     Ok(())
 }

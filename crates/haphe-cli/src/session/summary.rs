@@ -307,6 +307,29 @@ pub fn print(
         s.max_speed,
         impossible(s.max_speed / info.scale, MAX_HAND_SPEED_M_S, 1.0, "m/s")
     )?;
+    print_start_and_clutch(out, s, info, period)?;
+    writeln!(out, "  tick time         {}", quantiles(&stats.compute))?;
+    if info.realtime {
+        print_realtime(out, stats, info)?;
+    } else {
+        writeln!(
+            out,
+            "  achieved rate     {:.0} ticks/s as fast as possible ({:.3} s of compute; {:.0}x the asked rate)",
+            stats.achieved_rate(),
+            stats.wall_seconds,
+            stats.achieved_rate() / info.rate_hz
+        )?;
+    }
+    Ok(())
+}
+
+/// The summary's lines on the safe start and the clutch.
+fn print_start_and_clutch(
+    out: &mut impl Write,
+    s: &Summary,
+    info: &RunInfo<'_>,
+    period: f64,
+) -> std::io::Result<()> {
     if s.held_ticks > 0 {
         writeln!(
             out,
@@ -329,18 +352,6 @@ pub fn print(
             moved.x * 1e3 + 0.0,
             moved.y * 1e3 + 0.0,
             moved.z * 1e3 + 0.0
-        )?;
-    }
-    writeln!(out, "  tick time         {}", quantiles(&stats.compute))?;
-    if info.realtime {
-        print_realtime(out, stats, info)?;
-    } else {
-        writeln!(
-            out,
-            "  achieved rate     {:.0} ticks/s as fast as possible ({:.3} s of compute; {:.0}x the asked rate)",
-            stats.achieved_rate(),
-            stats.wall_seconds,
-            stats.achieved_rate() / info.rate_hz
         )?;
     }
     Ok(())

@@ -335,6 +335,20 @@ impl<D: Device> Servo<D> {
         record
     }
 
+    /// The force's gain at time `t` after the safe start: rising from 0 to 1 over the
+    /// ramp, then 1 (the phase turns to running when the ramp is done).
+    #[inline]
+    fn ramp_gain(&mut self, t: f64) -> f64 {
+        if self.phase != Phase::Ramping {
+            return 1.0;
+        }
+        let g = (t - self.ramp_start) / self.options.ramp_seconds;
+        if g >= 1.0 {
+            self.phase = Phase::Running;
+        }
+        g.clamp(0.0, 1.0)
+    }
+
     /// One servo tick at the scheduled time `t`, seconds since the start (simulated
     /// devices and scripted motions use it as their clock).
     ///
@@ -403,15 +417,7 @@ impl<D: Device> Servo<D> {
         }
         if self.phase != Phase::Holding {
             let out = self.proxy.tick(&self.scene, hip, velocity);
-            let gain = if self.phase == Phase::Ramping {
-                let g = (t - self.ramp_start) / self.options.ramp_seconds;
-                if g >= 1.0 {
-                    self.phase = Phase::Running;
-                }
-                g.clamp(0.0, 1.0)
-            } else {
-                1.0
-            };
+            let gain = self.ramp_gain(t);
             record.phase = self.phase;
             record.proxy = out.proxy;
             record.force = out.force * (gain * fade);
