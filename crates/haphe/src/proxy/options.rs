@@ -1,5 +1,5 @@
-//! The proxy's options: its skin, force limit and workspace radius, checked against the
-//! table of domains.
+//! The proxy's options: its skin, force limit, workspace radius and tool radius, checked
+//! against the table of domains.
 
 use crate::scene::{Param, ParamError};
 
@@ -41,6 +41,8 @@ pub struct ProxyOptions {
     /// Device points farther than this from the world origin are pulled back to it,
     /// metres: keeps every product in range whatever the input.
     pub(crate) workspace_radius: f64,
+    /// The tool's radius, metres: a sphere centred on the proxy (0: a point).
+    pub(crate) tool_radius: f64,
 }
 
 impl Default for ProxyOptions {
@@ -51,6 +53,7 @@ impl Default for ProxyOptions {
             skin: DEFAULT_SKIN,
             max_force: crate::scene::DEFAULT_MAX_FORCE_N,
             workspace_radius: 1e3,
+            tool_radius: 0.0,
         }
     }
 }
@@ -89,6 +92,25 @@ impl ProxyOptions {
             workspace_radius: Param::WorkspaceRadius.check(workspace_radius)?,
             ..self
         })
+    }
+
+    /// The same options with the tool's radius, metres: the tool is a sphere centred on
+    /// the proxy, which keeps it that far (less the skin) from every triangle. 0 (the
+    /// default) is a point.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming `tool_radius` outside its domain (0 or more, at most
+    /// `ABSURD_TOOL_RADIUS_M`).
+    pub fn with_tool_radius(self, tool_radius: f64) -> Result<ProxyOptions, ParamError> {
+        Ok(ProxyOptions {
+            tool_radius: Param::ToolRadius.check(tool_radius)?,
+            ..self
+        })
+    }
+
+    /// The tool's radius, metres (0: a point).
+    pub fn tool_radius(&self) -> f64 {
+        self.tool_radius
     }
 
     /// Distance kept from a touched surface, metres.

@@ -58,8 +58,12 @@ pub const ABSURD_STIFFNESS_N_PER_M: f64 = 1e6;
 /// workspace radii): far beyond any workspace, small enough that squares stay finite.
 pub const ABSURD_DISTANCE_M: f64 = 1e9;
 
+/// The largest tool radius accepted, metres: a hand-held tool, a fingertip or a ball tool
+/// is millimetres to centimetres across; a radius of metres is a unit mixed up.
+pub(crate) const ABSURD_TOOL_RADIUS_M: f64 = 0.5;
+
 /// Every parameter's domain, in the order of [`Param`].
-static TABLE: [Domain; 19] = [
+static TABLE: [Domain; 20] = [
     number(Param::Stiffness, "N/m", 0.0, true, ABSURD_STIFFNESS_N_PER_M),
     number(Param::Damping, "N·s/m", 0.0, false, 1e3),
     number(Param::StaticFriction, "", 0.0, false, 10.0),
@@ -67,6 +71,7 @@ static TABLE: [Domain; 19] = [
     number(Param::MaxForce, "N", 0.0, true, ABSURD_FORCE_N),
     number(Param::Skin, "m", 0.0, true, 1e-3),
     number(Param::WorkspaceRadius, "m", 0.0, true, ABSURD_DISTANCE_M),
+    number(Param::ToolRadius, "m", 0.0, false, ABSURD_TOOL_RADIUS_M),
     vector(Param::Position, "m", 0.0, false, ABSURD_DISTANCE_M),
     vector(Param::Rotation, "", 0.0, true, f64::MAX),
     number(Param::RateHz, "Hz", 1.0, false, 40_000.0),

@@ -21,6 +21,8 @@ pub enum Param {
     Skin,
     /// The radius beyond which device points are pulled back, m.
     WorkspaceRadius,
+    /// The radius of the tool, a sphere centred on the proxy, m (0: a point).
+    ToolRadius,
     /// A pose's translation (an object's position), m.
     Position,
     /// A pose's or a mapping's rotation, as a quaternion (normalised when used).
@@ -49,7 +51,7 @@ pub enum Param {
 
 impl Param {
     /// Every parameter, in table order.
-    pub const ALL: [Param; 19] = [
+    pub const ALL: [Param; 20] = [
         Param::Stiffness,
         Param::Damping,
         Param::StaticFriction,
@@ -57,6 +59,7 @@ impl Param {
         Param::MaxForce,
         Param::Skin,
         Param::WorkspaceRadius,
+        Param::ToolRadius,
         Param::Position,
         Param::Rotation,
         Param::RateHz,
@@ -81,6 +84,7 @@ impl Param {
             Param::MaxForce => "max_force",
             Param::Skin => "skin",
             Param::WorkspaceRadius => "workspace_radius",
+            Param::ToolRadius => "tool_radius",
             Param::Position => "position",
             Param::Rotation => "rotation",
             Param::RateHz => "rate_hz",

@@ -21,7 +21,7 @@ struct Expected {
     absurd: Option<f64>,
 }
 
-const EXPECTED: [Expected; 19] = [
+const EXPECTED: [Expected; 20] = [
     // A material with no stiffness renders nothing; damping and friction may be absent.
     expect(Param::Stiffness, 800.0, false, false, Some(1e7)),
     expect(Param::Damping, 1.0, true, false, Some(1e5)),
@@ -31,6 +31,8 @@ const EXPECTED: [Expected; 19] = [
     expect(Param::MaxForce, 3.3, false, false, Some(1e4)),
     expect(Param::Skin, 1e-6, false, false, Some(1.0)),
     expect(Param::WorkspaceRadius, 1.0, false, false, Some(1e12)),
+    // A tool of no size is the point; a tool of metres is a unit mixed up.
+    expect(Param::ToolRadius, 1e-3, true, false, Some(10.0)),
     // A position is a point: any sign, the origin included; not beyond 10⁹ m.
     expect(Param::Position, 0.2, true, true, Some(1e12)),
     // A quaternion of any non-zero length is a rotation (normalised).
@@ -77,6 +79,7 @@ fn build(param: Param, v: f64) -> Result<(), ParamError> {
         Param::MaxForce => proxy.with_max_force(v).map(drop),
         Param::Skin => proxy.with_skin(v).map(drop),
         Param::WorkspaceRadius => proxy.with_workspace_radius(v).map(drop),
+        Param::ToolRadius => proxy.with_tool_radius(v).map(drop),
         Param::Position => {
             let a = Pose::from_translation(x);
             // As text: an error's NaN is not equal to itself.
