@@ -16,6 +16,7 @@ mod near;
 mod probe;
 mod segment_triangle;
 mod self_intersect;
+mod sweep;
 mod triangle_triangle;
 // The record the front ends print for `validate` (the command, Python's `validate`): public
 // for them, not part of the documented interface.
@@ -43,6 +44,8 @@ pub use near::{NearTriangle, nearest_within};
 pub(crate) use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use self_intersect::{SelfIntersections, self_intersections};
+#[doc(hidden)]
+pub use sweep::{SphereContact, first_sphere_contact, first_sphere_contact_brute_force};
 #[doc(hidden)]
 pub use validation::Validation;
 #[doc(hidden)]
