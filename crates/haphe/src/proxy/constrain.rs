@@ -135,7 +135,7 @@ fn touch_where_placed(
     options: &ProxyOptions,
 ) {
     let p = sweep.position;
-    if let Some(hit) = touching_any(scene, near, p, options.probe_reach()) {
+    if let Some(hit) = touching_any(scene, near, p, options) {
         let plane = hit_plane(&hit, p, hip, options);
         if plane.height(hip) < 0.0 {
             sweep.met(hit, plane, p);
@@ -156,10 +156,13 @@ fn leg(
 ) -> Leg {
     let (p, reach) = (sweep.position, options.probe_reach());
     let first_leg = sweep.planes.is_empty();
+    // A tool with a size takes every leg through the searches: its resting rule, clear
+    // zones and convex surfaces under it are the point's.
+    let point = options.tool_radius == 0.0;
     // The first leg of a tick keeps the surface the proxy rests on when the device point
     // is still behind it (no search along that leg: the proxy does not move).
     let resting = match start.rest {
-        Some(r) if first_leg => rest_hit(scene, r, p, target, options.skin),
+        Some(r) if first_leg && point => rest_hit(scene, r, p, target, options.skin),
         _ => None,
     };
     // A leg that stays in the clear zone of the surface last met (or rested on) meets
@@ -167,6 +170,7 @@ fn leg(
     let slid_on = sweep.last_hit.map(|(h, _)| h.surface()).or(start.rest);
     let others = others_box(p, target, reach);
     if resting.is_none()
+        && point
         && let Some(on) = slid_on
         && scene.clear_move(near.get(scene, others.0, others.1), on, p, target, reach)
     {
@@ -175,14 +179,14 @@ fn leg(
     // A first leg into the surface under the proxy, where its neighbourhood is convex,
     // meets that triangle first: shown without the search (the same hit).
     let shown = match start.under {
-        Some(under) if first_leg && resting.is_none() => {
+        Some(under) if first_leg && point && resting.is_none() => {
             scene.first_hit_shown(near.get(scene, others.0, others.1), under, p, target, reach)
         }
         _ => None,
     };
     if let Some(hit) = resting
         .or(shown)
-        .or_else(|| first_hit_all(scene, near, p, target, reach))
+        .or_else(|| first_hit_all(scene, near, p, target, options))
     {
         let plane = hit_plane(&hit, p, target, options);
         return Leg::Met(hit, plane, advance_to_plane(p, target, &plane));
@@ -190,7 +194,7 @@ fn leg(
     // A free move that ends on a surface (or within a probe's reach of it, moving along
     // it) touches it: its plane becomes a constraint, so that the proxy never rests where
     // the next probe could start on the surface.
-    match touching_any(scene, near, target, reach) {
+    match touching_any(scene, near, target, options) {
         Some(hit) => Leg::Met(hit, hit_plane(&hit, p, target, options), target),
         None => Leg::Free { cleared: false },
     }

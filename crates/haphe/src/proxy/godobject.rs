@@ -266,7 +266,8 @@ impl Proxy {
             let reach = self.options.probe_reach();
             let (lo, hi) = others_box(p, target, reach);
             let near = self.near.get(scene, lo, hi);
-            p = if scene.clear_move(near, hit.surface(), p, target, reach) {
+            let point = self.options.tool_radius == 0.0;
+            p = if point && scene.clear_move(near, hit.surface(), p, target, reach) {
                 status.cleared = true;
                 target
             } else {

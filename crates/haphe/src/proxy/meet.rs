@@ -11,19 +11,21 @@ use super::options::ProxyOptions;
 use crate::scene::{Hit, Scene};
 
 /// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
-/// object index. Only the objects near the segment are tested (see [`NearCache`]).
+/// object index. Only the objects near the segment are tested (see [`NearCache`]). With a
+/// tool radius, the first place the tool's sphere touches an object.
 #[inline]
 pub(crate) fn first_hit_all(
     scene: &Scene,
     near: &mut NearCache,
     p0: DVec3,
     p1: DVec3,
-    reach: f64,
+    options: &ProxyOptions,
 ) -> Option<Hit> {
-    let (lo, hi) = search_box(p0, p1, reach);
+    let (reach, radius) = (options.probe_reach(), options.tool_radius);
+    let (lo, hi) = grown(search_box(p0, p1, reach), radius);
     let mut best: Option<Hit> = None;
     for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
-        if let Some(h) = scene.first_hit(i, p0, p1, reach)
+        if let Some(h) = hit_one(scene, i, (p0, p1), options)
             && best.is_none_or(|b| h.t < b.t)
         {
             best = Some(h);
@@ -32,24 +34,68 @@ pub(crate) fn first_hit_all(
     best
 }
 
-/// The surface within `reach` of the world point `p` of the lowest-index object that has
-/// one (see [`Scene::touching`]).
+/// The first hit of the world move `from → to` on object `i`: the point's crossing, or
+/// the tool's contact.
+#[inline]
+fn hit_one(
+    scene: &Scene,
+    i: usize,
+    (from, to): (DVec3, DVec3),
+    options: &ProxyOptions,
+) -> Option<Hit> {
+    let (reach, radius) = (options.probe_reach(), options.tool_radius);
+    if radius > 0.0 {
+        scene.first_tool_hit(i, (from, to), radius, reach)
+    } else {
+        scene.first_hit(i, from, to, reach)
+    }
+}
+
+/// The box `lo..hi` grown by `by` metres on every side (unchanged for 0).
+#[inline]
+fn grown((lo, hi): (DVec3, DVec3), by: f64) -> (DVec3, DVec3) {
+    if by > 0.0 {
+        (lo - DVec3::splat(by), hi + DVec3::splat(by))
+    } else {
+        (lo, hi)
+    }
+}
+
+/// The surface within a probe's reach of the world point `p` (of the tool's surface, with
+/// a tool radius) of the lowest-index object that has one (see [`Scene::touching`]).
 #[inline]
 pub(crate) fn touching_any(
     scene: &Scene,
     near: &mut NearCache,
     p: DVec3,
-    reach: f64,
+    options: &ProxyOptions,
 ) -> Option<Hit> {
-    let (lo, hi) = search_box(p, p, reach);
+    let (reach, radius) = (options.probe_reach(), options.tool_radius);
+    let (lo, hi) = grown(search_box(p, p, reach), radius);
     near.get(scene, lo, hi)
         .indices(scene.objects().len())
-        .find_map(|i| scene.touching(i, p, reach))
+        .find_map(|i| {
+            if radius > 0.0 {
+                scene.tool_touching(i, p, radius, reach)
+            } else {
+                scene.touching(i, p, reach)
+            }
+        })
 }
 
-/// The constraint plane of `hit`, met by the move `from → to`.
+/// The constraint plane of `hit`, met by the move `from → to`: the triangle's plane moved
+/// out by the skin (see [`Plane::of_hit`]); with a tool radius, the plane tangent to the
+/// triangle's offset by the radius where the tool touched it, moved out by the skin.
 pub(super) fn hit_plane(hit: &Hit, from: DVec3, to: DVec3, options: &ProxyOptions) -> Plane {
-    Plane::of_hit(hit.normal, hit.point, hit.one_sided, from, to, options.skin)
+    let radius = options.tool_radius;
+    if radius > 0.0 {
+        Plane {
+            normal: hit.normal,
+            offset: hit.normal.dot(hit.point) + radius + options.skin,
+        }
+    } else {
+        Plane::of_hit(hit.normal, hit.point, hit.one_sided, from, to, options.skin)
+    }
 }
 
 /// Moving objects carry the proxy: for each object that moved since the previous tick (in
@@ -73,7 +119,7 @@ pub(super) fn carry(
             return;
         }
         let from = scene.previous_relative(i, *p);
-        if let Some(h) = scene.first_hit(i, from, *p, reach) {
+        if let Some(h) = hit_one(scene, i, (from, *p), options) {
             *p = advance_to_plane(from, *p, &hit_plane(&h, from, *p, options));
         }
     };
@@ -96,7 +142,7 @@ pub(super) fn carry(
     let mut next = 0;
     'query: loop {
         let centre = p;
-        let m = DVec3::splat(2.0 * shift + 3.0 * reach);
+        let m = DVec3::splat(2.0 * shift + 3.0 * reach + options.tool_radius);
         let found = scene.near(centre - m, centre + m);
         if found.all() {
             for &i in moved.iter().filter(|&&i| i as usize >= next) {
@@ -126,7 +172,7 @@ pub(super) fn move_checked(
     if from == to {
         return to;
     }
-    match first_hit_all(scene, near, from, to, options.probe_reach()) {
+    match first_hit_all(scene, near, from, to, options) {
         None => to,
         Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
     }

@@ -134,7 +134,7 @@ pub fn first_sphere_contact_brute_force(
 /// Keeps the contact of triangle `t` in `best` when it comes before the kept one (the
 /// lower index on ties).
 #[inline]
-fn consider(
+pub(crate) fn consider(
     surface: &Surface,
     t: TriId,
     (a, b): (DVec3, DVec3),

@@ -40,6 +40,7 @@ mod param;
 mod pose;
 mod removals;
 mod shape;
+mod tool;
 mod world;
 
 #[doc(hidden)]

@@ -280,4 +280,34 @@ impl TriangleBounds {
         }
         best.map(|(hit, t)| crate::query::crossing_from_hit(surface, hit, t))
     }
+
+    /// The first contact of the sphere of `radius` swept from `a` to `b` with `surface`
+    /// (whose boxes these are), testing every triangle whose box comes within
+    /// `radius + reach` of the segment's box: the same answer as
+    /// [`first_sphere_contact_brute_force`](crate::query::first_sphere_contact_brute_force).
+    pub(crate) fn first_sphere_contact(
+        &self,
+        surface: &Surface,
+        (a, b): (DVec3, DVec3),
+        (radius, reach): (f64, f64),
+        one_sided: bool,
+    ) -> Option<crate::query::SphereContact> {
+        let g = DVec3::splat(radius + reach);
+        let (lo, hi) = (a.min(b) - g, a.max(b) + g);
+        let mut best = None;
+        for (t, [tlo, thi]) in self.boxes.iter().enumerate() {
+            if (tlo.cmpgt(hi) | thi.cmplt(lo)).any() {
+                continue;
+            }
+            crate::query::consider_sphere(
+                surface,
+                TriId(t as u32),
+                (a, b),
+                (radius, reach),
+                one_sided,
+                &mut best,
+            );
+        }
+        best
+    }
 }

@@ -177,6 +177,9 @@ impl BruteProxy {
     }
 
     fn hit(&self, i: usize, from: DVec3, to: DVec3) -> Option<BruteHit> {
+        if self.options.tool_radius() > 0.0 {
+            return self.tool_hit(i, from, to);
+        }
         let o = &self.objects[i];
         let one_sided = o.one_sided;
         let probe = Probe::new(from, to, self.options.probe_reach(), one_sided);
@@ -196,22 +199,64 @@ impl BruteProxy {
         })
     }
 
-    /// The surface within a probe's reach of `p`, lowest object index first.
+    /// The first contact of the tool's sphere moving `from → to` with object `i`, the move
+    /// reaching a probe's reach past `to`: the triangle's point nearest to the centre
+    /// there, and the normal from it toward the centre.
+    fn tool_hit(&self, i: usize, from: DVec3, to: DVec3) -> Option<BruteHit> {
+        let o = &self.objects[i];
+        let (radius, reach) = (self.options.tool_radius(), self.options.probe_reach());
+        let length = from.distance(to);
+        let (end, scale) = if length > 0.0 {
+            (
+                to + (to - from) * (reach / length),
+                (length + reach) / length,
+            )
+        } else {
+            (to, 1.0)
+        };
+        let c = o.boxes.first_sphere_contact(
+            o.shape.surface(),
+            (o.pose.to_object(from), o.pose.to_object(end)),
+            (radius, reach),
+            o.one_sided,
+        )?;
+        Some(BruteHit {
+            t: c.t * scale,
+            object: i,
+            triangle: c.triangle,
+            point: o.pose.to_world(c.point),
+            normal: o.pose.vector_to_world(c.normal),
+            one_sided: o.one_sided,
+        })
+    }
+
+    /// The surface within a probe's reach of `p` (of the tool's surface, with a tool
+    /// radius), lowest object index first.
     fn touching(&self, p: DVec3) -> Option<BruteHit> {
+        let radius = self.options.tool_radius();
         self.objects.iter().enumerate().find_map(|(i, o)| {
+            let q = o.pose.to_object(p);
             let near = nearest_within_brute_force(
                 o.shape.surface(),
-                o.pose.to_object(p),
-                self.options.probe_reach(),
+                q,
+                radius + self.options.probe_reach(),
             )?;
+            let face = o.shape.surface().frame(near.triangle).normal;
+            let normal = if radius > 0.0 {
+                let n = (q - near.closest.point).try_normalize().unwrap_or(face);
+                if o.one_sided && n.dot(face) <= 0.0 {
+                    return None;
+                }
+                n
+            } else {
+                face
+            };
             Some(BruteHit {
                 t: 1.0,
                 object: i,
                 triangle: near.triangle,
                 point: o.pose.to_world(near.closest.point),
-                normal: o
-                    .pose
-                    .vector_to_world(o.shape.surface().frame(near.triangle).normal),
+                normal: o.pose.vector_to_world(normal),
                 one_sided: o.one_sided,
             })
         })
@@ -219,6 +264,10 @@ impl BruteProxy {
 
     /// The surface the proxy rests on (see [`Proxy`]'s resting rule).
     fn resting(&self, rest: SurfaceRef, p: DVec3, target: DVec3) -> Option<BruteHit> {
+        // A tool with a size has no resting rule: its legs are all searched.
+        if self.options.tool_radius() > 0.0 {
+            return None;
+        }
         let o = self.objects.get(rest.object)?;
         let (point, normal) = rests_on(
             o.shape.surface(),
@@ -239,8 +288,17 @@ impl BruteProxy {
         })
     }
 
+    /// The constraint plane of a hit: the triangle's plane, or with a tool radius the
+    /// plane tangent to its offset where the tool touched it, moved out by the skin.
     fn plane(&self, h: &BruteHit, from: DVec3, to: DVec3) -> Plane {
-        Plane::of_hit(h.normal, h.point, h.one_sided, from, to, self.options.skin)
+        let (radius, skin) = (self.options.tool_radius(), self.options.skin());
+        if radius > 0.0 {
+            return Plane {
+                normal: h.normal,
+                offset: h.normal.dot(h.point) + radius + skin,
+            };
+        }
+        Plane::of_hit(h.normal, h.point, h.one_sided, from, to, skin)
     }
 
     fn first_hit(&self, p0: DVec3, p1: DVec3) -> Option<BruteHit> {
@@ -552,16 +610,27 @@ pub fn check_proxy(scene: &Scene, path: &[DVec3], options: ProxyOptions) -> Prox
         if !out.force.is_finite() || out.force.length() > options.max_force * (1.0 + 1e-12) {
             check.bad_forces += 1;
         }
-        check.inside += scene
-            .objects()
-            .iter()
-            .filter(|o| o.shape.is_solid())
-            .filter(|o| {
-                let q = o.pose.to_object(out.proxy);
-                classify_point(o.shape.surface(), o.shape.map(), q).0 == Side::Inside
-                    && distance_to_surface(o.shape.surface(), q) > options.skin
-            })
-            .count();
+        check.inside += breaks_in(scene, out.proxy, &options);
     }
     check
+}
+
+/// The objects the proxy at `p` has broken into: a solid it lies inside deeper than its
+/// skin (inside by the voxel map, depth by brute force) and, with a tool radius, any
+/// object one of whose triangles lies closer than the radius less the skin.
+pub(crate) fn breaks_in(scene: &Scene, p: DVec3, options: &ProxyOptions) -> usize {
+    let radius = options.tool_radius();
+    scene
+        .objects()
+        .iter()
+        .filter(|o| {
+            let q = o.pose.to_object(p);
+            let surface = o.shape.surface();
+            let inside =
+                o.shape.is_solid() && classify_point(surface, o.shape.map(), q).0 == Side::Inside;
+            let distance = || distance_to_surface(surface, q);
+            (inside && distance() > options.skin())
+                || (radius > 0.0 && distance() < radius - options.skin())
+        })
+        .count()
 }
