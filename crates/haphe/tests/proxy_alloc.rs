@@ -177,3 +177,54 @@ fn proxy_ticks_allocate_nothing() {
     assert_eq!(held_where_due, due, "held {held} ticks in all");
     assert_eq!(total_allocations, 0, "the servo path allocated");
 }
+
+/// The tool's ticks (a sphere proxy of 2 mm, and one of 2 % of the blob's size) allocate
+/// nothing either: exploring, in steady contact, with bad input spliced in.
+#[test]
+fn tool_ticks_allocate_nothing() {
+    let material = Material::builder()
+        .stiffness(800.0)
+        .friction(0.5, 0.3)
+        .build()
+        .expect("a valid material");
+    let mut scene = Scene::local(2);
+    scene
+        .insert(SceneObject::new(
+            ObjectId(0),
+            shape(Catalog::Blob, 20_000),
+            Pose::IDENTITY,
+            material,
+        ))
+        .expect("room");
+    let mut hips = haptic_path(&scene, 20_000, (0.01, 10.0), 1e3, 9);
+    hips.extend(haphe::verify::haptic_path_in_contact(
+        &scene,
+        20_000,
+        (0.05, 0.5),
+        (0.5e-3, 3e-3),
+        1e3,
+        10,
+    ));
+    for k in (0..hips.len()).step_by(997) {
+        hips[k] = if k % 2 == 0 {
+            DVec3::NAN
+        } else {
+            DVec3::splat(1e300)
+        };
+    }
+    for radius in [0.002, 0.004] {
+        let options = ProxyOptions::default()
+            .with_tool_radius(radius)
+            .expect("in its domain");
+        let mut proxy = Proxy::new(hips[0], options);
+        let mut contacts = 0usize;
+        let info = allocation_counter::measure(|| {
+            for &hip in &hips {
+                let out = proxy.tick(&scene, hip, DVec3::ZERO);
+                contacts += usize::from(out.contact.is_some());
+            }
+        });
+        assert_eq!(info.count_total, 0, "r {radius}: {info:?}");
+        assert!(contacts > 10_000, "r {radius}: {contacts}");
+    }
+}
