@@ -346,3 +346,41 @@ fn verify_runs_deep_strikes_alone() {
         "{message}"
     );
 }
+
+/// `haphe verify --tool-radius R` runs the proxy checks and the strikes with a tool of
+/// that radius (named in the tables and the JSON), and refuses a radius outside its
+/// domain naming the flag, with exit code 2.
+#[test]
+fn verify_checks_a_tool_with_a_size() {
+    let dir = scratch("verify-tool");
+    let mesh = write(&dir, "t.obj", TETRAHEDRON);
+    let args = [
+        "verify",
+        &mesh,
+        "--samples",
+        "0",
+        "--ticks",
+        "500",
+        "--strikes",
+        "10",
+    ];
+    let out = haphe(&[&args[..], &["--tool-radius", "0.002"]].concat());
+    let text = stdout(&out);
+    assert_eq!(out.status.code(), Some(0), "{text}");
+    assert_eq!(
+        text.matches("a tool of radius 2.00 mm").count(),
+        2,
+        "{text}"
+    );
+    assert!(text.contains("PASSED"), "{text}");
+    let out = haphe(&[&args[..], &["--tool-radius", "0.002", "--json"]].concat());
+    let report: serde_json::Value = serde_json::from_str(&stdout(&out)).expect("JSON");
+    assert_eq!(report["proxy"]["tool_radius_m"], 0.002);
+    assert_eq!(report["strikes"]["tool_radius_m"], 0.002);
+    for bad in ["nan", "-0.001", "2"] {
+        let out = haphe(&[&args[..], &[&format!("--tool-radius={bad}")]].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("--tool-radius"), "{bad}: {err}");
+    }
+}

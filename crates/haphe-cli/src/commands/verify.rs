@@ -50,6 +50,10 @@ pub struct Args {
     /// through the object once the proxy holds (0 skips).
     #[arg(long, default_value_t = 0)]
     strikes: usize,
+    /// The tool's radius for --ticks and --strikes, metres on the model scaled to 0.2 m:
+    /// the proxy is a sphere of this radius (0: a point).
+    #[arg(long, default_value_t = 0.0, value_name = "METRES")]
+    tool_radius: f64,
     /// Seed of the samples (the same seed gives the same samples).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -160,11 +164,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let walk_seconds = clock.elapsed().as_secs_f64();
 
     let ticks = args.ticks.unwrap_or(n);
+    let options = tool_options(args.tool_radius)?;
     let proxy = (ticks > 0)
-        .then(|| proxy::check(surface, ticks, args.seed))
+        .then(|| proxy::check(surface, options, ticks, args.seed))
         .transpose()?;
     let strikes = (args.strikes > 0 && surface.is_solid())
-        .then(|| proxy::strikes(surface, args.strikes, args.seed))
+        .then(|| proxy::strikes(surface, options, args.strikes, args.seed))
         .transpose()?;
 
     let passed = crossings
@@ -301,8 +306,10 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
 fn print_proxy(out: &mut impl Write, p: &proxy::ProxyReport) -> std::io::Result<()> {
     writeln!(
         out,
-        "\nproxy against the brute-force proxy (model scaled by {:.4} to 0.2 m; {:.1} s):\n",
-        p.scale, p.seconds
+        "\nproxy against the brute-force proxy (model scaled by {:.4} to 0.2 m{}; {:.1} s):\n",
+        p.scale,
+        tool_words(p.tool_radius_m),
+        p.seconds
     )?;
     writeln!(
         out,
@@ -336,8 +343,9 @@ fn print_strikes(out: &mut impl Write, s: &proxy::StrikeReport) -> std::io::Resu
     let c = &s.check;
     writeln!(
         out,
-        "\ndeep strikes (model scaled by {:.4} to 0.2 m, saturation depth {:.1} mm; {:.1} s, {:.2} µs per proxy tick):\n",
+        "\ndeep strikes (model scaled by {:.4} to 0.2 m{}, saturation depth {:.1} mm; {:.1} s, {:.2} µs per proxy tick):\n",
         s.scale,
+        tool_words(s.tool_radius_m),
         s.saturation_depth_m * 1e3,
         s.seconds,
         s.us_per_tick
@@ -436,5 +444,21 @@ fn check_points(
         check: inside_check,
         parry_disagreements,
         seconds: clock.elapsed().as_secs_f64(),
+    }
+}
+
+/// The proxy's options of the checks: a tool of `--tool-radius`.
+fn tool_options(radius: f64) -> anyhow::Result<haphe::proxy::ProxyOptions> {
+    haphe::proxy::ProxyOptions::default()
+        .with_tool_radius(radius)
+        .map_err(|e| anyhow::anyhow!("{}", e.named("--tool-radius")))
+}
+
+/// How a table's heading names the tool: nothing for a point, else its radius.
+fn tool_words(radius: f64) -> String {
+    if radius > 0.0 {
+        format!(", a tool of radius {:.2} mm", radius * 1e3)
+    } else {
+        String::new()
     }
 }

@@ -36,6 +36,8 @@ pub struct ProxyReport {
     /// Scale applied to the model (its largest side becomes
     /// [`HAND_SCALE_M`](haphe::verify::HAND_SCALE_M)).
     pub scale: f64,
+    /// The tool's radius, metres (0: a point).
+    pub tool_radius_m: f64,
     /// One row per kind of path.
     pub rows: Vec<ProxyRow>,
     /// Seconds for the whole check.
@@ -86,6 +88,8 @@ pub struct StrikeReport {
     pub scale: f64,
     /// The saturation depth of the material and device, metres (`max_force / stiffness`).
     pub saturation_depth_m: f64,
+    /// The tool's radius, metres (0: a point).
+    pub tool_radius_m: f64,
     /// What the strikes found.
     #[serde(flatten)]
     pub check: StrikeCheck,
@@ -108,12 +112,16 @@ impl StrikeReport {
 
 /// Runs `strikes` deep strikes (0–70° from the normal, 0.5–10 m/s at 1 kHz, up to 0.25 m
 /// past the entry, through the model and out) on a solid `surface` scaled to a hand's
-/// size, with the material of the proxy check (without friction).
-pub fn strikes(surface: &Surface, strikes: usize, seed: u64) -> anyhow::Result<StrikeReport> {
+/// size, with the material of the proxy check (without friction) and the proxy's `options`.
+pub fn strikes(
+    surface: &Surface,
+    options: ProxyOptions,
+    strikes: usize,
+    seed: u64,
+) -> anyhow::Result<StrikeReport> {
     let start = Instant::now();
     let (shape, scale) = scaled_shape(surface)?;
     let material = verify_material().to_builder().friction(0.0, 0.0).build()?;
-    let options = ProxyOptions::default();
     let scene = scene_of(&shape, material)?;
     let clock = Instant::now();
     let check = check_strikes(&scene, options, strikes, 0.25, 1e3, seed);
@@ -121,6 +129,7 @@ pub fn strikes(surface: &Surface, strikes: usize, seed: u64) -> anyhow::Result<S
     Ok(StrikeReport {
         scale,
         saturation_depth_m: options.max_force() / material.stiffness(),
+        tool_radius_m: options.tool_radius(),
         check,
         seconds: start.elapsed().as_secs_f64(),
         us_per_tick,
@@ -128,15 +137,20 @@ pub fn strikes(surface: &Surface, strikes: usize, seed: u64) -> anyhow::Result<S
 }
 
 /// Runs `ticks` ticks of each kind of path on `surface` scaled to a hand's size, with a
-/// material with friction, comparing the proxy with the brute-force proxy at every tick.
-pub fn check(surface: &Surface, ticks: usize, seed: u64) -> anyhow::Result<ProxyReport> {
+/// material with friction and the proxy's `options`, comparing the proxy with the
+/// brute-force proxy at every tick.
+pub fn check(
+    surface: &Surface,
+    options: ProxyOptions,
+    ticks: usize,
+    seed: u64,
+) -> anyhow::Result<ProxyReport> {
     let start = Instant::now();
     let (shape, scale) = scaled_shape(surface)?;
     let material = verify_material();
     // A scene per path (a scene belongs to one servo thread); the shape is shared.
     let scene = || scene_of(&shape, material);
     scene()?;
-    let options = ProxyOptions::default();
     let paths = ticks.div_ceil(TICKS_PER_PATH);
     let jobs: Vec<(usize, usize)> = (0..KINDS.len())
         .flat_map(|k| (0..paths).map(move |p| (k, p)))
@@ -177,6 +191,7 @@ pub fn check(surface: &Surface, ticks: usize, seed: u64) -> anyhow::Result<Proxy
         .collect();
     Ok(ProxyReport {
         scale,
+        tool_radius_m: options.tool_radius(),
         rows,
         seconds: start.elapsed().as_secs_f64(),
     })
