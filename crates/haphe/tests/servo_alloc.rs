@@ -142,3 +142,57 @@ fn servo_ticks_allocate_nothing() {
     );
     assert_eq!(info.count_total, 0, "the replay allocated");
 }
+
+/// Two hands on one servo, each with its own proxy, options and clutch, exploring two
+/// objects of which one moves: every tick reads both, ticks both proxies and writes both
+/// forces without allocating.
+#[test]
+fn two_devices_on_one_servo_allocate_nothing() {
+    let blob = shape(Catalog::Blob, 5_000);
+    let plate = shape(Catalog::ThinPlate, 2_000);
+    let plate_pose = Pose::from_translation(DVec3::new(0.3, 0.0, 0.0)).expect("a valid pose");
+    let scene = || {
+        let mut scene = Scene::local(4);
+        for (id, shape, pose) in [(0, &blob, Pose::IDENTITY), (1, &plate, plate_pose)] {
+            let o = SceneObject::new(ObjectId(id), Arc::clone(shape), pose, Material::default());
+            scene.insert(o).expect("room");
+        }
+        scene
+    };
+    let hand = |seed: u64, press: f64| {
+        let path = scripted_path(PathKind::Explore, &scene(), 20.0, seed).expect("a path");
+        SimulatedHand::new(path, HandOptions::default())
+            .press(0, press, press + 0.1)
+            .expect("a valid press")
+    };
+    let options = ServoOptions::default().with_clutch_button(Some(0));
+    let hands = vec![(hand(5, 3.0), options), (hand(6, 7.0), options)];
+    let mut servo = Servo::with_devices(hands, scene()).expect("two hands");
+    servo.set_motions(vec![ObjectMotion {
+        id: ObjectId(1),
+        base: plate_pose,
+        motion: Motion::Oscillating {
+            amplitude: DVec3::new(0.0, 0.0, 0.005),
+            frequency: 1.0,
+        },
+    }]);
+    let mut contact = [0usize; 2];
+    let mut clutched = [0usize; 2];
+    let mut n = 0usize;
+    let info = allocation_counter::measure(|| {
+        servo.run_simulated(10_000, |r| {
+            let d = r.device as usize;
+            contact[d] += usize::from(r.in_contact());
+            clutched[d] += usize::from(r.clutch);
+            n += 1;
+        });
+    });
+    println!("{n} records, contact {contact:?}");
+    assert_eq!(n, 20_000, "one record per device per tick");
+    assert!(contact.iter().all(|&c| c > 1_000), "{contact:?}");
+    assert_eq!(clutched, [100, 100], "each clutch held 0.1 s");
+    assert_eq!(
+        info.count_total, 0,
+        "the servo path of two devices allocated"
+    );
+}

@@ -54,6 +54,9 @@ pub struct TickRecord {
     pub tick: u64,
     /// Scheduled time of the tick, seconds since the loop started.
     pub t: f64,
+    /// The device's index in its servo, in the order given (0 for a servo of one device;
+    /// see [`Servo::with_devices`](crate::servo::Servo::with_devices)).
+    pub device: u32,
     /// The device point (HIP), metres, world frame.
     pub hip: DVec3,
     /// Its velocity, m/s, world frame.

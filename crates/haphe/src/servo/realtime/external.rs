@@ -49,7 +49,12 @@ impl<D: Device + 'static> ServoLoop<D> {
         seconds: Option<f64>,
         options: RealtimeOptions,
     ) -> Result<ServoLoop<D>, ServoError> {
-        let (producer, consumer) = RingBuffer::new(options.record_capacity.max(1));
+        let (producer, consumer) = RingBuffer::new(
+            options
+                .record_capacity
+                .max(1)
+                .saturating_mul(servo.devices()),
+        );
         let stop = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&stop);
         let handle = std::thread::Builder::new()

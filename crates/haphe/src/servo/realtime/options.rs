@@ -33,8 +33,9 @@ pub struct RealtimeOptions {
     /// Spin (instead of sleeping) for this last part before each deadline, seconds.
     /// `None`: [`DEFAULT_SPIN_S`], at most [`DEFAULT_SPIN_FRACTION`] of the period.
     pub(crate) spin_seconds: Option<f64>,
-    /// Capacity of the record ring to the reading thread, ticks; records that find it
-    /// full are dropped and counted.
+    /// Capacity of the record ring to the reading thread, ticks (a servo of several
+    /// devices gets this many records per device); records that find it full are
+    /// dropped and counted.
     pub(crate) record_capacity: usize,
     /// Run a standby thread pinned to this core, which ticks in place of the servo
     /// thread when that one has not started a tick
@@ -98,7 +99,8 @@ impl RealtimeOptions {
         })
     }
 
-    /// The same options with a record ring of `record_capacity` ticks.
+    /// The same options with a record ring of `record_capacity` ticks (of records per
+    /// device).
     pub fn with_record_capacity(self, record_capacity: usize) -> RealtimeOptions {
         RealtimeOptions {
             record_capacity,

@@ -114,7 +114,7 @@ impl<D: Device> Run<D> {
 
     /// Runs tick `k` at the time `offset` since the start, its deadline having been
     /// `deadline`: records lateness, compute time and an overrun (the tick ended after
-    /// the next deadline), hands its record on, notes a fault. Returns when it ended.
+    /// the next deadline), hands its records on (one per device), notes a fault. Returns when it ended.
     /// Shared by haphe's own clock and a device's ([`DeviceClock`]).
     pub(super) fn timed_tick(
         &mut self,
@@ -123,8 +123,16 @@ impl<D: Device> Run<D> {
         period_ns: u64,
     ) -> Instant {
         let began = Instant::now();
-        let record = self.servo.tick_at(offset.as_secs_f64());
+        let records = self.servo.tick_devices(offset.as_secs_f64());
         let done = Instant::now();
+        for &record in records {
+            if self.producer.push(record).is_err() {
+                self.dropped += 1;
+            }
+            if let Some(f) = record.fault {
+                self.stop = Some(StopReason::Fault(f));
+            }
+        }
         let stats = self.servo.stats_mut();
         stats
             .lateness
@@ -136,12 +144,6 @@ impl<D: Device> Run<D> {
             stats.overruns += 1;
         }
         self.k += 1;
-        if self.producer.push(record).is_err() {
-            self.dropped += 1;
-        }
-        if let Some(f) = record.fault {
-            self.stop = Some(StopReason::Fault(f));
-        }
         done
     }
 

@@ -68,7 +68,12 @@ impl<D: Device + 'static> ServoLoop<D> {
         if let Some(core) = options.standby_core {
             check_core(core)?;
         }
-        let (producer, consumer) = RingBuffer::new(options.record_capacity.max(1));
+        let (producer, consumer) = RingBuffer::new(
+            options
+                .record_capacity
+                .max(1)
+                .saturating_mul(servo.devices()),
+        );
         let stop = Arc::new(AtomicBool::new(false));
         let flag = Arc::clone(&stop);
         let handle = std::thread::Builder::new()

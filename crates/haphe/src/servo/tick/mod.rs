@@ -3,6 +3,7 @@
 //! it on a virtual clock.
 
 mod clutch;
+mod hand;
 mod motion;
 mod stats;
 
@@ -13,12 +14,12 @@ use std::time::Instant;
 
 use glam::DVec3;
 
-use crate::proxy::{Proxy, ProxyOptions, TickStatus};
+use crate::proxy::{Proxy, ProxyOptions};
 use crate::query::{Side, classify_point};
 use crate::scene::{ObjectKey, Param, ParamError, Scene};
-use crate::servo::device::{Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
+use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
 use crate::servo::trace::{Phase, TickRecord};
-use clutch::Clutch;
+use hand::Hand;
 
 /// Lowest servo rate accepted, Hz (the table of domains: [`Param::RateHz`]).
 pub const MIN_RATE_HZ: f64 = Param::RateHz.domain().low;
@@ -166,6 +167,20 @@ pub enum ServoError {
     /// The servo thread panicked (the device was sent zero force as it unwound).
     #[error("the servo thread panicked")]
     Panicked,
+    /// One of several devices could not be opened or calibrated (those opened before it
+    /// were closed again, with zero force).
+    #[error("device {device}: {error}")]
+    DeviceAt {
+        /// Its index among the devices, from 0.
+        device: usize,
+        /// Why.
+        #[source]
+        error: DeviceError,
+    },
+    /// A servo was asked to tick no device, or devices at different rates (one servo
+    /// thread ticks every device on the same deadlines).
+    #[error("{0}")]
+    Devices(&'static str),
 }
 
 /// Why a run ended.
@@ -182,7 +197,8 @@ pub enum StopReason {
     Overruns,
 }
 
-/// The servo's tick function over a device and a scene, with its statistics.
+/// The servo's tick function over one device or several and a scene, with its
+/// statistics.
 ///
 /// Each [`tick_at`](Servo::tick_at):
 ///
@@ -198,27 +214,47 @@ pub enum StopReason {
 /// Any device fault writes zero force and stops the servo ([`Phase::Faulted`]); dropping
 /// the servo writes zero force and closes the device.
 ///
+/// # Several devices
+///
+/// [`Servo::with_devices`] makes one servo of several devices in one scene (two hands):
+/// each device has its own [`Proxy`], mapping, clutch, safe start, ramp and force clamp
+/// (its own [`ServoOptions`]), and every tick ([`tick_devices`](Servo::tick_devices))
+/// reads every device, then ticks every proxy against the same scene, then writes every
+/// force, so all of them render the same instant. A fault of any one device writes zero
+/// force to every device and stops them all; [`faulted_device`](Servo::faulted_device)
+/// names it. The records of a tick come one per device, in the order given, each with its
+/// index in [`TickRecord::device`].
+///
 /// # Real-time
 /// `tick_at` allocates nothing, takes no lock and never panics (given a device that keeps
-/// the [`Device`] contract); its work is bounded by the proxy's caps and the number of
-/// objects.
+/// the [`Device`] contract); its work is bounded by the proxy's caps, the number of
+/// objects and the number of devices.
 #[derive(Debug)]
 pub struct Servo<D: Device> {
-    device: D,
-    spec: DeviceSpec,
+    /// At least one.
+    hands: Vec<Hand<D>>,
     scene: Scene,
     motions: Vec<ObjectMotion>,
     /// The moving objects' keys, one per motion: poses are set without a lookup by name.
     motion_keys: Vec<ObjectKey>,
-    proxy: Proxy,
-    options: ServoOptions,
-    /// The mapping in force: the options' until the clutch moves its offset.
-    mapping: DeviceMapping,
-    clutch: Clutch,
-    phase: Phase,
-    ramp_start: f64,
+    /// The records of the last tick, one per device (sized once).
+    records: Vec<TickRecord>,
+    /// The device whose fault stopped the servo.
+    faulted: Option<usize>,
     stats: TickStats,
     closed: bool,
+}
+
+/// Whether the world point `p` is inside a solid object of `scene`.
+pub(super) fn inside_any(scene: &Scene, p: DVec3) -> bool {
+    let objects = scene.objects();
+    scene.near(p, p).indices(objects.len()).any(|i| {
+        let o = &objects[i];
+        let shape = &*o.shape;
+        shape.is_solid()
+            && o.pose.to_world(shape.bound_centre()).distance(p) <= shape.bound_radius()
+            && classify_point(shape.surface(), shape.map(), o.pose.to_object(p)).0 == Side::Inside
+    })
 }
 
 impl<D: Device> Servo<D> {
@@ -226,29 +262,57 @@ impl<D: Device> Servo<D> {
     ///
     /// # Errors
     /// [`ServoError::Device`] when the device cannot be opened or calibrated.
-    pub fn new(mut device: D, scene: Scene, options: ServoOptions) -> Result<Servo<D>, ServoError> {
-        let spec = device.spec();
-        let mut options = options;
-        if spec.max_force.is_finite() && spec.max_force >= 0.0 {
-            options.proxy.max_force = options.proxy.max_force.min(spec.max_force);
+    pub fn new(device: D, scene: Scene, options: ServoOptions) -> Result<Servo<D>, ServoError> {
+        let hand = Hand::open(device, options)?;
+        Ok(Servo::of_hands(vec![hand], scene))
+    }
+
+    /// Opens and calibrates every device, in order, each with its own options (mapping,
+    /// proxy, ramp, clutch), and prepares to render `scene` with all of them on one
+    /// servo: see "Several devices" above. The rate is the devices' common rate.
+    ///
+    /// # Errors
+    /// [`ServoError::Devices`] for no device or devices at different rates (nothing is
+    /// opened then); [`ServoError::DeviceAt`] naming the first device that cannot be
+    /// opened or calibrated (the devices opened before it are closed, with zero force).
+    pub fn with_devices(
+        devices: Vec<(D, ServoOptions)>,
+        scene: Scene,
+    ) -> Result<Servo<D>, ServoError> {
+        let Some(rate) = devices.first().map(|(_, o)| o.rate_hz) else {
+            return Err(ServoError::Devices("a servo needs at least one device"));
+        };
+        if devices.iter().any(|(_, o)| o.rate_hz != rate) {
+            return Err(ServoError::Devices(
+                "the devices of one servo tick at one rate, and their options give several",
+            ));
         }
-        device.open()?;
-        device.calibrate()?;
-        Ok(Servo {
-            device,
-            spec,
+        let mut hands: Vec<Hand<D>> = Vec::with_capacity(devices.len());
+        for (device, (d, options)) in devices.into_iter().enumerate() {
+            match Hand::open(d, options) {
+                Ok(hand) => hands.push(hand),
+                Err(error) => {
+                    for h in &mut hands {
+                        h.close();
+                    }
+                    return Err(ServoError::DeviceAt { device, error });
+                }
+            }
+        }
+        Ok(Servo::of_hands(hands, scene))
+    }
+
+    fn of_hands(hands: Vec<Hand<D>>, scene: Scene) -> Servo<D> {
+        Servo {
+            records: vec![TickRecord::default(); hands.len()],
+            hands,
             scene,
             motions: Vec::new(),
             motion_keys: Vec::new(),
-            proxy: Proxy::new(DVec3::ZERO, options.proxy),
-            mapping: options.mapping,
-            clutch: Clutch::new(options.clutch_button),
-            options,
-            phase: Phase::Holding,
-            ramp_start: 0.0,
+            faulted: None,
             stats: TickStats::new(),
             closed: false,
-        })
+        }
     }
 
     /// Objects that move on their own, by script: their poses are set now, for the time
@@ -262,30 +326,37 @@ impl<D: Device> Servo<D> {
         self.motions = motions;
     }
 
-    /// The mapping in force: [`ServoOptions::mapping`] with its offset moved by every use
-    /// of the clutch ([`ServoOptions::with_clutch_button`]).
-    pub fn mapping(&self) -> &DeviceMapping {
-        &self.mapping
+    /// The first device's.
+    fn first(&self) -> &Hand<D> {
+        &self.hands[0]
     }
 
-    /// The settings in use (with the proxy's maximum force lowered to the device's).
+    /// The mapping in force (of the first device; [`Servo::mapping_of`] for another):
+    /// [`ServoOptions::mapping`] with its offset moved by every use of the clutch
+    /// ([`ServoOptions::with_clutch_button`]).
+    pub fn mapping(&self) -> &DeviceMapping {
+        &self.first().mapping
+    }
+
+    /// The settings in use (of the first device; [`Servo::options_of`] for another),
+    /// with the proxy's maximum force lowered to the device's.
     pub fn options(&self) -> &ServoOptions {
-        &self.options
+        &self.first().options
     }
 
     /// Seconds between ticks.
     pub fn period(&self) -> f64 {
-        1.0 / self.options.rate_hz
+        1.0 / self.first().options.rate_hz
     }
 
-    /// The device's specification.
+    /// The (first) device's specification.
     pub fn spec(&self) -> &DeviceSpec {
-        &self.spec
+        &self.first().spec
     }
 
-    /// The device.
+    /// The (first) device.
     pub fn device(&self) -> &D {
-        &self.device
+        &self.first().device
     }
 
     /// The scene.
@@ -293,17 +364,53 @@ impl<D: Device> Servo<D> {
         &self.scene
     }
 
-    /// The proxy.
+    /// The (first) device's proxy.
     pub fn proxy(&self) -> &Proxy {
-        &self.proxy
+        &self.first().proxy
     }
 
-    /// Where the servo is in its start-up.
+    /// Where the (first) device is in its start-up.
     pub fn phase(&self) -> Phase {
-        self.phase
+        self.first().phase
     }
 
-    /// The statistics so far.
+    /// The number of devices the servo ticks (1 unless made by [`Servo::with_devices`]).
+    pub fn devices(&self) -> usize {
+        self.hands.len()
+    }
+
+    /// Device `i` (in the order given), if there is one.
+    pub fn device_of(&self, i: usize) -> Option<&D> {
+        self.hands.get(i).map(|h| &h.device)
+    }
+
+    /// Device `i`'s proxy.
+    pub fn proxy_of(&self, i: usize) -> Option<&Proxy> {
+        self.hands.get(i).map(|h| &h.proxy)
+    }
+
+    /// Device `i`'s mapping in force (moved by its clutch).
+    pub fn mapping_of(&self, i: usize) -> Option<&DeviceMapping> {
+        self.hands.get(i).map(|h| &h.mapping)
+    }
+
+    /// Device `i`'s settings in use.
+    pub fn options_of(&self, i: usize) -> Option<&ServoOptions> {
+        self.hands.get(i).map(|h| &h.options)
+    }
+
+    /// Device `i`'s specification.
+    pub fn spec_of(&self, i: usize) -> Option<&DeviceSpec> {
+        self.hands.get(i).map(|h| &h.spec)
+    }
+
+    /// The device whose fault stopped the servo (its index), if one did.
+    pub fn faulted_device(&self) -> Option<usize> {
+        self.faulted
+    }
+
+    /// The statistics so far. With several devices, the counters of what a device did
+    /// (`held_ticks`, `contact_ticks`, `clamped_ticks`, ...) add up every device's ticks.
     pub fn stats(&self) -> &TickStats {
         &self.stats
     }
@@ -312,149 +419,75 @@ impl<D: Device> Servo<D> {
         &mut self.stats
     }
 
-    /// Whether the world point `p` is inside a solid object of the scene.
-    fn inside_any(&self, p: DVec3) -> bool {
-        let objects = self.scene.objects();
-        self.scene.near(p, p).indices(objects.len()).any(|i| {
-            let o = &objects[i];
-            let shape = &*o.shape;
-            shape.is_solid()
-                && o.pose.to_world(shape.bound_centre()).distance(p) <= shape.bound_radius()
-                && classify_point(shape.surface(), shape.map(), o.pose.to_object(p)).0
-                    == Side::Inside
-        })
-    }
-
-    /// Writes zero force and marks the servo faulted.
-    fn fault(&mut self, mut record: TickRecord, fault: DeviceFault) -> TickRecord {
-        let _ = self.device.write_force(DVec3::ZERO);
-        self.phase = Phase::Faulted;
-        record.force = DVec3::ZERO;
-        record.phase = Phase::Faulted;
-        record.fault = Some(fault);
-        record
-    }
-
-    /// The force's gain at time `t` after the safe start: rising from 0 to 1 over the
-    /// ramp, then 1 (the phase turns to running when the ramp is done).
-    #[inline]
-    fn ramp_gain(&mut self, t: f64) -> f64 {
-        if self.phase != Phase::Ramping {
-            return 1.0;
+    /// Writes zero force to every device and marks them all faulted, device `device`
+    /// having faulted with `fault`.
+    fn fault(&mut self, device: usize, fault: DeviceFault) {
+        for (h, r) in self.hands.iter_mut().zip(&mut self.records) {
+            h.stop(r);
         }
-        let g = (t - self.ramp_start) / self.options.ramp_seconds;
-        if g >= 1.0 {
-            self.phase = Phase::Running;
+        if let Some(r) = self.records.get_mut(device) {
+            r.fault = Some(fault);
         }
-        g.clamp(0.0, 1.0)
+        self.faulted = Some(device);
     }
 
     /// One servo tick at the scheduled time `t`, seconds since the start (simulated
-    /// devices and scripted motions use it as their clock).
+    /// devices and scripted motions use it as their clock); the record of the (first)
+    /// device. With several devices, [`tick_devices`](Servo::tick_devices) gives them all.
     ///
     /// # Real-time
     /// No allocation, lock or panic; see [`Servo`].
     pub fn tick_at(&mut self, t: f64) -> TickRecord {
-        let mut record = TickRecord {
-            tick: self.stats.ticks,
-            t,
-            hip: DVec3::ZERO,
-            velocity: DVec3::ZERO,
-            proxy: self.proxy.position(),
-            force: DVec3::ZERO,
-            object: None,
-            triangle: None,
-            penetration: 0.0,
-            status: TickStatus::default(),
-            phase: self.phase,
-            fault: None,
-            buttons: Buttons::default(),
-            clutch: false,
-        };
+        self.tick_devices(t)[0]
+    }
+
+    /// One servo tick of every device at the scheduled time `t` (see [`Servo::tick_at`]):
+    /// every device is read, then every proxy ticked, then every force written; the
+    /// records, one per device in order.
+    ///
+    /// # Real-time
+    /// No allocation, lock or panic; see [`Servo`].
+    pub fn tick_devices(&mut self, t: f64) -> &[TickRecord] {
+        let tick = self.stats.ticks;
+        for (i, (h, r)) in self.hands.iter().zip(&mut self.records).enumerate() {
+            *r = h.blank(u32::try_from(i).unwrap_or(u32::MAX), tick, t);
+        }
         self.stats.ticks += 1;
-        if self.phase == Phase::Faulted || self.closed {
-            let _ = self.device.write_force(DVec3::ZERO);
-            return record;
+        if self.faulted.is_some() || self.closed || self.hands[0].phase == Phase::Faulted {
+            for h in &mut self.hands {
+                let _ = h.device.write_force(DVec3::ZERO);
+            }
+            return &self.records;
         }
         self.scene.begin_tick();
         for (m, key) in self.motions.iter().zip(&mut self.motion_keys) {
             self.scene.set_pose_keyed(key, m.pose_at(t));
         }
-        let state = match self.device.read(t) {
-            Ok(s) => s,
-            Err(f) => return self.fault(record, f),
-        };
-        record.buttons = state.buttons;
-        record.clutch = self
-            .clutch
-            .engage(state.buttons, state.position, &mut self.mapping);
-        let mapping = self.mapping;
-        let hip = mapping.position_to_world(state.position);
-        // Held, the tool is at rest.
-        let velocity = if record.clutch {
-            DVec3::ZERO
-        } else {
-            mapping.velocity_to_world(state.velocity)
-        };
-        self.clutch.remember(hip);
-        let fade = self.clutch.gain(self.fade_step());
-        record.hip = hip;
-        record.velocity = velocity;
-        record.proxy = hip;
-
-        if self.phase == Phase::Holding {
-            if hip.is_finite() && velocity.is_finite() && !self.inside_any(hip) {
-                self.proxy.reset(hip);
-                self.ramp_start = t;
-                self.phase = if self.options.ramp_seconds > 0.0 {
-                    Phase::Ramping
-                } else {
-                    Phase::Running
-                };
-            } else {
-                self.stats.held_ticks += 1;
+        for i in 0..self.hands.len() {
+            if let Err(f) = self.hands[i].read(t) {
+                self.fault(i, f);
+                return &self.records;
             }
         }
-        if self.phase != Phase::Holding {
-            let out = self.proxy.tick(&self.scene, hip, velocity);
-            let gain = self.ramp_gain(t);
-            record.phase = self.phase;
-            record.proxy = out.proxy;
-            record.force = out.force * (gain * fade);
-            record.status = out.status;
-            if let Some(c) = out.contact {
-                record.object = Some(c.id);
-                record.triangle = Some(
-                    self.scene
-                        .objects()
-                        .get(c.object)
-                        .map_or(c.triangle.0, |o| {
-                            o.shape.surface().source_triangle(c.triangle)
-                        }),
-                );
-                record.penetration = c.penetration;
-                self.stats.contact_ticks += 1;
+        for (h, r) in self.hands.iter_mut().zip(&mut self.records) {
+            h.render(&self.scene, t, r, &mut self.stats);
+        }
+        for i in 0..self.hands.len() {
+            if let Err(f) = self.hands[i].write(&self.records[i]) {
+                self.fault(i, f);
+                return &self.records;
             }
-            let s = out.status;
-            self.stats.clamped_ticks += u64::from(s.force_clamped);
-            self.stats.rejected_ticks += u64::from(s.input_rejected);
-            self.stats.capped_ticks += u64::from(s.step_cap_hit || s.walk_cap_hit);
         }
-        if let Err(f) = self
-            .device
-            .write_force(mapping.force_to_device(record.force))
-        {
-            return self.fault(record, f);
-        }
-        record
+        &self.records
     }
 
     /// Simulation mode: runs up to `ticks` ticks on a virtual clock (tick `k` at
     /// `k / rate` seconds, as fast as the machine goes), timing each tick's computation,
-    /// and hands every record to `on_tick`. Stops early at a device fault. Repeated calls
+    /// and hands every record to `on_tick` (with several devices, one per device per
+    /// tick, in the devices' order). Stops early at a device fault. Repeated calls
     /// continue the clock.
     ///
-    /// The same device, scene and options give the same records, bit for bit.
+    /// The same devices, scene and options give the same records, bit for bit.
     ///
     /// # Real-time
     /// The loop itself allocates nothing; `on_tick` runs on this thread between ticks.
@@ -469,13 +502,17 @@ impl<D: Device> Servo<D> {
         let mut stop = StopReason::Finished;
         for k in first..first.saturating_add(ticks) {
             let began = Instant::now();
-            let record = self.tick_at(k as f64 * period);
+            self.tick_devices(k as f64 * period);
             let ns = began.elapsed().as_nanos();
             self.stats
                 .compute
                 .record(u64::try_from(ns).unwrap_or(u64::MAX));
-            on_tick(&record);
-            if let Some(f) = record.fault {
+            let mut fault = None;
+            for r in &self.records {
+                on_tick(r);
+                fault = fault.or(r.fault);
+            }
+            if let Some(f) = fault {
                 stop = StopReason::Fault(f);
                 break;
             }
@@ -484,26 +521,21 @@ impl<D: Device> Servo<D> {
         stop
     }
 
-    /// The clutch's fade per tick: the period over the ramp's time (1: at once).
-    fn fade_step(&self) -> f64 {
-        if self.options.ramp_seconds > 0.0 {
-            self.period() / self.options.ramp_seconds
-        } else {
-            1.0
+    /// Writes zero force to every device (ignoring a fault). Called when a run stops.
+    pub fn zero_force(&mut self) {
+        for h in &mut self.hands {
+            let _ = h.device.write_force(DVec3::ZERO);
         }
     }
 
-    /// Writes zero force (ignoring a fault). Called when a run stops.
-    pub fn zero_force(&mut self) {
-        let _ = self.device.write_force(DVec3::ZERO);
-    }
-
-    /// Writes zero force and closes the device; later ticks do nothing but write zero
-    /// force. Also done when the servo is dropped.
+    /// Writes zero force to every device and closes them; later ticks do nothing but
+    /// write zero force. Also done when the servo is dropped.
     pub fn close(&mut self) {
         if !self.closed {
             self.zero_force();
-            self.device.close();
+            for h in &mut self.hands {
+                h.device.close();
+            }
             self.closed = true;
         }
     }
