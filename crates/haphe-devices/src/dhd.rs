@@ -21,6 +21,7 @@ type DeviceId = c_char;
 pub(crate) struct DhdApi {
     get_device_count: unsafe extern "C" fn() -> c_int,
     open: unsafe extern "C" fn() -> c_int,
+    open_id: unsafe extern "C" fn(c_char) -> c_int,
     close: unsafe extern "C" fn(DeviceId) -> c_int,
     get_system_name: unsafe extern "C" fn(DeviceId) -> *const c_char,
     enable_force: unsafe extern "C" fn(c_uchar, DeviceId) -> c_int,
@@ -53,6 +54,7 @@ impl DhdApi {
             Ok(DhdApi {
                 get_device_count: symbol(lib, &l, "dhdGetDeviceCount")?,
                 open: symbol(lib, &l, "dhdOpen")?,
+                open_id: symbol(lib, &l, "dhdOpenID")?,
                 close: symbol(lib, &l, "dhdClose")?,
                 get_system_name: symbol(lib, &l, "dhdGetSystemName")?,
                 enable_force: symbol(lib, &l, "dhdEnableForce")?,
@@ -117,6 +119,8 @@ pub const DHD_WORKSPACE_HALF_M: f64 = 0.05;
 /// atomic: no allocation, no lock (beyond what the SDK does).
 pub struct DhdDevice {
     api: Arc<DhdApi>,
+    /// The index to open (`dhdOpenID`), or none for the first available (`dhdOpen`).
+    index: Option<u8>,
     id: Option<DeviceId>,
     info: Option<DhdInfo>,
     /// The SDK's error code of the last fault on the servo path (0: none).
@@ -124,13 +128,25 @@ pub struct DhdDevice {
 }
 
 impl DhdDevice {
-    /// Loads the SDK (not yet opening a device).
+    /// Loads the SDK (not yet opening a device); the device opened will be the first
+    /// available (`dhdOpen`).
     ///
     /// # Errors
     /// A [`LoadError`] naming `libdhd.so`, `HAPHE_DHD_LIBRARY` and the SDK.
     pub fn load() -> Result<DhdDevice, LoadError> {
+        DhdDevice::load_at(None)
+    }
+
+    /// Loads the SDK (not yet opening a device); the device opened will be the one at
+    /// `index` among those connected (`dhdOpenID`, 0 the first), or with `None` the first
+    /// available (`dhdOpen`). Several devices at once: one `DhdDevice` per index.
+    ///
+    /// # Errors
+    /// A [`LoadError`] naming `libdhd.so`, `HAPHE_DHD_LIBRARY` and the SDK.
+    pub fn load_at(index: Option<u8>) -> Result<DhdDevice, LoadError> {
         Ok(DhdDevice {
             api: Arc::new(DhdApi::load()?),
+            index,
             id: None,
             info: None,
             fault_code: Arc::new(AtomicI32::new(0)),
@@ -199,12 +215,27 @@ impl Device for DhdDevice {
                     .into(),
             ));
         }
-        // SAFETY: no arguments; returns the new device's ID or -1.
-        let id = unsafe { (api.open)() };
+        let (id, call) = match self.index {
+            // SAFETY: no arguments; returns the new device's ID or -1.
+            None => (unsafe { (api.open)() }, "dhdOpen".to_string()),
+            Some(i) if usize::from(i) >= count => {
+                return Err(DeviceError::Open(format!(
+                    "no Force Dimension device at index {i} (dhd:{i}): {count} connected, \
+                     dhd:0 to dhd:{}",
+                    count - 1
+                )));
+            }
+            Some(i) => {
+                let index = c_char::try_from(i).unwrap_or(c_char::MAX);
+                // SAFETY: a plain char index below the device count; returns the new
+                // device's ID or -1.
+                (unsafe { (api.open_id)(index) }, format!("dhdOpenID({i})"))
+            }
+        };
         let id = DeviceId::try_from(id)
             .ok()
             .filter(|i| *i >= 0)
-            .ok_or_else(|| DeviceError::Open(format!("dhdOpen failed: {}", api.last_error())))?;
+            .ok_or_else(|| DeviceError::Open(format!("{call} failed: {}", api.last_error())))?;
         // SAFETY: `id` was returned by dhdOpen; the result is null or a C string, copied.
         let name = c_text(unsafe { (api.get_system_name)(id) }).unwrap_or_else(|| "unknown".into());
         // SAFETY: `id` is open.

@@ -12,8 +12,9 @@
 //! `HAPHE_DHD_LIBRARY` / `HAPHE_HD_LIBRARY` or else from the system's library search
 //! path, and every symbol is resolved once when the library is loaded: haphe builds,
 //! installs and tests on machines without the SDKs. [`open_device`] turns a device
-//! specification (`dhd`, `openhaptics`, `udp:HOST:PORT`, `hand`) into an opened device,
-//! for every front end.
+//! specification (`dhd`, `dhd:N`, `openhaptics`, `openhaptics:NAME`, `udp:HOST:PORT`,
+//! `hand`) into an opened device, for every front end; [`open_devices`] opens several
+//! for one servo (two hands), refusing a device named twice before any is opened.
 //!
 //! # Frames and units
 //! SI units. The device frame of every device here is Force Dimension's: x towards the
@@ -39,5 +40,8 @@ pub use library::{DHD_LIBRARY, HD_LIBRARY, LoadError, VendorLibrary};
 pub use list::{Found, list_devices};
 pub use mapping::workspace_mapping;
 pub use openhaptics::{HD_STALL_TIMEOUT_S, HdClock, HdDevice, HdInfo};
-pub use spec::{DEFAULT_OVERRUN_BUDGET, DeviceKind, OpenedDevice, SpecError, open_device};
+pub use spec::{
+    DEFAULT_OVERRUN_BUDGET, DeviceKind, MAX_DHD_INDEX, OpenedDevice, SpecError, open_device,
+    open_devices, parse_devices,
+};
 pub use udp::{UDP_FIRST_TIMEOUT_S, UDP_TIMEOUT_S, UdpCounters, UdpDevice, UdpOptions};

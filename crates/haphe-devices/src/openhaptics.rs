@@ -8,7 +8,7 @@
 //! `p_haphe = (z, x, y)_HD / 1000` and `f_HD = (f.y, f.z, f.x)`.
 
 use std::cell::UnsafeCell;
-use std::ffi::{c_char, c_double, c_int, c_uint, c_ulong, c_ushort, c_void};
+use std::ffi::{CString, c_char, c_double, c_int, c_uint, c_ulong, c_ushort, c_void};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -180,6 +180,8 @@ fn force_to_hd(f: DVec3) -> [f64; 3] {
 /// A few C calls per tick and an atomic store on a fault: no allocation, no lock.
 pub struct HdDevice {
     api: Arc<HdApi>,
+    /// The configured name to open (`hdInitDevice`), or none for the default device.
+    name: Option<CString>,
     handle: Option<Hhd>,
     info: Option<HdInfo>,
     in_frame: bool,
@@ -187,13 +189,27 @@ pub struct HdDevice {
 }
 
 impl HdDevice {
-    /// Loads the HD API (not yet opening a device).
+    /// Loads the HD API (not yet opening a device); the device opened will be the
+    /// default one (`HD_DEFAULT_DEVICE`).
     ///
     /// # Errors
     /// A [`LoadError`] naming `libHD.so`, `HAPHE_HD_LIBRARY` and the SDK.
     pub fn load() -> Result<HdDevice, LoadError> {
+        HdDevice::load_named(None)
+    }
+
+    /// Loads the HD API (not yet opening a device); the device opened will be the one
+    /// configured under `name` (in Touch Setup; `None`: the default device). Several
+    /// devices at once: one `HdDevice` per name, all ticked in the one HD scheduler's
+    /// callback (run the servo with any one's [`HdClock`]). A name with a NUL byte
+    /// names no device, and opening it fails.
+    ///
+    /// # Errors
+    /// A [`LoadError`] naming `libHD.so`, `HAPHE_HD_LIBRARY` and the SDK.
+    pub fn load_named(name: Option<&str>) -> Result<HdDevice, LoadError> {
         Ok(HdDevice {
             api: Arc::new(HdApi::load()?),
+            name: name.map(|n| CString::new(n).unwrap_or_default()),
             handle: None,
             info: None,
             in_frame: false,
@@ -269,13 +285,22 @@ impl Device for HdDevice {
             return Ok(());
         }
         let api = Arc::clone(&self.api);
-        // SAFETY: a null name is HD_DEFAULT_DEVICE.
-        let h = unsafe { (api.init_device)(std::ptr::null()) };
+        let (name, shown) = match &self.name {
+            Some(n) => (n.as_ptr(), format!("{:?}", n.to_string_lossy())),
+            None => (std::ptr::null(), "HD_DEFAULT_DEVICE".to_string()),
+        };
+        // SAFETY: a null name is HD_DEFAULT_DEVICE; otherwise a C string kept in `self`.
+        let h = unsafe { (api.init_device)(name) };
         let e = api.error();
         if h == HD_INVALID_HANDLE || e.error_code != 0 {
+            let configured = if self.name.is_some() {
+                "is a Touch configured under that name (Touch_Setup)"
+            } else {
+                "is the Touch configured (Touch_Setup)"
+            };
             return Err(DeviceError::Open(format!(
-                "hdInitDevice(HD_DEFAULT_DEVICE) failed: {}; is the Touch configured \
-                 (Touch_Setup) and its driver running? (docs/devices.md)",
+                "hdInitDevice({shown}) failed: {}; {configured} and its driver running? \
+                 (docs/devices.md)",
                 api.error_text(e.error_code)
             )));
         }
@@ -333,9 +358,11 @@ impl Device for HdDevice {
             return Err(DeviceFault::NotOpen);
         };
         let mut buttons: c_int = 0;
-        // SAFETY: `h` is open; a frame is begun (ended in write_force); position and
-        // velocity are three doubles, buttons one int.
+        // SAFETY: `h` is open and made current (another device may have been since its
+        // last frame); a frame is begun (ended in write_force); position and velocity are
+        // three doubles, buttons one int.
         let (p, v) = unsafe {
+            (self.api.make_current_device)(h);
             (self.api.begin_frame)(h);
             self.in_frame = true;
             let p: [f64; 3] = self.api.doubles(HD_CURRENT_POSITION);
@@ -362,12 +389,15 @@ impl Device for HdDevice {
         } else {
             DVec3::ZERO
         });
+        // SAFETY: `h` is open: made current, since another device's frame may have been
+        // begun after this one's (several devices tick in one callback).
+        unsafe { (self.api.make_current_device)(h) };
         if !self.in_frame {
             // SAFETY: `h` is open; the frame is ended below.
             unsafe { (self.api.begin_frame)(h) };
             self.in_frame = true;
         }
-        // SAFETY: `h` is open and in a frame; the force is three doubles.
+        // SAFETY: `h` is open, current and in a frame; the force is three doubles.
         unsafe { (self.api.set_doublev)(HD_CURRENT_FORCE, f.as_ptr()) };
         self.end_frame(h);
         match self.check() {
@@ -379,9 +409,10 @@ impl Device for HdDevice {
     fn close(&mut self) {
         if let Some(h) = self.handle.take() {
             let zero = [0.0f64; 3];
-            // SAFETY: `h` is open: zero force in a frame, force output off, then the
-            // device disabled once.
+            // SAFETY: `h` is open: made current, zero force in a frame, force output off,
+            // then the device disabled once.
             unsafe {
+                (self.api.make_current_device)(h);
                 if !self.in_frame {
                     (self.api.begin_frame)(h);
                 }

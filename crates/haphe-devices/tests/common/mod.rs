@@ -99,6 +99,39 @@ impl Standin {
         // SAFETY: no arguments.
         unsafe { f() }
     }
+
+    /// Device `i`'s path (of a stand-in with several devices).
+    pub fn set_path_of(&self, i: i32, samples: &[[f64; 6]]) {
+        let f: unsafe extern "C" fn(i32, *const f64, i32) -> i32 = self.f("standin_set_path_of");
+        let n = i32::try_from(samples.len()).expect("fits");
+        // SAFETY: the pointer is to `samples.len()` arrays of six doubles.
+        let held = unsafe { f(i, samples.as_ptr().cast(), n) };
+        assert_eq!(held, n, "the stand-in holds every sample");
+    }
+
+    pub fn fail_from_of(&self, i: i32, call: i32) {
+        let f: unsafe extern "C" fn(i32, i32) = self.f("standin_fail_from_of");
+        // SAFETY: plain int arguments.
+        unsafe { f(i, call) }
+    }
+
+    /// Every force written to device `i`, in the stand-in's frame.
+    pub fn forces_of(&self, i: i32) -> Vec<[f64; 3]> {
+        let f: unsafe extern "C" fn(i32, *mut f64, i32) -> i32 = self.f("standin_forces_of");
+        // SAFETY: a null buffer of size 0 only asks for the count.
+        let n = unsafe { f(i, std::ptr::null_mut(), 0) };
+        let mut out = vec![[0.0f64; 3]; n as usize];
+        // SAFETY: the buffer holds `n` arrays of three doubles.
+        unsafe { f(i, out.as_mut_ptr().cast(), n) };
+        out
+    }
+
+    /// The flag `name` (`standin_opened_of`, ...) of device `i`.
+    pub fn flag_of(&self, name: &str, i: i32) -> i32 {
+        let f: unsafe extern "C" fn(i32) -> i32 = self.f(name);
+        // SAFETY: a plain int argument.
+        unsafe { f(i) }
+    }
 }
 
 pub fn scene() -> Scene {
@@ -108,8 +141,14 @@ pub fn scene() -> Scene {
 /// The scripted device pressing into the sphere and releasing, `ticks` ticks at 1 kHz:
 /// its records (device point, velocity, force).
 pub fn reference(ticks: u64) -> Vec<TickRecord> {
+    reference_of(PathKind::Press, ticks)
+}
+
+/// The scripted device on the path `kind` over the sphere, `ticks` ticks at 1 kHz: its
+/// records (device point, velocity, force).
+pub fn reference_of(kind: PathKind, ticks: u64) -> Vec<TickRecord> {
     let scene = scene();
-    let path = scripted_path(PathKind::Press, &scene, ticks as f64 / 1000.0, 1).expect("a path");
+    let path = scripted_path(kind, &scene, ticks as f64 / 1000.0, 1).expect("a path");
     let mut servo =
         Servo::new(ScriptedDevice::new(path), scene, ServoOptions::default()).expect("servo");
     let mut records = Vec::new();

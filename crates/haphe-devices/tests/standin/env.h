@@ -6,7 +6,9 @@
  *   standin_env_path returns -1 without the variable);
  * - HAPHE_STANDIN_FORCES names a file that receives, when the device is closed, one line:
  *   the number of forces written, the last force (three numbers), whether force output
- *   was still enabled (1 or 0) and the largest force magnitude written. */
+ *   was still enabled (1 or 0) and the largest force magnitude written.
+ * Those are device 0's; device i > 0 of a stand-in with several reads and writes the files
+ * of HAPHE_STANDIN_PATH_i and HAPHE_STANDIN_FORCES_i (and its buttons are none). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,8 +31,16 @@ static unsigned int standin_buttons_at(int sample) {
   return sample >= 0 && sample < n_button_masks ? button_masks[sample] : 0u;
 }
 
-static int standin_env_path(double (*samples)[6], int max) {
-  const char *name = getenv("HAPHE_STANDIN_PATH");
+/* The variable `base` of device `device`: `base` itself for device 0, else `base_i`. */
+static const char *standin_env(const char *base, int device) {
+  char variable[64];
+  if (device == 0) return getenv(base);
+  snprintf(variable, sizeof variable, "%s_%d", base, device);
+  return getenv(variable);
+}
+
+static int standin_env_path(int device, double (*samples)[6], int max) {
+  const char *name = standin_env("HAPHE_STANDIN_PATH", device);
   FILE *f = name ? fopen(name, "r") : NULL;
   int n = 0;
   if (!name) return -1;
@@ -41,16 +51,16 @@ static int standin_env_path(double (*samples)[6], int max) {
     int got = sscanf(line, "%lf %lf %lf %lf %lf %lf %u", &samples[n][0], &samples[n][1],
                      &samples[n][2], &samples[n][3], &samples[n][4], &samples[n][5], &mask);
     if (got < 6) break;
-    if (n < STANDIN_BUTTONS_MAX) button_masks[n] = got == 7 ? mask : 0u;
+    if (device == 0 && n < STANDIN_BUTTONS_MAX) button_masks[n] = got == 7 ? mask : 0u;
     n++;
   }
-  n_button_masks = n < STANDIN_BUTTONS_MAX ? n : STANDIN_BUTTONS_MAX;
+  if (device == 0) n_button_masks = n < STANDIN_BUTTONS_MAX ? n : STANDIN_BUTTONS_MAX;
   fclose(f);
   return n;
 }
 
-static void standin_env_report(double (*forces)[3], int n, int max, int enabled) {
-  const char *name = getenv("HAPHE_STANDIN_FORCES");
+static void standin_env_report(int device, double (*forces)[3], int n, int max, int enabled) {
+  const char *name = standin_env("HAPHE_STANDIN_FORCES", device);
   FILE *f = name ? fopen(name, "w") : NULL;
   int last = (n < max ? n : max) - 1;
   double largest = 0.0;

@@ -1,8 +1,12 @@
 /* A stand-in for OpenHaptics' libHD.so, for haphe's tests: the HD API functions haphe
- * calls, with the headers' C signatures and constants, over a simulated mechanism whose
- * end point follows a scripted trajectory (millimetres, the HD frame; one sample per
- * frame), recording every force written, with a scheduler thread that runs the
- * asynchronous callbacks every period. Test-only symbols (standin_*) script it. */
+ * calls, with the headers' C signatures and constants, over simulated mechanisms (up to
+ * STANDIN_DEVICES, each with its own state, configured under the names "Left", "Right",
+ * "Third" and "Fourth"; the default device is the first) whose end points follow scripted
+ * trajectories (millimetres, the HD frame; one sample per frame), recording every force
+ * written, with a scheduler thread that runs the asynchronous callbacks every period.
+ * As in the HD API, the calls that get and set values act on the current device (the one
+ * last initialised, made current or whose frame was begun). Test-only symbols (standin_*)
+ * script them: those without _of act on device 0. */
 #include <pthread.h>
 #include <sched.h>
 #include <stdlib.h>
@@ -20,6 +24,8 @@ typedef HDCallbackCode (*HDSchedulerCallback)(void *);
 typedef struct { HDerror errorCode; int internalErrorCode; HHD hHD; } HDErrorInfo;
 
 #define HD_INVALID_HANDLE 0xFFFFFFFFu
+#define HD_DEVICE_FAULT 0x0101
+#define HD_DEVICE_ALREADY_INITIATED 0x0102
 #define HD_COMM_ERROR 0x0302
 #define HD_ILLEGAL_BEGIN 0x0400
 #define HD_CURRENT_BUTTONS 0x2000
@@ -35,18 +41,25 @@ typedef struct { HDerror errorCode; int internalErrorCode; HHD hHD; } HDErrorInf
 #define HD_CALLBACK_DONE 0
 
 #define STANDIN_MAX 400000
+#define STANDIN_DEVICES 4
 
-static double samples[STANDIN_MAX][6]; /* position mm, velocity mm/s, HD frame */
-static int n_samples = 0;
-static int current = -1;
-static double forces[STANDIN_MAX][3];
-static int n_forces = 0;
-static int fail_from = -1;
-static int frames = 0;
-static int in_frame = 0;
+struct standin_device {
+  double samples[STANDIN_MAX][6]; /* position mm, velocity mm/s, HD frame */
+  int n_samples;
+  int current;
+  double forces[STANDIN_MAX][3];
+  int n_forces;
+  int fail_from;
+  int frames;
+  int in_frame;
+  int initialised;
+  int force_output;
+};
+
+static const char *names[STANDIN_DEVICES] = {"Left", "Right", "Third", "Fourth"};
+static struct standin_device dev[STANDIN_DEVICES];
 static int present = 1;
-static int initialised = 0;
-static int force_output = 0;
+static int current_device = -1;
 static HDerror pending = 0;
 static long period_ns = 1000000;
 
@@ -56,61 +69,97 @@ static volatile int running = 0;
 static pthread_t scheduler;
 static int scheduler_started = 0;
 
-void standin_reset(int device_present) {
-  n_samples = 0; current = -1; n_forces = 0; fail_from = -1; frames = 0; in_frame = 0;
-  present = device_present; initialised = 0; force_output = 0; pending = 0; period_ns = 1000000;
+void standin_reset(int devices_present) {
+  for (int i = 0; i < STANDIN_DEVICES; i++) {
+    struct standin_device *d = &dev[i];
+    d->n_samples = 0; d->current = -1; d->n_forces = 0; d->fail_from = -1; d->frames = 0;
+    d->in_frame = 0; d->initialised = 0; d->force_output = 0;
+  }
+  present = devices_present < STANDIN_DEVICES ? devices_present : STANDIN_DEVICES;
+  current_device = -1; pending = 0; period_ns = 1000000;
   callback = NULL; callback_data = NULL; n_button_masks = 0;
 }
-int standin_set_path(const double *pv, int n) {
+static struct standin_device *of(int i) { return i >= 0 && i < STANDIN_DEVICES ? &dev[i] : NULL; }
+int standin_set_path_of(int i, const double *pv, int n) {
+  struct standin_device *d = of(i);
+  if (!d) return 0;
   if (n > STANDIN_MAX) n = STANDIN_MAX;
-  memcpy(samples, pv, sizeof(double) * 6 * (size_t)n);
-  n_samples = n;
+  memcpy(d->samples, pv, sizeof(double) * 6 * (size_t)n);
+  d->n_samples = n;
   return n;
 }
-void standin_fail_from(int frame) { fail_from = frame; }
+int standin_set_path(const double *pv, int n) { return standin_set_path_of(0, pv, n); }
+void standin_fail_from_of(int i, int frame) { if (of(i)) dev[i].fail_from = frame; }
+void standin_fail_from(int frame) { standin_fail_from_of(0, frame); }
 void standin_set_period_ns(long ns) { period_ns = ns; }
-int standin_forces(double *out, int max) {
-  int n = n_forces < max ? n_forces : max;
-  memcpy(out, forces, sizeof(double) * 3 * (size_t)n);
-  return n_forces;
+int standin_forces_of(int i, double *out, int max) {
+  struct standin_device *d = of(i);
+  if (!d) return 0;
+  int n = d->n_forces < max ? d->n_forces : max;
+  memcpy(out, d->forces, sizeof(double) * 3 * (size_t)n);
+  return d->n_forces;
 }
-int standin_force_output(void) { return force_output; }
+int standin_forces(double *out, int max) { return standin_forces_of(0, out, max); }
+int standin_force_output_of(int i) { return of(i) ? dev[i].force_output : 0; }
+int standin_force_output(void) { return standin_force_output_of(0); }
 
 static void error(HDerror e) { if (!pending) pending = e; }
+/* The device of handle h (handles are the index + 1), if it is initialised. */
+static struct standin_device *handle(HHD h) {
+  struct standin_device *d = h >= 1 && h <= STANDIN_DEVICES ? &dev[h - 1] : NULL;
+  return d && d->initialised ? d : NULL;
+}
+static struct standin_device *current(void) {
+  struct standin_device *d = of(current_device);
+  return d && d->initialised ? d : NULL;
+}
 
 HHD hdInitDevice(const char *name) {
-  (void)name;
-  if (!present) { error(HD_COMM_ERROR); return HD_INVALID_HANDLE; }
-  initialised = 1;
-  int n = standin_env_path(samples, STANDIN_MAX);
-  if (n >= 0) { n_samples = n; current = -1; n_forces = 0; frames = 0; }
-  return 1;
+  int i = 0;
+  if (name) {
+    for (i = 0; i < STANDIN_DEVICES && strcmp(names[i], name) != 0; i++) {}
+  }
+  if (i >= present) { error(HD_DEVICE_FAULT); return HD_INVALID_HANDLE; }
+  struct standin_device *d = &dev[i];
+  if (d->initialised) { error(HD_DEVICE_ALREADY_INITIATED); return HD_INVALID_HANDLE; }
+  d->initialised = 1;
+  current_device = i;
+  int n = standin_env_path(i, d->samples, STANDIN_MAX);
+  if (n >= 0) { d->n_samples = n; d->current = -1; d->n_forces = 0; d->frames = 0; }
+  return (HHD)(i + 1);
 }
 void hdDisableDevice(HHD h) {
-  (void)h;
-  standin_env_report(forces, n_forces, STANDIN_MAX, force_output);
-  initialised = 0;
+  struct standin_device *d = handle(h);
+  if (!d) { error(HD_DEVICE_FAULT); return; }
+  standin_env_report((int)h - 1, d->forces, d->n_forces, STANDIN_MAX, d->force_output);
+  d->initialised = 0;
 }
-void hdMakeCurrentDevice(HHD h) { (void)h; }
+void hdMakeCurrentDevice(HHD h) {
+  if (!handle(h)) { error(HD_DEVICE_FAULT); return; }
+  current_device = (int)h - 1;
+}
 void hdBeginFrame(HHD h) {
-  (void)h;
-  if (in_frame) { error(HD_ILLEGAL_BEGIN); return; }
-  in_frame = 1;
-  if (fail_from >= 0 && frames >= fail_from) { error(HD_COMM_ERROR); return; }
-  frames++;
-  if (current + 1 < n_samples) current++;
+  struct standin_device *d = handle(h);
+  if (!d) { error(HD_DEVICE_FAULT); return; }
+  current_device = (int)h - 1;
+  if (d->in_frame) { error(HD_ILLEGAL_BEGIN); return; }
+  d->in_frame = 1;
+  if (d->fail_from >= 0 && d->frames >= d->fail_from) { error(HD_COMM_ERROR); return; }
+  d->frames++;
+  if (d->current + 1 < d->n_samples) d->current++;
 }
-void hdEndFrame(HHD h) { (void)h; in_frame = 0; }
-void hdEnable(HDenum cap) { if (cap == HD_FORCE_OUTPUT) force_output = 1; }
-void hdDisable(HDenum cap) { if (cap == HD_FORCE_OUTPUT) force_output = 0; }
+void hdEndFrame(HHD h) { struct standin_device *d = handle(h); if (d) d->in_frame = 0; }
+void hdEnable(HDenum cap) { struct standin_device *d = current(); if (d && cap == HD_FORCE_OUTPUT) d->force_output = 1; }
+void hdDisable(HDenum cap) { struct standin_device *d = current(); if (d && cap == HD_FORCE_OUTPUT) d->force_output = 0; }
 void hdGetDoublev(HDenum what, double *v) {
   static const double workspace[6] = {-80.0, -60.0, -35.0, 80.0, 60.0, 35.0};
+  struct standin_device *d = current();
   switch (what) {
   case HD_CURRENT_POSITION:
   case HD_CURRENT_VELOCITY: {
     int o = what == HD_CURRENT_POSITION ? 0 : 3;
-    if (current < 0) { v[0] = v[1] = v[2] = 0.0; if (o == 0) v[1] = 1000.0; return; }
-    v[0] = samples[current][o]; v[1] = samples[current][o + 1]; v[2] = samples[current][o + 2];
+    if (!d || d->current < 0) { v[0] = v[1] = v[2] = 0.0; if (o == 0) v[1] = 1000.0; return; }
+    v[0] = d->samples[d->current][o]; v[1] = d->samples[d->current][o + 1]; v[2] = d->samples[d->current][o + 2];
     return;
   }
   case HD_USABLE_WORKSPACE_DIMENSIONS: memcpy(v, workspace, sizeof workspace); return;
@@ -120,25 +169,33 @@ void hdGetDoublev(HDenum what, double *v) {
   }
 }
 void hdGetIntegerv(HDenum what, int *v) {
+  struct standin_device *d = current();
   if (what == HD_UPDATE_RATE) *v = 1000;
-  else if (what == HD_CURRENT_BUTTONS) *v = (int)standin_buttons_at(current);
+  /* The scripted buttons are device 0's. */
+  else if (what == HD_CURRENT_BUTTONS) *v = d == &dev[0] ? (int)standin_buttons_at(d->current) : 0;
   else *v = 0;
 }
 void hdSetDoublev(HDenum what, const double *v) {
-  if (what != HD_CURRENT_FORCE) return;
-  if (n_forces < STANDIN_MAX) {
-    forces[n_forces][0] = v[0]; forces[n_forces][1] = v[1]; forces[n_forces][2] = v[2];
-    n_forces++;
+  struct standin_device *d = current();
+  if (what != HD_CURRENT_FORCE || !d) return;
+  if (d->n_forces < STANDIN_MAX) {
+    d->forces[d->n_forces][0] = v[0]; d->forces[d->n_forces][1] = v[1]; d->forces[d->n_forces][2] = v[2];
+    d->n_forces++;
   }
 }
-const char *hdGetString(HDenum what) { return what == HD_DEVICE_MODEL_TYPE ? "stand-in Touch" : ""; }
+const char *hdGetString(HDenum what) {
+  static const char *models[STANDIN_DEVICES] = {"stand-in Touch", "stand-in Touch X", "stand-in Touch", "stand-in Touch"};
+  return what == HD_DEVICE_MODEL_TYPE && current() ? models[current_device] : "";
+}
 HDErrorInfo hdGetError(void) {
-  HDErrorInfo e = {pending, 0, 1};
+  HDErrorInfo e = {pending, 0, (HHD)(current_device + 1)};
   pending = 0;
   return e;
 }
 const char *hdGetErrorString(HDerror e) {
-  return e == HD_COMM_ERROR ? "Communication error" : e == HD_ILLEGAL_BEGIN ? "Illegal begin" : "Unknown error";
+  return e == HD_COMM_ERROR ? "Communication error" : e == HD_ILLEGAL_BEGIN ? "Illegal begin"
+       : e == HD_DEVICE_FAULT ? "Device fault" : e == HD_DEVICE_ALREADY_INITIATED ? "Device already initiated"
+       : "Unknown error";
 }
 
 static void *scheduler_main(void *unused) {
