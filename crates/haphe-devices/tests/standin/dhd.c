@@ -30,6 +30,11 @@ struct standin_device {
 static struct standin_device dev[STANDIN_DEVICES];
 static int devices = 1;
 static int last_error = 0;
+/* Whether the state was set up: by standin_reset, or with one device at the first call
+ * (a process that runs haphe scripts it through the environment only). */
+static int ready = 0;
+void standin_reset(int device_count);
+static void init(void) { if (!ready) standin_reset(1); }
 
 static void reset_device(struct standin_device *d) {
   d->n_samples = 0; d->current = -1; d->n_forces = 0; d->fail_from = -1; d->opened = 0;
@@ -39,9 +44,9 @@ static void reset_device(struct standin_device *d) {
 void standin_reset(int device_count) {
   for (int i = 0; i < STANDIN_DEVICES; i++) reset_device(&dev[i]);
   devices = device_count < STANDIN_DEVICES ? device_count : STANDIN_DEVICES;
-  last_error = 0; n_button_masks = 0;
+  last_error = 0; n_button_masks = 0; ready = 1;
 }
-static struct standin_device *of(int i) { return i >= 0 && i < STANDIN_DEVICES ? &dev[i] : NULL; }
+static struct standin_device *of(int i) { init(); return i >= 0 && i < STANDIN_DEVICES ? &dev[i] : NULL; }
 int standin_set_path_of(int i, const double *pv, int n) {
   struct standin_device *d = of(i);
   if (!d) return 0;
@@ -66,9 +71,10 @@ int standin_force_enabled(void) { return standin_force_enabled_of(0); }
 int standin_opened_of(int i) { return of(i) ? dev[i].opened : 0; }
 int standin_opened(void) { return standin_opened_of(0); }
 
-int dhdGetDeviceCount(void) { return devices; }
+int dhdGetDeviceCount(void) { init(); return devices; }
 int dhdOpenID(char index) {
   int i = (int)index;
+  init();
   if (i < 0 || i >= devices) { last_error = DHD_ERROR_INVALID_INDEX; return -1; }
   struct standin_device *d = &dev[i];
   if (d->opened) { last_error = DHD_ERROR_COM; return -1; }
@@ -78,6 +84,7 @@ int dhdOpenID(char index) {
   return i;
 }
 int dhdOpen(void) {
+  init();
   for (int i = 0; i < devices; i++)
     if (!dev[i].opened) return dhdOpenID((char)i);
   last_error = DHD_ERROR_COM;

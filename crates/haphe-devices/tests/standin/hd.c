@@ -68,6 +68,11 @@ static void *callback_data = NULL;
 static volatile int running = 0;
 static pthread_t scheduler;
 static int scheduler_started = 0;
+/* Whether the state was set up: by standin_reset, or with one device at the first call
+ * (a process that runs haphe scripts it through the environment only). */
+static int ready = 0;
+void standin_reset(int devices_present);
+static void init(void) { if (!ready) standin_reset(1); }
 
 void standin_reset(int devices_present) {
   for (int i = 0; i < STANDIN_DEVICES; i++) {
@@ -77,9 +82,9 @@ void standin_reset(int devices_present) {
   }
   present = devices_present < STANDIN_DEVICES ? devices_present : STANDIN_DEVICES;
   current_device = -1; pending = 0; period_ns = 1000000;
-  callback = NULL; callback_data = NULL; n_button_masks = 0;
+  callback = NULL; callback_data = NULL; n_button_masks = 0; ready = 1;
 }
-static struct standin_device *of(int i) { return i >= 0 && i < STANDIN_DEVICES ? &dev[i] : NULL; }
+static struct standin_device *of(int i) { init(); return i >= 0 && i < STANDIN_DEVICES ? &dev[i] : NULL; }
 int standin_set_path_of(int i, const double *pv, int n) {
   struct standin_device *d = of(i);
   if (!d) return 0;
@@ -91,7 +96,7 @@ int standin_set_path_of(int i, const double *pv, int n) {
 int standin_set_path(const double *pv, int n) { return standin_set_path_of(0, pv, n); }
 void standin_fail_from_of(int i, int frame) { if (of(i)) dev[i].fail_from = frame; }
 void standin_fail_from(int frame) { standin_fail_from_of(0, frame); }
-void standin_set_period_ns(long ns) { period_ns = ns; }
+void standin_set_period_ns(long ns) { init(); period_ns = ns; }
 int standin_forces_of(int i, double *out, int max) {
   struct standin_device *d = of(i);
   if (!d) return 0;
@@ -106,6 +111,7 @@ int standin_force_output(void) { return standin_force_output_of(0); }
 static void error(HDerror e) { if (!pending) pending = e; }
 /* The device of handle h (handles are the index + 1), if it is initialised. */
 static struct standin_device *handle(HHD h) {
+  init();
   struct standin_device *d = h >= 1 && h <= STANDIN_DEVICES ? &dev[h - 1] : NULL;
   return d && d->initialised ? d : NULL;
 }
@@ -116,6 +122,7 @@ static struct standin_device *current(void) {
 
 HHD hdInitDevice(const char *name) {
   int i = 0;
+  init();
   if (name) {
     for (i = 0; i < STANDIN_DEVICES && strcmp(names[i], name) != 0; i++) {}
   }

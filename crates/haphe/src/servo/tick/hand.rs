@@ -5,9 +5,10 @@
 use glam::DVec3;
 
 use super::clutch::Clutch;
+use super::options::ServoOptions;
 use super::stats::TickStats;
-use super::{ServoOptions, inside_any};
 use crate::proxy::{Proxy, TickStatus};
+use crate::query::{Side, classify_point};
 use crate::scene::Scene;
 use crate::servo::device::{
     Buttons, Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec, DeviceState,
@@ -204,4 +205,16 @@ impl<D: Device> Hand<D> {
         let _ = self.device.write_force(DVec3::ZERO);
         self.device.close();
     }
+}
+
+/// Whether the world point `p` is inside a solid object of `scene`.
+fn inside_any(scene: &Scene, p: DVec3) -> bool {
+    let objects = scene.objects();
+    scene.near(p, p).indices(objects.len()).any(|i| {
+        let o = &objects[i];
+        let shape = &*o.shape;
+        shape.is_solid()
+            && o.pose.to_world(shape.bound_centre()).distance(p) <= shape.bound_radius()
+            && classify_point(shape.surface(), shape.map(), o.pose.to_object(p)).0 == Side::Inside
+    })
 }
