@@ -5,7 +5,8 @@ use crate::proxy::ProxyOptions;
 use crate::scene::{Param, ParamError};
 use crate::servo::device::DeviceMapping;
 
-/// Settings of a [`Servo`](super::Servo) (of each of its devices), every value within its domain (see [`Param`]).
+/// Settings of a [`Servo`](super::Servo) (of each of its devices), every value within its
+/// domain (see [`Param`]).
 ///
 /// Built by [`ServoOptions::new`] (or [`ServoOptions::default`]) and the `with_*`
 /// builders; the fields are private, so a struct literal does not build:
@@ -15,7 +16,7 @@ use crate::servo::device::DeviceMapping;
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ServoOptions {
-    /// Ticks per second, Hz, within [`MIN_RATE_HZ`]..=[`MAX_RATE_HZ`].
+    /// Ticks per second, Hz, within `MIN_RATE_HZ..=MAX_RATE_HZ` (1 Hz to 40 kHz).
     pub(super) rate_hz: f64,
     /// The proxy's settings; its `max_force` is lowered to the device's if larger.
     pub(crate) proxy: ProxyOptions,
@@ -47,7 +48,7 @@ impl ServoOptions {
     /// The default options at `rate_hz` ticks per second.
     ///
     /// # Errors
-    /// [`ParamError`] naming `rate_hz` outside [`MIN_RATE_HZ`]..=[`MAX_RATE_HZ`].
+    /// [`ParamError`] naming `rate_hz` outside `MIN_RATE_HZ..=MAX_RATE_HZ` (1 Hz to 40 kHz).
     pub fn new(rate_hz: f64) -> Result<ServoOptions, ParamError> {
         Ok(ServoOptions {
             rate_hz: Param::RateHz.check(rate_hz)?,
@@ -85,7 +86,7 @@ impl ServoOptions {
     ///   before the press, at rest, and the proxy stays against it;
     /// - the mapping's offset follows the hand (`offset = tool − scale · R · p_device`), so
     ///   at the release it has moved by minus the hand's travel while held, mapped into the
-    ///   world, and the tool continues from where it stayed ([`Servo::mapping`]);
+    ///   world, and the tool continues from where it stayed ([`Servo::mapping`](super::Servo::mapping));
     /// - the force fades linearly to zero over [`ramp_seconds`](ServoOptions::ramp_seconds)
     ///   after the press and rises back over the same time after the release: no jolt at
     ///   either, and no force from the hand's motion while held.
@@ -108,7 +109,7 @@ impl ServoOptions {
         self.rate_hz
     }
 
-    /// The proxy's settings (after [`Servo::new`], with the maximum force lowered to the
+    /// The proxy's settings (after [`Servo::new`](super::Servo::new), with the maximum force lowered to the
     /// device's).
     pub fn proxy(&self) -> &ProxyOptions {
         &self.proxy
