@@ -37,13 +37,25 @@ pub enum ParamError {
         /// The dynamic coefficient given.
         dynamic_friction: f64,
     },
+    /// A length larger than the scene it is for (a tool radius above the diagonal of the
+    /// box bounding the scene's objects: the whole scene would fit inside the tool).
+    LargerThanScene {
+        /// The parameter.
+        param: Param,
+        /// The value given, metres.
+        value: f64,
+        /// The diagonal of the box bounding the scene's objects, metres.
+        diagonal: f64,
+    },
 }
 
 impl ParamError {
     /// The parameter refused.
     pub fn param(&self) -> Param {
         match *self {
-            ParamError::OutOfDomain { param, .. } | ParamError::NotFinite { param, .. } => param,
+            ParamError::OutOfDomain { param, .. }
+            | ParamError::NotFinite { param, .. }
+            | ParamError::LargerThanScene { param, .. } => param,
             ParamError::FrictionOrder { .. } => Param::DynamicFriction,
         }
     }
@@ -51,7 +63,9 @@ impl ParamError {
     /// The value refused (a vector's length, or its first non-finite component).
     pub fn value(&self) -> f64 {
         match *self {
-            ParamError::OutOfDomain { value, .. } | ParamError::NotFinite { value, .. } => value,
+            ParamError::OutOfDomain { value, .. }
+            | ParamError::NotFinite { value, .. }
+            | ParamError::LargerThanScene { value, .. } => value,
             ParamError::FrictionOrder {
                 dynamic_friction, ..
             } => dynamic_friction,
@@ -87,7 +101,31 @@ impl ParamError {
                 f,
                 "{name} must be at most static_friction ({static_friction}), not {dynamic_friction}"
             ),
+            ParamError::LargerThanScene {
+                value, diagonal, ..
+            } => write!(
+                f,
+                "{name} must be at most {} m, the diagonal of the box bounding the scene's objects (a larger tool holds the whole scene), not {}",
+                Floor4(diagonal),
+                Number(value)
+            ),
         }
+    }
+}
+
+/// A positive length shown to four significant digits, rounded down: a limit a message
+/// states is then never above the true one (`0.1732` for 0.17320508 m).
+struct Floor4(f64);
+
+impl fmt::Display for Floor4 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if !(self.0.is_finite() && self.0 > 0.0) {
+            return write!(f, "{}", Number(self.0));
+        }
+        let exponent = self.0.log10().floor() as i32;
+        let unit = 10f64.powi(exponent - 3);
+        let decimals = (3 - exponent).clamp(0, 300) as usize;
+        write!(f, "{:.*}", decimals, (self.0 / unit).floor() * unit)
     }
 }
 

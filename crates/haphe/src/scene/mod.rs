@@ -28,6 +28,7 @@
 mod broad;
 mod clear;
 mod domain;
+mod extent;
 mod gltf;
 mod handoff;
 mod hit;

@@ -2,6 +2,8 @@
 //! their poses, materials and scripted motions.
 //!
 //! ```toml
+//! tool_radius = 0.002         # metres (optional, 0 by default: a point), before any object
+//!
 //! [[object]]
 //! shape = "blob"              # sphere, torus, box, thin-plate, concave-corner, blob
 //! triangles = 20000
@@ -19,6 +21,13 @@
 //!
 //! An object with a `grid` table is repeated on a grid (see [`grid`]).
 //!
+//! `tool_radius` is the radius of the tool, a sphere centred on the proxy (see
+//! [`ProxyOptions::with_tool_radius`](crate::proxy::ProxyOptions::with_tool_radius)),
+//! checked against its domain here; a front end also checks it against the scene's size
+//! ([`Scene::check_tool_radius`](crate::scene::Scene::check_tool_radius)) once the shapes
+//! are built. It is a top-level key: TOML puts a key written after an `[[object]]` header
+//! into that object.
+//!
 //! Errors name the file, the object and the line.
 
 use std::path::{Path, PathBuf};
@@ -28,12 +37,13 @@ use serde::Deserialize;
 
 use crate::mesh::Units;
 use crate::mesh::shapes::Catalog;
-use crate::scene::{Material, ObjectId, Pose};
+use crate::scene::{Material, ObjectId, Param, Pose};
 use crate::servo::{Motion, ObjectMotion};
 
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
+    tool_radius: Option<toml::Spanned<f64>>,
     #[serde(default)]
     object: Vec<toml::Spanned<ObjectSpec>>,
 }
@@ -170,6 +180,17 @@ fn vec3(a: [f64; 3]) -> DVec3 {
     DVec3::from_array(a)
 }
 
+/// A scene file read and checked: its objects, and its tool's radius when it gives one.
+#[doc(hidden)]
+#[derive(Debug, Clone)]
+pub struct SceneSpec {
+    /// The objects, as [`parse_scene`] returns them.
+    pub objects: Vec<SceneEntry>,
+    /// The `tool_radius` key, metres, checked against its domain, and its place
+    /// (`FILE: line L: tool_radius`) to name it in later errors (the scene's size).
+    pub tool_radius: Option<(f64, String)>,
+}
+
 /// Parses and checks the text of the scene file at `path` (used for messages and as the
 /// folder that mesh paths are relative to; nothing is read from disk).
 ///
@@ -179,14 +200,42 @@ fn vec3(a: [f64; 3]) -> DVec3 {
 /// unit, a triangle count out of range, a non-finite pose, an unusable material or motion,
 /// a repeated id, no object or more than [`MAX_OBJECTS`].
 pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFileError> {
+    parse_scene_spec(path, text).map(|spec| spec.objects)
+}
+
+/// [`parse_scene`] with the file's `tool_radius` (metres, checked against its domain).
+///
+/// # Errors
+/// Those of [`parse_scene`], and a `tool_radius` outside its domain, naming its line.
+#[doc(hidden)]
+pub fn parse_scene_spec(path: &Path, text: &str) -> Result<SceneSpec, SceneFileError> {
     let file = path.display().to_string();
     let parsed: SceneFile = toml::from_str(text).map_err(|e| {
         let line = e.span().map(|s| line_of(text, s.start));
+        // A top-level key written after an `[[object]]` header belongs to that object.
+        let hint = if e.message().contains("unknown field `tool_radius`") {
+            " (`tool_radius` is a top-level key: write it before the first [[object]])"
+        } else {
+            ""
+        };
         fail(match line {
-            Some(line) => format!("{file}: line {line}: {}", e.message()),
-            None => format!("{file}: {}", e.message()),
+            Some(line) => format!("{file}: line {line}: {}{hint}", e.message()),
+            None => format!("{file}: {}{hint}", e.message()),
         })
     })?;
+    let tool_radius = match &parsed.tool_radius {
+        None => None,
+        Some(r) => {
+            let place = format!(
+                "{file}: line {}: tool_radius",
+                line_of(text, r.span().start)
+            );
+            match Param::ToolRadius.check(*r.get_ref()) {
+                Ok(metres) => Some((metres, place)),
+                Err(e) => bail!("{}", e.named(&place)),
+            }
+        }
+    };
     if parsed.object.is_empty() {
         bail!("{file}: no [[object]] in the scene");
     }
@@ -197,9 +246,23 @@ pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFile
         );
     }
     let base = path.parent().unwrap_or(Path::new("."));
+    Ok(SceneSpec {
+        objects: entries_of(&parsed.object, text, &file, base)?,
+        tool_radius,
+    })
+}
+
+/// The checked entries of the objects of the scene file `file` (its `text`, for lines),
+/// mesh paths joined to `base`.
+fn entries_of(
+    objects: &[toml::Spanned<ObjectSpec>],
+    text: &str,
+    file: &str,
+    base: &Path,
+) -> Result<Vec<SceneEntry>, SceneFileError> {
     let mut out: Vec<SceneEntry> = Vec::new();
     let mut ids = std::collections::HashSet::new();
-    for (i, spanned) in parsed.object.iter().enumerate() {
+    for (i, spanned) in objects.iter().enumerate() {
         let line = line_of(text, spanned.span().start);
         let place = format!("{file}: object {} (line {line})", i + 1);
         let spec = spanned.get_ref();

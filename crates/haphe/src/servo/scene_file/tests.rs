@@ -108,3 +108,40 @@ fn a_grid_repeats_an_object_with_consecutive_ids() {
         err(clash)
     );
 }
+
+#[test]
+fn the_tool_radius_is_read_and_checked_naming_its_line() {
+    let spec = |text: &str| parse_scene_spec(Path::new("dir/s.toml"), text);
+    let object = "[[object]]\nshape = \"box\"\n";
+    // Absent: none (the front end's default, a point, applies).
+    assert!(spec(object).unwrap().tool_radius.is_none());
+    // An integer is a number of metres too.
+    for (given, metres) in [("0.002", 0.002), ("0", 0.0), ("5e-4", 5e-4)] {
+        let text = format!("# the tool\ntool_radius = {given}\n\n{object}");
+        let read = spec(&text).unwrap();
+        assert_eq!(
+            read.tool_radius,
+            Some((metres, "dir/s.toml: line 2: tool_radius".to_string()))
+        );
+        assert_eq!(read.objects.len(), 1);
+    }
+    for (given, says) in [
+        ("-0.001", "not -0.001"),
+        ("nan", "not NaN"),
+        ("inf", "not inf"),
+        ("0.6", "not 0.6"),
+    ] {
+        let message = err(&format!("tool_radius = {given}\n{object}"));
+        assert!(
+            message.starts_with("dir/s.toml: line 1: tool_radius must be a finite number"),
+            "{message}"
+        );
+        assert!(message.contains("0.5 m"), "{message}");
+        assert!(message.ends_with(says), "{message}");
+    }
+    // Not a number; and written inside an object, where TOML puts a key after a header.
+    assert!(err(&format!("tool_radius = \"2 mm\"\n{object}")).starts_with("dir/s.toml: line 1:"));
+    let inside = err(&format!("{object}tool_radius = 0.002\n"));
+    assert!(inside.starts_with("dir/s.toml: line 3:"), "{inside}");
+    assert!(inside.contains("before the first [[object]]"), "{inside}");
+}
