@@ -10,7 +10,7 @@ use haphe::DVec3;
 use haphe::map::MapOptions;
 use haphe::mesh::{Units, Weld};
 use haphe::proxy::ProxyOptions;
-use haphe::scene::{Material, Param};
+use haphe::scene::{Material, Param, Scene};
 use haphe::servo::RealtimeOptions;
 
 use crate::input::model::Model;
@@ -210,6 +210,69 @@ pub fn proxy_options(max_force: f64) -> anyhow::Result<ProxyOptions> {
     ProxyOptions::default()
         .with_max_force(max_force)
         .map_err(|e| anyhow!("{}", e.named("--max-force")))
+}
+
+/// The tool of a session; shared by `simulate`, `run` and `view`.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct ToolArgs {
+    /// The tool's radius, metres: a sphere centred on the proxy, which keeps it that far
+    /// from every surface (0, a point, by default; at most 0.5 m, and at most the diagonal
+    /// of the box bounding the scene's objects). Overrides a scene file's `tool_radius`.
+    // Negative numbers are values, so that `-0.001` is refused naming the flag.
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    pub tool_radius: Option<f64>,
+}
+
+/// A tool radius, metres, and how it was given (`--tool-radius`, or a scene file's line),
+/// to name it in errors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToolRadius {
+    pub metres: f64,
+    pub given_as: String,
+}
+
+impl Default for ToolRadius {
+    /// A point: no radius given anywhere.
+    fn default() -> ToolRadius {
+        ToolRadius {
+            metres: 0.0,
+            given_as: "--tool-radius".into(),
+        }
+    }
+}
+
+impl ToolArgs {
+    /// The tool's radius: `--tool-radius`, else the scene file's `tool_radius` (its value
+    /// and place), else 0 (a point). The flag is checked against its domain here, before
+    /// any shape is built; the scene file checked its own.
+    ///
+    /// # Errors
+    /// A radius outside its domain, named as its flag.
+    pub fn radius(&self, from_file: Option<(f64, String)>) -> anyhow::Result<ToolRadius> {
+        Ok(match (self.tool_radius, from_file) {
+            (Some(r), _) => ToolRadius {
+                metres: Param::ToolRadius
+                    .check(r)
+                    .map_err(|e| anyhow!("{}", e.named("--tool-radius")))?,
+                ..ToolRadius::default()
+            },
+            (None, Some((metres, given_as))) => ToolRadius { metres, given_as },
+            (None, None) => ToolRadius::default(),
+        })
+    }
+}
+
+impl ToolRadius {
+    /// `options` with this tool radius, checked against `scene`: a radius above the
+    /// diagonal of the box bounding its objects is refused ([`Scene::check_tool_radius`]).
+    ///
+    /// # Errors
+    /// A radius outside its domain or larger than the scene, named as it was given.
+    pub fn apply(&self, options: ProxyOptions, scene: &Scene) -> anyhow::Result<ProxyOptions> {
+        let named = |e: haphe::scene::ParamError| anyhow!("{}", e.named(&self.given_as));
+        let r = scene.check_tool_radius(self.metres).map_err(named)?;
+        options.with_tool_radius(r).map_err(named)
+    }
 }
 
 /// The real-time options with the spin of `--spin-us`, microseconds.

@@ -74,11 +74,21 @@ for (const m of meshes) {
 }
 
 // Device point, proxy, the line between them, force arrow, contact triangle and normal.
+// The proxy is the tool's centre: a tool of radius tool_radius is drawn as a sphere of
+// that radius (with a faint halo of the marker's size when it is smaller than the marker,
+// so that it can be found); a point tool as the marker.
 const r = size * 0.012;
+const tool = info.tool_radius ?? 0;
 const hipMark = new THREE.Mesh(new THREE.SphereGeometry(r, 20, 12),
   new THREE.MeshBasicMaterial({ color: 0xff8c1a, depthTest: false, transparent: true, opacity: 0.9 }));
-const proxyMark = new THREE.Mesh(new THREE.SphereGeometry(r, 20, 12),
+const proxyMark = new THREE.Mesh(new THREE.SphereGeometry(tool > 0 ? tool : r, 32, 20),
   new THREE.MeshStandardMaterial({ color: 0x3ddc84 }));
+if (tool > 0 && tool < r) {
+  proxyMark.add(new THREE.Mesh(new THREE.SphereGeometry(r, 20, 12),
+    new THREE.MeshBasicMaterial({ color: 0x3ddc84, transparent: true, opacity: 0.25, depthWrite: false })));
+}
+state.tool = { radius: tool, drawn: proxyMark.geometry.parameters.radius };
+const toolText = tool > 0 ? `; tool: a sphere of radius ${+(tool * 1e3).toPrecision(3)} mm` : '';
 hipMark.renderOrder = 10;
 const link = new THREE.Line(new THREE.BufferGeometry().setFromPoints([centre, centre]),
   new THREE.LineBasicMaterial({ color: 0xffffff, depthTest: false, transparent: true }));
@@ -170,7 +180,7 @@ function show(f) {
 const chart = new Chart($('chart'), CHART_SECONDS);
 let socket = null;
 if (info.mode === 'live') {
-  $('device').textContent = `${info.device} at ${info.rate_hz} Hz`;
+  $('device').textContent = `${info.device} at ${info.rate_hz} Hz${toolText}`;
   $('help').textContent = info.mouse
     ? 'Move the pointer to move the device point (orange) on a plane facing you; the wheel ' +
       'moves it in depth (W/S keys too). Drag to orbit, right-drag to pan, Shift+wheel to zoom.'
@@ -250,7 +260,7 @@ if (info.mode === 'replay') {
   replay = { rows, n, k, poses, index: 0, time: rows[0], playing: true };
   state.replay = { index: 0, last: n - 1, atEnd: false };
   $('replay').hidden = false;
-  $('device').textContent = `replay of ${n} ticks`;
+  $('device').textContent = `replay of ${n} ticks${toolText}`;
   $('help').textContent = 'Drag to orbit, right-drag to pan, wheel to zoom.';
   $('scrub').max = String(n - 1);
   $('play').onclick = () => {

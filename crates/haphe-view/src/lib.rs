@@ -1,10 +1,10 @@
 //! A live 3D view of a haphe servo loop in the browser.
 //!
 //! [`ViewServer::start`] serves a page on `http://127.0.0.1:PORT/` that draws the scene's
-//! meshes, the device point, the proxy, the line between them, the force arrow, the contact
-//! triangle and its normal, the contact and sticking state, the tick rate and compute-time
-//! percentiles, and a force/penetration chart over the last seconds; orbit, pan and zoom
-//! with the mouse. The page and three.js are embedded in the binary: it works offline.
+//! meshes, the device point, the proxy (the tool: a sphere of its radius, or a marker for
+//! a point), the line between them, the force arrow, the contact triangle and its normal,
+//! the contact and sticking state, the tick rate and compute-time percentiles, and a
+//! force/penetration chart over the last seconds; orbit, pan and zoom with the mouse. The page and three.js are embedded in the binary: it works offline.
 //!
 //! Two sources:
 //! - [`Source::Live`]: any [`Device`] (the [`MouseDevice`], whose
@@ -110,6 +110,8 @@ struct Info<'a> {
     objects: Vec<ObjectInfo>,
     bounds: Option<[[f64; 3]; 2]>,
     rate_hz: Option<f64>,
+    /// The tool's radius, metres (0: a point): the page draws the proxy as a sphere of it.
+    tool_radius: f64,
     device: Option<&'static str>,
     mouse: bool,
     statuses: [&'static str; STATUS_NAMES.len()],
@@ -147,9 +149,11 @@ impl ViewServer {
                 Source::Live { .. } => None,
             })
             .map(|(lo, hi)| [lo.to_array(), hi.to_array()]);
+        let mut tool_radius = model.tool_radius;
         let (live, mouse, trace, rate_hz, device, moving) = match source {
             Source::Live { source, mouse } => {
                 let rate = source.options.rate_hz();
+                tool_radius = source.options.proxy().tool_radius();
                 let device = source.device.spec().name;
                 let moving = source.motions.iter().map(|m| m.id.0).collect();
                 let live = Live::start(*source, frames_in)?;
@@ -166,6 +170,7 @@ impl ViewServer {
             objects: model.info(),
             bounds,
             rate_hz,
+            tool_radius,
             device,
             mouse: mouse.is_some(),
             statuses: STATUS_NAMES,

@@ -33,6 +33,10 @@ pub struct Model {
     /// The objects' scripted motions (a replay draws them moved; a live view takes the
     /// servo's own, [`LiveSource::motions`](crate::LiveSource::motions)).
     pub motions: Vec<ObjectMotion>,
+    /// The tool's radius, metres (0: a point), that a replay draws the proxy as a sphere
+    /// of (a live view takes the servo's own,
+    /// [`ProxyOptions::tool_radius`](haphe::proxy::ProxyOptions::tool_radius)).
+    pub tool_radius: f64,
 }
 
 /// What the page learns at connect besides the meshes (JSON).
@@ -80,12 +84,19 @@ impl Model {
         Model {
             objects,
             motions: Vec::new(),
+            tool_radius: 0.0,
         }
     }
 
     /// The model with the scripted motions of its objects.
     pub fn with_motions(mut self, motions: Vec<ObjectMotion>) -> Model {
         self.motions = motions;
+        self
+    }
+
+    /// The model with the tool's radius, metres, for a replay.
+    pub fn with_tool_radius(mut self, tool_radius: f64) -> Model {
+        self.tool_radius = tool_radius;
         self
     }
 

@@ -12,6 +12,7 @@ mod support;
 use std::time::{Duration, Instant};
 
 use haphe::DVec3;
+use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, Scene};
 use haphe::servo::{
     Motion, ObjectMotion, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions,
@@ -50,13 +51,14 @@ fn live_view(
     (motions, seconds): (Vec<ObjectMotion>, Option<f64>),
     mouse: bool,
     title: &str,
+    servo: ServoOptions,
 ) -> ViewServer {
     let (lo, hi) = scene_bounds(&scene).expect("bounds");
     let (device, handle) = MouseDevice::new(start, lo - (hi - lo), hi + (hi - lo));
     let source = LiveSource {
         device: Box::new(device),
         scene,
-        options: ServoOptions::default(),
+        options: servo,
         motions,
         seconds,
         realtime: RealtimeOptions::default().with_realtime_priority(false),
@@ -130,6 +132,7 @@ fn the_view_draws_the_scene_follows_the_mouse_and_replays_a_trace() {
         (Vec::new(), None),
         true,
         "haphe view: the mouse on a sphere",
+        ServoOptions::default(),
     );
 
     let mut browser = Browser::start(WIDTH, HEIGHT);
@@ -285,6 +288,7 @@ fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
         (motions.clone(), Some(seconds)),
         false,
         "a sliding sphere",
+        ServoOptions::default(),
     );
     let mut browser = Browser::start(WIDTH, HEIGHT);
     browser.navigate(&view.url());
@@ -335,6 +339,98 @@ fn an_object_moved_by_script_is_drawn_where_it_is_live_and_in_replay() {
     );
     // The replay's poses travel as f32.
     assert!((x - expected.x).abs() < 1e-6, "{drawn} against {expected}");
+    view.stop().expect("stops");
+    let errors = std::mem::take(&mut browser.errors);
+    assert!(errors.is_empty(), "console errors: {errors:#?}");
+}
+
+/// Whether pixel `px` is the tool's green (not the object's grey-blue, the background, the
+/// orange device point or the white line).
+fn tool_colour(px: [u8; 4]) -> bool {
+    let [r, g, b, _] = px.map(i32::from);
+    g > r + 40 && g > b + 20
+}
+
+#[test]
+fn the_tool_is_drawn_as_a_sphere_of_its_radius() {
+    let scene = sphere_scene();
+    let (_, hi, centre, radius) = sphere_bounds(&scene);
+    let tool = 0.3 * radius;
+    let model = Model::from_scene(&scene, &["sphere".to_string()]);
+    // Free, above the sphere (the tool clear of it): the proxy is the device point, the
+    // tool's centre.
+    let start = DVec3::new(centre.x, centre.y, hi.z + 0.6 * radius);
+    let proxy = ProxyOptions::default()
+        .with_tool_radius(tool)
+        .expect("a radius in its domain");
+    let view = live_view(
+        model.clone(),
+        scene,
+        start,
+        (Vec::new(), None),
+        false,
+        "a tool above a sphere",
+        ServoOptions::default().with_proxy(proxy),
+    );
+    let mut browser = Browser::start(WIDTH, HEIGHT);
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.ready && window.haphe.frames > 2)",
+        Duration::from_secs(40),
+        "the page to draw and receive frames",
+    );
+    // The page learns the servo's radius and draws a sphere of it.
+    assert_eq!(
+        browser.eval("window.haphe.info.tool_radius").as_f64(),
+        Some(tool)
+    );
+    let drawn = browser.eval("window.haphe.tool");
+    assert_eq!(drawn["drawn"].as_f64(), Some(tool), "{drawn}");
+    let frame = browser.eval("window.haphe.frame");
+    let p: Vec<f64> = (0..3)
+        .map(|i| frame["proxy"][i].as_f64().expect("proxy"))
+        .collect();
+    let p = DVec3::new(p[0], p[1], p[2]);
+    assert!((p - start).length() < 1e-9, "the proxy at {p}, not {start}");
+    // On the screen: the tool's green within its radius of the centre (beside the device
+    // point's marker), not beyond it. World points along x, which the camera sees nearly
+    // across its line of sight (at most 4 % shorter).
+    let (w, _, pixels) = decode_png(&browser.screenshot());
+    let at = |q: (f64, f64)| pixels[(q.1 as u32 * w + q.0 as u32) as usize];
+    for side in [-1.0, 1.0] {
+        let inside = project(&mut browser, p + DVec3::X * (side * 0.7 * tool));
+        let outside = project(&mut browser, p + DVec3::X * (side * 1.3 * tool));
+        assert!(
+            tool_colour(at(inside)),
+            "no tool at {inside:?}: {:?}",
+            at(inside)
+        );
+        assert!(
+            !tool_colour(at(outside)),
+            "the tool reaches {outside:?}: {:?}",
+            at(outside)
+        );
+    }
+    let text = browser.eval("document.getElementById('device').textContent");
+    assert!(
+        text.as_str()
+            .is_some_and(|t| t.contains("tool: a sphere of radius")),
+        "{text}"
+    );
+    view.stop().expect("stops");
+
+    // A replay draws the radius its model gives.
+    let trace = recorded_press(50, Vec::new(), "press.csv");
+    let view = ViewServer::start(
+        model.with_tool_radius(tool),
+        Source::Replay(trace),
+        &options("replay with a tool"),
+    )
+    .expect("the replay view starts");
+    replay_to_the_end(&mut browser, &view);
+    let drawn = browser.eval("window.haphe.tool");
+    assert_eq!(drawn["radius"].as_f64(), Some(tool), "{drawn}");
+    assert_eq!(drawn["drawn"].as_f64(), Some(tool), "{drawn}");
     view.stop().expect("stops");
     let errors = std::mem::take(&mut browser.errors);
     assert!(errors.is_empty(), "console errors: {errors:#?}");

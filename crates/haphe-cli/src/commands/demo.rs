@@ -112,6 +112,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             objects,
             crate::session::live::ViewDevice::Hand(seconds),
             args.rate,
+            &crate::args::ToolRadius::default(),
             "the demo (a blob and a 0.1 mm thin plate)",
             &args.serve,
         );
@@ -140,6 +141,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         presses: Vec::new(),
         seed: 3,
         max_force: haphe::scene::DEFAULT_MAX_FORCE_N,
+        tool_radius: crate::args::ToolRadius::default(),
         out: args.out.clone(),
         plot: Some(args.plot.clone()),
     };

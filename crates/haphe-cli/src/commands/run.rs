@@ -9,7 +9,9 @@ use anyhow::bail;
 use haphe::DVec3;
 use haphe_devices::UdpOptions;
 
-use crate::args::{ClutchArgs, DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs};
+use crate::args::{
+    ClutchArgs, DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs, ToolArgs,
+};
 use crate::input::model::load_model;
 use crate::session::device::VendorChoice;
 use crate::session::wait::catch_interrupts;
@@ -49,6 +51,8 @@ pub struct Args {
     normal_priority: bool,
     #[command(flatten)]
     output: OutputArgs,
+    #[command(flatten)]
+    tool: ToolArgs,
     /// Largest force rendered, N (lowered to the device's maximum).
     #[arg(long, default_value_t = haphe::scene::DEFAULT_MAX_FORCE_N)]
     max_force: f64,
@@ -72,7 +76,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let material = args.model.material()?;
     crate::args::proxy_options(args.max_force)?;
     let started = Instant::now();
-    let (objects, what) = load_model(args.model.model(), material)?;
+    // The flag's domain first; its fit to the scene once the scene is built.
+    args.tool.radius(None)?;
+    let (loaded, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();
     let h = args.udp_workspace;
     let choice = VendorChoice {
@@ -89,7 +95,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     let session = Session {
         title: format!("haphe run: device {} on {what}", args.device),
-        objects,
+        objects: loaded.objects,
         build_seconds,
         device: DeviceChoice::Vendor(choice),
         rate_hz: args.rate,
@@ -100,6 +106,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         standby_core: None,
         seed: 1,
         max_force: args.max_force,
+        tool_radius: args.tool.radius(loaded.tool_radius)?,
         out: args.output.out.clone(),
         plot: args.output.plot.clone(),
         clutch_button: args.clutch.clutch_button,

@@ -10,7 +10,7 @@ use std::time::Instant;
 use anyhow::anyhow;
 use haphe::servo::{HandOptions, HipTrace, PathKind, ServoOptions};
 
-use crate::args::{ClutchArgs, ModelArgs, OutputArgs, proxy_options, spin};
+use crate::args::{ClutchArgs, ModelArgs, OutputArgs, ToolArgs, proxy_options, spin};
 use crate::input::files::{self, read_input};
 use crate::input::model::load_model;
 use crate::output::check_outputs;
@@ -64,6 +64,8 @@ pub struct Args {
     #[command(flatten)]
     output: OutputArgs,
     #[command(flatten)]
+    tool: ToolArgs,
+    #[command(flatten)]
     clutch: ClutchArgs,
     /// Hold button N of the simulated device from FROM until UNTIL seconds of the run
     /// (repeatable): for --clutch-button, or to record button states.
@@ -115,7 +117,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     proxy_options(args.max_force)?;
     spin(args.spin_us)?;
     let started = Instant::now();
-    let (objects, what) = load_model(args.model.model(), material)?;
+    // The flag's domain first; its fit to the scene once the scene is built.
+    args.tool.radius(None)?;
+    let (loaded, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();
     let device = if let Some(file) = &args.replay {
         let name = file.display().to_string();
@@ -128,7 +132,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     let session = Session {
         title: format!("haphe simulate: {} on {what}", device.describe()),
-        objects,
+        objects: loaded.objects,
         build_seconds,
         device,
         rate_hz: args.rate,
@@ -139,6 +143,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         standby_core: args.standby_core,
         seed: args.seed,
         max_force: args.max_force,
+        tool_radius: args.tool.radius(loaded.tool_radius)?,
         out: args.output.out.clone(),
         plot: args.output.plot.clone(),
         clutch_button: args.clutch.clutch_button,

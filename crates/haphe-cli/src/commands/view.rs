@@ -9,13 +9,14 @@ use anyhow::{anyhow, bail};
 use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Catalog;
+use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe_view::{Model, Source, Trace};
 
-use crate::args::{ClutchArgs, MappingArgs, parse_units};
+use crate::args::{ClutchArgs, MappingArgs, ToolArgs, parse_units};
 use crate::input::files::{self, read_input};
 use crate::input::mesh::UnitsGiven;
-use crate::input::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
+use crate::input::scene::{LoadedObject, LoadedScene, load_scene, mesh_shape, shape_of};
 use crate::session::device::view_choice;
 use crate::session::live::{HAND_SECONDS, Serve, ViewDevice, live, scene_of, serve};
 
@@ -68,6 +69,8 @@ pub struct Args {
     #[arg(long, default_value_t = Material::DEFAULT.dynamic_friction())]
     dynamic_friction: f64,
     #[command(flatten)]
+    tool: ToolArgs,
+    #[command(flatten)]
     serve: Serve,
 }
 
@@ -87,28 +90,35 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             motion: None,
         }]
     };
-    let objects = if let Some(file) = &args.scene {
+    // The flag's domain first; its fit to the scene once the scene is built.
+    args.tool.radius(None)?;
+    let loaded = if let Some(file) = &args.scene {
         load_scene(file, &map)?
     } else if let Some(file) = &args.mesh {
         single(
             file.display().to_string(),
             mesh_shape(file, args.units, &map, UnitsGiven::Flag)?,
         )
+        .into()
     } else if let Some(name) = &args.shape {
         let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
-        single(name.clone(), shape_of(which, args.triangles, &map)?)
+        single(name.clone(), shape_of(which, args.triangles, &map)?).into()
     } else if args.replay.is_some() {
-        Vec::new()
+        LoadedScene::from(Vec::new())
     } else {
         bail!("say what to show: --mesh FILE, --shape NAME, --scene FILE or --replay RUN.csv");
     };
+    let tool = args.tool.radius(loaded.tool_radius)?;
     if let Some(file) = &args.replay {
         let name = file.display().to_string();
         // Through the input module, like every command: a size limit, devices refused.
         let bytes = read_input(file, files::TRACE)?;
         let trace = Trace::read(&name, bytes.as_slice())?;
-        let (scene, names, motions) = scene_of(objects)?;
-        let model = Model::from_scene(&scene, &names).with_motions(motions);
+        let (scene, names, motions) = scene_of(loaded.objects)?;
+        let proxy = tool.apply(ProxyOptions::default(), &scene)?;
+        let model = Model::from_scene(&scene, &names)
+            .with_motions(motions)
+            .with_tool_radius(proxy.tool_radius());
         let title = format!("haphe view: replay of {name} ({} ticks)", trace.rows.len());
         return serve(model, Source::Replay(trace), &title, &args.serve);
     }
@@ -134,5 +144,5 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .map(|p| p.display().to_string())
         .or(args.shape.clone())
         .unwrap_or_default();
-    live(objects, device, args.rate, &what, &args.serve)
+    live(loaded.objects, device, args.rate, &tool, &what, &args.serve)
 }

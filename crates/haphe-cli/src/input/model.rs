@@ -11,7 +11,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 
 use crate::input::mesh::UnitsGiven;
-use crate::input::scene::{LoadedObject, load_scene, mesh_shape, shape_of};
+use crate::input::scene::{LoadedObject, LoadedScene, load_scene, mesh_shape, shape_of};
 
 /// Where the objects of a run come from: one of a scene file, a mesh file, a built-in shape.
 pub struct Model<'a> {
@@ -22,12 +22,9 @@ pub struct Model<'a> {
     pub units: Units,
 }
 
-/// Loads the objects of a run (a --mesh or --shape object gets `material`), and says
-/// what they are.
-pub fn load_model(
-    model: Model<'_>,
-    material: Material,
-) -> anyhow::Result<(Vec<LoadedObject>, String)> {
+/// Loads the objects of a run (a --mesh or --shape object gets `material`), with a scene
+/// file's tool radius, and says what they are.
+pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(LoadedScene, String)> {
     let map = MapOptions::default();
     Ok(if let Some(file) = model.scene {
         (load_scene(file, &map)?, file.display().to_string())
@@ -55,7 +52,8 @@ pub fn load_model(
                 name: file.display().to_string(),
                 object: o,
                 motion: None,
-            }],
+            }]
+            .into(),
             file.display().to_string(),
         )
     } else {
@@ -69,7 +67,8 @@ pub fn load_model(
                 name: name.to_string(),
                 object: o,
                 motion: None,
-            }],
+            }]
+            .into(),
             format!("the built-in {name}"),
         )
     })

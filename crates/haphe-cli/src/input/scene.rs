@@ -12,7 +12,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{ReadOptions, Units, Weld};
 use haphe::scene::{Material, SceneObject, Shape};
 use haphe::servo::ObjectMotion;
-use haphe::servo::scene_file::{ObjectSource, parse_scene};
+use haphe::servo::scene_file::{ObjectSource, parse_scene_spec};
 
 use crate::input::mesh::{SideCars, UnitsGiven, warn_units};
 use crate::input::object::{check_beside, open};
@@ -27,24 +27,42 @@ pub struct LoadedObject {
     pub motion: Option<ObjectMotion>,
 }
 
+/// The objects of a scene file, and its tool's radius when it gives one.
+pub struct LoadedScene {
+    /// The objects, built.
+    pub objects: Vec<LoadedObject>,
+    /// The file's `tool_radius`, metres, and its place (`FILE: line L: tool_radius`).
+    pub tool_radius: Option<(f64, String)>,
+}
+
+impl From<Vec<LoadedObject>> for LoadedScene {
+    /// Objects with no tool radius given (a mesh file, a built-in shape, a glTF file).
+    fn from(objects: Vec<LoadedObject>) -> LoadedScene {
+        LoadedScene {
+            objects,
+            tool_radius: None,
+        }
+    }
+}
+
 /// Reads a scene file and builds every object (shapes shared between objects that name
 /// the same shape and size or the same mesh file).
 ///
 /// A glTF file (`.glb`, `.gltf`) is a scene too: one object per node with a mesh (see
 /// [`load_gltf_scene`]).
-pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObject>> {
+pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<LoadedScene> {
     let is_gltf = path
         .extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("glb") || e.eq_ignore_ascii_case("gltf"));
     if is_gltf {
-        return load_gltf_scene(path, map);
+        return load_gltf_scene(path, map).map(LoadedScene::from);
     }
     let text = crate::input::files::read_text(path, crate::input::files::SCENE)?;
-    let entries = parse_scene(path, &text)?;
+    let spec = parse_scene_spec(path, &text)?;
     let mut shapes: Vec<(ObjectSource, Arc<Shape>)> = Vec::new();
-    let mut out = Vec::with_capacity(entries.len());
-    for entry in entries {
+    let mut out = Vec::with_capacity(spec.objects.len());
+    for entry in spec.objects {
         let shape = match shapes.iter().find(|(k, _)| *k == entry.source) {
             Some((_, s)) => s.clone(),
             None => {
@@ -60,7 +78,10 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<Vec<LoadedObj
             motion: entry.motion,
         });
     }
-    Ok(out)
+    Ok(LoadedScene {
+        objects: out,
+        tool_radius: spec.tool_radius,
+    })
 }
 
 /// A glTF file as a scene: one object per node of its default scene that holds a mesh, at

@@ -13,6 +13,7 @@ use std::process::ExitCode;
 
 use super::device::{self, VendorChoice};
 use super::wait;
+use crate::args::ToolRadius;
 use crate::input::scene::LoadedObject;
 
 /// Port the view serves on by default.
@@ -60,16 +61,19 @@ pub fn scene_of(
     Ok((scene, names, motions))
 }
 
-/// Serves a live view of `objects` touched by `device` until Ctrl-C.
+/// Serves a live view of `objects` touched by `device` with a tool of radius `tool` until
+/// Ctrl-C.
 pub fn live(
     objects: Vec<LoadedObject>,
     device: ViewDevice,
     rate_hz: f64,
+    tool: &ToolRadius,
     what: &str,
     serve_options: &Serve,
 ) -> anyhow::Result<ExitCode> {
     let options = ServoOptions::new(rate_hz).map_err(|e| anyhow!("{}", e.named("--rate")))?;
     let (scene, names, motions) = scene_of(objects)?;
+    let options = options.with_proxy(tool.apply(*options.proxy(), &scene)?);
     let model = Model::from_scene(&scene, &names);
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
     let mut mapping = DeviceMapping::IDENTITY;

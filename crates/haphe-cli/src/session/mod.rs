@@ -26,7 +26,7 @@ use haphe::servo::{
 use self::device::VendorChoice;
 use self::summary::{RunInfo, Summary};
 use self::trace::TraceOut;
-use crate::args::{DEFAULT_SECONDS, MAX_SECONDS, PLOT_SECONDS, proxy_options};
+use crate::args::{DEFAULT_SECONDS, MAX_SECONDS, PLOT_SECONDS, ToolRadius, proxy_options};
 use crate::input::scene::LoadedObject;
 
 /// Which device drives the run.
@@ -69,6 +69,9 @@ pub struct Session {
     pub standby_core: Option<usize>,
     pub seed: u64,
     pub max_force: f64,
+    /// The tool's radius (`--tool-radius` or the scene file's), checked against the scene
+    /// once it is built.
+    pub tool_radius: ToolRadius,
     pub out: Option<PathBuf>,
     pub plot: Option<PathBuf>,
     /// The button that holds the clutch (`--clutch-button`).
@@ -149,6 +152,7 @@ impl Session {
             names,
             triangles,
         } = build_scene(self.objects)?;
+        let proxy = ToolRadius::apply(&self.tool_radius, proxy_options(self.max_force)?, &scene)?;
         // A real device runs until Ctrl-C unless told otherwise.
         let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.spec != "hand")
             && self.seconds.is_none();
@@ -161,7 +165,7 @@ impl Session {
         };
         let options = ServoOptions::new(self.rate_hz)
             .map_err(|e| anyhow!("{}", e.named("--rate")))?
-            .with_proxy(proxy_options(self.max_force)?)
+            .with_proxy(proxy)
             .with_mapping(mapping)
             .with_clutch_button(self.clutch_button);
         let stiffness = stiffest(&scene);
@@ -176,7 +180,8 @@ impl Session {
         let max_force = servo.options().proxy().max_force();
 
         writeln!(out, "{}", self.title)?;
-        print_scene(out, &names, triangles, self.build_seconds)?;
+        let tool = servo.options().proxy().tool_radius();
+        print_scene(out, &names, triangles, self.build_seconds, tool)?;
         if let Some(v) = &vendor {
             writeln!(out, "device: {}", v.description)?;
             device::print_mapping(out, &v.choice, &mapping, stiffness)?;
@@ -399,13 +404,14 @@ pub fn stiffest(scene: &Scene) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Prints the scene's line and its objects' (a large scene, a grid of copies, lists its
-/// first objects only).
+/// Prints the scene's line, its objects' (a large scene, a grid of copies, lists its
+/// first objects only) and the tool's radius when it is not a point.
 fn print_scene(
     out: &mut impl Write,
     names: &[String],
     triangles: usize,
     build_seconds: f64,
+    tool_radius: f64,
 ) -> std::io::Result<()> {
     writeln!(
         out,
@@ -417,6 +423,10 @@ fn print_scene(
     }
     if names.len() > LISTED_OBJECTS {
         writeln!(out, "  ... and {} more", names.len() - LISTED_OBJECTS)?;
+    }
+    // A point tool (the default) says nothing: its output stays the point proxy's.
+    if tool_radius > 0.0 {
+        writeln!(out, "tool: a sphere of radius {:.3} mm", tool_radius * 1e3)?;
     }
     Ok(())
 }

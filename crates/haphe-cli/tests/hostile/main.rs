@@ -11,5 +11,6 @@ mod messages;
 mod outputs;
 mod queries;
 mod repair;
+mod tool;
 mod validate;
 mod values;
