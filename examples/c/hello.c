@@ -73,7 +73,8 @@ int main(int argc, char **argv) {
     haphe_shape_free(shape); /* the scene keeps its own reference */
     double top[3] = {0.0, 2.0, 0.0};
     HapheProxy *proxy = NULL;
-    CHECK(haphe_proxy_new(top, haphe_default_max_force(), &proxy));
+    /* A point tool (radius 0); a radius in metres makes it a sphere. */
+    CHECK(haphe_proxy_new(top, haphe_default_max_force(), 0.0, &proxy));
     HapheTick tick;
     CHECK(haphe_proxy_tick(proxy, scene, top, NULL, &tick));
 #ifdef HAPHE_COUNT_ALLOCATIONS

@@ -44,7 +44,9 @@ int main(int argc, char **argv) try {
 
     const double start[3] = {0.0, 2.0, 0.0};
     HapheProxy *raw_proxy = nullptr;
-    check(haphe_proxy_new(start, haphe_default_max_force(), &raw_proxy), "proxy");
+    // The tool: a ball of 2 cm radius, its centre the proxy (0 would be a point).
+    const double tool_radius = 0.02;
+    check(haphe_proxy_new(start, haphe_default_max_force(), tool_radius, &raw_proxy), "proxy");
     std::unique_ptr<HapheProxy, ProxyFree> proxy(raw_proxy);
     HapheTick tick{};
     int touching = 0;
@@ -53,8 +55,8 @@ int main(int argc, char **argv) try {
         check(haphe_proxy_tick(proxy.get(), scene.get(), hip, nullptr, &tick), "tick");
         touching += tick.in_contact;
     }
-    std::printf("pressed down: %d ticks in contact, force (%.3f, %.3f, %.3f) N, proxy y %.4f m\n",
-                touching, tick.force[0], tick.force[1], tick.force[2], tick.proxy[1]);
+    std::printf("pressed down a %.0f mm ball: %d ticks in contact, force (%.3f, %.3f, %.3f) N, proxy y %.4f m\n",
+                tool_radius * 1e3, touching, tick.force[0], tick.force[1], tick.force[2], tick.proxy[1]);
     return touching > 0 ? 0 : 1;
 } catch (const std::exception &e) {
     std::fprintf(stderr, "%s\n", e.what());

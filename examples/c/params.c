@@ -31,6 +31,7 @@ typedef enum {
     SET_POSITION,
     MAX_FORCE,
     PROXY_POSITION,
+    TOOL_RADIUS,
     RATE_HZ,
 } Which;
 
@@ -57,8 +58,9 @@ static HapheStatus give(Which which, double v) {
         status = haphe_scene_add(scene, shape, NULL, NULL, &m, &id);
         if (status == HAPHE_STATUS_OK) status = haphe_scene_set_pose(scene, id, x, NULL);
         break;
-    case MAX_FORCE: status = haphe_proxy_new(NULL, v, &proxy); break;
-    case PROXY_POSITION: status = haphe_proxy_new(x, 3.3, &proxy); break;
+    case MAX_FORCE: status = haphe_proxy_new(NULL, v, 0.0, &proxy); break;
+    case PROXY_POSITION: status = haphe_proxy_new(x, 3.3, 0.0, &proxy); break;
+    case TOOL_RADIUS: status = haphe_proxy_new(NULL, 3.3, v, &proxy); break;
     case RATE_HZ:
         status = haphe_scene_add(scene, shape, NULL, NULL, &m, &id);
         if (status == HAPHE_STATUS_OK)
@@ -89,6 +91,8 @@ static const struct {
     {SET_POSITION, "position", 0.2, 1, 1, 1e12},
     {MAX_FORCE, "max_force", 3.3, 0, 0, 1e4},
     {PROXY_POSITION, "position", 0.2, 1, 1, 1e12},
+    /* A tool of no size is the point; a tool of metres is a unit mixed up. */
+    {TOOL_RADIUS, "tool_radius", 0.002, 1, 0, 10.0},
     {RATE_HZ, "rate_hz", 1000.0, 0, 0, 1e6},
 };
 

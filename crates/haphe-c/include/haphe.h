@@ -39,7 +39,7 @@ typedef enum HapheStatus {
   HAPHE_STATUS_PANIC = 6,
 } HapheStatus;
 
-// The god-object proxy of one point device. Opaque; made by `haphe_proxy_new`, freed by
+// The god-object proxy of one device, the centre of its tool. Opaque; made by `haphe_proxy_new`, freed by
 // `haphe_proxy_free`.
 typedef struct HapheProxy HapheProxy;
 
@@ -192,11 +192,16 @@ enum HapheStatus haphe_scene_set_pose(struct HapheScene *scene,
 double haphe_default_max_force(void);
 
 // A new proxy at `position` (3 doubles, metres; null: the origin), rendering at most
-// `max_force` newtons (`haphe_default_max_force()` unless the device says otherwise).
-// On success `*out` is owned by the caller: free it with `haphe_proxy_free`. Errors:
+// `max_force` newtons (`haphe_default_max_force()` unless the device says otherwise),
+// for a tool of radius `tool_radius` metres: the proxy is the centre of a sphere of that
+// radius and keeps it that far from every triangle (0: a point). On success `*out` is
+// owned by the caller: free it with `haphe_proxy_free`. Errors:
 // `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()` naming `max_force` (above 0, at
-// most 100 N) or `position`.
-enum HapheStatus haphe_proxy_new(const double *position, double max_force, struct HapheProxy **out);
+// most 100 N), `tool_radius` (0 to 0.5 m) or `position`.
+enum HapheStatus haphe_proxy_new(const double *position,
+                                 double max_force,
+                                 double tool_radius,
+                                 struct HapheProxy **out);
 
 // Frees a proxy (null is ignored).
 void haphe_proxy_free(struct HapheProxy *proxy);

@@ -15,7 +15,7 @@ pub struct HapheScene {
     next_id: u32,
 }
 
-/// The god-object proxy of one point device. Opaque; made by `haphe_proxy_new`, freed by
+/// The god-object proxy of one device, the centre of its tool. Opaque; made by `haphe_proxy_new`, freed by
 /// `haphe_proxy_free`.
 pub struct HapheProxy {
     inner: Proxy,
@@ -209,18 +209,23 @@ pub extern "C" fn haphe_default_max_force() -> f64 {
 }
 
 /// A new proxy at `position` (3 doubles, metres; null: the origin), rendering at most
-/// `max_force` newtons (`haphe_default_max_force()` unless the device says otherwise).
-/// On success `*out` is owned by the caller: free it with `haphe_proxy_free`. Errors:
+/// `max_force` newtons (`haphe_default_max_force()` unless the device says otherwise),
+/// for a tool of radius `tool_radius` metres: the proxy is the centre of a sphere of that
+/// radius and keeps it that far from every triangle (0: a point). On success `*out` is
+/// owned by the caller: free it with `haphe_proxy_free`. Errors:
 /// `HAPHE_STATUS_INVALID_ARGUMENT`, `haphe_last_error()` naming `max_force` (above 0, at
-/// most 100 N) or `position`.
+/// most 100 N), `tool_radius` (0 to 0.5 m) or `position`.
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_proxy_new(
     position: *const f64,
     max_force: f64,
+    tool_radius: f64,
     out: *mut *mut HapheProxy,
 ) -> HapheStatus {
     guard(|| {
-        let options = ProxyOptions::default().with_max_force(max_force)?;
+        let options = ProxyOptions::default()
+            .with_max_force(max_force)?
+            .with_tool_radius(tool_radius)?;
         let p = DVec3::from_array(
             Param::Position.check_vector(vec3(position, DVec3::ZERO).to_array())?,
         );

@@ -303,3 +303,66 @@ fn the_records_carry_the_buttons_and_the_clutch_keeps_the_tool() {
     );
     haphe_scene_free(scene);
 }
+
+/// Through the C ABI: a tool of radius r pressed onto the top face of a cube rests with its
+/// centre r above the face, where a point at the same device position is free; a radius
+/// outside its domain is refused naming `tool_radius`.
+#[test]
+fn the_proxy_takes_a_tool_radius() {
+    let scene = cube_scene(); // the cube [-0.5, 0.5]³: its top face at z = 0.5
+    let r = 0.05;
+    let start = [0.0, 0.0, 1.0];
+    let (mut tool, mut point) = (std::ptr::null_mut(), std::ptr::null_mut());
+    assert_eq!(
+        haphe_proxy_new(start.as_ptr(), 3.3, r, &mut tool),
+        HapheStatus::Ok
+    );
+    assert_eq!(
+        haphe_proxy_new(start.as_ptr(), 3.3, 0.0, &mut point),
+        HapheStatus::Ok
+    );
+    let hip = [0.0, 0.0, 0.5 + r - 1e-3];
+    let tick = |proxy| {
+        let mut out = std::mem::MaybeUninit::<HapheTick>::uninit();
+        let status = haphe_proxy_tick(
+            proxy,
+            scene,
+            hip.as_ptr(),
+            std::ptr::null(),
+            out.as_mut_ptr(),
+        );
+        assert_eq!(status, HapheStatus::Ok, "{}", last_error());
+        // SAFETY: written on success.
+        unsafe { out.assume_init() }
+    };
+    let free = tick(point);
+    assert_eq!(free.in_contact, 0);
+    let touching = tick(tool);
+    assert_eq!(touching.in_contact, 1);
+    assert!(
+        (touching.proxy[2] - (0.5 + r)).abs() < 1e-5,
+        "{:?}",
+        touching.proxy
+    );
+    assert!(
+        (touching.point[2] - 0.5).abs() < 1e-9,
+        "{:?}",
+        touching.point
+    );
+    assert!(
+        (touching.penetration - 1e-3).abs() < 1e-5,
+        "{}",
+        touching.penetration
+    );
+    haphe_proxy_free(tool);
+    haphe_proxy_free(point);
+    haphe_scene_free(scene);
+    for bad in [-1e-3, f64::NAN, f64::INFINITY, 10.0] {
+        let mut proxy = std::ptr::null_mut();
+        let status = haphe_proxy_new(std::ptr::null(), 3.3, bad, &mut proxy);
+        assert_eq!(status, HapheStatus::InvalidArgument, "{bad}");
+        assert!(proxy.is_null());
+        let message = last_error();
+        assert!(message.starts_with("tool_radius must be"), "{message}");
+    }
+}
