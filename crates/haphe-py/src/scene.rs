@@ -235,6 +235,19 @@ impl Scene {
             .ok_or_else(|| pyo3::exceptions::PyKeyError::new_err(id))
     }
 
+    /// check_tool_radius(tool_radius)
+    /// --
+    ///
+    /// ``tool_radius`` (metres) when a tool of that radius fits this scene: from 0 to
+    /// 0.5 m, and at most the diagonal of the box bounding the objects as placed now (a
+    /// larger tool holds the whole scene). Raises ``HapheError`` naming ``tool_radius``
+    /// otherwise.
+    fn check_tool_radius(&mut self, tool_radius: f64) -> PyResult<f64> {
+        self.scene()
+            .check_tool_radius(tool_radius)
+            .map_err(param_error)
+    }
+
     fn __len__(&mut self) -> usize {
         self.scene().objects().len()
     }
@@ -304,18 +317,22 @@ fn tuple(v: DVec3) -> (f64, f64, f64) {
     (v.x, v.y, v.z)
 }
 
-/// The god-object proxy of a point device: a point that never enters an object, moved each
+/// The god-object proxy of a device: the centre of the tool (a point, or a sphere of
+/// ``tool_radius``), which never comes closer to an object than that radius, moved each
 /// tick toward the device point (HIP) and stopped and slid by the surfaces it meets; the
 /// force pulls the device toward it.
 ///
 /// ``Proxy(position=(0, 0, 0), max_force=DEFAULT_MAX_FORCE, skin=1e-6,
-/// workspace_radius=1000.0)``:
+/// workspace_radius=1000.0, tool_radius=0.0)``:
 /// the start position (metres, normally the device point at start-up), the largest force
 /// rendered (N; ``haphe.DEFAULT_MAX_FORCE``, that of a common desktop device, by default),
-/// the distance kept from a touched surface (m), and the radius beyond which device points
-/// are pulled back (m). A value outside its domain (the library's table: a force above 0
-/// and at most 100 N, a skin above 0 and at most 1 mm, a radius above 0) raises
-/// ``HapheError`` naming it.
+/// the distance kept from a touched surface (m), the radius beyond which device points
+/// are pulled back (m), and the radius of the tool (m; 0, a point, by default; the proxy
+/// keeps the tool's centre that far from every triangle). A value outside its domain
+/// (the library's table: a force above 0 and at most 100 N, a skin above 0 and at most
+/// 1 mm, a workspace radius above 0, a tool radius from 0 to 0.5 m) raises ``HapheError``
+/// naming it. A proxy is not bound to one scene: ``Scene.check_tool_radius`` also refuses
+/// a tool larger than a given scene.
 #[pyclass(module = "haphe")]
 pub struct Proxy {
     inner: proxy::Proxy,
@@ -324,17 +341,19 @@ pub struct Proxy {
 #[pymethods]
 impl Proxy {
     #[new]
-    #[pyo3(signature = (position = [0.0; 3], max_force = haphe::scene::DEFAULT_MAX_FORCE_N, skin = proxy::DEFAULT_SKIN, workspace_radius = 1e3))]
+    #[pyo3(signature = (position = [0.0; 3], max_force = haphe::scene::DEFAULT_MAX_FORCE_N, skin = proxy::DEFAULT_SKIN, workspace_radius = 1e3, tool_radius = 0.0))]
     fn new(
         position: [f64; 3],
         max_force: f64,
         skin: f64,
         workspace_radius: f64,
+        tool_radius: f64,
     ) -> PyResult<Proxy> {
         let options = ProxyOptions::default()
             .with_max_force(max_force)
             .and_then(|o| o.with_skin(skin))
             .and_then(|o| o.with_workspace_radius(workspace_radius))
+            .and_then(|o| o.with_tool_radius(tool_radius))
             .map_err(param_error)?;
         Ok(Proxy {
             inner: proxy::Proxy::new(position_of(position)?, options),
@@ -391,5 +410,11 @@ impl Proxy {
     #[getter]
     fn position(&self) -> (f64, f64, f64) {
         tuple(self.inner.position())
+    }
+
+    /// The radius of the tool, metres (0: a point).
+    #[getter]
+    fn tool_radius(&self) -> f64 {
+        self.inner.options().tool_radius()
     }
 }

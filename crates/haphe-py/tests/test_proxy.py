@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import haphe
-from test_queries import cube
+from test_queries import CUBE_FACES, cube
 
 
 def test_pressing_on_a_cube_pushes_back():
@@ -64,3 +64,36 @@ def test_run_with_the_simulated_hand():
     assert out["device"] == "the simulated hand (press)" and out["stop"] == "finished"
     with pytest.raises(haphe.HapheError, match="unknown device"):
         haphe.run(scene, device="phantom", seconds=0.1)
+
+
+def test_a_tool_rests_its_radius_above_the_surface():
+    r = 0.05
+    scene = haphe.Scene()
+    scene.add(cube(), position=(0, 0, -1), stiffness=1000.0)  # the top face at z = 0
+    tool = haphe.Proxy(position=(0.5, 0.5, 0.2), tool_radius=r)
+    point = haphe.Proxy(position=(0.5, 0.5, 0.2))
+    assert tool.tool_radius == r and point.tool_radius == 0.0
+    # The device point 1 mm closer to the face than the radius: the point is free, the
+    # tool touches; its centre stays r above the face and the spring pulls the device out.
+    hip = (0.5, 0.5, r - 0.001)
+    assert point.tick(scene, hip)[2] is None
+    force, position, contact = tool.tick(scene, hip)
+    assert contact is not None and contact.triangle in (10, 11)
+    assert abs(position[2] - r) < 1e-5, position
+    np.testing.assert_allclose(contact.point, (0.5, 0.5, 0.0), atol=1e-9)
+    np.testing.assert_allclose(contact.normal, (0, 0, 1), atol=1e-12)
+    np.testing.assert_allclose(force, (0, 0, 1000.0 * 0.001), rtol=1e-2)
+
+
+def test_a_tool_larger_than_the_scene_is_refused():
+    scene = haphe.Scene()
+    corners = [[x, y, z] for z in (0, 1) for (x, y) in ((0, 0), (1, 0), (1, 1), (0, 1))]
+    small = haphe.Shape.from_arrays(0.1 * np.array(corners, dtype=float), CUBE_FACES)
+    scene.add(small)
+    diagonal = 0.1 * 3 ** 0.5
+    assert scene.check_tool_radius(0.99 * diagonal) == 0.99 * diagonal
+    with pytest.raises(haphe.HapheError) as e:
+        scene.check_tool_radius(1.01 * diagonal)
+    message = str(e.value)
+    assert message.startswith("tool_radius must be at most 0.1732 m, the diagonal"), message
+    assert isinstance(e.value, ValueError)

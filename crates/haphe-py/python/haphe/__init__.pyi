@@ -134,6 +134,9 @@ class Scene:
     ) -> int: ...
     def move(self, id: int, position: _Vec3, rotation: Optional[_Rotation] = None) -> None: ...
     def remove(self, id: int) -> None: ...
+    def check_tool_radius(self, tool_radius: float) -> float:
+        """tool_radius (m) if a tool of that radius fits the scene (0 to 0.5 m, at most
+        the diagonal of the box bounding its objects); else raises HapheError."""
     def __len__(self) -> int: ...
 
 class Contact:
@@ -148,7 +151,7 @@ class Contact:
     constraints: int
 
 class Proxy:
-    """The god-object proxy of a point device."""
+    """The god-object proxy: the centre of the tool, a point or a sphere of tool_radius."""
 
     def __init__(
         self,
@@ -156,6 +159,7 @@ class Proxy:
         max_force: float = DEFAULT_MAX_FORCE,
         skin: float = 1e-6,
         workspace_radius: float = 1000.0,
+        tool_radius: float = 0.0,
     ) -> None: ...
     def tick(
         self, scene: Scene, hip: _Vec3, velocity: _Vec3 = (0.0, 0.0, 0.0)
@@ -164,3 +168,6 @@ class Proxy:
     def reset(self, position: _Vec3) -> None: ...
     @property
     def position(self) -> Tuple[float, float, float]: ...
+    @property
+    def tool_radius(self) -> float:
+        """The radius of the tool, metres (0: a point)."""
