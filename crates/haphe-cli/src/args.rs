@@ -28,18 +28,23 @@ pub const PLOT_SECONDS: f64 = 60.0;
 pub const DEFAULT_OVERRUN_BUDGET: u64 = haphe_devices::DEFAULT_OVERRUN_BUDGET;
 
 /// How a real device's workspace is mapped onto the scene; shared by `haphe run` and
-/// `haphe view`.
-#[derive(clap::Args, Debug, Clone, Copy)]
+/// `haphe view`. With several devices (`haphe run --device A --device B`), each flag is
+/// given once per device, in the devices' order, or not at all.
+#[derive(clap::Args, Debug, Clone)]
 pub struct MappingArgs {
     /// World metres per device metre (default: the device's workspace covers the scene's
-    /// bounds).
+    /// bounds). With several --device, once per device, in their order.
     #[arg(long)]
-    pub scale: Option<f64>,
+    pub scale: Vec<f64>,
     /// The world point the centre of the device's workspace maps to, metres, "x,y,z"
-    /// (default: the centre of the scene's bounds).
+    /// (default: the centre of the scene's bounds). With several --device, once per
+    /// device, in their order.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_point)]
-    pub centre: Option<DVec3>,
+    pub centre: Vec<DVec3>,
 }
+
+/// The mapping flags of one device: `--scale` and `--centre`, each when given.
+pub type DeviceMappingFlags = (Option<f64>, Option<DVec3>);
 
 impl MappingArgs {
     /// Checks `--scale` and `--centre` against the library's table of domains.
@@ -47,17 +52,53 @@ impl MappingArgs {
     /// # Errors
     /// A value outside its domain, named as its flag.
     pub fn check(&self) -> anyhow::Result<()> {
-        if let Some(s) = self.scale {
+        for &s in &self.scale {
             Param::Scale
                 .check(s)
                 .map_err(|e| anyhow!("{}", e.named("--scale")))?;
         }
-        if let Some(c) = self.centre {
+        for c in &self.centre {
             Param::Centre
                 .check_vector(c.to_array())
                 .map_err(|e| anyhow!("{}", e.named("--centre")))?;
         }
         Ok(())
+    }
+
+    /// The flags of each of `devices` (their specifications, in order), checked: a flag
+    /// is given for every device, in their order, or for none (then each device has the
+    /// default); given for some devices only, no device would know which is its own.
+    ///
+    /// # Errors
+    /// A value outside its domain, or a flag given a number of times that is neither
+    /// zero nor the number of devices, naming the devices left without one.
+    pub fn per_device(&self, devices: &[String]) -> anyhow::Result<Vec<DeviceMappingFlags>> {
+        self.check()?;
+        let n = devices.len();
+        for (flag, given) in [
+            ("--scale", self.scale.len()),
+            ("--centre", self.centre.len()),
+        ] {
+            if given != 0 && given != n {
+                let without: Vec<String> = devices
+                    .iter()
+                    .enumerate()
+                    .skip(given)
+                    .map(|(i, d)| format!("device {} ({d})", i + 1))
+                    .collect();
+                let what = if without.is_empty() {
+                    format!("{} more than there are devices", given - n)
+                } else {
+                    format!("none for {}", without.join(", "))
+                };
+                bail!(
+                    "{flag} is given {given} time(s) for {n} device(s): give it once per --device, in the same order, or not at all ({what})"
+                );
+            }
+        }
+        Ok((0..n)
+            .map(|i| (self.scale.get(i).copied(), self.centre.get(i).copied()))
+            .collect())
     }
 }
 

@@ -20,10 +20,13 @@ use crate::session::{DeviceChoice, Session};
 /// Arguments of `haphe run`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// The device: dhd (Force Dimension), openhaptics (3D Systems Touch), udp:HOST:PORT
-    /// (listen there for a network device), or hand (the simulated hand).
-    #[arg(long, value_name = "SPEC")]
-    device: String,
+    /// The device: dhd (Force Dimension; dhd:N the one at index N), openhaptics (3D
+    /// Systems Touch; openhaptics:NAME the one configured under NAME), udp:HOST:PORT
+    /// (listen there for a network device), or hand (the simulated hand; hand:SEED along
+    /// the path of that seed). Repeat it for several devices in one scene, each with its
+    /// own proxy, mapping and safety, on one servo thread (docs/devices.md, "Two hands").
+    #[arg(long, value_name = "SPEC", required = true)]
+    device: Vec<String>,
     #[command(flatten)]
     model: ModelArgs,
     /// Length of the run, seconds (default: until Ctrl-C; 5 s for the simulated hand).
@@ -60,9 +63,10 @@ pub struct Args {
 
 /// Runs `haphe run`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    // Parsed first: a wrong specification is reported before the scene is built.
-    args.device.parse::<haphe_devices::DeviceKind>()?;
-    args.mapping.check()?;
+    // Parsed and paired first: a wrong specification, a device given twice or a mapping
+    // missing for one device is reported before the scene is built or a device opened.
+    haphe_devices::parse_devices(&args.device)?;
+    let mappings = args.mapping.per_device(&args.device)?;
     if !(args.udp_timeout.is_finite() && args.udp_timeout > 0.0) {
         bail!("--udp-timeout must be positive, not {}", args.udp_timeout);
     }
@@ -70,6 +74,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         bail!(
             "--udp-workspace must be positive, not {}",
             args.udp_workspace
+        );
+    }
+    if args.device.len() > 1 && args.output.plot.is_some() {
+        bail!(
+            "--plot draws one device's run; with several --device, write --out and plot each device's columns"
         );
     }
     catch_interrupts()?;
@@ -81,23 +90,29 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let (loaded, what) = load_model(args.model.model(), material)?;
     let build_seconds = started.elapsed().as_secs_f64();
     let h = args.udp_workspace;
-    let choice = VendorChoice {
-        spec: args.device.clone(),
-        udp: UdpOptions {
-            timeout_s: args.udp_timeout,
-            workspace: (DVec3::splat(-h), DVec3::splat(h)),
-            max_force: args.max_force,
-            ..UdpOptions::default()
-        },
-        scale: args.mapping.scale,
-        centre: args.mapping.centre,
-        overrun_budget: Some(args.overrun_budget),
+    let udp = UdpOptions {
+        timeout_s: args.udp_timeout,
+        workspace: (DVec3::splat(-h), DVec3::splat(h)),
+        max_force: args.max_force,
+        ..UdpOptions::default()
     };
+    let choices = args
+        .device
+        .iter()
+        .zip(mappings)
+        .map(|(spec, (scale, centre))| VendorChoice {
+            spec: spec.clone(),
+            udp,
+            scale,
+            centre,
+            overrun_budget: Some(args.overrun_budget),
+        })
+        .collect();
     let session = Session {
-        title: format!("haphe run: device {} on {what}", args.device),
+        title: format!("haphe run: device {} on {what}", args.device.join(", ")),
         objects: loaded.objects,
         build_seconds,
-        device: DeviceChoice::Vendor(choice),
+        device: DeviceChoice::Vendor(choices),
         rate_hz: args.rate,
         seconds: args.seconds,
         realtime: true,

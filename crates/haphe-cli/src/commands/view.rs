@@ -129,9 +129,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             other.parse::<haphe_devices::DeviceKind>().map_err(|e| {
                 anyhow!("--device {other:?}: {e} (or mouse, the default, for the view)")
             })?;
-            args.mapping.check()?;
+            let flags = args.mapping.per_device(&[other.to_string()])?;
             ViewDevice::Vendor(
-                view_choice(other, args.mapping),
+                view_choice(other, flags[0]),
                 args.seconds,
                 args.clutch.clutch_button,
             )

@@ -6,7 +6,9 @@ use std::io::Write;
 use haphe::DVec3;
 use haphe::scene::{Param, Scene};
 use haphe::servo::{DeviceMapping, DeviceSpec};
-use haphe_devices::{OpenedDevice, UdpOptions, open_device, workspace_mapping};
+#[cfg(feature = "view")]
+use haphe_devices::{OpenedDevice, open_device};
+use haphe_devices::{UdpOptions, workspace_mapping};
 
 /// How `haphe run` chose its device.
 #[derive(Debug, Clone)]
@@ -23,20 +25,29 @@ pub struct VendorChoice {
     pub overrun_budget: Option<u64>,
 }
 
+impl VendorChoice {
+    /// Whether it names the simulated hand (`hand`, `hand:SEED`), which moves in the
+    /// world already: no mapping.
+    pub fn is_hand(&self) -> bool {
+        self.spec == "hand" || self.spec.starts_with("hand:")
+    }
+}
+
 /// The device choice of `haphe view`: `mapping`, and `haphe run`'s default network
 /// settings and overrun budget.
 #[cfg(feature = "view")]
-pub fn view_choice(spec: &str, mapping: crate::args::MappingArgs) -> VendorChoice {
+pub fn view_choice(spec: &str, mapping: crate::args::DeviceMappingFlags) -> VendorChoice {
     VendorChoice {
         spec: spec.to_string(),
         udp: UdpOptions::default(),
-        scale: mapping.scale,
-        centre: mapping.centre,
+        scale: mapping.0,
+        centre: mapping.1,
         overrun_budget: Some(crate::args::DEFAULT_OVERRUN_BUDGET),
     }
 }
 
-/// Opens the device of `choice` (for the session).
+/// Opens the device of `choice` (for the view's session).
+#[cfg(feature = "view")]
 pub fn open(choice: &VendorChoice, scene: &Scene, seconds: f64) -> anyhow::Result<OpenedDevice> {
     Ok(open_device(&choice.spec, scene, seconds, choice.udp)?)
 }
@@ -52,7 +63,7 @@ pub fn mapping(
     spec: &DeviceSpec,
     scene: &Scene,
 ) -> anyhow::Result<DeviceMapping> {
-    if choice.spec == "hand" {
+    if choice.is_hand() {
         return Ok(DeviceMapping::IDENTITY);
     }
     workspace_mapping(spec, scene, choice.scale, choice.centre).map_err(|e| {
@@ -72,7 +83,7 @@ pub fn print_mapping(
     m: &DeviceMapping,
     stiffness: f64,
 ) -> std::io::Result<()> {
-    if choice.spec == "hand" {
+    if choice.is_hand() {
         return Ok(());
     }
     let c = m.offset();

@@ -3,6 +3,7 @@
 //! the plot. `haphe simulate`, `run` and `demo` each describe one and run it.
 
 pub mod device;
+pub mod devices;
 #[cfg(feature = "view")]
 pub mod live;
 pub mod plot;
@@ -17,13 +18,13 @@ use anyhow::{anyhow, bail};
 use haphe::DVec3;
 use haphe::scene::Scene;
 use haphe::servo::{
-    Device, DeviceClock, DeviceMapping, DeviceSpec, HandOptions, HipTrace, Interference,
-    ObjectMotion, PathKind, RealtimeOptions, RealtimeSetup, ReplayDevice, STIFFNESS_RATED_AT_HZ,
-    ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand, StandbyReport, StopReason,
-    TickRecord, TickStats, TrajectoryError, scripted_path,
+    Device, HandOptions, HipTrace, Interference, ObjectMotion, PathKind, RealtimeOptions,
+    RealtimeSetup, ReplayDevice, ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand,
+    StandbyReport, StopReason, TickRecord, TickStats, TrajectoryError, scripted_path,
 };
 
 use self::device::VendorChoice;
+use self::devices::{Opened, Vendor};
 use self::summary::{RunInfo, Summary};
 use self::trace::TraceOut;
 use crate::args::{DEFAULT_SECONDS, MAX_SECONDS, PLOT_SECONDS, ToolRadius, proxy_options};
@@ -37,8 +38,9 @@ pub enum DeviceChoice {
     Scripted(PathKind),
     /// A recorded trace.
     Replay(HipTrace),
-    /// A real device, or the network device, named by a specification (`haphe run`).
-    Vendor(VendorChoice),
+    /// Real devices, network devices or simulated hands named by specifications (`haphe
+    /// run`): one, or several on one servo, each with its own mapping.
+    Vendor(Vec<VendorChoice>),
 }
 
 impl DeviceChoice {
@@ -47,7 +49,10 @@ impl DeviceChoice {
             DeviceChoice::Hand(p, _) => format!("the simulated hand, path {p}"),
             DeviceChoice::Scripted(p) => format!("a scripted device (no hand), path {p}"),
             DeviceChoice::Replay(t) => format!("a replayed trace of {} samples", t.len()),
-            DeviceChoice::Vendor(v) => format!("device {}", v.spec),
+            DeviceChoice::Vendor(v) => {
+                let specs: Vec<&str> = v.iter().map(|c| c.spec.as_str()).collect();
+                format!("device {}", specs.join(", "))
+            }
         }
     }
 }
@@ -92,14 +97,6 @@ struct Built {
     triangles: usize,
 }
 
-/// A device named by a specification, opened for the session.
-struct Vendor {
-    choice: VendorChoice,
-    description: String,
-    clock: Option<Box<dyn DeviceClock>>,
-    report: Report,
-}
-
 /// How the servo ran, whatever the clock.
 struct Ran {
     stats: TickStats,
@@ -108,8 +105,34 @@ struct Ran {
     interference: Option<Interference>,
     standby: Option<StandbyReport>,
     dropped: u64,
+    /// What each device did, in order.
+    devices: Vec<DeviceRan>,
+    /// The device whose fault stopped the run.
+    faulted: Option<usize>,
+}
+
+/// What a device of the run was and did, for its summary.
+struct DeviceRan {
     /// How far the clutch moved the device's origin in the world, metres.
     moved: DVec3,
+    /// World metres per device metre.
+    scale: f64,
+    /// The largest force rendered, N (lowered to the device's maximum).
+    max_force: f64,
+}
+
+/// What each device of `servo` was and did.
+fn devices_ran<D: Device>(servo: &Servo<D>) -> Vec<DeviceRan> {
+    (0..servo.devices())
+        .filter_map(|i| {
+            let (mapping, options) = (servo.mapping_of(i)?, servo.options_of(i)?);
+            Some(DeviceRan {
+                moved: mapping.offset() - options.mapping().offset(),
+                scale: mapping.scale(),
+                max_force: options.proxy().max_force(),
+            })
+        })
+        .collect()
 }
 
 /// Inserts `objects` into a new scene.
@@ -144,7 +167,8 @@ fn build_scene(objects: Vec<LoadedObject>) -> anyhow::Result<Built> {
 }
 
 impl Session {
-    /// Builds the scene and device, runs, prints the summary, writes trace and plot.
+    /// Builds the scene and devices, runs, prints the summary (one block per device),
+    /// writes trace and plot.
     pub fn run(self, out: &mut impl Write) -> anyhow::Result<()> {
         let Built {
             scene,
@@ -154,19 +178,14 @@ impl Session {
         } = build_scene(self.objects)?;
         let proxy = ToolRadius::apply(&self.tool_radius, proxy_options(self.max_force)?, &scene)?;
         // A real device runs until Ctrl-C unless told otherwise.
-        let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.spec != "hand")
+        let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.iter().any(|c| !c.is_hand()))
             && self.seconds.is_none();
         let seconds = run_seconds(&self.device, self.seconds, until_stopped, self.rate_hz)?;
         let replay = matches!(self.device, DeviceChoice::Replay(_));
-        let (device, vendor) = open_device(self.device, &scene, seconds, self.seed, &self.presses)?;
-        let mapping = match &vendor {
-            Some(v) => device::mapping(&v.choice, &device.spec(), &scene)?,
-            None => DeviceMapping::IDENTITY,
-        };
+        let opened = open_devices(self.device, &scene, seconds, self.seed, &self.presses)?;
         let options = ServoOptions::new(self.rate_hz)
             .map_err(|e| anyhow!("{}", e.named("--rate")))?
             .with_proxy(proxy)
-            .with_mapping(mapping)
             .with_clutch_button(self.clutch_button);
         let stiffness = stiffest(&scene);
         // The objects as placed at the start, for the plot's section (shapes shared).
@@ -174,41 +193,36 @@ impl Session {
             Some(_) => scene.objects().to_vec(),
             None => Vec::new(),
         };
-        warn_stiffness(stiffness, &mapping, &device.spec(), self.rate_hz);
-        let mut servo = Servo::new(device, scene, options)?;
+        let (mut servo, mut vendors) = devices::servo_of(opened, scene, options, stiffness)?;
         servo.set_motions(motions);
-        let max_force = servo.options().proxy().max_force();
 
         writeln!(out, "{}", self.title)?;
         let tool = servo.options().proxy().tool_radius();
         print_scene(out, &names, triangles, self.build_seconds, tool)?;
-        if let Some(v) = &vendor {
-            writeln!(out, "device: {}", v.description)?;
-            device::print_mapping(out, &v.choice, &mapping, stiffness)?;
-        }
-        let realtime = self.realtime || vendor.is_some();
+        devices::print(out, &servo, &vendors, stiffness)?;
+        let realtime = self.realtime || vendors.iter().any(Option::is_some);
         let limit = (!until_stopped).then_some(seconds);
         let ticks = (seconds * self.rate_hz).round().max(1.0) as u64;
-        let mut summary = Summary::new(ticks);
+        let n = servo.devices();
+        let mut summaries: Vec<Summary> = (0..n).map(|_| Summary::new(ticks)).collect();
         let mut trace = match &self.out {
-            Some(p) => Some(TraceOut::create(p)?),
+            Some(p) => Some(TraceOut::create(p, n)?),
             None => None,
         };
         let mut on_tick = |r: &TickRecord| {
-            summary.add(r);
+            if let Some(s) = summaries.get_mut(r.device as usize) {
+                s.add(r);
+            }
             if let Some(t) = trace.as_mut() {
                 t.add(r);
             }
         };
-        let mut report = None;
         let ran = if realtime {
             let options = RealtimeOptions::default()
                 .with_spin_seconds(self.spin_seconds)?
                 .with_realtime_priority(self.fifo)
                 .with_standby_core(self.standby_core);
-            let (ran, said) = run_realtime(out, servo, vendor, limit, options, &mut on_tick)?;
-            report = said;
-            ran
+            run_realtime(out, servo, &mut vendors, limit, options, &mut on_tick)?
         } else {
             let stop = servo.run_simulated(ticks, &mut on_tick);
             servo.close();
@@ -219,31 +233,34 @@ impl Session {
                 interference: None,
                 standby: None,
                 dropped: 0,
-                moved: moved(&servo),
+                devices: devices_ran(&servo),
+                faulted: servo.faulted_device(),
             }
         };
         writeln!(out, "\nrun:")?;
-        summary::print(
-            out,
-            &summary,
-            &ran.stats,
-            &RunInfo {
-                rate_hz: self.rate_hz,
-                scale: mapping.scale(),
-                realtime,
-                max_force,
-                stop: ran.stop,
-                setup: ran.setup.as_ref(),
-                interference: ran.interference,
-                standby: ran.standby,
-                dropped_records: ran.dropped,
-                clutch: self.clutch_button.map(|b| (b, ran.moved)),
-            },
-        )?;
+        let info = |d: &DeviceRan| RunInfo {
+            rate_hz: self.rate_hz,
+            scale: d.scale,
+            realtime,
+            max_force: d.max_force,
+            stop: ran.stop,
+            setup: ran.setup.as_ref(),
+            interference: ran.interference,
+            standby: ran.standby.clone(),
+            dropped_records: ran.dropped,
+            clutch: self.clutch_button.map(|b| (b, d.moved)),
+        };
+        let blocks: Vec<(String, &Summary, RunInfo<'_>)> = summaries
+            .iter()
+            .zip(&ran.devices)
+            .enumerate()
+            .map(|(i, (s, d))| (devices::name(i, n, vendors[i].as_ref()), s, info(d)))
+            .collect();
+        summary::print_devices(out, &blocks, &ran.stats)?;
         let plot = self.plot.as_deref().map(|p| (p, placed.as_slice()));
-        write_files(out, trace, plot, &self.title, &summary)?;
-        let said = report.as_ref().and_then(|r| r());
-        outcome(out, ran.stop, said, touch_of(replay, &summary))
+        write_files(out, trace, plot, &self.title, &summaries[0])?;
+        let touched: Vec<Touch> = summaries.iter().map(|s| touch_of(replay, s)).collect();
+        outcome(out, &ran, &vendors, &touched)
     }
 }
 
@@ -289,11 +306,6 @@ fn run_seconds(
     })
 }
 
-/// How far the clutch moved `servo`'s device origin in the world, metres.
-fn moved<D: Device>(servo: &Servo<D>) -> DVec3 {
-    servo.mapping().offset() - servo.options().mapping().offset()
-}
-
 /// `device` with the buttons `presses` holds: (button, from, until), seconds.
 fn pressing<D>(
     mut device: D,
@@ -306,48 +318,34 @@ fn pressing<D>(
     Ok(device)
 }
 
-/// The device of `choice` (a simulated one holding the buttons of `presses`), and when
-/// it is named by a specification, what was opened.
-fn open_device(
+/// The devices of `choice` (a simulated one holding the buttons of `presses`, or those
+/// named by specifications, with what each opened).
+fn open_devices(
     choice: DeviceChoice,
     scene: &Scene,
     seconds: f64,
     seed: u64,
     presses: &[(u32, f64, f64)],
-) -> anyhow::Result<(Box<dyn Device>, Option<Vendor>)> {
-    Ok(match choice {
+) -> anyhow::Result<Vec<Opened>> {
+    let device: Box<dyn Device> = match choice {
         DeviceChoice::Hand(kind, hand) => {
             let hand = SimulatedHand::new(scripted_path(kind, scene, seconds, seed)?, hand);
-            (
-                Box::new(pressing(hand, presses, SimulatedHand::press)?),
-                None,
-            )
+            Box::new(pressing(hand, presses, SimulatedHand::press)?)
         }
         DeviceChoice::Scripted(kind) => {
             let device = ScriptedDevice::new(scripted_path(kind, scene, seconds, seed)?);
-            (
-                Box::new(pressing(device, presses, ScriptedDevice::press)?),
-                None,
-            )
+            Box::new(pressing(device, presses, ScriptedDevice::press)?)
         }
         DeviceChoice::Replay(trace) => {
             let device = ReplayDevice::new(trace);
-            (
-                Box::new(pressing(device, presses, ReplayDevice::press)?),
-                None,
-            )
+            Box::new(pressing(device, presses, ReplayDevice::press)?)
         }
-        DeviceChoice::Vendor(choice) => {
-            let opened = device::open(&choice, scene, seconds)?;
-            let vendor = Vendor {
-                choice,
-                description: opened.description,
-                clock: opened.clock,
-                report: opened.report,
-            };
-            (opened.device, Some(vendor))
-        }
-    })
+        DeviceChoice::Vendor(choices) => return devices::open_vendors(choices, scene, seconds),
+    };
+    Ok(vec![Opened {
+        device,
+        vendor: None,
+    }])
 }
 
 /// Completes the trace and draws the plot, each named in a line of `out`.
@@ -372,27 +370,6 @@ fn write_files(
         )?;
     }
     Ok(())
-}
-
-/// Warns on standard error when the stiffest object, felt at the device through
-/// `mapping`, is above what the device renders stably at `rate_hz`
-/// ([`DeviceSpec::stable_stiffness`], the passivity rule of a sampled wall).
-fn warn_stiffness(stiffness: f64, mapping: &DeviceMapping, spec: &DeviceSpec, rate_hz: f64) {
-    let at_device = mapping.stiffness_at_device(stiffness);
-    let stable = spec.stable_stiffness(rate_hz);
-    if at_device > stable {
-        let felt = if mapping.scale() == 1.0 {
-            String::new()
-        } else {
-            format!(", felt as {at_device:.0} N/m at the device")
-        };
-        eprintln!(
-            "haphe: warning: stiffness {stiffness} N/m{felt} is above the {stable:.0} N/m the device ({}, rated {:.0} N/m at {STIFFNESS_RATED_AT_HZ:.0} Hz) renders stably at {rate_hz} Hz \
-             (passivity of a sampled wall, K < K_rated · rate / {STIFFNESS_RATED_AT_HZ:.0} Hz): \
-             expect a buzzing wall; lower --stiffness or --scale, or raise --rate",
-            spec.name, spec.max_stiffness
-        );
-    }
 }
 
 /// The largest stiffness of the scene's objects, N/m (0 for none).
@@ -431,33 +408,28 @@ fn print_scene(
     Ok(())
 }
 
-/// What a device reports after a run.
-type Report = Box<dyn Fn() -> Option<String> + Send + Sync>;
-
-/// Runs `servo` on a real-time thread (driven by the vendor device's clock when it has
-/// one, within its overrun budget) until the run ends or Ctrl-C, handing each record to
-/// `on_tick`; with the vendor device's report.
+/// Runs `servo` on a real-time thread (driven by a vendor device's clock when one has
+/// it, within the overrun budget) until the run ends or Ctrl-C, handing each record to
+/// `on_tick`.
 fn run_realtime(
     out: &mut impl Write,
     servo: Servo<Box<dyn Device>>,
-    vendor: Option<Vendor>,
+    vendors: &mut [Option<Vendor>],
     limit: Option<f64>,
     mut options: RealtimeOptions,
     on_tick: &mut impl FnMut(&TickRecord),
-) -> anyhow::Result<(Ran, Option<Report>)> {
-    let mut clock = None;
-    let mut report = None;
-    if let Some(v) = vendor {
+) -> anyhow::Result<Ran> {
+    // One device's clock drives the ticks of all (OpenHaptics' scheduler).
+    let clock = vendors.iter_mut().flatten().find_map(|v| v.clock.take());
+    if let Some(v) = vendors.iter().flatten().next() {
         options = options.with_overrun_budget(v.choice.overrun_budget);
-        clock = v.clock;
-        report = Some(v.report);
         if limit.is_none() {
             // A network peer can also end the run (the stop flag of its datagram).
-            let or_peer = if v.choice.spec.starts_with("udp") {
-                " or the peer sends stop"
-            } else {
-                ""
-            };
+            let peer = vendors
+                .iter()
+                .flatten()
+                .any(|v| v.choice.spec.starts_with("udp"));
+            let or_peer = if peer { " or the peer sends stop" } else { "" };
             writeln!(out, "running until Ctrl-C{or_peer}")?;
         }
     }
@@ -468,16 +440,16 @@ fn run_realtime(
         None => ServoLoop::spawn(servo, limit, options)?,
     };
     let run = wait::wait(running, on_tick)?;
-    let ran = Ran {
+    Ok(Ran {
         stats: run.servo.stats().clone(),
         stop: run.stop,
         setup: Some(run.setup),
         interference: Some(run.interference),
         standby: run.standby,
         dropped: run.dropped_records,
-        moved: moved(&run.servo),
-    };
-    Ok((ran, report))
+        devices: devices_ran(&run.servo),
+        faulted: run.servo.faulted_device(),
+    })
 }
 
 /// Whether the device touched an object during a run, for the warning after it.
@@ -493,20 +465,10 @@ enum Touch {
     LeftWithoutTouching,
 }
 
-/// Prints what the device `said` after the run and one warning when it did not `touch`
-/// an object (the one that is true: never touching, or held by the safe start); the
-/// session's error when the device faulted (with what it said) or the servo missed too
-/// many deadlines.
-fn outcome(
-    out: &mut impl Write,
-    stop: StopReason,
-    said: Option<String>,
-    touch: Touch,
-) -> anyhow::Result<()> {
-    if let Some(line) = &said {
-        writeln!(out, "{line}")?;
-    }
-    let warning = match touch {
+/// The warning of a device that did not touch an object (the one that is true: never
+/// touching, or held by the safe start).
+fn warning(touch: Touch) -> Option<&'static str> {
+    match touch {
         Touch::Touched => None,
         Touch::Never => {
             Some("the device never touched any object (the path stays outside them all)")
@@ -517,19 +479,65 @@ fn outcome(
         Touch::LeftWithoutTouching => Some(
             "the device started inside an object (held at zero force until it left) and touched no object after",
         ),
-    };
-    if let Some(w) = warning {
-        writeln!(out, "warning: {w}")?;
     }
-    if let StopReason::Fault(f) = stop
-        && f != haphe::servo::DeviceFault::Ended
-    {
-        match said {
-            Some(line) => bail!("the device faulted: {f} ({line}); zero force was written"),
-            None => bail!("the device faulted: {f}; zero force was written"),
+}
+
+/// Prints what each device said after the run and one warning for each device that did
+/// not touch an object; the session's error when a device faulted (naming it, with what
+/// it said: zero force was written to every device) or the servo missed too many
+/// deadlines.
+fn outcome(
+    out: &mut impl Write,
+    ran: &Ran,
+    vendors: &[Option<Vendor>],
+    touched: &[Touch],
+) -> anyhow::Result<()> {
+    let n = touched.len();
+    let said: Vec<Option<String>> = (0..n)
+        .map(|i| {
+            vendors
+                .get(i)
+                .and_then(|v| v.as_ref())
+                .and_then(|v| (v.report)())
+        })
+        .collect();
+    for (i, line) in said.iter().enumerate() {
+        match line {
+            Some(line) if n == 1 => writeln!(out, "{line}")?,
+            Some(line) => {
+                let name = devices::name(i, n, vendors[i].as_ref());
+                writeln!(out, "{name}: {line}")?;
+            }
+            None => {}
         }
     }
-    if stop == StopReason::Overruns {
+    for (i, &touch) in touched.iter().enumerate() {
+        match warning(touch) {
+            Some(w) if n == 1 => writeln!(out, "warning: {w}")?,
+            Some(w) => {
+                let name = devices::name(i, n, vendors[i].as_ref());
+                writeln!(
+                    out,
+                    "warning: {name}: {}",
+                    w.replacen("the device", "it", 1)
+                )?;
+            }
+            None => {}
+        }
+    }
+    if let StopReason::Fault(f) = ran.stop
+        && f != haphe::servo::DeviceFault::Ended
+    {
+        let i = ran.faulted.unwrap_or(0);
+        let line = said.get(i).cloned().flatten();
+        let said = line.map_or(String::new(), |l| format!(" ({l})"));
+        if n == 1 {
+            bail!("the device faulted: {f}{said}; zero force was written");
+        }
+        let name = devices::name(i, n, vendors.get(i).and_then(|v| v.as_ref()));
+        bail!("{name} faulted: {f}{said}; zero force was written to every device");
+    }
+    if ran.stop == StopReason::Overruns {
         bail!("the servo missed more deadlines than its overrun budget; zero force was written");
     }
     Ok(())

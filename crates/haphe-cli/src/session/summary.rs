@@ -147,7 +147,9 @@ fn quantiles(h: &Histogram) -> String {
     )
 }
 
-/// How a run was made, for the report.
+/// How a run was made, for the report (of one device: its scale, maximum force and
+/// clutch; the rest is the run's).
+#[derive(Clone)]
 pub struct RunInfo<'a> {
     pub rate_hz: f64,
     /// World metres per device metre (1 for the simulated devices).
@@ -232,21 +234,16 @@ fn per_object(s: &Summary, period: f64) -> String {
     }
 }
 
-/// Prints the summary.
-pub fn print(
+/// Prints the summary of a run: its ticks, then what each device did (a block per
+/// device, under its name, when there are several; `devices` holds each one's name,
+/// summary and figures), then the servo's timing.
+pub fn print_devices(
     out: &mut impl Write,
-    s: &Summary,
+    devices: &[(String, &Summary, RunInfo<'_>)],
     stats: &TickStats,
-    info: &RunInfo<'_>,
 ) -> std::io::Result<()> {
-    let period = 1.0 / info.rate_hz;
-    let seconds = s.ticks as f64 * period;
-    let pct = |n: u64| {
-        if s.ticks == 0 {
-            0.0
-        } else {
-            100.0 * n as f64 / s.ticks as f64
-        }
+    let Some((_, first, info)) = devices.first() else {
+        return Ok(());
     };
     let clock = if info.realtime {
         "wall clock"
@@ -256,11 +253,43 @@ pub fn print(
     writeln!(
         out,
         "  ticks             {} at {} Hz = {:.3} s of {clock}{}",
-        s.ticks,
+        first.ticks,
         info.rate_hz,
-        seconds,
+        first.ticks as f64 / info.rate_hz,
         stop_note(info.stop)
     )?;
+    for (name, s, info) in devices {
+        if devices.len() > 1 {
+            writeln!(out, "  {name}:")?;
+        }
+        print_device(out, s, info)?;
+    }
+    writeln!(out, "  tick time         {}", quantiles(&stats.compute))?;
+    if info.realtime {
+        print_realtime(out, stats, info)?;
+    } else {
+        writeln!(
+            out,
+            "  achieved rate     {:.0} ticks/s as fast as possible ({:.3} s of compute; {:.0}x the asked rate)",
+            stats.achieved_rate(),
+            stats.wall_seconds,
+            stats.achieved_rate() / info.rate_hz
+        )?;
+    }
+    Ok(())
+}
+
+/// Prints what one device did: contact, penetration, force, friction, speed, safe start
+/// and clutch.
+fn print_device(out: &mut impl Write, s: &Summary, info: &RunInfo<'_>) -> std::io::Result<()> {
+    let period = 1.0 / info.rate_hz;
+    let pct = |n: u64| {
+        if s.ticks == 0 {
+            0.0
+        } else {
+            100.0 * n as f64 / s.ticks as f64
+        }
+    };
     writeln!(
         out,
         "  contact           {:.3} s ({:.1} % of ticks), {} touch(es){}",
@@ -307,20 +336,7 @@ pub fn print(
         s.max_speed,
         impossible(s.max_speed / info.scale, MAX_HAND_SPEED_M_S, 1.0, "m/s")
     )?;
-    print_start_and_clutch(out, s, info, period)?;
-    writeln!(out, "  tick time         {}", quantiles(&stats.compute))?;
-    if info.realtime {
-        print_realtime(out, stats, info)?;
-    } else {
-        writeln!(
-            out,
-            "  achieved rate     {:.0} ticks/s as fast as possible ({:.3} s of compute; {:.0}x the asked rate)",
-            stats.achieved_rate(),
-            stats.wall_seconds,
-            stats.achieved_rate() / info.rate_hz
-        )?;
-    }
-    Ok(())
+    print_start_and_clutch(out, s, info, period)
 }
 
 /// The summary's lines on the safe start and the clutch.

@@ -31,10 +31,14 @@ static struct standin_device dev[STANDIN_DEVICES];
 static int devices = 1;
 static int last_error = 0;
 /* Whether the state was set up: by standin_reset, or with one device at the first call
- * (a process that runs haphe scripts it through the environment only). */
+ * (a process that runs haphe scripts it through the environment only: with the number of
+ * devices HAPHE_STANDIN_DEVICES names, 1 by default). */
 static int ready = 0;
 void standin_reset(int device_count);
-static void init(void) { if (!ready) standin_reset(1); }
+static void init(void) {
+  const char *n = getenv("HAPHE_STANDIN_DEVICES");
+  if (!ready) standin_reset(n ? atoi(n) : 1);
+}
 
 static void reset_device(struct standin_device *d) {
   d->n_samples = 0; d->current = -1; d->n_forces = 0; d->fail_from = -1; d->opened = 0;
@@ -81,6 +85,8 @@ int dhdOpenID(char index) {
   d->opened = 1;
   int n = standin_env_path(i, d->samples, STANDIN_MAX);
   if (n >= 0) { d->n_samples = n; d->current = -1; d->n_forces = 0; d->calls = 0; }
+  int fail = standin_env_int("HAPHE_STANDIN_FAIL_FROM", i);
+  if (fail >= 0) d->fail_from = fail;
   return i;
 }
 int dhdOpen(void) {

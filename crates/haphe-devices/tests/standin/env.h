@@ -7,8 +7,12 @@
  * - HAPHE_STANDIN_FORCES names a file that receives, when the device is closed, one line:
  *   the number of forces written, the last force (three numbers), whether force output
  *   was still enabled (1 or 0) and the largest force magnitude written.
+ * - HAPHE_STANDIN_FAIL_FROM names the read (Force Dimension) or frame (OpenHaptics) from
+ *   which the device is unplugged (each fails with a communication error), counted from
+ *   its opening.
  * Those are device 0's; device i > 0 of a stand-in with several reads and writes the files
- * of HAPHE_STANDIN_PATH_i and HAPHE_STANDIN_FORCES_i (and its buttons are none). */
+ * of HAPHE_STANDIN_PATH_i and HAPHE_STANDIN_FORCES_i, and fails from
+ * HAPHE_STANDIN_FAIL_FROM_i (and its buttons are none). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,6 +41,12 @@ static const char *standin_env(const char *base, int device) {
   if (device == 0) return getenv(base);
   snprintf(variable, sizeof variable, "%s_%d", base, device);
   return getenv(variable);
+}
+
+/* The number in the variable `base` of device `device`, or -1. */
+static int standin_env_int(const char *base, int device) {
+  const char *value = standin_env(base, device);
+  return value ? atoi(value) : -1;
 }
 
 static int standin_env_path(int device, double (*samples)[6], int max) {

@@ -69,10 +69,14 @@ static volatile int running = 0;
 static pthread_t scheduler;
 static int scheduler_started = 0;
 /* Whether the state was set up: by standin_reset, or with one device at the first call
- * (a process that runs haphe scripts it through the environment only). */
+ * (a process that runs haphe scripts it through the environment only: with the number of
+ * devices HAPHE_STANDIN_DEVICES names, 1 by default). */
 static int ready = 0;
 void standin_reset(int devices_present);
-static void init(void) { if (!ready) standin_reset(1); }
+static void init(void) {
+  const char *n = getenv("HAPHE_STANDIN_DEVICES");
+  if (!ready) standin_reset(n ? atoi(n) : 1);
+}
 
 void standin_reset(int devices_present) {
   for (int i = 0; i < STANDIN_DEVICES; i++) {
@@ -133,6 +137,8 @@ HHD hdInitDevice(const char *name) {
   current_device = i;
   int n = standin_env_path(i, d->samples, STANDIN_MAX);
   if (n >= 0) { d->n_samples = n; d->current = -1; d->n_forces = 0; d->frames = 0; }
+  int fail = standin_env_int("HAPHE_STANDIN_FAIL_FROM", i);
+  if (fail >= 0) d->fail_from = fail;
   return (HHD)(i + 1);
 }
 void hdDisableDevice(HHD h) {
