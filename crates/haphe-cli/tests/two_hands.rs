@@ -18,6 +18,10 @@ use common::{assert_error, scratch, stdout};
 const SECONDS: &str = "1";
 const RATE_HZ: f64 = 500.0;
 
+/// The real-time flags of every run here: normal priority and no overrun budget (the test
+/// machine is shared).
+const SHARED_MACHINE: [&str; 3] = ["--normal-priority", "--overrun-budget", "1000000"];
+
 fn haphe() -> Command {
     Command::new(env!("CARGO_BIN_EXE_haphe"))
 }
@@ -39,8 +43,7 @@ fn run(devices: &[&str], extra: &[&str], out: &Path) -> Output {
             SECONDS,
         ])
         .args(["--rate", &RATE_HZ.to_string()])
-        // No overrun budget: the test machine is shared.
-        .args(["--normal-priority", "--overrun-budget", "1000000"])
+        .args(SHARED_MACHINE)
         .args(extra)
         .arg("--out")
         .arg(out);
