@@ -44,6 +44,8 @@ pub struct DeviceRun {
     pub udp: UdpOptions,
     /// The button that holds the clutch, if any.
     pub clutch_button: Option<u32>,
+    /// The proxy's options (the tool's radius).
+    pub proxy: haphe::proxy::ProxyOptions,
 }
 
 /// How a run with a real device went.
@@ -72,6 +74,7 @@ pub fn run_device(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<Device
         .map_err(param_error)?;
     let options = ServoOptions::new(run.rate_hz)
         .map_err(param_error)?
+        .with_proxy(run.proxy)
         .with_mapping(mapping)
         .with_clutch_button(run.clutch_button);
     let servo = Servo::new(opened.device, scene, options)

@@ -37,7 +37,7 @@ fn simulated_hand(
     Ok(Box::new(hand))
 }
 
-/// run(scene, device="hand", seconds=2.0, path="explore", rate_hz=1000.0, seed=1, scale=None, centre=None, udp_timeout=0.05, udp_workspace=0.1, clutch_button=None, presses=None)
+/// run(scene, device="hand", seconds=2.0, path="explore", rate_hz=1000.0, seed=1, scale=None, centre=None, udp_timeout=0.05, udp_workspace=0.1, clutch_button=None, presses=None, tool_radius=0.0)
 /// --
 ///
 /// Runs the servo loop over ``scene`` with a device for ``seconds``: each tick reads the
@@ -70,6 +70,10 @@ fn simulated_hand(
 /// ``centre`` (default: the centre of the scene's bounds). Ctrl-C stops it: zero force is
 /// written, then ``KeyboardInterrupt`` is raised.
 ///
+/// ``tool_radius`` (metres) makes the tool a sphere of that radius centred on the proxy
+/// (0, a point, by default): from 0 to 0.5 m and at most the diagonal of the box bounding
+/// the scene's objects, else ``HapheError`` naming it.
+///
 /// Returns a dict of arrays, one row per tick: ``t`` (s), ``hip``, ``proxy`` (N, 3) m,
 /// ``force`` (N, 3) N, ``contact`` bool, ``object`` (id, -1 when free), ``triangle``
 /// (the file's face index, -1 when free), ``penetration`` m, ``buttons`` (uint32, bit 0
@@ -82,7 +86,7 @@ fn simulated_hand(
 /// ``OSError``) when the device or its library cannot be opened: the message names the
 /// library, the variable that selects it and the SDK.
 #[pyfunction]
-#[pyo3(signature = (scene, device = "hand", seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1, clutch_button = None, presses = None))]
+#[pyo3(signature = (scene, device = "hand", seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1, clutch_button = None, presses = None, tool_radius = 0.0))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -98,6 +102,7 @@ pub fn run<'py>(
     udp_workspace: f64,
     clutch_button: Option<u32>,
     presses: Option<Vec<(u32, f64, f64)>>,
+    tool_radius: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     // The library's table of domains checks the rate, the scale and the centre.
     let options = ServoOptions::new(rate_hz).map_err(param_error)?;
@@ -140,6 +145,12 @@ pub fn run<'py>(
     }
     let world = scene.snapshot();
     drop(scene);
+    // The tool against its domain and the scene's size, as the command checks it.
+    let proxy = world
+        .check_tool_radius(tool_radius)
+        .and_then(|r| options.proxy().with_tool_radius(r))
+        .map_err(param_error)?;
+    let options = options.with_proxy(proxy);
     let outcome = if device == "hand" {
         py.detach(|| -> Result<DeviceOutcome, String> {
             let hand = simulated_hand(path, &world, seconds, seed, &presses)?;
@@ -171,6 +182,7 @@ pub fn run<'py>(
                 ..UdpOptions::default()
             },
             clutch_button,
+            proxy,
         };
         py.detach(|| run_device(request, world))?
     };

@@ -54,6 +54,7 @@ CASES = [
     # A tool of no size is the point; a tool of metres is a unit mixed up.
     ("tool_radius", lambda v: haphe.Proxy(tool_radius=v), 0.002, True, False, 10.0),
     ("tool_radius", lambda v: haphe.Scene().check_tool_radius(v), 0.002, True, False, 10.0),
+    ("tool_radius", lambda v: run(tool_radius=v), 0.002, True, False, 10.0),
     ("position", lambda v: haphe.Proxy(position=vec(v)), 0.2, True, True, 1e12),
     ("position", lambda v: proxy_reset(vec(v)), 0.2, True, True, 1e12),
     ("rate_hz", lambda v: run(rate_hz=v), 1000.0, False, False, 1e6),

@@ -97,3 +97,25 @@ def test_a_tool_larger_than_the_scene_is_refused():
     message = str(e.value)
     assert message.startswith("tool_radius must be at most 0.1732 m, the diagonal"), message
     assert isinstance(e.value, ValueError)
+
+
+def test_run_with_a_tool_keeps_its_centre_its_radius_above_the_face():
+    r = 0.01
+    outs = {}
+    for radius in (0.0, r):
+        scene = haphe.Scene()
+        scene.add(cube(), position=(-0.5, -0.5, -1.0), stiffness=600.0)  # the top at z = 0
+        outs[radius] = haphe.run(scene, device="hand", seconds=1.0, path="press",
+                                 tool_radius=radius)
+    for radius, out in outs.items():
+        touching = out["proxy"][out["contact"], 2]
+        assert touching.size > 100
+        # Resting on the face: the centre r above it (less the skin), never closer.
+        assert touching.min() > radius - 2e-6, (radius, touching.min())
+        np.testing.assert_allclose(np.median(touching), radius, atol=1e-5)
+    # A radius larger than the scene is refused naming it.
+    scene = haphe.Scene()
+    corners = [[x, y, z] for z in (0, 1) for (x, y) in ((0, 0), (1, 0), (1, 1), (0, 1))]
+    scene.add(haphe.Shape.from_arrays(0.01 * np.array(corners, dtype=float), CUBE_FACES))
+    with pytest.raises(haphe.HapheError, match="^tool_radius must be at most 0.01732 m"):
+        haphe.run(scene, device="hand", seconds=0.1, path="press", tool_radius=0.02)

@@ -48,6 +48,7 @@ def run(
     udp_workspace: float = 0.1,
     clutch_button: Optional[int] = None,
     presses: Optional[Sequence[Tuple[int, float, float]]] = None,
+    tool_radius: float = 0.0,
 ) -> Dict[str, Any]:
     """Runs the servo loop with a device: "hand" (simulated, simulated clock), "dhd",
     "openhaptics" or "udp:HOST:PORT" (real, wall clock, mapped onto the scene). Arrays t,
