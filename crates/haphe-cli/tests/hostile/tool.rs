@@ -132,32 +132,47 @@ fn a_scene_file_gives_the_radius_and_zero_is_the_point() {
         ]),
         &["bad.toml: line 1: tool_radius must be a finite number from 0 to 0.5 m, not -1"],
     );
-    // A radius of 0 is the point: the same trace, byte for byte, and no tool line.
+    // A radius of 0 is the point: the same trace, byte for byte, and no tool line, on a
+    // press and on strikes (1.5 m/s taps), on a shape and on a scene of two objects.
     let (point, zero) = (dir.join("point.csv"), dir.join("zero.csv"));
-    let run = |out: &std::path::Path, extra: &[&str]| {
+    let run = |objects: &[&str], path: &str, out: &std::path::Path, extra: &[&str]| {
         let mut args = vec![
             "simulate",
-            "--shape",
-            "sphere",
-            "--triangles",
-            "500",
             "--path",
-            "press",
+            path,
             "--seconds",
-            "0.5",
+            "1",
             "--out",
             s(out),
         ];
+        args.extend_from_slice(objects);
         args.extend_from_slice(extra);
         ok(&args)
     };
-    let a = run(&point, &[]);
-    let b = run(&zero, &["--tool-radius", "0"]);
-    assert!(!a.contains("tool:") && !b.contains("tool:"), "{b}");
-    let (a, b) = (
-        std::fs::read(&point).expect("point"),
-        std::fs::read(&zero).expect("zero"),
-    );
-    assert!(a.len() > 10_000, "{} bytes", a.len());
-    assert!(a == b, "--tool-radius 0 changed the trace");
+    let sphere = ["--shape", "sphere", "--triangles", "500"];
+    let two = [
+        "--scene",
+        concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../scenes/blob-and-plate.toml"
+        ),
+    ];
+    for (objects, path) in [
+        (&sphere[..], "press"),
+        (&sphere[..], "strike"),
+        (&two[..], "strike"),
+    ] {
+        let a = run(objects, path, &point, &[]);
+        let b = run(objects, path, &zero, &["--tool-radius", "0"]);
+        assert!(!a.contains("tool:") && !b.contains("tool:"), "{b}");
+        let (a, b) = (
+            std::fs::read(&point).expect("point"),
+            std::fs::read(&zero).expect("zero"),
+        );
+        assert!(a.len() > 10_000, "{} bytes", a.len());
+        assert!(
+            a == b,
+            "--tool-radius 0 changed the trace of {path} on {objects:?}"
+        );
+    }
 }
