@@ -177,6 +177,13 @@ enum HapheStatus haphe_scene_add(struct HapheScene *scene,
                                  const struct HapheMaterial *material,
                                  uint32_t *id);
 
+// Checks that a tool of radius `tool_radius` metres fits `scene` as placed now: from 0 to
+// 0.5 m and at most the diagonal of the box bounding its objects (a larger tool holds the
+// whole scene). A proxy is not bound to one scene, so `haphe_proxy_new` checks the domain
+// only; call this with the scene it will touch. Errors: `HAPHE_STATUS_INVALID_ARGUMENT`,
+// `haphe_last_error()` naming `tool_radius`.
+enum HapheStatus haphe_scene_check_tool_radius(struct HapheScene *scene, double tool_radius);
+
 // Moves object `id` to `position` (metres) turned by `rotation` (x, y, z, w; null: none);
 // the motion is rendered at the next tick. Allocates nothing. Errors:
 // `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id or a position or rotation outside its

@@ -23,7 +23,8 @@ mod alloc;
 pub use error::{HapheStatus, haphe_last_error};
 pub use scene::{
     HapheMaterial, HapheProxy, HapheScene, HapheTick, haphe_proxy_free, haphe_proxy_new,
-    haphe_proxy_tick, haphe_scene_add, haphe_scene_free, haphe_scene_new, haphe_scene_set_pose,
+    haphe_proxy_tick, haphe_scene_add, haphe_scene_check_tool_radius, haphe_scene_free,
+    haphe_scene_new, haphe_scene_set_pose,
 };
 pub use servo::{
     HapheButtonPress, HapheTickCallback, HapheTickRecord, haphe_run, haphe_run_with_buttons,

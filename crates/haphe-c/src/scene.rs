@@ -178,6 +178,23 @@ pub extern "C" fn haphe_scene_add(
     })
 }
 
+/// Checks that a tool of radius `tool_radius` metres fits `scene` as placed now: from 0 to
+/// 0.5 m and at most the diagonal of the box bounding its objects (a larger tool holds the
+/// whole scene). A proxy is not bound to one scene, so `haphe_proxy_new` checks the domain
+/// only; call this with the scene it will touch. Errors: `HAPHE_STATUS_INVALID_ARGUMENT`,
+/// `haphe_last_error()` naming `tool_radius`.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_scene_check_tool_radius(
+    scene: *mut HapheScene,
+    tool_radius: f64,
+) -> HapheStatus {
+    guard(|| {
+        let sc = scene_mut(scene)?;
+        sc.inner.check_tool_radius(tool_radius)?;
+        Ok(())
+    })
+}
+
 /// Moves object `id` to `position` (metres) turned by `rotation` (x, y, z, w; null: none);
 /// the motion is rendered at the next tick. Allocates nothing. Errors:
 /// `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id or a position or rotation outside its

@@ -82,9 +82,14 @@ fn a_panic_becomes_a_status() {
 
 /// The unit cube [0, 1]³ from arrays.
 fn cube() -> *mut HapheShape {
+    cube_of(1.0)
+}
+
+/// The cube [0, side]³.
+fn cube_of(side: f64) -> *mut HapheShape {
     let mut vertices = Vec::new();
-    for z in [0.0, 1.0] {
-        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+    for z in [0.0, side] {
+        for (x, y) in [(0.0, 0.0), (side, 0.0), (side, side), (0.0, side)] {
             vertices.extend([x, y, z]);
         }
     }
@@ -356,7 +361,41 @@ fn the_proxy_takes_a_tool_radius() {
     );
     haphe_proxy_free(tool);
     haphe_proxy_free(point);
+    // The scene's box is the unit cube: a tool fits up to its diagonal, √3 m, beyond the
+    // domain's 0.5 m.
+    assert_eq!(haphe_scene_check_tool_radius(scene, 0.5), HapheStatus::Ok);
     haphe_scene_free(scene);
+    // A scene of a 1 cm cube: a tool fits up to 1 cm × √3.
+    let shape = cube_of(0.01);
+    let mut small = std::ptr::null_mut();
+    assert_eq!(haphe_scene_new(1, &mut small), HapheStatus::Ok);
+    let status = haphe_scene_add(
+        small,
+        shape,
+        std::ptr::null(),
+        std::ptr::null(),
+        std::ptr::null(),
+        std::ptr::null_mut(),
+    );
+    assert_eq!(status, HapheStatus::Ok, "{}", last_error());
+    haphe_shape_free(shape);
+    let diagonal = 0.01 * 3f64.sqrt();
+    assert_eq!(
+        haphe_scene_check_tool_radius(small, 0.99 * diagonal),
+        HapheStatus::Ok
+    );
+    let status = haphe_scene_check_tool_radius(small, 1.01 * diagonal);
+    assert_eq!(status, HapheStatus::InvalidArgument);
+    let message = last_error();
+    assert!(
+        message.starts_with("tool_radius must be at most 0.01732 m"),
+        "{message}"
+    );
+    assert_eq!(
+        haphe_scene_check_tool_radius(std::ptr::null_mut(), 0.001),
+        HapheStatus::InvalidArgument
+    );
+    haphe_scene_free(small);
     for bad in [-1e-3, f64::NAN, f64::INFINITY, 10.0] {
         let mut proxy = std::ptr::null_mut();
         let status = haphe_proxy_new(std::ptr::null(), 3.3, bad, &mut proxy);
