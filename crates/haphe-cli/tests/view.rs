@@ -206,3 +206,57 @@ fn a_millimetre_mesh_is_warned_about_in_the_view_too() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!err.contains("warning"), "{err}");
 }
+
+/// The page learns the tool's radius: the flag's on a live view, a scene file's on a replay
+/// (the flag overriding it), 0 for a point.
+#[test]
+fn the_view_tells_the_page_the_tool_radius() {
+    let (info, _) = serve_and_interrupt(&[
+        "--shape",
+        "sphere",
+        "--triangles",
+        "500",
+        "--tool-radius",
+        "0.004",
+    ]);
+    assert!(info.contains("\"tool_radius\":0.004"), "{info}");
+    let scene = scratch("tool.toml");
+    std::fs::write(
+        &scene,
+        "tool_radius = 0.003\n[[object]]\nshape = \"sphere\"\ntriangles = 500\n",
+    )
+    .expect("write");
+    let trace = scratch("tool-press.csv");
+    let out = haphe(&[
+        "simulate",
+        "--scene",
+        scene.to_str().expect("utf-8"),
+        "--path",
+        "press",
+        "--seconds",
+        "0.2",
+        "--out",
+        trace.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let replay = |extra: &[&str]| {
+        let mut args = vec![
+            "--replay",
+            trace.to_str().expect("utf-8"),
+            "--scene",
+            scene.to_str().expect("utf-8"),
+        ];
+        args.extend_from_slice(extra);
+        serve_and_interrupt(&args).0
+    };
+    let info = replay(&[]);
+    assert!(info.contains("\"tool_radius\":0.003"), "{info}");
+    let info = replay(&["--tool-radius", "0"]);
+    assert!(info.contains("\"tool_radius\":0.0"), "{info}");
+    let _ = std::fs::remove_file(&trace);
+    let _ = std::fs::remove_file(&scene);
+}
