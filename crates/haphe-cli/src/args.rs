@@ -67,39 +67,51 @@ impl MappingArgs {
 
     /// The flags of each of `devices` (their specifications, in order), checked: a flag
     /// is given for every device, in their order, or for none (then each device has the
-    /// default); given for some devices only, no device would know which is its own.
+    /// default); given for some devices only, no device would know which is its own
+    /// ([`per_device`]).
     ///
     /// # Errors
     /// A value outside its domain, or a flag given a number of times that is neither
     /// zero nor the number of devices, naming the devices left without one.
     pub fn per_device(&self, devices: &[String]) -> anyhow::Result<Vec<DeviceMappingFlags>> {
         self.check()?;
-        let n = devices.len();
-        for (flag, given) in [
-            ("--scale", self.scale.len()),
-            ("--centre", self.centre.len()),
-        ] {
-            if given != 0 && given != n {
-                let without: Vec<String> = devices
-                    .iter()
-                    .enumerate()
-                    .skip(given)
-                    .map(|(i, d)| format!("device {} ({d})", i + 1))
-                    .collect();
-                let what = if without.is_empty() {
-                    format!("{} more than there are devices", given - n)
-                } else {
-                    format!("none for {}", without.join(", "))
-                };
-                bail!(
-                    "{flag} is given {given} time(s) for {n} device(s): give it once per --device, in the same order, or not at all ({what})"
-                );
-            }
-        }
-        Ok((0..n)
-            .map(|i| (self.scale.get(i).copied(), self.centre.get(i).copied()))
-            .collect())
+        let scale = per_device("--scale", &self.scale, devices)?;
+        let centre = per_device("--centre", &self.centre, devices)?;
+        Ok(scale.into_iter().zip(centre).collect())
     }
+}
+
+/// The values of a flag given once per device (`--scale`, `--centre`, `--tool-radius` of
+/// `haphe run`), paired with `devices` (their specifications) in order: every device's,
+/// or none when the flag is not given.
+///
+/// # Errors
+/// The flag given a number of times that is neither zero nor the number of devices,
+/// naming the devices left without one: no device would know which value is its own.
+pub fn per_device<T: Copy>(
+    flag: &str,
+    given: &[T],
+    devices: &[String],
+) -> anyhow::Result<Vec<Option<T>>> {
+    let n = devices.len();
+    if !given.is_empty() && given.len() != n {
+        let without: Vec<String> = devices
+            .iter()
+            .enumerate()
+            .skip(given.len())
+            .map(|(i, d)| format!("device {} ({d})", i + 1))
+            .collect();
+        let what = if without.is_empty() {
+            format!("{} more than there are devices", given.len() - n)
+        } else {
+            format!("none for {}", without.join(", "))
+        };
+        bail!(
+            "{flag} is given {} time(s) for {n} device(s): give it once per --device, in the same order, or not at all ({what})",
+            given.len()
+        );
+    }
+    Ok((0..n).map(|i| given.get(i).copied()).collect())
 }
 
 pub fn parse_point(s: &str) -> Result<DVec3, String> {

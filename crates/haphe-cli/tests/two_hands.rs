@@ -1,6 +1,7 @@
 //! `haphe run` with several devices in one scene: two simulated hands (`--device hand
-//! --device hand`) render, tick by tick, what each renders alone on the same scene (the
-//! trace's columns of each hand equal a run of that hand alone); two Force Dimension
+//! --device hand`), each with its own tool, render, tick by tick, what each renders alone
+//! on the same scene (the trace's columns of each hand equal a run of that hand alone with
+//! its tool); two Force Dimension
 //! devices behind the stand-in each get their own mapping, summary block and trace
 //! columns; a fault of one stops both with zero force and names it; bad sets of devices
 //! are refused before any device is opened.
@@ -81,15 +82,25 @@ fn ticked(rows: &[Vec<String>]) -> usize {
 /// compare (the machine was too busy).
 fn compare_hands(dir: &Path) -> Option<usize> {
     let both = dir.join("both.csv");
-    let printed = stdout(&run(&["hand", "hand"], &[], &both));
-    for block in ["  device 1 (hand):", "  device 2 (hand):"] {
+    // The first hand holds a tool of 5 mm radius, the second is a point.
+    let tools = ["--tool-radius", "0.005", "--tool-radius", "0"];
+    let printed = stdout(&run(&["hand", "hand"], &tools, &both));
+    for block in [
+        "  tool: a sphere of radius 5.000 mm",
+        "  device 1 (hand):",
+        "  device 2 (hand):",
+    ] {
         assert!(printed.contains(block), "{block:?} missing:\n{printed}");
     }
     let (header, rows) = read(&both);
     let mut compared = usize::MAX;
     for hand in 1..=2 {
         let alone = dir.join(format!("hand{hand}.csv"));
-        run(&[&format!("hand:{hand}")], &[], &alone);
+        run(
+            &[&format!("hand:{hand}")],
+            &tools[2 * hand - 2..2 * hand],
+            &alone,
+        );
         let (columns, single) = read(&alone);
         let n = ticked(&rows).min(ticked(&single));
         if n < 100 {
@@ -247,7 +258,7 @@ fn a_fault_of_one_device_stops_both_and_names_it() {
 fn bad_sets_of_devices_are_refused_before_any_opens() {
     let dir = scratch("two-bad");
     let forces = dir.join("forces.txt");
-    let cases: [(&[&str], &[&str]); 5] = [
+    let cases: [(&[&str], &[&str]); 6] = [
         (
             &["--device", "dhd:0", "--device", "dhd"],
             &["device 2 (dhd) is device 1 (dhd:0) again: each device may be given once"],
@@ -276,6 +287,20 @@ fn bad_sets_of_devices_are_refused_before_any_opens() {
         (
             &["--device", "hand", "--device", "hand", "--plot", "x.png"],
             &["--plot draws one device's run"],
+        ),
+        (
+            &[
+                "--device",
+                "hand",
+                "--device",
+                "hand",
+                "--tool-radius",
+                "0.01",
+            ],
+            &[
+                "--tool-radius is given 1 time(s) for 2 device(s)",
+                "none for device 2 (hand)",
+            ],
         ),
     ];
     for (args, needed) in cases {

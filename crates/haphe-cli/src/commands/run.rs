@@ -10,7 +10,7 @@ use haphe::DVec3;
 use haphe_devices::UdpOptions;
 
 use crate::args::{
-    ClutchArgs, DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs, ToolArgs,
+    ClutchArgs, DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs, ToolArgs, per_device,
 };
 use crate::input::model::load_model;
 use crate::session::device::VendorChoice;
@@ -54,8 +54,13 @@ pub struct Args {
     normal_priority: bool,
     #[command(flatten)]
     output: OutputArgs,
-    #[command(flatten)]
-    tool: ToolArgs,
+    /// The tool's radius, metres: a sphere centred on the proxy, which keeps it that far
+    /// from every surface (0, a point, by default; at most 0.5 m, and at most the diagonal
+    /// of the box bounding the scene's objects). Overrides a scene file's `tool_radius`.
+    /// With several --device, once per device, in their order.
+    // Negative numbers are values, so that `-0.001` is refused naming the flag.
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    tool_radius: Vec<f64>,
     /// Largest force rendered, N (lowered to the device's maximum).
     #[arg(long, default_value_t = haphe::scene::DEFAULT_MAX_FORCE_N)]
     max_force: f64,
@@ -67,6 +72,62 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // missing for one device is reported before the scene is built or a device opened.
     haphe_devices::parse_devices(&args.device)?;
     let mappings = args.mapping.per_device(&args.device)?;
+    let tools = per_device("--tool-radius", &args.tool_radius, &args.device)?;
+    for &tool_radius in &tools {
+        // The flag's domain first; its fit to the scene once the scene is built.
+        ToolArgs { tool_radius }.radius(None)?;
+    }
+    check(args)?;
+    catch_interrupts()?;
+    let material = args.model.material()?;
+    crate::args::proxy_options(args.max_force)?;
+    let started = Instant::now();
+    let (loaded, what) = load_model(args.model.model(), material)?;
+    let build_seconds = started.elapsed().as_secs_f64();
+    let h = args.udp_workspace;
+    let udp = UdpOptions {
+        timeout_s: args.udp_timeout,
+        workspace: (DVec3::splat(-h), DVec3::splat(h)),
+        max_force: args.max_force,
+        ..UdpOptions::default()
+    };
+    let mut choices = Vec::with_capacity(args.device.len());
+    for ((spec, (scale, centre)), tool_radius) in args.device.iter().zip(mappings).zip(tools) {
+        choices.push(VendorChoice {
+            spec: spec.clone(),
+            udp,
+            scale,
+            centre,
+            overrun_budget: Some(args.overrun_budget),
+            tool_radius: ToolArgs { tool_radius }.radius(loaded.tool_radius.clone())?,
+        });
+    }
+    let session = Session {
+        title: format!("haphe run: device {} on {what}", args.device.join(", ")),
+        objects: loaded.objects,
+        build_seconds,
+        rate_hz: args.rate,
+        seconds: args.seconds,
+        realtime: true,
+        spin_seconds: None,
+        fifo: !args.normal_priority,
+        standby_core: None,
+        seed: 1,
+        max_force: args.max_force,
+        // Each device has its own, in its choice.
+        tool_radius: choices[0].tool_radius.clone(),
+        device: DeviceChoice::Vendor(choices),
+        out: args.output.out.clone(),
+        plot: args.output.plot.clone(),
+        clutch_button: args.clutch.clutch_button,
+        presses: Vec::new(),
+    };
+    session.run(&mut std::io::stdout().lock())?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Checks the network device's flags and that a plot is of one device.
+fn check(args: &Args) -> anyhow::Result<()> {
     if !(args.udp_timeout.is_finite() && args.udp_timeout > 0.0) {
         bail!("--udp-timeout must be positive, not {}", args.udp_timeout);
     }
@@ -81,52 +142,5 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             "--plot draws one device's run; with several --device, write --out and plot each device's columns"
         );
     }
-    catch_interrupts()?;
-    let material = args.model.material()?;
-    crate::args::proxy_options(args.max_force)?;
-    let started = Instant::now();
-    // The flag's domain first; its fit to the scene once the scene is built.
-    args.tool.radius(None)?;
-    let (loaded, what) = load_model(args.model.model(), material)?;
-    let build_seconds = started.elapsed().as_secs_f64();
-    let h = args.udp_workspace;
-    let udp = UdpOptions {
-        timeout_s: args.udp_timeout,
-        workspace: (DVec3::splat(-h), DVec3::splat(h)),
-        max_force: args.max_force,
-        ..UdpOptions::default()
-    };
-    let choices = args
-        .device
-        .iter()
-        .zip(mappings)
-        .map(|(spec, (scale, centre))| VendorChoice {
-            spec: spec.clone(),
-            udp,
-            scale,
-            centre,
-            overrun_budget: Some(args.overrun_budget),
-        })
-        .collect();
-    let session = Session {
-        title: format!("haphe run: device {} on {what}", args.device.join(", ")),
-        objects: loaded.objects,
-        build_seconds,
-        device: DeviceChoice::Vendor(choices),
-        rate_hz: args.rate,
-        seconds: args.seconds,
-        realtime: true,
-        spin_seconds: None,
-        fifo: !args.normal_priority,
-        standby_core: None,
-        seed: 1,
-        max_force: args.max_force,
-        tool_radius: args.tool.radius(loaded.tool_radius)?,
-        out: args.output.out.clone(),
-        plot: args.output.plot.clone(),
-        clutch_button: args.clutch.clutch_button,
-        presses: Vec::new(),
-    };
-    session.run(&mut std::io::stdout().lock())?;
-    Ok(ExitCode::SUCCESS)
+    Ok(())
 }

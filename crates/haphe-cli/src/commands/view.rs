@@ -131,7 +131,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             })?;
             let flags = args.mapping.per_device(&[other.to_string()])?;
             ViewDevice::Vendor(
-                view_choice(other, flags[0]),
+                Box::new(view_choice(other, flags[0])),
                 args.seconds,
                 args.clutch.clutch_button,
             )

@@ -23,6 +23,8 @@ pub struct VendorChoice {
     pub centre: Option<DVec3>,
     /// `--overrun-budget`.
     pub overrun_budget: Option<u64>,
+    /// The tool's radius of this device (`--tool-radius`, once per device).
+    pub tool_radius: crate::args::ToolRadius,
 }
 
 impl VendorChoice {
@@ -43,6 +45,8 @@ pub fn view_choice(spec: &str, mapping: crate::args::DeviceMappingFlags) -> Vend
         scale: mapping.0,
         centre: mapping.1,
         overrun_budget: Some(crate::args::DEFAULT_OVERRUN_BUDGET),
+        // The view applies its own tool to the servo's options.
+        tool_radius: crate::args::ToolRadius::default(),
     }
 }
 

@@ -85,18 +85,23 @@ pub fn servo_of(
     let mut vendors = Vec::with_capacity(n);
     for (i, o) in opened.into_iter().enumerate() {
         let spec = o.device.spec();
-        let mapping = match &o.vendor {
-            Some(v) => device::mapping(&v.choice, &spec, &scene).map_err(|e| {
-                if n == 1 {
-                    e
-                } else {
-                    anyhow!("{}: {e}", name(i, n, Some(v)))
-                }
-            })?,
-            None => DeviceMapping::IDENTITY,
+        let named = |e: anyhow::Error| match &o.vendor {
+            Some(v) if n > 1 => anyhow!("{}: {e}", name(i, n, Some(v))),
+            _ => e,
+        };
+        let (mapping, proxy) = match &o.vendor {
+            Some(v) => (
+                device::mapping(&v.choice, &spec, &scene).map_err(named)?,
+                // Its own tool.
+                v.choice
+                    .tool_radius
+                    .apply(*options.proxy(), &scene)
+                    .map_err(named)?,
+            ),
+            None => (DeviceMapping::IDENTITY, *options.proxy()),
         };
         warn_stiffness(stiffness, &mapping, &spec, options.rate_hz());
-        devices.push((o.device, options.with_mapping(mapping)));
+        devices.push((o.device, options.with_mapping(mapping).with_proxy(proxy)));
         vendors.push(o.vendor);
     }
     let servo = if n == 1 {
@@ -136,7 +141,13 @@ pub fn print(
                 v.choice.spec,
                 v.description
             )?;
-            write!(out, "  ")?;
+            let tool = servo.options_of(i).map_or(0.0, |o| o.proxy().tool_radius());
+            if tool > 0.0 {
+                writeln!(out, "  tool: a sphere of radius {:.3} mm", tool * 1e3)?;
+            }
+            if !v.choice.is_hand() {
+                write!(out, "  ")?;
+            }
         }
         device::print_mapping(out, &v.choice, mapping, stiffness)?;
     }

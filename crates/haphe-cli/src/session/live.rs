@@ -41,7 +41,7 @@ pub enum ViewDevice {
     Hand(f64),
     /// A real device (`dhd`, `openhaptics`, `udp:HOST:PORT`), opened and mapped as `haphe
     /// run` does, for this many seconds or until Ctrl-C, with a clutch on this button.
-    Vendor(VendorChoice, Option<f64>, Option<u32>),
+    Vendor(Box<VendorChoice>, Option<f64>, Option<u32>),
 }
 
 /// Builds the scene of `objects`: the scene, the objects' names and their motions.

@@ -197,7 +197,11 @@ impl Session {
         servo.set_motions(motions);
 
         writeln!(out, "{}", self.title)?;
-        let tool = servo.options().proxy().tool_radius();
+        // With several devices, each device's line says its tool.
+        let tool = match servo.devices() {
+            1 => servo.options().proxy().tool_radius(),
+            _ => 0.0,
+        };
         print_scene(out, &names, triangles, self.build_seconds, tool)?;
         devices::print(out, &servo, &vendors, stiffness)?;
         let realtime = self.realtime || vendors.iter().any(Option::is_some);
