@@ -1,6 +1,7 @@
-//! `haphe.run` with a real device (`dhd`, `openhaptics`, `udp:HOST:PORT`): opened by
-//! `haphe-devices`, mapped onto the scene as `haphe run` maps it, and ticked on the wall
-//! clock by the servo's real-time thread (OpenHaptics: by the vendor's scheduler).
+//! `haphe.run` with real devices (`dhd`, `openhaptics`, `udp:HOST:PORT`; one, or several
+//! in one scene): opened by `haphe-devices`, each mapped onto the scene as `haphe run`
+//! maps it, and ticked on the wall clock by one real-time servo thread (OpenHaptics: by
+//! the vendor's scheduler).
 
 use std::time::{Duration, Instant};
 
@@ -9,7 +10,7 @@ use haphe::servo::{
     DeviceFault, RealtimeOptions, Servo, ServoLoop, ServoOptions, StopReason, TickRecord,
 };
 use haphe_devices::{
-    DEFAULT_OVERRUN_BUDGET, SpecError, UdpOptions, open_device, workspace_mapping,
+    DEFAULT_OVERRUN_BUDGET, SpecError, UdpOptions, open_devices, workspace_mapping,
 };
 use pyo3::create_exception;
 use pyo3::exceptions::PyOSError;
@@ -28,19 +29,21 @@ create_exception!(
 /// How often the waiting thread looks for Ctrl-C in Python.
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
-/// What a real device is asked to do.
+/// What real devices are asked to do.
 pub struct DeviceRun {
-    /// `dhd`, `openhaptics` or `udp:HOST:PORT`.
-    pub spec: String,
+    /// `dhd`, `openhaptics`, `udp:HOST:PORT`, ...: one, or several in one scene.
+    pub specs: Vec<String>,
     /// Length of the run, seconds.
     pub seconds: f64,
     /// Servo rate, Hz (OpenHaptics: its scheduler's rate).
     pub rate_hz: f64,
-    /// World metres per device metre (default: the workspace covers the scene).
-    pub scale: Option<f64>,
-    /// The world point the centre of the workspace maps to (default: the scene's centre).
-    pub centre: Option<DVec3>,
-    /// The network device's settings.
+    /// Each device's world metres per device metre (default: the workspace covers the
+    /// scene).
+    pub scales: Vec<Option<f64>>,
+    /// The world point each device's workspace centre maps to (default: the scene's
+    /// centre).
+    pub centres: Vec<Option<DVec3>>,
+    /// The network devices' settings.
     pub udp: UdpOptions,
     /// The button that holds the clutch, if any.
     pub clutch_button: Option<u32>,
@@ -48,7 +51,7 @@ pub struct DeviceRun {
     pub proxy: haphe::proxy::ProxyOptions,
 }
 
-/// How a run with a real device went.
+/// How a run went for one device.
 pub struct DeviceOutcome {
     /// Every tick.
     pub records: Vec<TickRecord>,
@@ -56,42 +59,78 @@ pub struct DeviceOutcome {
     pub offset: DVec3,
     /// The device, as opened.
     pub description: String,
-    /// Why the run ended: `finished`, `interrupted`, `overruns` or the fault.
+    /// Why the run ended: `finished`, `interrupted`, `overruns` or the fault (with
+    /// several devices, naming the device that faulted).
     pub stop: String,
     /// What the device reported of its last fault or its traffic.
     pub report: Option<String>,
 }
 
-/// Opens the device, runs it until `seconds` have passed, the device faults or Python
-/// is interrupted (Ctrl-C: the servo writes zero force, then `KeyboardInterrupt` is
-/// raised), and returns the ticks. Call without the GIL.
-pub fn run_device(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<DeviceOutcome> {
-    let opened = open_device(&run.spec, &scene, run.seconds, run.udp).map_err(|e| match e {
-        SpecError::Unknown(_) => haphe_error("device", e),
-        other => DeviceError::new_err(format!("{}: {other}", run.spec)),
-    })?;
-    let mapping = workspace_mapping(&opened.device.spec(), &scene, run.scale, run.centre)
-        .map_err(param_error)?;
-    let options = ServoOptions::new(run.rate_hz)
-        .map_err(param_error)?
-        .with_proxy(run.proxy)
-        .with_mapping(mapping)
-        .with_clutch_button(run.clutch_button);
-    let servo = Servo::new(opened.device, scene, options)
-        .map_err(|e| DeviceError::new_err(format!("{}: {e}", run.spec)))?;
+/// A device's specification error as the exception for it: a bad argument (an unknown
+/// device, one given twice) or a device that cannot be opened (named by its
+/// specification when it is the only one, else by its position too).
+fn spec_error(e: SpecError, single: bool) -> PyErr {
+    match e {
+        SpecError::Unknown(_) | SpecError::Twice { .. } => haphe_error("device", e),
+        SpecError::At { spec, error, .. } if single => {
+            DeviceError::new_err(format!("{spec}: {error}"))
+        }
+        other => DeviceError::new_err(other.to_string()),
+    }
+}
+
+/// Opens the devices, runs them on one servo until `seconds` have passed, a device faults
+/// (zero force to every device) or Python is interrupted (Ctrl-C: the servo writes zero
+/// force, then `KeyboardInterrupt` is raised), and returns each device's ticks. Call
+/// without the GIL.
+pub fn run_devices(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<Vec<DeviceOutcome>> {
+    let single = run.specs.len() == 1;
+    let opened = open_devices(&run.specs, &scene, run.seconds, run.udp)
+        .map_err(|e| spec_error(e, single))?;
+    let n = opened.len();
+    let mut devices = Vec::with_capacity(n);
+    let mut clock = None;
+    let mut described = Vec::with_capacity(n);
+    for ((o, scale), centre) in opened.into_iter().zip(&run.scales).zip(&run.centres) {
+        let mapping =
+            workspace_mapping(&o.device.spec(), &scene, *scale, *centre).map_err(param_error)?;
+        let options = ServoOptions::new(run.rate_hz)
+            .map_err(param_error)?
+            .with_proxy(run.proxy)
+            .with_mapping(mapping)
+            .with_clutch_button(run.clutch_button);
+        devices.push((o.device, options));
+        // One device's clock ticks them all (OpenHaptics' scheduler).
+        clock = clock.or(o.clock);
+        described.push((o.description, o.report));
+    }
+    let name = |i: usize| match run.specs.get(i) {
+        Some(spec) if n > 1 => format!("device {} ({spec}): ", i + 1),
+        Some(spec) => format!("{spec}: "),
+        None => String::new(),
+    };
+    let servo = Servo::with_devices(devices, scene)
+        .map_err(|e| DeviceError::new_err(format!("{}{e}", name(0))))?;
     let realtime = RealtimeOptions::default().with_overrun_budget(Some(DEFAULT_OVERRUN_BUDGET));
     let limit = Some(run.seconds);
-    let spawned = match opened.clock {
+    let spawned = match clock {
         Some(clock) => ServoLoop::spawn_clocked(servo, clock, limit, realtime),
         None => ServoLoop::spawn(servo, limit, realtime),
     };
-    let mut running = spawned.map_err(|e| DeviceError::new_err(format!("{}: {e}", run.spec)))?;
+    let mut running = spawned.map_err(|e| DeviceError::new_err(format!("{}{e}", name(0))))?;
     let ticks = (run.seconds * run.rate_hz).ceil() as usize + 1;
-    let mut records = Vec::with_capacity(ticks.min(10_000_000));
+    let mut records: Vec<Vec<TickRecord>> = (0..n)
+        .map(|_| Vec::with_capacity(ticks.min(10_000_000)))
+        .collect();
+    let mut keep = |r: &TickRecord| {
+        if let Some(v) = records.get_mut(r.device as usize) {
+            v.push(*r);
+        }
+    };
     let mut interrupt = None;
     let mut polled = Instant::now();
     while !running.is_finished() {
-        if running.drain(|r| records.push(*r)) == 0 {
+        if running.drain(&mut keep) == 0 {
             std::thread::sleep(Duration::from_millis(2));
         }
         if polled.elapsed() >= SIGNAL_POLL {
@@ -102,8 +141,8 @@ pub fn run_device(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<Device
             }
         }
     }
-    let finished = running.stop(|r| records.push(*r));
-    let mut finished = finished.map_err(|e| DeviceError::new_err(format!("{}: {e}", run.spec)))?;
+    let finished = running.stop(&mut keep);
+    let mut finished = finished.map_err(|e| DeviceError::new_err(format!("{}{e}", name(0))))?;
     finished.servo.close();
     if let Some(e) = interrupt {
         return Err(e);
@@ -113,13 +152,26 @@ pub fn run_device(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<Device
         StopReason::Requested => "interrupted".to_string(),
         StopReason::Overruns => "overruns".to_string(),
         StopReason::Fault(DeviceFault::Ended) => "finished".to_string(),
+        StopReason::Fault(f) if n > 1 => {
+            let culprit = finished.servo.faulted_device().unwrap_or(0);
+            format!("fault: {}{f}", name(culprit))
+        }
         StopReason::Fault(f) => format!("fault: {f}"),
     };
-    Ok(DeviceOutcome {
-        offset: finished.servo.mapping().offset() - finished.servo.options().mapping().offset(),
-        records,
-        description: opened.description,
-        stop,
-        report: (opened.report)(),
-    })
+    let servo = &finished.servo;
+    Ok(records
+        .into_iter()
+        .zip(described)
+        .enumerate()
+        .map(|(i, (records, (description, report)))| DeviceOutcome {
+            offset: match (servo.mapping_of(i), servo.options_of(i)) {
+                (Some(m), Some(o)) => m.offset() - o.mapping().offset(),
+                _ => DVec3::ZERO,
+            },
+            records,
+            description,
+            stop: stop.clone(),
+            report: report(),
+        })
+        .collect())
 }

@@ -4,16 +4,16 @@
 use haphe::DVec3;
 use haphe::scene::Param;
 use haphe::servo::{
-    Device, HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, scripted_path,
+    Device, HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, TickRecord, scripted_path,
 };
 use numpy::IntoPyArray;
 use numpy::ndarray::{Array1, Array2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
 use haphe_devices::{UDP_TIMEOUT_S, UdpOptions};
 
-use crate::device::{DeviceOutcome, DeviceRun, run_device};
+use crate::device::{DeviceOutcome, DeviceRun, run_devices};
 use crate::errors::{haphe_error, param_error};
 use crate::scene::Scene;
 
@@ -82,30 +82,53 @@ fn simulated_hand(
 /// (what was opened), ``stop`` (``finished``, ``overruns`` or ``fault: ...``) and
 /// ``report`` (the device's fault or traffic, or None).
 ///
-/// Raises ``HapheError`` for an unknown device or a bad argument, and ``DeviceError`` (an
-/// ``OSError``) when the device or its library cannot be opened: the message names the
-/// library, the variable that selects it and the SDK.
+/// **Several devices in one scene** (two hands): ``device`` a list, e.g.
+/// ``["dhd:0", "dhd:1"]`` (``dhd:N`` the Force Dimension device at index N,
+/// ``openhaptics:NAME`` the Touch configured under NAME, network devices on separate
+/// ports, ``hand`` or ``hand:SEED``). One servo ticks them all on the same deadlines, each
+/// with its own proxy, mapping and safety; a fault of one writes zero force to every
+/// device and ``stop`` names it. ``scale`` and ``centre`` are then a list with one value
+/// per device, in order (or None for the defaults). With hands only, the run is on the
+/// simulated clock and the k-th bare ``"hand"`` (from 0) follows the path of ``seed + k``.
+/// Returns a list of dicts, one per device, each as above.
+///
+/// Raises ``HapheError`` for an unknown device, one given twice or a bad argument, and
+/// ``DeviceError`` (an ``OSError``) when a device or its library cannot be opened: the
+/// message names the library, the variable that selects it and the SDK.
 #[pyfunction]
-#[pyo3(signature = (scene, device = "hand", seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1, clutch_button = None, presses = None, tool_radius = 0.0))]
+#[pyo3(signature = (scene, device = OneOrMany::One("hand".to_string()), seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1, clutch_button = None, presses = None, tool_radius = 0.0))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
     scene: PyRef<'py, Scene>,
-    device: &str,
+    device: OneOrMany<String>,
     seconds: f64,
     path: &str,
     rate_hz: f64,
     seed: u64,
-    scale: Option<f64>,
-    centre: Option<[f64; 3]>,
+    scale: Option<OneOrMany<f64>>,
+    centre: Option<OneOrMany<[f64; 3]>>,
     udp_timeout: f64,
     udp_workspace: f64,
     clutch_button: Option<u32>,
     presses: Option<Vec<(u32, f64, f64)>>,
     tool_radius: f64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Bound<'py, PyAny>> {
+    let (devices, many) = device.into_vec();
+    haphe_devices::parse_devices(&devices).map_err(|e| haphe_error("device", e))?;
+    if devices.is_empty() {
+        return Err(haphe_error("device", "give at least one device"));
+    }
+    let scales = per_device("scale", scale, &devices)?;
+    let centres = per_device("centre", centre, &devices)?;
     // The library's table of domains checks the rate, the scale and the centre.
     let options = ServoOptions::new(rate_hz).map_err(param_error)?;
+    for s in scales.iter().flatten() {
+        Param::Scale.check(*s).map_err(param_error)?;
+    }
+    for c in centres.iter().flatten() {
+        Param::Centre.check_vector(*c).map_err(param_error)?;
+    }
     if let Some(b) = clutch_button
         && b >= 32
     {
@@ -116,33 +139,14 @@ pub fn run<'py>(
     }
     let options = options.with_clutch_button(clutch_button);
     let presses = presses.unwrap_or_default();
-    if !presses.is_empty() && device != "hand" {
+    let hands = devices.iter().all(|d| is_hand(d));
+    if !presses.is_empty() && !hands {
         return Err(haphe_error(
             "presses",
-            format!("holds buttons of the simulated hand only, not of device {device:?}"),
+            format!("holds buttons of the simulated hand only, not of device {devices:?}"),
         ));
     }
-    if !(seconds.is_finite() && seconds > 0.0 && seconds * rate_hz <= 1e8) {
-        return Err(haphe_error(
-            "seconds",
-            format!("must be positive and give at most 1e8 ticks, not {seconds}"),
-        ));
-    }
-    if let Some(s) = scale {
-        Param::Scale.check(s).map_err(param_error)?;
-    }
-    if let Some(c) = centre {
-        Param::Centre.check_vector(c).map_err(param_error)?;
-    }
-    // The network device's own settings, not servo parameters.
-    for (name, value) in [
-        ("udp_timeout", udp_timeout),
-        ("udp_workspace", udp_workspace),
-    ] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(haphe_error(name, format!("must be positive, not {value}")));
-        }
-    }
+    check_lengths(seconds, rate_hz, udp_timeout, udp_workspace)?;
     let world = scene.snapshot();
     drop(scene);
     // The tool against its domain and the scene's size, as the command checks it.
@@ -151,31 +155,27 @@ pub fn run<'py>(
         .and_then(|r| options.proxy().with_tool_radius(r))
         .map_err(param_error)?;
     let options = options.with_proxy(proxy);
-    let outcome = if device == "hand" {
-        py.detach(|| -> Result<DeviceOutcome, String> {
-            let hand = simulated_hand(path, &world, seconds, seed, &presses)?;
-            let mut servo = Servo::new(hand, world, options).map_err(|e| e.to_string())?;
-            let ticks = (seconds * rate_hz).round() as u64;
-            let mut records = Vec::with_capacity(ticks as usize);
-            servo.run_simulated(ticks, |r| records.push(*r));
-            servo.close();
-            Ok(DeviceOutcome {
-                records,
-                offset: servo.mapping().offset() - servo.options().mapping().offset(),
-                description: format!("the simulated hand ({path})"),
-                stop: "finished".into(),
-                report: None,
-            })
-        })
-        .map_err(|e| haphe_error(device, e))?
+    let outcomes = if hands {
+        let hands = Hands {
+            specs: &devices,
+            path,
+            seconds,
+            seed,
+            presses: &presses,
+        };
+        py.detach(|| run_hands(&hands, world, options))
+            .map_err(|e| haphe_error(&devices.join(", "), e))?
     } else {
         let h = udp_workspace;
         let request = DeviceRun {
-            spec: device.to_string(),
+            specs: devices,
             seconds,
             rate_hz,
-            scale,
-            centre: centre.map(DVec3::from_array),
+            scales,
+            centres: centres
+                .into_iter()
+                .map(|c| c.map(DVec3::from_array))
+                .collect(),
             udp: UdpOptions {
                 timeout_s: udp_timeout,
                 workspace: (DVec3::splat(-h), DVec3::splat(h)),
@@ -184,8 +184,147 @@ pub fn run<'py>(
             clutch_button,
             proxy,
         };
-        py.detach(|| run_device(request, world))?
+        py.detach(|| run_devices(request, world))?
     };
+    let mut dicts = outcomes
+        .into_iter()
+        .map(|o| arrays(py, o))
+        .collect::<PyResult<Vec<_>>>()?;
+    if !many
+        && dicts.len() == 1
+        && let Some(d) = dicts.pop()
+    {
+        return Ok(d.into_any());
+    }
+    Ok(PyList::new(py, dicts)?.into_any())
+}
+
+/// Checks the run's length (positive, at most 1e8 ticks) and the network devices' own
+/// settings (positive).
+fn check_lengths(seconds: f64, rate_hz: f64, udp_timeout: f64, udp_workspace: f64) -> PyResult<()> {
+    if !(seconds.is_finite() && seconds > 0.0 && seconds * rate_hz <= 1e8) {
+        return Err(haphe_error(
+            "seconds",
+            format!("must be positive and give at most 1e8 ticks, not {seconds}"),
+        ));
+    }
+    for (name, value) in [
+        ("udp_timeout", udp_timeout),
+        ("udp_workspace", udp_workspace),
+    ] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(haphe_error(name, format!("must be positive, not {value}")));
+        }
+    }
+    Ok(())
+}
+
+/// A keyword argument given once (a single device) or as a list (one per device).
+#[derive(FromPyObject)]
+pub enum OneOrMany<T> {
+    /// One value.
+    One(T),
+    /// A list of values.
+    Many(Vec<T>),
+}
+
+impl<T> OneOrMany<T> {
+    /// The values, and whether a list was given.
+    fn into_vec(self) -> (Vec<T>, bool) {
+        match self {
+            OneOrMany::One(v) => (vec![v], false),
+            OneOrMany::Many(v) => (v, true),
+        }
+    }
+}
+
+/// The value of the keyword argument `name` for each of `devices`: none given, one per
+/// device as a list, or one value for a single device.
+fn per_device<T>(
+    name: &str,
+    given: Option<OneOrMany<T>>,
+    devices: &[String],
+) -> PyResult<Vec<Option<T>>> {
+    let n = devices.len();
+    let Some(given) = given else {
+        return Ok((0..n).map(|_| None).collect());
+    };
+    let (values, many) = given.into_vec();
+    if values.len() != n || (!many && n > 1) {
+        return Err(haphe_error(
+            name,
+            format!(
+                "give one value per device, as a list in the devices' order ({n} device(s): {devices:?}), or none"
+            ),
+        ));
+    }
+    Ok(values.into_iter().map(Some).collect())
+}
+
+/// Whether `spec` names the simulated hand (`hand`, `hand:SEED`).
+fn is_hand(spec: &str) -> bool {
+    spec == "hand" || spec.starts_with("hand:")
+}
+
+/// Simulated hands to run on the simulated clock.
+struct Hands<'a> {
+    specs: &'a [String],
+    path: &'a str,
+    seconds: f64,
+    seed: u64,
+    presses: &'a [(u32, f64, f64)],
+}
+
+/// Runs the simulated hands of `hands` on one servo over `world`, each with `options`,
+/// on the simulated clock: the k-th bare `hand` (from 0) along the path of seed
+/// `seed + k`, `hand:SEED` along that seed's.
+fn run_hands(
+    hands: &Hands<'_>,
+    world: haphe::scene::Scene,
+    options: ServoOptions,
+) -> Result<Vec<DeviceOutcome>, String> {
+    let mut devices = Vec::with_capacity(hands.specs.len());
+    let mut bare = 0;
+    for spec in hands.specs {
+        let seed = match spec.strip_prefix("hand:") {
+            Some(s) => s.parse().map_err(|_| format!("not a seed: {s:?}"))?,
+            None => {
+                bare += 1;
+                hands.seed + bare - 1
+            }
+        };
+        let hand = simulated_hand(hands.path, &world, hands.seconds, seed, hands.presses)?;
+        devices.push((hand, options));
+    }
+    let n = devices.len();
+    let mut servo = Servo::with_devices(devices, world).map_err(|e| e.to_string())?;
+    let ticks = (hands.seconds * options.rate_hz()).round() as u64;
+    let mut records: Vec<Vec<TickRecord>> =
+        (0..n).map(|_| Vec::with_capacity(ticks as usize)).collect();
+    servo.run_simulated(ticks, |r| {
+        if let Some(v) = records.get_mut(r.device as usize) {
+            v.push(*r);
+        }
+    });
+    servo.close();
+    Ok(records
+        .into_iter()
+        .enumerate()
+        .map(|(i, records)| DeviceOutcome {
+            records,
+            offset: match (servo.mapping_of(i), servo.options_of(i)) {
+                (Some(m), Some(o)) => m.offset() - o.mapping().offset(),
+                _ => DVec3::ZERO,
+            },
+            description: format!("the simulated hand ({})", hands.path),
+            stop: "finished".into(),
+            report: None,
+        })
+        .collect())
+}
+
+/// The dict of arrays of one device's run (see [`run`]).
+fn arrays<'py>(py: Python<'py>, outcome: DeviceOutcome) -> PyResult<Bound<'py, PyDict>> {
     let records = outcome.records;
     let n = records.len();
     let mut t = Array1::zeros(n);

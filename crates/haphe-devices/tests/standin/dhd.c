@@ -31,13 +31,15 @@ static struct standin_device dev[STANDIN_DEVICES];
 static int devices = 1;
 static int last_error = 0;
 /* Whether the state was set up: by standin_reset, or with one device at the first call
- * (a process that runs haphe scripts it through the environment only: with the number of
- * devices HAPHE_STANDIN_DEVICES names, 1 by default). */
+ * (a process that runs haphe scripts it through the environment only); the number of
+ * devices connected is then HAPHE_STANDIN_DEVICES's, 1 by default. */
 static int ready = 0;
 void standin_reset(int device_count);
 static void init(void) {
   const char *n = getenv("HAPHE_STANDIN_DEVICES");
-  if (!ready) standin_reset(n ? atoi(n) : 1);
+  if (!ready) standin_reset(1);
+  /* Read at every call: a process may load the stand-in before it sets the variable. */
+  if (n) devices = atoi(n) < STANDIN_DEVICES ? atoi(n) : STANDIN_DEVICES;
 }
 
 static void reset_device(struct standin_device *d) {

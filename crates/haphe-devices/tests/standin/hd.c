@@ -69,13 +69,15 @@ static volatile int running = 0;
 static pthread_t scheduler;
 static int scheduler_started = 0;
 /* Whether the state was set up: by standin_reset, or with one device at the first call
- * (a process that runs haphe scripts it through the environment only: with the number of
- * devices HAPHE_STANDIN_DEVICES names, 1 by default). */
+ * (a process that runs haphe scripts it through the environment only); the number of
+ * devices connected is then HAPHE_STANDIN_DEVICES's, 1 by default. */
 static int ready = 0;
 void standin_reset(int devices_present);
 static void init(void) {
   const char *n = getenv("HAPHE_STANDIN_DEVICES");
-  if (!ready) standin_reset(n ? atoi(n) : 1);
+  if (!ready) standin_reset(1);
+  /* Read at every call: a process may load the stand-in before it sets the variable. */
+  if (n) present = atoi(n) < STANDIN_DEVICES ? atoi(n) : STANDIN_DEVICES;
 }
 
 void standin_reset(int devices_present) {

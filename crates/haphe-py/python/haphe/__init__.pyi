@@ -1,7 +1,7 @@
 """Type stubs of haphe (the native module haphe._haphe)."""
 
 from os import PathLike
-from typing import Any, Dict, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -37,19 +37,19 @@ def allocations() -> Optional[int]:
 
 def run(
     scene: Scene,
-    device: str = "hand",
+    device: Union[str, Sequence[str]] = "hand",
     seconds: float = 2.0,
     path: str = "explore",
     rate_hz: float = 1000.0,
     seed: int = 1,
-    scale: Optional[float] = None,
-    centre: Optional[_Vec3] = None,
+    scale: Optional[Union[float, Sequence[float]]] = None,
+    centre: Optional[Union[_Vec3, Sequence[_Vec3]]] = None,
     udp_timeout: float = 0.05,
     udp_workspace: float = 0.1,
     clutch_button: Optional[int] = None,
     presses: Optional[Sequence[Tuple[int, float, float]]] = None,
     tool_radius: float = 0.0,
-) -> Dict[str, Any]:
+) -> Union[Dict[str, Any], List[Dict[str, Any]]]:
     """Runs the servo loop with a device: "hand" (simulated, simulated clock), "dhd",
     "openhaptics" or "udp:HOST:PORT" (real, wall clock, mapped onto the scene). Arrays t,
     hip, proxy, force, contact, object, triangle, penetration, buttons (uint32), clutch,
@@ -57,7 +57,10 @@ def run(
     device, stop and report (or None). While button ``clutch_button`` is held, the tool
     stays and the force fades out (a clutch); ``presses`` (button, from, until) holds
     buttons of the simulated hand. Raises DeviceError when the device or its library
-    cannot be opened; Ctrl-C writes zero force, then raises KeyboardInterrupt."""
+    cannot be opened; Ctrl-C writes zero force, then raises KeyboardInterrupt. A list of
+    devices ("dhd:0", "dhd:1", "openhaptics:NAME", ...) runs them in one scene on one
+    servo, each with its own proxy and mapping (``scale``, ``centre``: one per device, as
+    lists): a list of dicts, one per device; a fault of one stops all, named in stop."""
 
 class Shape:
     """A surface with its voxel map (object frame, metres)."""
