@@ -24,7 +24,19 @@ use common::{RATE_HZ, TICKS, procedural};
 
 /// Ticks the proxy at the next point of `path` each iteration.
 fn ticking<'a>(scene: &'a Scene, path: &'a [DVec3]) -> impl FnMut() -> DVec3 + 'a {
-    let mut proxy = Proxy::new(path[0], ProxyOptions::default());
+    tool_ticking(scene, path, 0.0)
+}
+
+/// Ticks a tool of `radius` metres at the next point of `path` each iteration.
+fn tool_ticking<'a>(
+    scene: &'a Scene,
+    path: &'a [DVec3],
+    radius: f64,
+) -> impl FnMut() -> DVec3 + 'a {
+    let options = ProxyOptions::default()
+        .with_tool_radius(radius)
+        .expect("in its domain");
+    let mut proxy = Proxy::new(path[0], options);
     let mut i = 0;
     move || {
         i = if i + 1 < path.len() { i + 1 } else { 0 };
@@ -51,7 +63,37 @@ fn proxy_stage(c: &mut Criterion) {
     group.bench_function("exploring tick, thin plate", |b| {
         b.iter(ticking(&plate, &plate_exploring))
     });
+    // The tool (a sphere proxy) on the same blob path, its centre moved out by the radius
+    // so that it is as deep past the tool's offset as the point is past the surface.
+    for (name, radius) in [("1 mm", 1e-3), ("2 % of the blob", 0.004)] {
+        let path = lifted(&blob, &blob_contact, radius);
+        group.bench_function(format!("tool contact tick, blob, r {name}"), |b| {
+            b.iter(tool_ticking(&blob, &path, radius))
+        });
+    }
     group.finish();
+}
+
+/// `path` moved out along the surface's normal by `radius` where it lies inside the
+/// object or within `radius` of its surface: a tool's path as deep past the tool's offset
+/// as the point's is past the surface.
+fn lifted(scene: &Scene, path: &[DVec3], radius: f64) -> Vec<DVec3> {
+    let shape = &scene.objects()[0].shape;
+    path.iter()
+        .map(|&p| {
+            let near = haphe::query::nearest_within(shape.surface(), shape.map(), p, 0.01);
+            let inside = haphe::query::classify_point(shape.surface(), shape.map(), p).0
+                == haphe::query::Side::Inside;
+            match near {
+                Some(n) => {
+                    let away = (p - n.closest.point).normalize_or_zero();
+                    let out = if inside { -away } else { away };
+                    p + radius * out
+                }
+                None => p,
+            }
+        })
+        .collect()
 }
 
 criterion_group!(benches, proxy_stage);

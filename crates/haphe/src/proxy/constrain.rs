@@ -186,7 +186,7 @@ fn leg(
     };
     if let Some(hit) = resting
         .or(shown)
-        .or_else(|| first_hit_all(scene, near, p, target, options))
+        .or_else(|| first_hit_all(scene, near, (p, target), options, slid_on.or(start.under)))
     {
         let plane = hit_plane(&hit, p, target, options);
         return Leg::Met(hit, plane, advance_to_plane(p, target, &plane));

@@ -271,7 +271,8 @@ impl Proxy {
                 status.cleared = true;
                 target
             } else {
-                move_checked(scene, &mut self.near, p, target, &self.options)
+                let hint = Some(hit.surface());
+                move_checked(scene, &mut self.near, (p, target), &self.options, hint)
             };
             self.sticking = sticking;
         } else {

@@ -8,24 +8,27 @@ use glam::DVec3;
 use super::constraints::{Plane, advance_to_plane};
 use super::near::{NearCache, search_box};
 use super::options::ProxyOptions;
-use crate::scene::{Hit, Scene};
+use crate::mesh::TriId;
+use crate::scene::{Hit, Scene, SurfaceRef};
 
 /// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
 /// object index. Only the objects near the segment are tested (see [`NearCache`]). With a
-/// tool radius, the first place the tool's sphere touches an object.
+/// tool radius, the first place the tool's sphere touches an object (`hint`: a surface
+/// likely met first, tested first; the answer does not depend on it).
 #[inline]
 pub(crate) fn first_hit_all(
     scene: &Scene,
     near: &mut NearCache,
-    p0: DVec3,
-    p1: DVec3,
+    (p0, p1): (DVec3, DVec3),
     options: &ProxyOptions,
+    hint: Option<SurfaceRef>,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
     let (lo, hi) = grown(search_box(p0, p1, reach), radius);
     let mut best: Option<Hit> = None;
     for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
-        if let Some(h) = hit_one(scene, i, (p0, p1), options)
+        let hint = hint.filter(|h| h.object == i).map(|h| h.triangle);
+        if let Some(h) = hit_one(scene, i, (p0, p1), options, hint)
             && best.is_none_or(|b| h.t < b.t)
         {
             best = Some(h);
@@ -35,17 +38,18 @@ pub(crate) fn first_hit_all(
 }
 
 /// The first hit of the world move `from → to` on object `i`: the point's crossing, or
-/// the tool's contact.
+/// the tool's contact (its triangle `hint` tested first).
 #[inline]
 fn hit_one(
     scene: &Scene,
     i: usize,
     (from, to): (DVec3, DVec3),
     options: &ProxyOptions,
+    hint: Option<TriId>,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
     if radius > 0.0 {
-        scene.first_tool_hit(i, (from, to), radius, reach)
+        scene.first_tool_hit(i, (from, to), (radius, reach), hint)
     } else {
         scene.first_hit(i, from, to, reach)
     }
@@ -119,7 +123,7 @@ pub(super) fn carry(
             return;
         }
         let from = scene.previous_relative(i, *p);
-        if let Some(h) = hit_one(scene, i, (from, *p), options) {
+        if let Some(h) = hit_one(scene, i, (from, *p), options, None) {
             *p = advance_to_plane(from, *p, &hit_plane(&h, from, *p, options));
         }
     };
@@ -161,18 +165,19 @@ pub(super) fn carry(
     }
 }
 
-/// Moves from `from` toward `to` and stops a skin's width before the first surface met.
+/// Moves from `from` toward `to` and stops a skin's width before the first surface met
+/// (`hint`: the surface likely met first).
 pub(super) fn move_checked(
     scene: &Scene,
     near: &mut NearCache,
-    from: DVec3,
-    to: DVec3,
+    (from, to): (DVec3, DVec3),
     options: &ProxyOptions,
+    hint: Option<SurfaceRef>,
 ) -> DVec3 {
     if from == to {
         return to;
     }
-    match first_hit_all(scene, near, from, to, options) {
+    match first_hit_all(scene, near, (from, to), options, hint) {
         None => to,
         Some(h) => advance_to_plane(from, to, &hit_plane(&h, from, to, options)),
     }

@@ -41,7 +41,10 @@ const SWEEP_CELLS_PER_TRIANGLE: u64 = 4;
 /// frame) with a triangle of `surface`, counting a start within `reach` of a triangle's
 /// offset as a contact at `t = 0` when the centre moves closer; the lowest triangle index
 /// among contacts at the same `t`. A `one_sided` surface is touched only from the front
-/// (the side of its normal). Equals [`first_sphere_contact_brute_force`].
+/// (the side of its normal). Equals [`first_sphere_contact_brute_force`]. Triangle `hint`
+/// (a likely first contact: the one the tool rests on) is tested first: every triangle
+/// after it is then tested only up to its contact, which spares most of the work when it
+/// is the first and changes no answer.
 ///
 /// # Work
 /// Looks up the map's cells around the segment grown by `radius + reach`, piece by piece
@@ -52,9 +55,8 @@ pub fn first_sphere_contact(
     surface: &Surface,
     map: &VoxelMap,
     (a, b): (DVec3, DVec3),
-    radius: f64,
-    reach: f64,
-    one_sided: bool,
+    (radius, reach, one_sided): (f64, f64, bool),
+    hint: Option<TriId>,
 ) -> Option<SphereContact> {
     let grow = radius + reach;
     if !(a.is_finite() && b.is_finite() && grow.is_finite() && radius >= 0.0)
@@ -78,6 +80,9 @@ pub fn first_sphere_contact(
         return first_sphere_contact_brute_force(surface, (a, b), radius, reach, one_sided);
     }
     let mut best: Option<SphereContact> = None;
+    if let Some(t) = hint.filter(|t| t.index() < surface.triangle_count()) {
+        consider(surface, t, (a, b), (radius, reach), one_sided, &mut best);
+    }
     for k in 0..pieces {
         let (s0, s1) = (k as f64 / pieces as f64, (k + 1) as f64 / pieces as f64);
         let (p0, p1) = (a + s0 * (b - a), a + s1 * (b - a));
@@ -143,8 +148,15 @@ pub(crate) fn consider(
     best: &mut Option<SphereContact>,
 ) {
     let corners = surface.corners(t);
+    // Past the contact kept, nothing can come first: the segment is cut there (a contact
+    // at that same parameter, with a lower index, still counts).
+    let end = best.map_or(1.0, |c| c.t);
+    if beyond_sphere(corners, (a, end * (b - a)), radius + reach) {
+        return;
+    }
     let face = surface.frame(t).normal;
-    let Some((s, point, normal)) = sphere_triangle(corners, face, (a, b), radius, reach) else {
+    let Some((s, point, normal)) = sphere_triangle(corners, face, (a, b, end), radius, reach)
+    else {
         return;
     };
     if one_sided && normal.dot(face) <= 0.0 {
@@ -163,12 +175,13 @@ pub(crate) fn consider(
 /// The first contact of the sphere of `radius` swept from `a` to `b` with the triangle
 /// `corners` (unit face normal `face`): its parameter in `[0, 1]`, the triangle's point
 /// nearest to the centre there, and the unit normal from that point toward the centre.
-/// A centre within `reach` of the offset at `a`, moving closer, touches at 0.
+/// A centre within `reach` of the offset at `a`, moving closer, touches at 0. `None` as
+/// well for a triangle that cannot be touched up to the parameter `end`.
 #[inline]
 pub(crate) fn sphere_triangle(
     corners: [DVec3; 3],
     face: DVec3,
-    (a, b): (DVec3, DVec3),
+    (a, b, end): (DVec3, DVec3, f64),
     radius: f64,
     reach: f64,
 ) -> Option<(f64, DVec3, DVec3)> {
@@ -191,6 +204,10 @@ pub(crate) fn sphere_triangle(
         }
         return (gap.dot(d) < 0.0).then(|| (0.0, start, gap / distance));
     }
+    // The distance falls by at most the length travelled.
+    if distance - end * d.length() > grow {
+        return None;
+    }
     let s = first_touch(corners, face, a, d, radius)?;
     if !(0.0..=1.0).contains(&s) {
         return None;
@@ -199,6 +216,28 @@ pub(crate) fn sphere_triangle(
     let point = closest_point_triangle(centre, corners).point;
     let normal = (centre - point).try_normalize()?;
     Some((s, point, normal))
+}
+
+/// Whether the segment `a → a + d` stays farther than `grow` from the sphere around the
+/// triangle's corners (centred on their mean): no point of it comes within `grow` of the
+/// triangle. Compares squares, with a relative margin far above their rounding.
+#[inline]
+fn beyond_sphere(corners: [DVec3; 3], (a, d): (DVec3, DVec3), grow: f64) -> bool {
+    let centre = (corners[0] + corners[1] + corners[2]) / 3.0;
+    let spread = corners
+        .iter()
+        .map(|&c| c.distance_squared(centre))
+        .fold(0.0, f64::max)
+        .sqrt();
+    let dd = d.length_squared();
+    let s = if dd > 0.0 {
+        ((centre - a).dot(d) / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let gap = centre.distance_squared(a + s * d);
+    let reach = (grow + spread) * (1.0 + 1e-9);
+    gap > reach * reach
 }
 
 /// The smallest parameter `s ≥ 0` at which the centre `a + s·d`, farther than `radius`

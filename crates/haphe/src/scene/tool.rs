@@ -7,13 +7,15 @@ use glam::DVec3;
 use super::hit::Hit;
 use super::object::{BOUND_SLACK, Sides};
 use super::world::Scene;
+use crate::mesh::TriId;
 use crate::query::{distance_to_segment, first_sphere_contact, nearest_within};
 
 impl Scene {
     /// The first place where a sphere of `radius` metres, its centre moving `from → to`
     /// (world frame), touches object `i` at its current pose, the move reaching `reach`
     /// metres past `to` (and a start within `reach` of the object's offset counting as a
-    /// contact at `t = 0` when it moves closer). The hit's point is the triangle's point
+    /// contact at `t = 0` when it moves closer; triangle `hint` tested first, which spares
+    /// work when it is met first and changes no answer). The hit's point is the triangle's point
     /// nearest to the centre there, its normal the unit normal from that point toward the
     /// centre. `None` when it does not, or when `i` is out of range.
     ///
@@ -23,8 +25,8 @@ impl Scene {
         &self,
         i: usize,
         (from, to): (DVec3, DVec3),
-        radius: f64,
-        reach: f64,
+        (radius, reach): (f64, f64),
+        hint: Option<TriId>,
     ) -> Option<Hit> {
         let o = self.objects.get(i)?;
         let shape = &*o.shape;
@@ -45,14 +47,8 @@ impl Scene {
         }
         let one_sided = o.sides == Sides::Front;
         let (a, b) = (o.pose.to_object(from), o.pose.to_object(to_probe));
-        let c = first_sphere_contact(
-            shape.surface(),
-            shape.map(),
-            (a, b),
-            radius,
-            reach,
-            one_sided,
-        )?;
+        let sphere = (radius, reach, one_sided);
+        let c = first_sphere_contact(shape.surface(), shape.map(), (a, b), sphere, hint)?;
         Some(Hit {
             t: c.t * scale,
             object: i,

@@ -31,7 +31,9 @@ fn equals_brute_force_and_touches_at_the_radius() {
             let a = rng.unit_vector() * rng.range(0.0, 0.09);
             let b = a + rng.unit_vector() * 10f64.powf(rng.range(-5.0, -1.3));
             let one_sided = i % 5 == 0;
-            let fast = first_sphere_contact(&surface, &map, (a, b), radius, 1e-7, one_sided);
+            let hint = (i % 2 == 0).then(|| TriId((i % surface.triangle_count()) as u32));
+            let fast =
+                first_sphere_contact(&surface, &map, (a, b), (radius, 1e-7, one_sided), hint);
             let brute = first_sphere_contact_brute_force(&surface, (a, b), radius, 1e-7, one_sided);
             assert_eq!(fast, brute, "{a:?} → {b:?}, r {radius}");
             let Some(c) = fast else { continue };
@@ -66,7 +68,7 @@ fn a_sweep_that_misses_never_comes_within_the_radius() {
     for _ in 0..500 {
         let a = rng.unit_vector() * rng.range(0.06, 0.08);
         let b = a + rng.unit_vector() * 0.02;
-        if first_sphere_contact(&surface, &map, (a, b), 0.004, 0.0, false).is_some() {
+        if first_sphere_contact(&surface, &map, (a, b), (0.004, 0.0, false), None).is_some() {
             continue;
         }
         missed += 1;
@@ -87,7 +89,7 @@ fn features_of_one_triangle() {
     let (s, p, n) = sphere_triangle(
         corners,
         face,
-        (DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.2, 0.2, -1.0)),
+        (DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.2, 0.2, -1.0), 1.0),
         r,
         0.0,
     )
@@ -99,7 +101,7 @@ fn features_of_one_triangle() {
     let (s, p, n) = sphere_triangle(
         corners,
         face,
-        (DVec3::new(-1.0, 0.5, 0.0), DVec3::new(1.0, 0.5, 0.0)),
+        (DVec3::new(-1.0, 0.5, 0.0), DVec3::new(1.0, 0.5, 0.0), 1.0),
         r,
         0.0,
     )
@@ -108,14 +110,14 @@ fn features_of_one_triangle() {
     assert!(n.distance(-DVec3::X) < 1e-15);
     // Toward the vertex at the origin along the diagonal below the plane.
     let dir = DVec3::new(-1.0, -1.0, -1.0).normalize();
-    let (s, p, _) = sphere_triangle(corners, face, (dir, -dir), r, 0.0).unwrap();
+    let (s, p, _) = sphere_triangle(corners, face, (dir, -dir, 1.0), r, 0.0).unwrap();
     assert!((s * 2.0 - (1.0 - r)).abs() < 1e-12 && p.length() < 1e-15);
     // Moving away from a start within the offset: no contact.
     assert!(
         sphere_triangle(
             corners,
             face,
-            (DVec3::new(0.2, 0.2, 0.05), DVec3::new(0.2, 0.2, 0.5)),
+            (DVec3::new(0.2, 0.2, 0.05), DVec3::new(0.2, 0.2, 0.5), 1.0),
             r,
             0.0
         )
@@ -125,7 +127,7 @@ fn features_of_one_triangle() {
     let (s, _, n) = sphere_triangle(
         corners,
         face,
-        (DVec3::new(0.2, 0.2, 0.05), DVec3::new(0.2, 0.2, -0.5)),
+        (DVec3::new(0.2, 0.2, 0.05), DVec3::new(0.2, 0.2, -0.5), 1.0),
         r,
         0.0,
     )
