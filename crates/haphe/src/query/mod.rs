@@ -44,9 +44,9 @@ pub use near::{NearTriangle, nearest_within};
 pub(crate) use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use self_intersect::{SelfIntersections, self_intersections};
-pub(crate) use sweep::consider as consider_sphere;
 #[doc(hidden)]
 pub use sweep::{SphereContact, first_sphere_contact, first_sphere_contact_brute_force};
+pub(crate) use sweep::{consider as consider_sphere, nearest_to_tool};
 #[doc(hidden)]
 pub use validation::Validation;
 #[doc(hidden)]

@@ -167,7 +167,13 @@ pub fn nearest_within_brute_force(
 /// the kept one (lower index on ties). The plane height, a lower bound of the distance,
 /// skips most triangles before the closest-point kernel.
 #[inline(always)]
-fn consider(surface: &Surface, t: TriId, p: DVec3, radius: f64, best: &mut Option<NearTriangle>) {
+pub(crate) fn consider(
+    surface: &Surface,
+    t: TriId,
+    p: DVec3,
+    radius: f64,
+    best: &mut Option<NearTriangle>,
+) {
     let frame = surface.frame(t);
     if frame.normal.dot(p - frame.origin).abs() > radius {
         return;

@@ -80,7 +80,11 @@ pub fn first_sphere_contact(
         return first_sphere_contact_brute_force(surface, (a, b), radius, reach, one_sided);
     }
     let mut best: Option<SphereContact> = None;
+    // The triangles tested last: a triangle listed in several cells is tested once while
+    // it stays among them (testing it again would change nothing).
+    let mut seen = Seen::new();
     if let Some(t) = hint.filter(|t| t.index() < surface.triangle_count()) {
+        seen.first_time(t.0);
         consider(surface, t, (a, b), (radius, reach), one_sided, &mut best);
     }
     for k in 0..pieces {
@@ -88,7 +92,7 @@ pub fn first_sphere_contact(
         let (p0, p1) = (a + s0 * (b - a), a + s1 * (b - a));
         let cells = CellBox::around(grid, p0.min(p1) - g, p0.max(p1) + g).intersect(whole);
         map.visit_cells(cells, |_, triangles| {
-            for &t in triangles {
+            for &t in triangles.iter().filter(|&&t| seen.first_time(t)) {
                 consider(
                     surface,
                     TriId(t),
@@ -106,6 +110,75 @@ pub fn first_sphere_contact(
         }
     }
     best
+}
+
+/// The triangle nearest to the centre `p` (object frame) of a tool whose offset reaches
+/// `grow` metres (its radius and a probe's reach), among those within `grow` of it; the
+/// lowest triangle index among equally near ones: the same answer as
+/// [`nearest_within`](super::nearest_within) and its brute force, searched in the cells
+/// of the cube around `p` (each triangle once while it stays among the last tested, each
+/// after a test of the sphere round its corners), or in every triangle when those cells
+/// would cost more. How the tool notices a surface it comes to rest on.
+///
+/// # Real-time
+/// No allocation, no lock, no panic; non-finite input gives `None`.
+pub(crate) fn nearest_to_tool(
+    surface: &Surface,
+    map: &VoxelMap,
+    p: DVec3,
+    grow: f64,
+) -> Option<super::NearTriangle> {
+    if !(p.is_finite() && grow >= 0.0 && grow.is_finite())
+        || beyond_bounds(surface, p, p, grow + 1e-12 * p.abs().max_element())
+    {
+        return None;
+    }
+    let g = DVec3::splat(grow);
+    let cells = CellBox::around(map.grid(), p - g, p + g);
+    let budget = SWEEP_CELLS_PER_TRIANGLE.saturating_mul(surface.triangle_count() as u64);
+    if map.clip_cells(cells)?.count() > budget {
+        return super::nearest_within_brute_force(surface, p, grow);
+    }
+    let mut best = None;
+    let mut seen = Seen::new();
+    map.visit_cells(cells, |_, triangles| {
+        for &t in triangles.iter().filter(|&&t| seen.first_time(t)) {
+            let t = TriId(t);
+            if !beyond_sphere(surface.corners(t), (p, DVec3::ZERO), grow) {
+                super::near::consider(surface, t, p, grow, &mut best);
+            }
+        }
+    });
+    best
+}
+
+/// The last few triangles a sweep tested, on the stack.
+struct Seen {
+    ids: [u32; SEEN],
+    next: usize,
+}
+
+/// How many triangles [`Seen`] keeps: about those of the cells around a tool.
+const SEEN: usize = 32;
+
+impl Seen {
+    fn new() -> Seen {
+        Seen {
+            ids: [u32::MAX; SEEN],
+            next: 0,
+        }
+    }
+
+    /// Whether `t` is not among the kept triangles (and keeps it, forgetting the oldest).
+    #[inline]
+    fn first_time(&mut self, t: u32) -> bool {
+        if self.ids.contains(&t) {
+            return false;
+        }
+        self.ids[self.next] = t;
+        self.next = (self.next + 1) % SEEN;
+        true
+    }
 }
 
 /// [`first_sphere_contact`] by testing every triangle: the oracle.

@@ -8,7 +8,7 @@ use super::hit::Hit;
 use super::object::{BOUND_SLACK, Sides};
 use super::world::Scene;
 use crate::mesh::TriId;
-use crate::query::{distance_to_segment, first_sphere_contact, nearest_within};
+use crate::query::{distance_to_segment, first_sphere_contact, nearest_to_tool};
 
 impl Scene {
     /// The first place where a sphere of `radius` metres, its centre moving `from → to`
@@ -66,7 +66,7 @@ impl Scene {
     /// it came to rest on. `None` when there is none, or when `i` is out of range.
     ///
     /// # Real-time
-    /// A bounding-sphere test, then [`nearest_within`] in the object frame (its cells
+    /// A bounding-sphere test, then `nearest_to_tool` in the object frame (its cells
     /// within `radius + reach` of the centre).
     pub(crate) fn tool_touching(&self, i: usize, p: DVec3, radius: f64, reach: f64) -> Option<Hit> {
         let o = self.objects.get(i)?;
@@ -77,7 +77,7 @@ impl Scene {
             return None;
         }
         let p_object = o.pose.to_object(p);
-        let near = nearest_within(shape.surface(), shape.map(), p_object, grow)?;
+        let near = nearest_to_tool(shape.surface(), shape.map(), p_object, grow)?;
         let face = shape.surface().frame(near.triangle).normal;
         let normal = (p_object - near.closest.point)
             .try_normalize()

@@ -134,3 +134,27 @@ fn features_of_one_triangle() {
     .unwrap();
     assert!(s == 0.0 && n == DVec3::Z);
 }
+
+#[test]
+fn the_tool_touches_the_nearest_triangle_as_brute_force_does() {
+    for mesh in [
+        shapes::sphere(0.05, 3),
+        shapes::cuboid(DVec3::splat(0.04), [3, 2, 4]),
+    ] {
+        let (surface, map) = surface_and_map(mesh);
+        let mut rng = SplitMix64::new(3);
+        let mut found = 0;
+        for i in 0..3000 {
+            let grow = [0.0005, 0.002, 0.01, 0.05][i % 4];
+            let p = rng.unit_vector() * rng.range(0.0, 0.07);
+            let fast = nearest_to_tool(&surface, &map, p, grow);
+            assert_eq!(
+                fast,
+                crate::query::nearest_within_brute_force(&surface, p, grow),
+                "{p:?} {grow}"
+            );
+            found += usize::from(fast.is_some());
+        }
+        assert!(found > 500, "{found}");
+    }
+}
