@@ -37,6 +37,7 @@ mod streams;
 mod structures;
 mod table;
 mod timing;
+mod tool;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

@@ -46,7 +46,9 @@ pub(crate) use segment_triangle::intersect_segment_framed;
 pub use self_intersect::{SelfIntersections, self_intersections};
 #[doc(hidden)]
 pub use sweep::{SphereContact, first_sphere_contact, first_sphere_contact_brute_force};
-pub(crate) use sweep::{consider as consider_sphere, nearest_to_tool};
+#[cfg(any(test, feature = "testing"))]
+pub(crate) use sweep::consider as consider_sphere;
+pub(crate) use sweep::nearest_to_tool;
 #[doc(hidden)]
 pub use validation::Validation;
 #[doc(hidden)]

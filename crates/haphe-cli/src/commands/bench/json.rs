@@ -15,7 +15,8 @@ JSON output (--json OUT): an array with one record per (mesh, query, method):
   family               shape name (blob, thin-plate, ...) or the file name
   triangles            triangle count of the mesh
   query                free_space | segment | segment_random | inside | inside_random |
-                       walk | floor | contact | build | decode | zones
+                       walk | floor | contact | tool | tool_wide | build | decode |
+                       zones
   method               haphe | parry | brute_force
   samples              queries timed (builds, decodes or zone runs for build, decode,
                        zones)

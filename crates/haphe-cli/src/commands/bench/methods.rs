@@ -54,6 +54,10 @@ pub enum Query {
     Floor,
     /// A proxy tick along a path in steady contact: the whole haptic tick.
     Contact,
+    /// The same with a tool of radius 1 mm (scaled as the paths are): the sphere proxy.
+    Tool,
+    /// The same with a tool of radius 2 % of the object's size.
+    ToolWide,
     /// Building the structures from the welded mesh.
     Build,
     /// Loading a saved surface and map (checks included).
@@ -64,7 +68,7 @@ pub enum Query {
 
 impl Query {
     /// Every kind, in the order of the report.
-    pub const ALL: [Query; 11] = [
+    pub const ALL: [Query; 13] = [
         Query::FreeSpace,
         Query::Segment,
         Query::SegmentRandom,
@@ -73,13 +77,15 @@ impl Query {
         Query::Walk,
         Query::Floor,
         Query::Contact,
+        Query::Tool,
+        Query::ToolWide,
         Query::Build,
         Query::Decode,
         Query::Zones,
     ];
 
     /// The kinds timed one query at a time.
-    pub const TIMED: [Query; 8] = [
+    pub const TIMED: [Query; 10] = [
         Query::FreeSpace,
         Query::Segment,
         Query::SegmentRandom,
@@ -88,6 +94,8 @@ impl Query {
         Query::Walk,
         Query::Floor,
         Query::Contact,
+        Query::Tool,
+        Query::ToolWide,
     ];
 
     /// The name in tables, JSON records and plot file names.
@@ -101,6 +109,8 @@ impl Query {
             Query::Walk => "walk",
             Query::Floor => "floor",
             Query::Contact => "contact",
+            Query::Tool => "tool",
+            Query::ToolWide => "tool_wide",
             Query::Build => "build",
             Query::Decode => "decode",
             Query::Zones => "zones",
@@ -146,6 +156,17 @@ impl Query {
                  (god-object: crossings, constraint planes, surface walk, force); parry: the \
                  nearest-point proxy, `project_local_point(hip, true)`, its point when inside, \
                  and the spring force"
+            }
+            Query::Tool => {
+                "tool tick: the contact path with a tool of radius 1 mm (scaled to the \
+                 object), its centre moved out along the surface's normal by the radius \
+                 (haphe `Proxy::tick` with `tool_radius`: the sphere proxy, swept contacts, \
+                 constraint planes tangent to the offset surface; parry: the nearest-point \
+                 ball proxy, `project_local_point(hip, true)`, the centre pushed out to the \
+                 radius along the line to its surface point, and the spring force)"
+            }
+            Query::ToolWide => {
+                "tool tick with a tool of radius 2 % of the object's size (same calls)"
             }
             Query::Build => {
                 "build from the welded mesh (haphe `Surface::new` + `VoxelMap::build`; parry \
@@ -226,7 +247,7 @@ pub struct Measured {
 }
 
 /// Runs chunk `c` of a stream, appending one raw time per query.
-type Run<'a> = Box<dyn FnMut(usize, &mut Vec<u32>) + 'a>;
+pub(super) type Run<'a> = Box<dyn FnMut(usize, &mut Vec<u32>) + 'a>;
 
 /// One method of one query kind.
 struct Runner<'a> {
@@ -295,6 +316,8 @@ fn chunk_lengths(query: Query, streams: &Streams) -> Vec<usize> {
         }
         Query::InsideRandom => lengths(&streams.random_points),
         Query::Contact => lengths(&streams.contact),
+        Query::Tool => lengths(&streams.tool[0].1),
+        Query::ToolWide => lengths(&streams.tool[1].1),
         Query::Build | Query::Decode | Query::Zones => Vec::new(),
     }
 }
@@ -474,6 +497,12 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
                     ),
                     1,
                 );
+            }
+        }
+        Query::Tool | Query::ToolWide => {
+            let (radius, path) = &streams.tool[usize::from(query == Query::ToolWide)];
+            for (method, run) in super::tool::runs(*radius, path, scene, parry) {
+                add(method, run, 1);
             }
         }
         Query::Build | Query::Decode | Query::Zones => {}

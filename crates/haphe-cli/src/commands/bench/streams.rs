@@ -19,7 +19,7 @@
 use haphe::DVec3;
 use haphe::map::{CellState, VoxelMap};
 use haphe::mesh::{Surface, TriId};
-use haphe::query::walk_to_nearest;
+use haphe::query::{Side, classify_point, nearest_within, walk_to_nearest};
 use haphe::rng::SplitMix64;
 use haphe::scene::Scene;
 use haphe::verify::{SegmentKind, bounds, haptic_path_in_contact, points, segments, trajectory};
@@ -66,6 +66,9 @@ pub struct Streams {
     pub random_segments: Vec<Vec<(DVec3, DVec3)>>,
     /// One device path in steady contact, in chunks (filled by [`Streams::add_contact`]).
     pub contact: Vec<Vec<DVec3>>,
+    /// The contact path for a tool of each radius (1 mm, scaled, and 2 % of the object's
+    /// size), moved out by the radius: the radius and the chunks.
+    pub tool: [(f64, Vec<Vec<DVec3>>); 2],
 }
 
 impl Streams {
@@ -140,6 +143,7 @@ impl Streams {
                 segments_seed,
             )),
             contact: Vec::new(),
+            tool: [(0.0, Vec::new()), (0.0, Vec::new())],
         }
     }
 
@@ -163,7 +167,40 @@ impl Streams {
             TICK_RATE_HZ,
             seed,
         ));
+        let shape = &object.shape;
+        self.tool = [1e-3 * scale, 0.02 * size].map(|radius| {
+            let lifted = self
+                .contact
+                .iter()
+                .map(|chunk| lifted(shape.surface(), shape.map(), chunk, (radius, 4e-3 * scale)))
+                .collect();
+            (radius, lifted)
+        });
     }
+}
+
+/// The points of `path` moved out along the surface's normal by `radius`: a tool's
+/// centre as deep past the tool's offset as each point lies past the surface (points
+/// inside deeper than `deepest`, or outside farther than `radius`, stay).
+fn lifted(
+    surface: &Surface,
+    map: &VoxelMap,
+    path: &[DVec3],
+    (radius, deepest): (f64, f64),
+) -> Vec<DVec3> {
+    path.iter()
+        .map(|&p| {
+            let inside = classify_point(surface, map, p).0 == Side::Inside;
+            let reach = if inside { deepest } else { radius };
+            match nearest_within(surface, map, p, reach) {
+                Some(near) => {
+                    let away = (p - near.closest.point).normalize_or_zero();
+                    p + radius * if inside { -away } else { away }
+                }
+                None => p,
+            }
+        })
+        .collect()
 }
 
 /// The device rate the contact paths are sampled at, Hz.

@@ -290,6 +290,7 @@ fn targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
         }
     }
     contact_targets(out, records)?;
+    tool_targets(out, records)?;
     for (a, b) in extremes(records)
         .into_iter()
         .filter(|(a, _)| a.method == Method::Haphe && a.clock_overhead_ns.is_some())
@@ -371,6 +372,52 @@ fn contact_targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
             "contact tick ≥ 10× faster than parry's proxy at p99.9, every size",
             &format!("worst {} ({})", times(Some(x)), h.mesh),
         )?;
+    }
+    Ok(())
+}
+
+/// The tool tick, at each radius: its p50 within 2× the point's contact tick on the same
+/// mesh, and ahead of parry's ball proxy at p50. The worst mesh of each.
+fn tool_targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
+    let find = |mesh: &str, query: Query, method: Method| {
+        records
+            .iter()
+            .find(|r| r.mesh == mesh && r.query == query && r.method == method)
+    };
+    for (query, what) in [(Query::Tool, "1 mm"), (Query::ToolWide, "2 % of the size")] {
+        let tools = || {
+            records
+                .iter()
+                .filter(move |r| r.query == query && r.method == Method::Haphe)
+        };
+        let worst = |of: &dyn Fn(&Record) -> Option<f64>| {
+            tools()
+                .filter_map(|r| Some((of(r)?, r)))
+                .max_by(|a, b| a.0.total_cmp(&b.0))
+        };
+        let point = |r: &Record| {
+            ratio(
+                r.p50_ns,
+                find(&r.mesh, Query::Contact, Method::Haphe)?.p50_ns,
+            )
+        };
+        if let Some((x, r)) = worst(&point) {
+            verdict(
+                out,
+                x <= 2.0,
+                &format!("tool tick (r {what}) within 2× the point's contact tick at p50"),
+                &format!("worst {} ({})", times(Some(x)), r.mesh),
+            )?;
+        }
+        let parry = |r: &Record| ratio(r.p50_ns, find(&r.mesh, query, Method::Parry)?.p50_ns);
+        if let Some((x, r)) = worst(&parry) {
+            verdict(
+                out,
+                x <= 1.0,
+                &format!("tool tick (r {what}) ahead of parry's ball proxy at p50"),
+                &format!("worst haphe ÷ parry {} ({})", times(Some(x)), r.mesh),
+            )?;
+        }
     }
     Ok(())
 }

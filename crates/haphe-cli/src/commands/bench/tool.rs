@@ -1,0 +1,76 @@
+//! The tool tick's methods: haphe's sphere proxy, and parry's nearest-point ball proxy.
+
+use haphe::DVec3;
+use haphe::proxy::{Proxy, ProxyOptions};
+use haphe::scene::{Material, Scene};
+use parry3d_f64::query::PointQuery;
+use parry3d_f64::shape::TriMesh;
+
+use super::methods::{Method, Run};
+use super::streams::TICK_RATE_HZ;
+use super::timing::time_each;
+
+/// The runs of a tool of `radius` metres along `path` (chunks of one path, in order):
+/// haphe's proxy carried from chunk to chunk, and parry's ball where parry took the mesh.
+pub fn runs<'a>(
+    radius: f64,
+    path: &'a [Vec<DVec3>],
+    scene: &'a Scene,
+    parry: Option<&'a TriMesh>,
+) -> Vec<(Method, Run<'a>)> {
+    let mut runs: Vec<(Method, Run<'a>)> = Vec::new();
+    let Ok(options) = ProxyOptions::default().with_tool_radius(radius) else {
+        return runs;
+    };
+    let mut state: Option<(Proxy, DVec3)> = None;
+    runs.push((
+        Method::Haphe,
+        Box::new(move |c, out| {
+            let chunk = &path[c];
+            let (proxy, previous) =
+                state.get_or_insert_with(|| (Proxy::new(chunk[0], options), chunk[0]));
+            time_each(
+                chunk.iter().copied(),
+                |hip| {
+                    let velocity = (hip - *previous) * TICK_RATE_HZ;
+                    *previous = hip;
+                    proxy.tick(scene, hip, velocity)
+                },
+                out,
+            )
+        }),
+    ));
+    if let Some(mesh) = parry {
+        let stiffness = Material::default().stiffness();
+        runs.push((
+            Method::Parry,
+            Box::new(move |c, out| {
+                time_each(
+                    path[c].iter().copied(),
+                    |hip| {
+                        let proxy = ball_proxy(mesh, hip, radius);
+                        (proxy, stiffness * (proxy - hip))
+                    },
+                    out,
+                )
+            }),
+        ));
+    }
+    runs
+}
+
+/// parry's ball proxy: the centre pushed out along the line to its nearest surface point
+/// to `radius` from it (through the surface when the centre is inside), or left where it
+/// is when the ball touches nothing.
+fn ball_proxy(mesh: &TriMesh, hip: DVec3, radius: f64) -> DVec3 {
+    let projection = mesh.project_local_point(hip, true);
+    let gap = hip - projection.point;
+    let distance = gap.length();
+    if projection.is_inside {
+        projection.point - gap * (radius / distance.max(f64::MIN_POSITIVE))
+    } else if distance < radius {
+        projection.point + gap * (radius / distance.max(f64::MIN_POSITIVE))
+    } else {
+        hip
+    }
+}
