@@ -8,7 +8,6 @@ use glam::DVec3;
 use super::constraints::{Plane, advance_to_plane};
 use super::near::{NearCache, search_box};
 use super::options::ProxyOptions;
-use crate::mesh::TriId;
 use crate::scene::{Hit, Scene, SurfaceRef};
 
 /// The first hit of the world segment `p0 → p1` over every object; ties go to the lower
@@ -24,45 +23,28 @@ pub(crate) fn first_hit_all(
     hint: Option<SurfaceRef>,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
-    let (lo, hi) = grown(search_box(p0, p1, reach), radius);
+    let (lo, hi) = search_box(p0, p1, reach);
     let mut best: Option<Hit> = None;
-    for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
-        let hint = hint.filter(|h| h.object == i).map(|h| h.triangle);
-        if let Some(h) = hit_one(scene, i, (p0, p1), options, hint)
-            && best.is_none_or(|b| h.t < b.t)
-        {
+    let mut keep = |h: Hit| {
+        if best.is_none_or(|b| h.t < b.t) {
             best = Some(h);
+        }
+    };
+    if radius > 0.0 {
+        let (objects, kept) = near.parts(scene, lo - radius, hi + radius);
+        for i in objects.indices(scene.objects().len()) {
+            let hint = hint.filter(|h| h.object == i).map(|h| h.triangle);
+            let tool = (radius, reach);
+            scene
+                .first_tool_hit(i, (p0, p1), tool, (hint, &mut *kept))
+                .map(&mut keep);
+        }
+    } else {
+        for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
+            scene.first_hit(i, p0, p1, reach).map(&mut keep);
         }
     }
     best
-}
-
-/// The first hit of the world move `from → to` on object `i`: the point's crossing, or
-/// the tool's contact (its triangle `hint` tested first).
-#[inline]
-fn hit_one(
-    scene: &Scene,
-    i: usize,
-    (from, to): (DVec3, DVec3),
-    options: &ProxyOptions,
-    hint: Option<TriId>,
-) -> Option<Hit> {
-    let (reach, radius) = (options.probe_reach(), options.tool_radius);
-    if radius > 0.0 {
-        scene.first_tool_hit(i, (from, to), (radius, reach), hint)
-    } else {
-        scene.first_hit(i, from, to, reach)
-    }
-}
-
-/// The box `lo..hi` grown by `by` metres on every side (unchanged for 0).
-#[inline]
-fn grown((lo, hi): (DVec3, DVec3), by: f64) -> (DVec3, DVec3) {
-    if by > 0.0 {
-        (lo - DVec3::splat(by), hi + DVec3::splat(by))
-    } else {
-        (lo, hi)
-    }
 }
 
 /// The surface within a probe's reach of the world point `p` (of the tool's surface, with
@@ -75,16 +57,16 @@ pub(crate) fn touching_any(
     options: &ProxyOptions,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
-    let (lo, hi) = grown(search_box(p, p, reach), radius);
+    let (lo, hi) = search_box(p, p, reach);
+    if radius > 0.0 {
+        let (objects, kept) = near.parts(scene, lo - radius, hi + radius);
+        return objects
+            .indices(scene.objects().len())
+            .find_map(|i| scene.tool_touching(i, p, (radius, reach), kept));
+    }
     near.get(scene, lo, hi)
         .indices(scene.objects().len())
-        .find_map(|i| {
-            if radius > 0.0 {
-                scene.tool_touching(i, p, radius, reach)
-            } else {
-                scene.touching(i, p, reach)
-            }
-        })
+        .find_map(|i| scene.touching(i, p, reach))
 }
 
 /// The constraint plane of `hit`, met by the move `from → to`: the triangle's plane moved
@@ -123,7 +105,14 @@ pub(super) fn carry(
             return;
         }
         let from = scene.previous_relative(i, *p);
-        if let Some(h) = hit_one(scene, i, (from, *p), options, None) {
+        let h = if options.tool_radius > 0.0 {
+            let mut kept = crate::query::ToolNear::EMPTY;
+            let tool = (options.tool_radius, reach);
+            scene.first_tool_hit(i, (from, *p), tool, (None, &mut kept))
+        } else {
+            scene.first_hit(i, from, *p, reach)
+        };
+        if let Some(h) = h {
             *p = advance_to_plane(from, *p, &hit_plane(&h, from, *p, options));
         }
     };

@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use crate::query::ToolNear;
 use crate::scene::{Near, Scene};
 
 /// Least growth of a remembered box, metres, so that a hand moving slowly keeps the same
@@ -33,6 +34,8 @@ pub(crate) struct NearCache {
     key: Option<(u64, u64)>,
     /// Every object is a candidate (the linear path, the oracle of the broad phase).
     linear: bool,
+    /// The triangles near the tool (a tool with a size only).
+    tool: ToolNear,
 }
 
 impl NearCache {
@@ -44,6 +47,7 @@ impl NearCache {
             hi: DVec3::ZERO,
             key: None,
             linear: false,
+            tool: ToolNear::EMPTY,
         }
     }
 
@@ -85,6 +89,13 @@ impl NearCache {
             self.key = (l.is_finite() && h.is_finite()).then_some(key).flatten();
         }
         &self.near
+    }
+
+    /// [`NearCache::get`], and the triangles kept near the tool.
+    #[inline]
+    pub(crate) fn parts(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> (Near, &mut ToolNear) {
+        let near = *self.get(scene, lo, hi);
+        (near, &mut self.tool)
     }
 }
 

@@ -17,6 +17,7 @@ mod probe;
 mod segment_triangle;
 mod self_intersect;
 mod sweep;
+mod tool_near;
 mod triangle_triangle;
 // The record the front ends print for `validate` (the command, Python's `validate`): public
 // for them, not part of the documented interface.
@@ -44,11 +45,12 @@ pub use near::{NearTriangle, nearest_within};
 pub(crate) use probe::Probe;
 pub(crate) use segment_triangle::intersect_segment_framed;
 pub use self_intersect::{SelfIntersections, self_intersections};
-#[doc(hidden)]
-pub use sweep::{SphereContact, first_sphere_contact, first_sphere_contact_brute_force};
 #[cfg(any(test, feature = "testing"))]
 pub(crate) use sweep::consider as consider_sphere;
 pub(crate) use sweep::nearest_to_tool;
+#[doc(hidden)]
+pub use sweep::{SphereContact, first_sphere_contact, first_sphere_contact_brute_force};
+pub(crate) use tool_near::ToolNear;
 #[doc(hidden)]
 pub use validation::Validation;
 #[doc(hidden)]

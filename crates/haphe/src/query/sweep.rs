@@ -153,7 +153,7 @@ pub(crate) fn nearest_to_tool(
 }
 
 /// The last few triangles a sweep tested, on the stack.
-struct Seen {
+pub(crate) struct Seen {
     ids: [u32; SEEN],
     next: usize,
 }
@@ -162,7 +162,7 @@ struct Seen {
 const SEEN: usize = 32;
 
 impl Seen {
-    fn new() -> Seen {
+    pub(crate) fn new() -> Seen {
         Seen {
             ids: [u32::MAX; SEEN],
             next: 0,
@@ -171,7 +171,7 @@ impl Seen {
 
     /// Whether `t` is not among the kept triangles (and keeps it, forgetting the oldest).
     #[inline]
-    fn first_time(&mut self, t: u32) -> bool {
+    pub(crate) fn first_time(&mut self, t: u32) -> bool {
         if self.ids.contains(&t) {
             return false;
         }
@@ -295,7 +295,7 @@ pub(crate) fn sphere_triangle(
 /// triangle's corners (centred on their mean): no point of it comes within `grow` of the
 /// triangle. Compares squares, with a relative margin far above their rounding.
 #[inline]
-fn beyond_sphere(corners: [DVec3; 3], (a, d): (DVec3, DVec3), grow: f64) -> bool {
+pub(crate) fn beyond_sphere(corners: [DVec3; 3], (a, d): (DVec3, DVec3), grow: f64) -> bool {
     let centre = (corners[0] + corners[1] + corners[2]) / 3.0;
     let spread = corners
         .iter()

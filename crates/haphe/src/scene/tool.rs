@@ -8,25 +8,30 @@ use super::hit::Hit;
 use super::object::{BOUND_SLACK, Sides};
 use super::world::Scene;
 use crate::mesh::TriId;
-use crate::query::{distance_to_segment, first_sphere_contact, nearest_to_tool};
+use crate::query::{ToolNear, distance_to_segment, first_sphere_contact, nearest_to_tool};
 
 impl Scene {
     /// The first place where a sphere of `radius` metres, its centre moving `from → to`
     /// (world frame), touches object `i` at its current pose, the move reaching `reach`
     /// metres past `to` (and a start within `reach` of the object's offset counting as a
-    /// contact at `t = 0` when it moves closer; triangle `hint` tested first, which spares
-    /// work when it is met first and changes no answer). The hit's point is the triangle's point
+    /// contact at `t = 0` when it moves closer). The hit's point is the triangle's point
     /// nearest to the centre there, its normal the unit normal from that point toward the
     /// centre. `None` when it does not, or when `i` is out of range.
     ///
+    /// `near` keeps the triangles near the tool from one call to the next: when they hold
+    /// every triangle the move could touch, only they are tested; otherwise, for the
+    /// object the tool touches (its triangle `hint`, tested first) or whose triangles are
+    /// kept, they are gathered again around the move. Neither changes the answer.
+    ///
     /// # Real-time
-    /// A bounding-sphere test, then [`first_sphere_contact`] in the object frame.
+    /// A bounding-sphere test, then the kept triangles or [`first_sphere_contact`] in the
+    /// object frame.
     pub(crate) fn first_tool_hit(
         &self,
         i: usize,
         (from, to): (DVec3, DVec3),
         (radius, reach): (f64, f64),
-        hint: Option<TriId>,
+        (hint, near): (Option<TriId>, &mut ToolNear),
     ) -> Option<Hit> {
         let o = self.objects.get(i)?;
         let shape = &*o.shape;
@@ -48,7 +53,21 @@ impl Scene {
         let one_sided = o.sides == Sides::Front;
         let (a, b) = (o.pose.to_object(from), o.pose.to_object(to_probe));
         let sphere = (radius, reach, one_sided);
-        let c = first_sphere_contact(shape.surface(), shape.map(), (a, b), sphere, hint)?;
+        let surface = shape.surface();
+        let kept = near.is_of(surface);
+        let mut answer = kept
+            .then(|| near.first_contact(surface, (a, b), sphere))
+            .flatten();
+        if answer.is_none() && (kept || hint.is_some()) {
+            // Around the move, half as far again as the tool's radius.
+            let distance = 1.5 * radius + reach + a.distance(b) / 2.0;
+            near.gather(surface, shape.map(), a.midpoint(b), distance);
+            answer = near.first_contact(surface, (a, b), sphere);
+        }
+        let c = match answer {
+            Some(answer) => answer?,
+            None => first_sphere_contact(surface, shape.map(), (a, b), sphere, hint)?,
+        };
         Some(Hit {
             t: c.t * scale,
             object: i,
@@ -66,9 +85,16 @@ impl Scene {
     /// it came to rest on. `None` when there is none, or when `i` is out of range.
     ///
     /// # Real-time
-    /// A bounding-sphere test, then `nearest_to_tool` in the object frame (its cells
-    /// within `radius + reach` of the centre).
-    pub(crate) fn tool_touching(&self, i: usize, p: DVec3, radius: f64, reach: f64) -> Option<Hit> {
+    /// A bounding-sphere test, then the triangles kept in `near` when they hold every
+    /// triangle that near, else `nearest_to_tool` in the object frame (its cells within
+    /// `radius + reach` of the centre).
+    pub(crate) fn tool_touching(
+        &self,
+        i: usize,
+        p: DVec3,
+        (radius, reach): (f64, f64),
+        near: &ToolNear,
+    ) -> Option<Hit> {
         let o = self.objects.get(i)?;
         let shape = &*o.shape;
         let grow = radius + reach;
@@ -77,7 +103,14 @@ impl Scene {
             return None;
         }
         let p_object = o.pose.to_object(p);
-        let near = nearest_to_tool(shape.surface(), shape.map(), p_object, grow)?;
+        let kept = near
+            .is_of(shape.surface())
+            .then(|| near.nearest(shape.surface(), p_object, grow))
+            .flatten();
+        let near = match kept {
+            Some(answer) => answer?,
+            None => nearest_to_tool(shape.surface(), shape.map(), p_object, grow)?,
+        };
         let face = shape.surface().frame(near.triangle).normal;
         let normal = (p_object - near.closest.point)
             .try_normalize()
