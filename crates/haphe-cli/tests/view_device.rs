@@ -328,3 +328,66 @@ fn sigterm_and_ctrl_c_stop_haphe_run_after_zero_force() {
         assert!(!enabled, "SIG{sig}: force output left enabled");
     }
 }
+
+/// `haphe view` with two devices (two simulated hands): each is listed, and every frame
+/// carries the second device's tool beside the first's, each where its own hand is.
+#[test]
+fn two_devices_in_the_view() {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_haphe"));
+    command
+        .args(["view", "--shape", "sphere", "--triangles", "2000"])
+        .args(["--device", "hand", "--device", "hand", "--seconds", "20"])
+        .args(["--no-open", "--port", "0"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit());
+    let mut child = Running(command.spawn().expect("haphe runs"));
+    let mut lines = BufReader::new(child.0.stdout.take().expect("stdout")).lines();
+    let mut printed = String::new();
+    let addr = loop {
+        let line = lines
+            .next()
+            .unwrap_or_else(|| panic!("haphe prints the address; it printed:\n{printed}"))
+            .expect("utf-8");
+        printed.push_str(&line);
+        printed.push('\n');
+        if let Some(rest) = line.strip_prefix("view: http://") {
+            break rest.split('/').next().expect("host:port").to_string();
+        }
+    };
+    for needed in [
+        "device 1 (hand):",
+        "device 2 (hand):",
+        "device hand, hand on",
+    ] {
+        assert!(printed.contains(needed), "{needed:?} missing:\n{printed}");
+    }
+    let (mut socket, _) = tungstenite::connect(format!("ws://{addr}/ws")).expect("the stream");
+    let started = Instant::now();
+    let frame = loop {
+        assert!(
+            started.elapsed() < Duration::from_secs(30),
+            "no frame with two tools"
+        );
+        let message = socket.read().expect("a frame");
+        let Ok(frame) = serde_json::from_str::<Value>(message.to_text().unwrap_or("")) else {
+            continue;
+        };
+        if frame["others"].as_array().is_some_and(|o| o.len() == 1) {
+            break frame;
+        }
+    };
+    let hip = |v: &Value| {
+        (0..3)
+            .map(|i| v[i].as_f64().expect("a number"))
+            .collect::<Vec<_>>()
+    };
+    // Two hands on paths of their own: two places.
+    assert_ne!(
+        hip(&frame["hip"]),
+        hip(&frame["others"][0]["hip"]),
+        "{frame}"
+    );
+    signal(&child.0, "INT");
+    let status = child.0.wait().expect("exits");
+    assert!(status.success(), "{status:?}");
+}

@@ -11,7 +11,7 @@ const $ = (id) => document.getElementById(id);
 // What the page shows now; tests read it.
 const state = {
   ready: false, info: null, frame: null, frames: 0, sent: 0, connected: false,
-  replay: null, drawn: {},
+  replay: null, drawn: {}, others: [],
 };
 window.haphe = state;
 
@@ -107,6 +107,40 @@ for (const o of [hipMark, proxyMark, link, forceArrow, normalArrow, contactTri])
 }
 const maxForce = 3.3;
 
+// The other devices of a run of several (two hands): each one's device point, its tool (a
+// sphere of its radius, or the marker for a point) and the line between them, in a colour
+// of its own, made when a frame first carries it.
+const otherColours = [0x4da6ff, 0xd86bff, 0xffd24d];
+const others = [];
+function otherTool(i, radius) {
+  if (!others[i]) {
+    const colour = otherColours[i % otherColours.length];
+    const hip = new THREE.Mesh(new THREE.SphereGeometry(r, 20, 12),
+      new THREE.MeshBasicMaterial({ color: colour, depthTest: false, transparent: true, opacity: 0.9 }));
+    hip.renderOrder = 10;
+    const proxy = new THREE.Mesh(new THREE.SphereGeometry(radius > 0 ? radius : r, 32, 20),
+      new THREE.MeshStandardMaterial({ color: colour }));
+    const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints([centre, centre]),
+      new THREE.LineBasicMaterial({ color: 0xffffff, depthTest: false, transparent: true }));
+    line.renderOrder = 9;
+    for (const o of [hip, proxy, line]) scene.add(o);
+    others[i] = { hip, proxy, line };
+  }
+  return others[i];
+}
+
+// f.others: [{ hip, proxy, force, tool_radius, contact }], one per other device.
+function showOthers(list) {
+  state.others = (list ?? []).map((o, i) => {
+    const m = otherTool(i, o.tool_radius);
+    const hip = new THREE.Vector3(...o.hip), proxy = new THREE.Vector3(...o.proxy);
+    m.hip.position.copy(hip);
+    m.proxy.position.copy(proxy);
+    m.line.geometry.setFromPoints([hip, proxy]);
+    return { proxy: [...o.proxy], drawn: m.proxy.geometry.parameters.radius, contact: o.contact };
+  });
+}
+
 // The objects moved by script, where the frame's tick had them: poses [{ id, rotation
 // [x, y, z, w], translation [x, y, z] }]. state.drawn[id] is where each mesh is drawn.
 function place(poses) {
@@ -123,6 +157,7 @@ function place(poses) {
 function show(f) {
   // f: { hip, proxy, force, object, triangle, penetration, sticking, status, max_force, poses }
   place(f.poses);
+  showOthers(f.others);
   const hip = new THREE.Vector3(...f.hip), proxy = new THREE.Vector3(...f.proxy);
   hipMark.position.copy(hip);
   proxyMark.position.copy(proxy);

@@ -74,6 +74,7 @@ fn with_view(rate: f64, seconds: f64, browser: &mut cdp::Browser) -> TickStats {
         seconds: Some(seconds),
         realtime: RealtimeOptions::default(),
         clock: None,
+        others: Vec::new(),
     };
     let view = ViewServer::start(
         model,

@@ -32,7 +32,7 @@ mod replay;
 mod server;
 mod timing;
 
-pub use live::{FRAME_RATE_HZ, Frame, LiveRun, LiveSource, Published, STATS_WINDOW_S};
+pub use live::{FRAME_RATE_HZ, Frame, LiveRun, LiveSource, OtherTool, Published, STATS_WINDOW_S};
 pub use model::{MESH_MAGIC, Model, ObjectInfo, ObjectMesh};
 pub use mouse::{MOUSE_MAX_FORCE_N, MOUSE_VELOCITY_TAU_S, MouseDevice, MouseHandle};
 pub use poses::{ObjectPose, POSE_VALUES, encode_poses, poses_at};

@@ -66,6 +66,25 @@ pub struct Frame {
     /// The poses of the objects moved by script at the last tick's time (empty without
     /// motions).
     pub poses: Vec<ObjectPose>,
+    /// The other devices of a run of several (two hands), at the last tick: each one's
+    /// tool, drawn beside the first device's.
+    pub others: Vec<OtherTool>,
+}
+
+/// Another device's tool in a [`Frame`]: where its device point, proxy and force are at
+/// the frame's last tick.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct OtherTool {
+    /// Device point, metres, world frame.
+    pub hip: [f64; 3],
+    /// Proxy (the tool's centre), metres, world frame.
+    pub proxy: [f64; 3],
+    /// Force, newtons, world frame.
+    pub force: [f64; 3],
+    /// The tool's radius, metres (0: a point).
+    pub tool_radius: f64,
+    /// In contact with an object.
+    pub contact: bool,
 }
 
 impl Frame {
@@ -88,6 +107,7 @@ impl Frame {
             compute_us: [0.0; 4],
             ended: false,
             poses: Vec::new(),
+            others: Vec::new(),
         }
     }
 
@@ -125,6 +145,9 @@ pub struct LiveSource {
     /// then runs on the vendor's thread
     /// ([`ServoLoop::spawn_clocked`](haphe::servo::ServoLoop::spawn_clocked)).
     pub clock: Option<Box<dyn DeviceClock>>,
+    /// Further devices on the same servo (two hands), each with its own options
+    /// (mapping, tool): every frame carries their tools ([`Frame::others`]).
+    pub others: Vec<(Box<dyn Device>, ServoOptions)>,
 }
 
 /// How a live view's servo ran: its device is the view's timed wrapper around the one
@@ -145,7 +168,21 @@ impl Live {
         frames: watch::Sender<Option<Published>>,
     ) -> Result<Live, ServoError> {
         let (device, timings) = Timed::new(source.device);
-        let mut servo = Servo::new(device, source.scene, source.options)?;
+        let radii: Vec<f64> = source
+            .others
+            .iter()
+            .map(|(_, o)| o.proxy().tool_radius())
+            .collect();
+        let mut servo = if source.others.is_empty() {
+            Servo::new(device, source.scene, source.options)?
+        } else {
+            // The first device's read-to-write time spans the whole tick of every device.
+            let mut devices = vec![(device, source.options)];
+            for (d, options) in source.others {
+                devices.push((Timed::new(d).0, options));
+            }
+            Servo::with_devices(devices, source.scene)?
+        };
         // The pump computes the poses each frame from the same motions: nothing more
         // leaves the servo thread.
         let motions = source.motions.clone();
@@ -160,7 +197,7 @@ impl Live {
             .name("haphe-view-pump".into())
             .spawn(move || {
                 let mut timings = timings;
-                let mut pump = Pump::new(motions);
+                let mut pump = Pump::new(motions, radii);
                 let frame = Duration::from_secs_f64(1.0 / FRAME_RATE_HZ);
                 let mut next = Instant::now() + frame;
                 while !flag.load(Ordering::Relaxed) {
@@ -196,6 +233,9 @@ impl Live {
 /// Thinning state of the pump thread.
 struct Pump {
     last: Option<TickRecord>,
+    /// The other devices' last records, and their tools' radii.
+    others: Vec<Option<TickRecord>>,
+    radii: Vec<f64>,
     ticks: u64,
     max_force: f64,
     max_penetration: f64,
@@ -208,10 +248,12 @@ struct Pump {
 }
 
 impl Pump {
-    fn new(motions: Vec<ObjectMotion>) -> Pump {
+    fn new(motions: Vec<ObjectMotion>, radii: Vec<f64>) -> Pump {
         Pump {
             motions,
             last: None,
+            others: vec![None; radii.len()],
+            radii,
             ticks: 0,
             max_force: 0.0,
             max_penetration: 0.0,
@@ -224,6 +266,12 @@ impl Pump {
     }
 
     fn add(&mut self, r: &TickRecord) {
+        if r.device > 0 {
+            if let Some(o) = self.others.get_mut(r.device as usize - 1) {
+                *o = Some(*r);
+            }
+            return;
+        }
         self.last = Some(*r);
         self.ticks += 1;
         self.window_ticks += 1;
@@ -255,10 +303,80 @@ impl Pump {
         frame.compute_us = self.compute_us;
         frame.ended = ended;
         frame.poses = poses_at(&self.motions, last.t);
+        frame.others = self
+            .others
+            .iter()
+            .zip(&self.radii)
+            .filter_map(|(r, &tool_radius)| {
+                r.map(|r| OtherTool {
+                    hip: r.hip.to_array(),
+                    proxy: r.proxy.to_array(),
+                    force: r.force.to_array(),
+                    tool_radius,
+                    contact: r.in_contact(),
+                })
+            })
+            .collect();
         self.ticks = 0;
         self.max_force = 0.0;
         self.max_penetration = 0.0;
         let json = serde_json::to_string(&frame).map_or_else(|_| Arc::from("{}"), Arc::from);
         frames.send_replace(Some(Published { frame, json }));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use haphe::scene::Material;
+    use haphe::servo::{ScriptedDevice, Trajectory};
+
+    use super::*;
+
+    /// A live view of two devices publishes the first one's frame and the other's tool,
+    /// each where its own device holds it, with its own tool radius.
+    #[test]
+    fn frames_carry_every_devices_tool() {
+        let scene = haphe::verify::sphere_scene(500, Material::default()).expect("a scene");
+        let (a, b) = (DVec3::new(0.0, 0.0, 0.3), DVec3::new(0.3, 0.0, 0.0));
+        let tool = ServoOptions::default().with_proxy(
+            ServoOptions::default()
+                .proxy()
+                .with_tool_radius(0.01)
+                .expect("a radius"),
+        );
+        let source = LiveSource {
+            device: Box::new(ScriptedDevice::new(Trajectory::still(a))),
+            scene,
+            options: ServoOptions::default(),
+            motions: Vec::new(),
+            seconds: Some(2.0),
+            realtime: RealtimeOptions::default().with_realtime_priority(false),
+            clock: None,
+            others: vec![(Box::new(ScriptedDevice::new(Trajectory::still(b))), tool)],
+        };
+        let (frames, mut seen) = watch::channel(None);
+        let live = Live::start(source, frames).expect("a live view");
+        let deadline = Instant::now() + Duration::from_secs(10);
+        let frame = loop {
+            let published = seen.borrow_and_update().clone();
+            if let Some(p) = published
+                && !p.frame.others.is_empty()
+            {
+                break p;
+            }
+            assert!(Instant::now() < deadline, "no frame with the other device");
+            std::thread::sleep(Duration::from_millis(10));
+        };
+        let run = live.stop().expect("stops");
+        assert_eq!(run.servo.devices(), 2);
+        assert_eq!(frame.frame.hip, a.to_array());
+        let other = frame.frame.others[0];
+        assert_eq!((other.hip, other.proxy), (b.to_array(), b.to_array()));
+        assert_eq!(other.tool_radius, 0.01);
+        assert!(
+            frame.json.contains("\"others\":[{\"hip\":[0.3,0.0,0.0]"),
+            "{}",
+            frame.json
+        );
     }
 }

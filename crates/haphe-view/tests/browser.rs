@@ -1,7 +1,8 @@
 //! End to end, in a real headless browser (Chromium, software WebGL, driven over the
 //! DevTools protocol): the page loads without console errors and draws the scene; mouse
 //! events push the device point into a sphere and the server reports contact with a force
-//! pointing out of it; a recorded trace replays to its last tick.
+//! pointing out of it; a recorded trace replays to its last tick; with two devices, each
+//! one's tool is drawn.
 //!
 //! Needs Chromium (`apt-get install chromium`; `.ci/run` installs it). With
 //! `HAPHE_VIEW_SCREENSHOT=docs/view.png` the test also writes the screenshot of the
@@ -16,7 +17,7 @@ use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, Scene};
 use haphe::servo::{
     Motion, ObjectMotion, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions,
-    scene_bounds, scripted_path,
+    Trajectory, scene_bounds, scripted_path,
 };
 use haphe_view::{LiveSource, Model, MouseDevice, Source, Trace, ViewOptions, ViewServer};
 use serde_json::Value;
@@ -63,6 +64,7 @@ fn live_view(
         seconds,
         realtime: RealtimeOptions::default().with_realtime_priority(false),
         clock: None,
+        others: Vec::new(),
     };
     ViewServer::start(
         model,
@@ -434,4 +436,86 @@ fn the_tool_is_drawn_as_a_sphere_of_its_radius() {
     view.stop().expect("stops");
     let errors = std::mem::take(&mut browser.errors);
     assert!(errors.is_empty(), "console errors: {errors:#?}");
+}
+
+/// The blue of the second device's tool (not the sphere's grey-blue, nor the first
+/// device's green).
+fn second_tool_colour(px: [u8; 4]) -> bool {
+    let [r, g, b, _] = px.map(i32::from);
+    b > r + 60 && b > g + 30
+}
+
+#[test]
+fn every_devices_tool_is_drawn() {
+    let scene = sphere_scene();
+    let (_, hi, centre, radius) = sphere_bounds(&scene);
+    let model = Model::from_scene(&scene, &["sphere".to_string()]);
+    // Two devices held still, free above the sphere on either side: the second with a
+    // tool of its own radius.
+    let a = DVec3::new(centre.x - 0.5 * radius, centre.y, hi.z + 0.6 * radius);
+    let b = DVec3::new(centre.x + 0.5 * radius, centre.y, hi.z + 0.6 * radius);
+    let tool = 0.3 * radius;
+    let second = ServoOptions::default().with_proxy(
+        ProxyOptions::default()
+            .with_tool_radius(tool)
+            .expect("a radius in its domain"),
+    );
+    let source = LiveSource {
+        device: Box::new(ScriptedDevice::new(Trajectory::still(a))),
+        scene,
+        options: ServoOptions::default(),
+        motions: Vec::new(),
+        seconds: None,
+        realtime: RealtimeOptions::default().with_realtime_priority(false),
+        clock: None,
+        others: vec![(Box::new(ScriptedDevice::new(Trajectory::still(b))), second)],
+    };
+    let view = ViewServer::start(
+        model,
+        Source::Live {
+            source: Box::new(source),
+            mouse: None,
+        },
+        &options("two devices above a sphere"),
+    )
+    .expect("the view starts");
+    let mut browser = Browser::start(WIDTH, HEIGHT);
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.ready && window.haphe.others.length === 1)",
+        Duration::from_secs(40),
+        "the page to draw the second device",
+    );
+    let other = browser.eval("window.haphe.others[0]");
+    let p: Vec<f64> = (0..3)
+        .map(|i| other["proxy"][i].as_f64().expect("proxy"))
+        .collect();
+    assert!(
+        (DVec3::new(p[0], p[1], p[2]) - b).length() < 1e-9,
+        "{other}"
+    );
+    assert_eq!(other["drawn"].as_f64(), Some(tool), "{other}");
+    // On the screen: the second tool's blue at its centre and within its radius, not
+    // beyond; the first device's tool (a point, the green marker) at its own place.
+    let (w, _, pixels) = decode_png(&browser.screenshot());
+    let at = |q: (f64, f64)| pixels[(q.1 as u32 * w + q.0 as u32) as usize];
+    for side in [-1.0, 1.0] {
+        let inside = project(&mut browser, b + DVec3::X * (side * 0.5 * tool));
+        let outside = project(&mut browser, b + DVec3::X * (side * 1.5 * tool));
+        assert!(
+            second_tool_colour(at(inside)),
+            "no tool at {inside:?}: {:?}",
+            at(inside)
+        );
+        assert!(
+            !second_tool_colour(at(outside)),
+            "the tool reaches {outside:?}: {:?}",
+            at(outside)
+        );
+    }
+    let first = project(&mut browser, a);
+    assert!(!second_tool_colour(at(first)), "{:?}", at(first));
+    drop(browser);
+    let run = view.stop().expect("stops").expect("a live run");
+    assert_eq!(run.servo.devices(), 2);
 }

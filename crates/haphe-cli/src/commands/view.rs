@@ -46,8 +46,10 @@ pub struct Args {
     /// The device: `mouse` (the pointer moves the device point), `hand` (the simulated
     /// hand explores the scene), dhd (Force Dimension), openhaptics (3D Systems Touch) or
     /// udp:HOST:PORT (listen there for a network device), mapped as `haphe run` maps it.
+    /// Repeat it for several devices in one scene, as `haphe run` takes them (each tool is
+    /// drawn).
     #[arg(long, default_value = "mouse", value_name = "SPEC")]
-    device: String,
+    device: Vec<String>,
     /// Servo rate, Hz.
     #[arg(long, default_value_t = 1000.0)]
     rate: f64,
@@ -122,19 +124,21 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         let title = format!("haphe view: replay of {name} ({} ticks)", trace.rows.len());
         return serve(model, Source::Replay(trace), &title, &args.serve);
     }
-    let device = match args.device.as_str() {
-        "mouse" => ViewDevice::Mouse,
-        "hand" => ViewDevice::Hand(args.seconds.unwrap_or(HAND_SECONDS)),
-        other => {
-            other.parse::<haphe_devices::DeviceKind>().map_err(|e| {
-                anyhow!("--device {other:?}: {e} (or mouse, the default, for the view)")
+    let device = match args.device.as_slice() {
+        [one] if one == "mouse" => ViewDevice::Mouse,
+        [one] if one == "hand" => ViewDevice::Hand(args.seconds.unwrap_or(HAND_SECONDS)),
+        specs => {
+            haphe_devices::parse_devices(specs).map_err(|e| match specs {
+                [one] => anyhow!("--device {one:?}: {e} (or mouse, the default, for the view)"),
+                _ => anyhow!("--device: {e} (or mouse, the default, alone, for the view)"),
             })?;
-            let flags = args.mapping.per_device(&[other.to_string()])?;
-            ViewDevice::Vendor(
-                Box::new(view_choice(other, flags[0])),
-                args.seconds,
-                args.clutch.clutch_button,
-            )
+            let flags = args.mapping.per_device(specs)?;
+            let choices = specs
+                .iter()
+                .zip(flags)
+                .map(|(spec, f)| view_choice(spec, f))
+                .collect();
+            ViewDevice::Vendor(choices, args.seconds, args.clutch.clutch_button)
         }
     };
     let what = args

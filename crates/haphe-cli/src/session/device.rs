@@ -6,8 +6,6 @@ use std::io::Write;
 use haphe::DVec3;
 use haphe::scene::{Param, Scene};
 use haphe::servo::{DeviceMapping, DeviceSpec};
-#[cfg(feature = "view")]
-use haphe_devices::{OpenedDevice, open_device};
 use haphe_devices::{UdpOptions, workspace_mapping};
 
 /// How `haphe run` chose its device.
@@ -48,12 +46,6 @@ pub fn view_choice(spec: &str, mapping: crate::args::DeviceMappingFlags) -> Vend
         // The view applies its own tool to the servo's options.
         tool_radius: crate::args::ToolRadius::default(),
     }
-}
-
-/// Opens the device of `choice` (for the view's session).
-#[cfg(feature = "view")]
-pub fn open(choice: &VendorChoice, scene: &Scene, seconds: f64) -> anyhow::Result<OpenedDevice> {
-    Ok(open_device(&choice.spec, scene, seconds, choice.udp)?)
 }
 
 /// The mapping of the run: the device's workspace centred on the scene and scaled to

@@ -11,6 +11,8 @@ use haphe::servo::{
     ServoOptions,
 };
 
+use haphe_devices::SpecError;
+
 use super::device::{self, VendorChoice};
 
 /// What a device reports after a run.
@@ -41,7 +43,11 @@ pub fn open_vendors(
 ) -> anyhow::Result<Vec<Opened>> {
     let specs: Vec<String> = choices.iter().map(|c| c.spec.clone()).collect();
     let udp = choices.first().map(|c| c.udp).unwrap_or_default();
-    let opened = haphe_devices::open_devices(&specs, scene, seconds, udp)?;
+    let opened = haphe_devices::open_devices(&specs, scene, seconds, udp).map_err(|e| match e {
+        // The only device: its error as it is (the command names the device already).
+        SpecError::At { error, .. } if specs.len() == 1 => *error,
+        other => other,
+    })?;
     Ok(choices
         .into_iter()
         .zip(opened)

@@ -39,9 +39,10 @@ pub enum ViewDevice {
     Mouse,
     /// The simulated hand explores the scene for this many seconds.
     Hand(f64),
-    /// A real device (`dhd`, `openhaptics`, `udp:HOST:PORT`), opened and mapped as `haphe
-    /// run` does, for this many seconds or until Ctrl-C, with a clutch on this button.
-    Vendor(Box<VendorChoice>, Option<f64>, Option<u32>),
+    /// Real devices (`dhd`, `openhaptics`, `udp:HOST:PORT`; one, or several in one scene),
+    /// opened and mapped as `haphe run` does, for this many seconds or until Ctrl-C, with a
+    /// clutch on this button.
+    Vendor(Vec<VendorChoice>, Option<f64>, Option<u32>),
 }
 
 /// Builds the scene of `objects`: the scene, the objects' names and their motions.
@@ -80,7 +81,8 @@ pub fn live(
     let mut clutch_button = None;
     let mut realtime = RealtimeOptions::default();
     let mut clock = None;
-    let mut report = None;
+    let mut reports = Vec::new();
+    let mut others = Vec::new();
     let (device, mouse, seconds, title): (Box<dyn Device>, _, _, _) = match device {
         ViewDevice::Mouse => {
             let size = (hi - lo).max_element();
@@ -105,22 +107,24 @@ pub fn live(
                 format!("haphe view: the simulated hand explores {what} for {seconds} s"),
             )
         }
-        ViewDevice::Vendor(choice, seconds, clutch) => {
+        ViewDevice::Vendor(choices, seconds, clutch) => {
             clutch_button = clutch;
-            let opened = device::open(&choice, &scene, seconds.unwrap_or(HAND_SECONDS))?;
-            mapping = device::mapping(&choice, &opened.device.spec(), &scene)?;
-            println!("device: {}", opened.description);
-            let stiffness = super::stiffest(&scene);
-            device::print_mapping(&mut std::io::stdout(), &choice, &mapping, stiffness)?;
-            realtime = realtime.with_overrun_budget(choice.overrun_budget);
+            let title = format!(
+                "haphe view: device {} on {what}",
+                choices
+                    .iter()
+                    .map(|c| c.spec.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+            let opened =
+                open_vendors(choices, &scene, seconds, options.with_clutch_button(clutch))?;
+            mapping = opened.mapping;
+            realtime = realtime.with_overrun_budget(opened.overrun_budget);
             clock = opened.clock;
-            report = Some(opened.report);
-            (
-                opened.device,
-                None,
-                seconds,
-                format!("haphe view: device {} on {what}", choice.spec),
-            )
+            reports = opened.reports;
+            others = opened.others;
+            (opened.device, None, seconds, title)
         }
     };
     let source = LiveSource {
@@ -133,6 +137,7 @@ pub fn live(
         seconds,
         realtime,
         clock,
+        others,
     };
     let code = serve(
         model,
@@ -143,10 +148,66 @@ pub fn live(
         &title,
         serve_options,
     )?;
-    if let Some(line) = report.and_then(|r| r()) {
+    for line in reports.iter().filter_map(|r| r()) {
         println!("device: {line}");
     }
     Ok(code)
+}
+
+/// The devices of a live view named by specifications, opened and mapped.
+struct ViewVendors {
+    /// The first device and its mapping.
+    device: Box<dyn Device>,
+    mapping: DeviceMapping,
+    /// The others, each with its options (its own mapping).
+    others: Vec<(Box<dyn Device>, ServoOptions)>,
+    clock: Option<Box<dyn haphe::servo::DeviceClock>>,
+    overrun_budget: Option<u64>,
+    reports: Vec<super::devices::Report>,
+}
+
+/// Opens the devices of `choices` as `haphe run` does (one device's clock ticks them
+/// all), maps each onto `scene` and prints each with its mapping; the others get
+/// `options` with their own mapping.
+fn open_vendors(
+    choices: Vec<VendorChoice>,
+    scene: &Scene,
+    seconds: Option<f64>,
+    options: ServoOptions,
+) -> anyhow::Result<ViewVendors> {
+    let n = choices.len();
+    let overrun_budget = choices.first().and_then(|c| c.overrun_budget);
+    let opened = super::devices::open_vendors(choices, scene, seconds.unwrap_or(HAND_SECONDS))?;
+    let stiffness = super::stiffest(scene);
+    let mut first = None;
+    let mut others = Vec::new();
+    let mut clock = None;
+    let mut reports = Vec::new();
+    for (i, o) in opened.into_iter().enumerate() {
+        let Some(v) = o.vendor else { continue };
+        let m = device::mapping(&v.choice, &o.device.spec(), scene)?;
+        if n == 1 {
+            println!("device: {}", v.description);
+        } else {
+            println!("device {} ({}): {}", i + 1, v.choice.spec, v.description);
+        }
+        device::print_mapping(&mut std::io::stdout(), &v.choice, &m, stiffness)?;
+        clock = clock.or(v.clock);
+        reports.push(v.report);
+        match first {
+            None => first = Some((o.device, m)),
+            Some(_) => others.push((o.device, options.with_mapping(m))),
+        }
+    }
+    let (device, mapping) = first.ok_or_else(|| anyhow!("no device to view"))?;
+    Ok(ViewVendors {
+        device,
+        mapping,
+        others,
+        clock,
+        overrun_budget,
+        reports,
+    })
 }
 
 /// Starts the view, opens the browser, serves until Ctrl-C, and prints how the servo ran.
