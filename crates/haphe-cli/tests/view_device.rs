@@ -43,6 +43,25 @@ fn press_file(name: &str, from: DVec3, to: DVec3, ticks: usize, per_second: f64)
     file
 }
 
+/// Reads what the view prints up to its address: the address (host:port) and the lines.
+fn address(lines: &mut Lines<BufReader<ChildStdout>>) -> (String, String) {
+    let mut printed = String::new();
+    loop {
+        let line = lines
+            .next()
+            .unwrap_or_else(|| panic!("haphe prints the address; it printed:\n{printed}"))
+            .expect("utf-8");
+        printed.push_str(&line);
+        printed.push('\n');
+        if let Some(rest) = line.strip_prefix("view: http://") {
+            return (
+                rest.split('/').next().expect("host:port").to_string(),
+                printed,
+            );
+        }
+    }
+}
+
 /// Starts `haphe view --shape sphere --device DEVICE --no-open --port 0` and returns it,
 /// its address and the rest of its output.
 fn view(device: &str, env: &[(&str, &Path)]) -> (Running, String, Lines<BufReader<ChildStdout>>) {
@@ -57,18 +76,7 @@ fn view(device: &str, env: &[(&str, &Path)]) -> (Running, String, Lines<BufReade
     }
     let mut child = Running(command.spawn().expect("haphe runs"));
     let mut lines = BufReader::new(child.0.stdout.take().expect("stdout")).lines();
-    let mut printed = String::new();
-    let addr = loop {
-        let line = lines
-            .next()
-            .unwrap_or_else(|| panic!("haphe prints the address; it printed:\n{printed}"))
-            .expect("utf-8");
-        printed.push_str(&line);
-        printed.push('\n');
-        if let Some(rest) = line.strip_prefix("view: http://") {
-            break rest.split('/').next().expect("host:port").to_string();
-        }
-    };
+    let (addr, printed) = address(&mut lines);
     assert!(printed.contains("device: "), "{printed}");
     assert!(printed.contains("mapping: "), "{printed}");
     (child, addr, lines)
@@ -342,18 +350,7 @@ fn two_devices_in_the_view() {
         .stderr(Stdio::inherit());
     let mut child = Running(command.spawn().expect("haphe runs"));
     let mut lines = BufReader::new(child.0.stdout.take().expect("stdout")).lines();
-    let mut printed = String::new();
-    let addr = loop {
-        let line = lines
-            .next()
-            .unwrap_or_else(|| panic!("haphe prints the address; it printed:\n{printed}"))
-            .expect("utf-8");
-        printed.push_str(&line);
-        printed.push('\n');
-        if let Some(rest) = line.strip_prefix("view: http://") {
-            break rest.split('/').next().expect("host:port").to_string();
-        }
-    };
+    let (addr, printed) = address(&mut lines);
     for needed in [
         "device 1 (hand):",
         "device 2 (hand):",
