@@ -47,8 +47,8 @@ pub struct DeviceRun {
     pub udp: UdpOptions,
     /// The button that holds the clutch, if any.
     pub clutch_button: Option<u32>,
-    /// The proxy's options (the tool's radius).
-    pub proxy: haphe::proxy::ProxyOptions,
+    /// Each device's proxy options (its tool's radius).
+    pub proxies: Vec<haphe::proxy::ProxyOptions>,
 }
 
 /// How a run went for one device.
@@ -91,12 +91,17 @@ pub fn run_devices(run: DeviceRun, scene: haphe::scene::Scene) -> PyResult<Vec<D
     let mut devices = Vec::with_capacity(n);
     let mut clock = None;
     let mut described = Vec::with_capacity(n);
-    for ((o, scale), centre) in opened.into_iter().zip(&run.scales).zip(&run.centres) {
+    for (((o, scale), centre), proxy) in opened
+        .into_iter()
+        .zip(&run.scales)
+        .zip(&run.centres)
+        .zip(&run.proxies)
+    {
         let mapping =
             workspace_mapping(&o.device.spec(), &scene, *scale, *centre).map_err(param_error)?;
         let options = ServoOptions::new(run.rate_hz)
             .map_err(param_error)?
-            .with_proxy(run.proxy)
+            .with_proxy(*proxy)
             .with_mapping(mapping)
             .with_clutch_button(run.clutch_button);
         devices.push((o.device, options));

@@ -72,7 +72,8 @@ fn simulated_hand(
 ///
 /// ``tool_radius`` (metres) makes the tool a sphere of that radius centred on the proxy
 /// (0, a point, by default): from 0 to 0.5 m and at most the diagonal of the box bounding
-/// the scene's objects, else ``HapheError`` naming it.
+/// the scene's objects, else ``HapheError`` naming it. With several devices, one radius
+/// for all or a list, one per device.
 ///
 /// Returns a dict of arrays, one row per tick: ``t`` (s), ``hip``, ``proxy`` (N, 3) m,
 /// ``force`` (N, 3) N, ``contact`` bool, ``object`` (id, -1 when free), ``triangle``
@@ -96,7 +97,7 @@ fn simulated_hand(
 /// ``DeviceError`` (an ``OSError``) when a device or its library cannot be opened: the
 /// message names the library, the variable that selects it and the SDK.
 #[pyfunction]
-#[pyo3(signature = (scene, device = OneOrMany::One("hand".to_string()), seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1, clutch_button = None, presses = None, tool_radius = 0.0))]
+#[pyo3(signature = (scene, device = OneOrMany::One("hand".to_string()), seconds = 2.0, path = "explore", rate_hz = 1000.0, seed = 1, scale = None, centre = None, udp_timeout = UDP_TIMEOUT_S, udp_workspace = 0.1, clutch_button = None, presses = None, tool_radius = OneOrMany::One(0.0)))]
 #[allow(clippy::too_many_arguments)]
 pub fn run<'py>(
     py: Python<'py>,
@@ -112,7 +113,7 @@ pub fn run<'py>(
     udp_workspace: f64,
     clutch_button: Option<u32>,
     presses: Option<Vec<(u32, f64, f64)>>,
-    tool_radius: f64,
+    tool_radius: OneOrMany<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (devices, many) = device.into_vec();
     haphe_devices::parse_devices(&devices).map_err(|e| haphe_error("device", e))?;
@@ -150,11 +151,7 @@ pub fn run<'py>(
     let world = scene.snapshot();
     drop(scene);
     // The tool against its domain and the scene's size, as the command checks it.
-    let proxy = world
-        .check_tool_radius(tool_radius)
-        .and_then(|r| options.proxy().with_tool_radius(r))
-        .map_err(param_error)?;
-    let options = options.with_proxy(proxy);
+    let proxies = tools(&world, &options, tool_radius, &devices)?;
     let outcomes = if hands {
         let hands = Hands {
             specs: &devices,
@@ -163,7 +160,7 @@ pub fn run<'py>(
             seed,
             presses: &presses,
         };
-        py.detach(|| run_hands(&hands, world, options))
+        py.detach(|| run_hands(&hands, world, options, &proxies))
             .map_err(|e| haphe_error(&devices.join(", "), e))?
     } else {
         let h = udp_workspace;
@@ -182,7 +179,7 @@ pub fn run<'py>(
                 ..UdpOptions::default()
             },
             clutch_button,
-            proxy,
+            proxies,
         };
         py.detach(|| run_devices(request, world))?
     };
@@ -197,6 +194,31 @@ pub fn run<'py>(
         return Ok(d.into_any());
     }
     Ok(PyList::new(py, dicts)?.into_any())
+}
+
+/// Each device's proxy options, `options`' with its own tool: `tool_radius` one radius
+/// for all, or a list, one per device; checked against its domain and `world`'s size, as
+/// the command checks it.
+fn tools(
+    world: &haphe::scene::Scene,
+    options: &ServoOptions,
+    tool_radius: OneOrMany<f64>,
+    devices: &[String],
+) -> PyResult<Vec<haphe::proxy::ProxyOptions>> {
+    let radii = match tool_radius {
+        OneOrMany::One(r) => vec![Some(r); devices.len()],
+        many => per_device("tool_radius", Some(many), devices)?,
+    };
+    radii
+        .into_iter()
+        .flatten()
+        .map(|r| {
+            world
+                .check_tool_radius(r)
+                .and_then(|r| options.proxy().with_tool_radius(r))
+                .map_err(param_error)
+        })
+        .collect()
 }
 
 /// Checks the run's length (positive, at most 1e8 ticks) and the network devices' own
@@ -275,17 +297,19 @@ struct Hands<'a> {
     presses: &'a [(u32, f64, f64)],
 }
 
-/// Runs the simulated hands of `hands` on one servo over `world`, each with `options`,
+/// Runs the simulated hands of `hands` on one servo over `world`, each with `options` and
+/// its own proxy's options of `proxies`,
 /// on the simulated clock: the k-th bare `hand` (from 0) along the path of seed
 /// `seed + k`, `hand:SEED` along that seed's.
 fn run_hands(
     hands: &Hands<'_>,
     world: haphe::scene::Scene,
     options: ServoOptions,
+    proxies: &[haphe::proxy::ProxyOptions],
 ) -> Result<Vec<DeviceOutcome>, String> {
     let mut devices = Vec::with_capacity(hands.specs.len());
     let mut bare = 0;
-    for spec in hands.specs {
+    for (spec, proxy) in hands.specs.iter().zip(proxies) {
         let seed = match spec.strip_prefix("hand:") {
             Some(s) => s.parse().map_err(|_| format!("not a seed: {s:?}"))?,
             None => {
@@ -294,7 +318,7 @@ fn run_hands(
             }
         };
         let hand = simulated_hand(hands.path, &world, hands.seconds, seed, hands.presses)?;
-        devices.push((hand, options));
+        devices.push((hand, options.with_proxy(*proxy)));
     }
     let n = devices.len();
     let mut servo = Servo::with_devices(devices, world).map_err(|e| e.to_string())?;

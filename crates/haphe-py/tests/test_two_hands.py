@@ -18,10 +18,12 @@ ARRAYS = ("t", "hip", "proxy", "force", "contact", "object", "triangle", "penetr
 
 def test_two_hands_each_render_as_alone():
     scene = centred_cube()
-    both = haphe.run(scene, device=["hand", "hand"], seconds=2.0, seed=3)
+    # The first hand holds a tool of 2 cm radius, the second is a point.
+    tools = [0.02, 0.0]
+    both = haphe.run(scene, device=["hand", "hand"], seconds=2.0, seed=3, tool_radius=tools)
     assert isinstance(both, list) and len(both) == 2
     for k, out in enumerate(both):
-        alone = haphe.run(scene, device="hand", seconds=2.0, seed=3 + k)
+        alone = haphe.run(scene, device="hand", seconds=2.0, seed=3 + k, tool_radius=tools[k])
         for name in ARRAYS:
             np.testing.assert_array_equal(out[name], alone[name], err_msg=f"hand {k}: {name}")
         # Guard, counted on the hand alone: its path touches the cube.
@@ -30,9 +32,9 @@ def test_two_hands_each_render_as_alone():
     differ = np.linalg.norm(both[0]["force"] - both[1]["force"], axis=1) > 1e-6
     assert differ.sum() > 100
     # A list of one is a list of one dict.
-    one = haphe.run(scene, device=["hand:3"], seconds=0.5)
+    one = haphe.run(scene, device=["hand:4"], seconds=0.5)
     assert isinstance(one, list) and len(one) == 1
-    np.testing.assert_array_equal(one[0]["hip"], both[0]["hip"][: len(one[0]["hip"])])
+    np.testing.assert_array_equal(one[0]["hip"], both[1]["hip"][: len(one[0]["hip"])])
 
 
 def two_dhd(standin, tmp_path, monkeypatch, fail_from=None):
@@ -93,3 +95,5 @@ def test_bad_sets_of_devices_are_refused(standin, monkeypatch):
         haphe.run(scene, device=["dhd:0", "dhd:1"], seconds=0.1, scale=[2.0])
     with pytest.raises(haphe.HapheError, match="centre: give one value per device"):
         haphe.run(scene, device=["hand", "hand"], seconds=0.1, centre=(0.0, 0.0, 0.0))
+    with pytest.raises(haphe.HapheError, match="tool_radius: give one value per device"):
+        haphe.run(scene, device=["hand", "hand"], seconds=0.1, tool_radius=[0.01])

@@ -48,7 +48,7 @@ def run(
     udp_workspace: float = 0.1,
     clutch_button: Optional[int] = None,
     presses: Optional[Sequence[Tuple[int, float, float]]] = None,
-    tool_radius: float = 0.0,
+    tool_radius: Union[float, Sequence[float]] = 0.0,
 ) -> Union[Dict[str, Any], List[Dict[str, Any]]]:
     """Runs the servo loop with a device: "hand" (simulated, simulated clock), "dhd",
     "openhaptics" or "udp:HOST:PORT" (real, wall clock, mapped onto the scene). Arrays t,
@@ -59,8 +59,9 @@ def run(
     buttons of the simulated hand. Raises DeviceError when the device or its library
     cannot be opened; Ctrl-C writes zero force, then raises KeyboardInterrupt. A list of
     devices ("dhd:0", "dhd:1", "openhaptics:NAME", ...) runs them in one scene on one
-    servo, each with its own proxy and mapping (``scale``, ``centre``: one per device, as
-    lists): a list of dicts, one per device; a fault of one stops all, named in stop."""
+    servo, each with its own proxy, mapping and tool (``scale``, ``centre``, ``tool_radius``:
+    one per device, as lists): a list of dicts, one per device; a fault of one stops all,
+    named in stop."""
 
 class Shape:
     """A surface with its voxel map (object frame, metres)."""
