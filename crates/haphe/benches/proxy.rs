@@ -17,7 +17,7 @@ use haphe::DVec3;
 use haphe::mesh::shapes::Catalog;
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::Scene;
-use haphe::verify::{haptic_path, haptic_path_in_contact};
+use haphe::verify::{haptic_path, haptic_path_in_contact, lifted_for_tool};
 
 mod common;
 use common::{RATE_HZ, TICKS, procedural};
@@ -66,34 +66,12 @@ fn proxy_stage(c: &mut Criterion) {
     // The tool (a sphere proxy) on the same blob path, its centre moved out by the radius
     // so that it is as deep past the tool's offset as the point is past the surface.
     for (name, radius) in [("1 mm", 1e-3), ("2 % of the blob", 0.004)] {
-        let path = lifted(&blob, &blob_contact, radius);
+        let path = lifted_for_tool(&blob, &blob_contact, radius, 0.004);
         group.bench_function(format!("tool contact tick, blob, r {name}"), |b| {
             b.iter(tool_ticking(&blob, &path, radius))
         });
     }
     group.finish();
-}
-
-/// `path` moved out along the surface's normal by `radius` where it lies inside the
-/// object or within `radius` of its surface: a tool's path as deep past the tool's offset
-/// as the point's is past the surface.
-fn lifted(scene: &Scene, path: &[DVec3], radius: f64) -> Vec<DVec3> {
-    let shape = &scene.objects()[0].shape;
-    path.iter()
-        .map(|&p| {
-            let near = haphe::query::nearest_within(shape.surface(), shape.map(), p, 0.01);
-            let inside = haphe::query::classify_point(shape.surface(), shape.map(), p).0
-                == haphe::query::Side::Inside;
-            match near {
-                Some(n) => {
-                    let away = (p - n.closest.point).normalize_or_zero();
-                    let out = if inside { -away } else { away };
-                    p + radius * out
-                }
-                None => p,
-            }
-        })
-        .collect()
 }
 
 criterion_group!(benches, proxy_stage);

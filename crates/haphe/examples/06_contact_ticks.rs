@@ -6,9 +6,11 @@
 //! cargo run --release --example 06_contact_ticks -- 1000 blob 20000
 //! ```
 //!
-//! Arguments: triangles (default 1000), shape (default `blob`), ticks (default 20000), and
+//! Arguments: triangles (default 1000), shape (default `blob`), ticks (default 20000), then
 //! `loaded` to tick on the shape saved to map bytes and loaded in place
-//! ([`haphe::map::decode_in_place`], as an application that loads a built map does). For
+//! ([`haphe::map::decode_in_place`], as an application that loads a built map does), and
+//! `tool=R` to tick a tool of radius `R` metres on the same path moved out by `R`
+//! ([`haphe::verify::lifted_for_tool`]). For
 //! an instruction count that does not depend on the machine's load, run it under
 //! callgrind, counting inside the tick only:
 //!
@@ -26,14 +28,19 @@ use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions, TickOutput};
 use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
-use haphe::verify::haptic_path_in_contact;
+use haphe::verify::{haptic_path_in_contact, lifted_for_tool};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let triangles: usize = args.next().map_or(Ok(1000), |a| a.parse())?;
     let which: Catalog = args.next().map_or(Ok(Catalog::Blob), |a| a.parse())?;
     let ticks: usize = args.next().map_or(Ok(20_000), |a| a.parse())?;
-    let loaded = args.next().is_some_and(|a| a == "loaded");
+    let rest: Vec<String> = args.collect();
+    let loaded = rest.iter().any(|a| a == "loaded");
+    let radius: f64 = match rest.iter().find_map(|a| a.strip_prefix("tool=")) {
+        Some(r) => r.parse()?,
+        None => 0.0,
+    };
 
     let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
     let mut shape = Shape::build(surface, &MapOptions::default())?;
@@ -49,9 +56,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut scene = Scene::local(1);
     let object = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, Material::default());
     scene.insert(object).map_err(|(e, _)| e)?;
-    let path = haptic_path_in_contact(&scene, ticks, (0.05, 0.5), (0.0005, 0.003), 1e3, 1);
+    let mut path = haptic_path_in_contact(&scene, ticks, (0.05, 0.5), (0.0005, 0.003), 1e3, 1);
+    if radius > 0.0 {
+        path = lifted_for_tool(&scene, &path, radius, 0.004);
+    }
 
-    let mut proxy = Proxy::new(path[0], ProxyOptions::default());
+    let mut proxy = Proxy::new(path[0], ProxyOptions::default().with_tool_radius(radius)?);
     let mut contact_ns = Vec::with_capacity(path.len());
     let mut cleared = 0;
     for &hip in &path {

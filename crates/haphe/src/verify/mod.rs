@@ -25,7 +25,7 @@ pub use friction::friction_step;
 pub use hold::{HeldContact, hand_deeper_than, saturation_depth_of};
 pub use limits::{KEPT_FAILURES, ON_SURFACE_M};
 pub use oracle::{BruteCrossing, WindingOracle, distance_to_surface};
-pub use paths::{haptic_path, haptic_path_in_contact};
+pub use paths::{haptic_path, haptic_path_in_contact, lifted_for_tool};
 pub use proxy::{BruteProxy, PROXY_TOLERANCE_M, ProxyCheck, check_proxy};
 pub use samples::{SegmentKind, bounds, point_on, points, segments, trajectory};
 pub use strikes::{

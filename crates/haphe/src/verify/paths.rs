@@ -9,6 +9,34 @@ use crate::query::{Side, classify_point, walk_to_nearest};
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
 
+/// `path` for a tool of `radius` metres: each point moved out along the surface's normal
+/// of the scene's first object by the radius, so that the tool's centre lies as deep past
+/// the tool's offset as the point lies past the surface (points inside deeper than
+/// `deepest` metres, or outside farther than the radius, stay). How the benches turn the
+/// point's contact path into the tool's.
+pub fn lifted_for_tool(scene: &Scene, path: &[DVec3], radius: f64, deepest: f64) -> Vec<DVec3> {
+    let Some(o) = scene.objects().first() else {
+        return path.to_vec();
+    };
+    let (surface, map) = (o.shape.surface(), o.shape.map());
+    path.iter()
+        .map(|&p| {
+            let q = o.pose.to_object(p);
+            let inside = classify_point(surface, map, q).0 == Side::Inside;
+            let reach = if inside { deepest } else { radius };
+            match crate::query::nearest_within(surface, map, q, reach) {
+                Some(near) => {
+                    let away = o
+                        .pose
+                        .vector_to_world((q - near.closest.point).normalize_or_zero());
+                    p + radius * if inside { -away } else { away }
+                }
+                None => p,
+            }
+        })
+        .collect()
+}
+
 /// A haptic trajectory for the proxy check: device points at `rate_hz`, moving in straight
 /// legs between waypoints near the surface of `scene`'s objects (from a few millimetres
 /// outside to well inside, scaled to the object's size), at speeds drawn log-uniformly

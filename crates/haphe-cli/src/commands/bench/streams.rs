@@ -19,10 +19,12 @@
 use haphe::DVec3;
 use haphe::map::{CellState, VoxelMap};
 use haphe::mesh::{Surface, TriId};
-use haphe::query::{Side, classify_point, nearest_within, walk_to_nearest};
+use haphe::query::walk_to_nearest;
 use haphe::rng::SplitMix64;
 use haphe::scene::Scene;
-use haphe::verify::{SegmentKind, bounds, haptic_path_in_contact, points, segments, trajectory};
+use haphe::verify::{
+    SegmentKind, bounds, haptic_path_in_contact, lifted_for_tool, points, segments, trajectory,
+};
 
 /// Positions per trajectory (a quarter of a second at 1 kHz), and items per chunk of the
 /// random streams: the unit of interleaving.
@@ -167,40 +169,15 @@ impl Streams {
             TICK_RATE_HZ,
             seed,
         ));
-        let shape = &object.shape;
         self.tool = [1e-3 * scale, 0.02 * size].map(|radius| {
             let lifted = self
                 .contact
                 .iter()
-                .map(|chunk| lifted(shape.surface(), shape.map(), chunk, (radius, 4e-3 * scale)))
+                .map(|chunk| lifted_for_tool(scene, chunk, radius, 4e-3 * scale))
                 .collect();
             (radius, lifted)
         });
     }
-}
-
-/// The points of `path` moved out along the surface's normal by `radius`: a tool's
-/// centre as deep past the tool's offset as each point lies past the surface (points
-/// inside deeper than `deepest`, or outside farther than `radius`, stay).
-fn lifted(
-    surface: &Surface,
-    map: &VoxelMap,
-    path: &[DVec3],
-    (radius, deepest): (f64, f64),
-) -> Vec<DVec3> {
-    path.iter()
-        .map(|&p| {
-            let inside = classify_point(surface, map, p).0 == Side::Inside;
-            let reach = if inside { deepest } else { radius };
-            match nearest_within(surface, map, p, reach) {
-                Some(near) => {
-                    let away = (p - near.closest.point).normalize_or_zero();
-                    p + radius * if inside { -away } else { away }
-                }
-                None => p,
-            }
-        })
-        .collect()
 }
 
 /// The device rate the contact paths are sampled at, Hz.
