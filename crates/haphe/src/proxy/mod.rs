@@ -68,6 +68,25 @@
 //! point (as a very sticky surface would) until the hand eases back within the saturation
 //! depth; with no stiffness or no maximum force there is no saturation and no hold.
 //!
+//! # A tool with a size
+//!
+//! With [`ProxyOptions::tool_radius`] `r > 0` the proxy is the centre of a sphere of
+//! radius `r`, and the rules above apply to the offset of every triangle by `r` (the
+//! face moved out both ways, a cylinder round each edge, a sphere round each vertex)
+//! instead of the triangles: a leg stops a skin's width before the first place the sphere
+//! swept along it touches a triangle (`Scene::first_tool_hit`; a sphere within a probe's
+//! reach of a triangle's offset at the start of a leg touches it when it moves closer),
+//! and the constraint plane is the offset's tangent plane there, facing the centre, moved
+//! out by the skin; a free leg that ends within the radius and a probe's reach of a
+//! triangle touches the nearest. So the centre never comes closer than `r` less the skin to
+//! any triangle, a gap narrower than `2r` is never entered, convex edges and corners are
+//! round to slide over (the tangent plane turns with the contact) and concave ones hold up
+//! to three planes. The resting rule, the clear zones and the convex shortcut of step 2
+//! are the point's and are not used; the hold, friction and force are the same, measured
+//! from the centre (so the saturation depth is measured from the tool's surface). The
+//! contact's point is the surface point nearest to the centre. `r = 0` runs the point's
+//! code, unchanged.
+//!
 //! Inside a solid means a winding number other than 0 (the non-zero rule, as in
 //! [`classify_point`](crate::query::classify_point)): where closed parts of one mesh
 //! overlap, the union is solid. The proxy, which never crosses a triangle, stops on the
