@@ -38,6 +38,8 @@ pub struct Args {
     /// A quick run for tests: 2000-triangle models, 3 s.
     #[arg(long)]
     fast: bool,
+    #[command(flatten)]
+    tool: crate::args::ToolArgs,
     /// Run on the wall clock on a real-time thread instead of the virtual clock.
     #[arg(long)]
     realtime: bool,
@@ -68,6 +70,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         )
     };
     Catalog::check_triangles(triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
+    let tool = args.tool.radius(None)?;
     let outputs: Vec<&std::path::Path> = std::iter::once(args.plot.as_path())
         .chain(args.out.as_deref())
         .collect();
@@ -112,7 +115,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             objects,
             crate::session::live::ViewDevice::Hand(seconds),
             args.rate,
-            &crate::args::ToolRadius::default(),
+            &tool,
             "the demo (a blob and a 0.1 mm thin plate)",
             &args.serve,
         );
@@ -141,7 +144,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         presses: Vec::new(),
         seed: 3,
         max_force: haphe::scene::DEFAULT_MAX_FORCE_N,
-        tool_radius: crate::args::ToolRadius::default(),
+        tool_radius: tool,
         out: args.out.clone(),
         plot: Some(args.plot.clone()),
     };

@@ -176,3 +176,41 @@ fn a_scene_file_gives_the_radius_and_zero_is_the_point() {
         );
     }
 }
+
+/// The demo takes `--tool-radius` too: 0 writes the same trace as no flag, byte for byte,
+/// and a tool of 2 mm another, named in the summary.
+#[test]
+fn the_demo_with_a_tool_of_radius_zero_is_the_demo() {
+    let dir = scratch("tool-demo");
+    let trace = |name: &str, extra: &[&str]| {
+        let (csv, png) = (
+            dir.join(format!("{name}.csv")),
+            dir.join(format!("{name}.png")),
+        );
+        let mut args = vec![
+            "demo",
+            "--fast",
+            "--seconds",
+            "1",
+            "--out",
+            s(&csv),
+            "--plot",
+            s(&png),
+        ];
+        args.extend_from_slice(extra);
+        let text = ok(&args);
+        (std::fs::read(&csv).expect("the trace"), text)
+    };
+    let (point, _) = trace("point", &[]);
+    let (zero, _) = trace("zero", &["--tool-radius", "0"]);
+    let (tool, text) = trace("tool", &["--tool-radius", "0.002"]);
+    assert!(
+        point.len() > 10_000 && point == zero,
+        "--tool-radius 0 changed the demo's trace"
+    );
+    assert!(
+        tool != point,
+        "a tool of 2 mm left the trace as the point's"
+    );
+    assert!(text.contains("tool: a sphere of radius 2.000 mm"), "{text}");
+}
