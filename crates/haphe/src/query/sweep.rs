@@ -91,7 +91,11 @@ pub fn first_sphere_contact(
         let (s0, s1) = (k as f64 / pieces as f64, (k + 1) as f64 / pieces as f64);
         let (p0, p1) = (a + s0 * (b - a), a + s1 * (b - a));
         let cells = CellBox::around(grid, p0.min(p1) - g, p0.max(p1) + g).intersect(whole);
-        map.visit_cells(cells, |_, triangles| {
+        let (mid, half) = (p0.midpoint(p1), p0.distance(p1) / 2.0);
+        map.visit_cells(cells, |c, triangles| {
+            if cell_beyond(grid, c, mid, half + grow) {
+                return;
+            }
             for &t in triangles.iter().filter(|&&t| seen.first_time(t)) {
                 consider(
                     surface,
@@ -141,7 +145,10 @@ pub(crate) fn nearest_to_tool(
     }
     let mut best = None;
     let mut seen = Seen::new();
-    map.visit_cells(cells, |_, triangles| {
+    map.visit_cells(cells, |c, triangles| {
+        if cell_beyond(map.grid(), c, p, grow) {
+            return;
+        }
         for &t in triangles.iter().filter(|&&t| seen.first_time(t)) {
             let t = TriId(t);
             if !beyond_sphere(surface.corners(t), (p, DVec3::ZERO), grow) {
@@ -150,6 +157,17 @@ pub(crate) fn nearest_to_tool(
         }
     });
     best
+}
+
+/// Whether cell `c`'s box lies farther than `distance` from `p`: then no triangle within
+/// `distance` of `p` needs it (such a triangle's point near `p` lies in a cell nearer, which
+/// lists it). A relative margin far above the rounding keeps the test on the safe side.
+#[inline]
+pub(crate) fn cell_beyond(grid: &crate::map::Grid, c: [u32; 3], p: DVec3, distance: f64) -> bool {
+    let (lo, hi) = grid.cell_bounds(c);
+    let gap = p.distance_squared(p.clamp(lo, hi));
+    let reach = distance * (1.0 + 1e-9) + 1e-12 * p.abs().max_element();
+    gap > reach * reach
 }
 
 /// The last few triangles a sweep tested, on the stack.

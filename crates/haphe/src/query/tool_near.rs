@@ -25,6 +25,8 @@ pub(crate) struct ToolNear {
     centre: DVec3,
     /// Every triangle nearer than this to the centre is listed, metres.
     complete_to: f64,
+    /// More triangles lay within the distance asked than are kept.
+    capped: bool,
     len: usize,
     /// Distance from the centre and triangle, by distance then index.
     items: [(f64, u32); NEAR_TOOL_TRIANGLES],
@@ -36,6 +38,7 @@ impl ToolNear {
         shape: None,
         centre: DVec3::ZERO,
         complete_to: 0.0,
+        capped: false,
         len: 0,
         items: [(0.0, 0); NEAR_TOOL_TRIANGLES],
     };
@@ -44,6 +47,14 @@ impl ToolNear {
     #[inline]
     pub(crate) fn is_of(&self, surface: &Surface) -> bool {
         self.shape == Some(surface as *const Surface as usize)
+    }
+
+    /// Whether gathering around `at` for `surface` may help: not when the triangles kept
+    /// there were too many to keep all within the distance asked and were gathered less
+    /// than `radius` away (gathering again would find as many).
+    #[inline]
+    pub(crate) fn worth_gathering(&self, surface: &Surface, at: DVec3, radius: f64) -> bool {
+        !(self.is_of(surface) && self.capped && self.centre.distance(at) < radius)
     }
 
     /// Keeps the triangles of `surface` within `distance` of `centre` (object frame),
@@ -82,7 +93,10 @@ impl ToolNear {
             }
             Some(_) => {
                 let mut seen = Seen::new();
-                map.visit_cells(cells, |_, triangles| {
+                map.visit_cells(cells, |c, triangles| {
+                    if super::sweep::cell_beyond(map.grid(), c, centre, self.complete_to) {
+                        return;
+                    }
                     for &t in triangles.iter().filter(|&&t| seen.first_time(t)) {
                         self.offer(surface, t);
                     }
@@ -132,6 +146,7 @@ impl ToolNear {
             }
             self.len = kept;
             self.complete_to = median;
+            self.capped = true;
             if d >= self.complete_to {
                 return;
             }

@@ -58,7 +58,10 @@ impl Scene {
         let mut answer = kept
             .then(|| near.first_contact(surface, (a, b), sphere))
             .flatten();
-        if answer.is_none() && (kept || hint.is_some()) {
+        if answer.is_none()
+            && (kept || hint.is_some())
+            && near.worth_gathering(surface, a.midpoint(b), radius)
+        {
             // Around the move, half as far again as the tool's radius.
             let distance = 1.5 * radius + reach + a.distance(b) / 2.0;
             near.gather(surface, shape.map(), a.midpoint(b), distance);
