@@ -30,7 +30,7 @@ use serde::Serialize;
 use super::alloc;
 use super::streams::{Streams, TICK_RATE_HZ};
 use super::structures::BuildCost;
-use super::timing::{Overhead, Summary, time_each, time_empty};
+use super::timing::{Overhead, Run, Summary, time_each, time_empty};
 
 /// A kind of query, timed per query, or a whole operation (build, decode).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -245,9 +245,6 @@ pub struct Measured {
     /// One entry per method that ran.
     pub methods: Vec<Timed>,
 }
-
-/// Runs chunk `c` of a stream, appending one raw time per query.
-pub(super) type Run<'a> = Box<dyn FnMut(usize, &mut Vec<u32>) + 'a>;
 
 /// One method of one query kind.
 struct Runner<'a> {
@@ -501,8 +498,11 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
         }
         Query::Tool | Query::ToolWide => {
             let (radius, path) = &streams.tool[usize::from(query == Query::ToolWide)];
-            for (method, run) in super::tool::runs(*radius, path, scene, parry) {
-                add(method, run, 1);
+            let (haphe, parry) = super::tool::runs(*radius, path, scene, parry);
+            for (method, run) in [(Method::Haphe, haphe), (Method::Parry, parry)] {
+                if let Some(run) = run {
+                    add(method, run, 1);
+                }
             }
         }
         Query::Build | Query::Decode | Query::Zones => {}

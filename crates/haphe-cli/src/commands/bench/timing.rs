@@ -22,6 +22,9 @@ use std::time::{Duration, Instant};
 
 use haphe::DVec3;
 
+/// Runs chunk `c` of a stream, appending one raw time per query.
+pub type Run<'a> = Box<dyn FnMut(usize, &mut Vec<u32>) + 'a>;
+
 /// Times `query` on each input, appending one raw time per input to `out` (nanoseconds,
 /// clock overhead included, saturated at `u32::MAX`).
 #[inline(always)]

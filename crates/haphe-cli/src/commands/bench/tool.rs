@@ -6,57 +6,58 @@ use haphe::scene::{Material, Scene};
 use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::TriMesh;
 
-use super::methods::{Method, Run};
 use super::streams::TICK_RATE_HZ;
-use super::timing::time_each;
+use super::timing::{Run, time_each};
 
 /// The runs of a tool of `radius` metres along `path` (chunks of one path, in order):
-/// haphe's proxy carried from chunk to chunk, and parry's ball where parry took the mesh.
+/// haphe's proxy carried from chunk to chunk (none for a radius out of its domain), and
+/// parry's ball where parry took the mesh.
 pub fn runs<'a>(
     radius: f64,
     path: &'a [Vec<DVec3>],
     scene: &'a Scene,
     parry: Option<&'a TriMesh>,
-) -> Vec<(Method, Run<'a>)> {
-    let mut runs: Vec<(Method, Run<'a>)> = Vec::new();
-    let Ok(options) = ProxyOptions::default().with_tool_radius(radius) else {
-        return runs;
-    };
+) -> (Option<Run<'a>>, Option<Run<'a>>) {
+    let haphe = ProxyOptions::default()
+        .with_tool_radius(radius)
+        .ok()
+        .map(|options| haphe_run(options, path, scene));
+    let parry = parry.map(|mesh| parry_run(mesh, radius, path));
+    (haphe, parry)
+}
+
+/// haphe's tool along the chunks of `path`, its proxy carried from chunk to chunk.
+fn haphe_run<'a>(options: ProxyOptions, path: &'a [Vec<DVec3>], scene: &'a Scene) -> Run<'a> {
     let mut state: Option<(Proxy, DVec3)> = None;
-    runs.push((
-        Method::Haphe,
-        Box::new(move |c, out| {
-            let chunk = &path[c];
-            let (proxy, previous) =
-                state.get_or_insert_with(|| (Proxy::new(chunk[0], options), chunk[0]));
-            time_each(
-                chunk.iter().copied(),
-                |hip| {
-                    let velocity = (hip - *previous) * TICK_RATE_HZ;
-                    *previous = hip;
-                    proxy.tick(scene, hip, velocity)
-                },
-                out,
-            )
-        }),
-    ));
-    if let Some(mesh) = parry {
-        let stiffness = Material::default().stiffness();
-        runs.push((
-            Method::Parry,
-            Box::new(move |c, out| {
-                time_each(
-                    path[c].iter().copied(),
-                    |hip| {
-                        let proxy = ball_proxy(mesh, hip, radius);
-                        (proxy, stiffness * (proxy - hip))
-                    },
-                    out,
-                )
-            }),
-        ));
-    }
-    runs
+    Box::new(move |c, out| {
+        let chunk = &path[c];
+        let (proxy, previous) =
+            state.get_or_insert_with(|| (Proxy::new(chunk[0], options), chunk[0]));
+        time_each(
+            chunk.iter().copied(),
+            |hip| {
+                let velocity = (hip - *previous) * TICK_RATE_HZ;
+                *previous = hip;
+                proxy.tick(scene, hip, velocity)
+            },
+            out,
+        )
+    })
+}
+
+/// parry's ball proxy along the chunks of `path`, with the spring force.
+fn parry_run<'a>(mesh: &'a TriMesh, radius: f64, path: &'a [Vec<DVec3>]) -> Run<'a> {
+    let stiffness = Material::default().stiffness();
+    Box::new(move |c, out| {
+        time_each(
+            path[c].iter().copied(),
+            |hip| {
+                let proxy = ball_proxy(mesh, hip, radius);
+                (proxy, stiffness * (proxy - hip))
+            },
+            out,
+        )
+    })
 }
 
 /// parry's ball proxy: the centre pushed out along the line to its nearest surface point
