@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use crate::scene::Material;
+use crate::scene::{Material, Relief};
 
 /// A maximum force below this (newtons) renders no force at all.
 pub const MIN_MAX_FORCE: f64 = 1e-9;
@@ -17,6 +17,11 @@ pub const MIN_MAX_FORCE: f64 = 1e-9;
 ///   normal part of the spring on a single face (`constraints == 1`), so a coarse mesh
 ///   feels smooth; on an edge or in a corner the plain spring is used.
 /// - damping acts along the spring only, on the device velocity `v` (m/s).
+/// - `relief`: the texture under the contact (world frame, its gradient in the contact
+///   plane; [`Relief::FLAT`] for none): the depth along the normal `d` is felt as
+///   `e = d + h φ(d)` with `φ(d) = min(1, d / A)`, the normal part scaled by
+///   `e (1 + h φ') / d` and `−e φ ∇h` added across (`scene/texture`: the gradient of
+///   `k e² / 2`).
 ///
 /// Returns the force and whether it was clamped to `max_force` (newtons). A non-finite
 /// result gives zero.
@@ -25,19 +30,34 @@ pub fn contact_force(
     hip: DVec3,
     velocity: DVec3,
     contact: Option<(DVec3, DVec3, u8)>,
-    material: &Material,
+    (material, relief): (&Material, &Relief),
     max_force: f64,
 ) -> (DVec3, bool) {
     let Some((normal, shading_normal, constraints)) = contact else {
         return (DVec3::ZERO, false);
     };
     let d = proxy - hip;
-    let spring = if constraints == 1 && shading_normal.is_finite() {
-        let dn = d.dot(normal);
+    let dn = d.dot(normal);
+    let along = if constraints == 1 && shading_normal.is_finite() {
+        shading_normal
+    } else {
+        normal
+    };
+    let mut spring = if constraints == 1 && shading_normal.is_finite() {
         dn * shading_normal + (d - dn * normal)
     } else {
         d
     };
+    if relief.amplitude > 0.0 && dn > 0.0 {
+        let (fade, slope) = if dn < relief.amplitude {
+            (dn / relief.amplitude, 1.0 / relief.amplitude)
+        } else {
+            (1.0, 0.0)
+        };
+        let felt = dn + relief.height * fade;
+        spring += (felt * (1.0 + relief.height * slope) - dn) * along
+            - (felt * fade) * relief.gradient;
+    }
     let mut force = material.stiffness * spring;
     let len = d.length();
     if len > 0.0 {

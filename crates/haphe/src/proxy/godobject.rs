@@ -10,7 +10,7 @@ use super::meet::{carry, move_checked};
 use super::near::NearCache;
 use super::options::ProxyOptions;
 use super::output::{Contact, TickOutput, TickStatus};
-use crate::scene::{Hit, Material, Param, Scene, SurfaceRef, others_box};
+use crate::scene::{Hit, Material, Param, Relief, Scene, SurfaceRef, others_box};
 
 /// The device on one tick: its point (metres, world frame, pulled into the workspace), its
 /// velocity (m/s) and its point on the previous tick.
@@ -303,7 +303,7 @@ impl Proxy {
             hand.hip,
             hand.velocity,
             contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
-            material,
+            (material, &contact.map_or(Relief::FLAT, |c| scene.relief(c.object, c.point, c.normal))),
             self.options.max_force,
         );
         status.force_clamped = force_clamped;

@@ -63,7 +63,7 @@ pub const ABSURD_DISTANCE_M: f64 = 1e9;
 pub(crate) const ABSURD_TOOL_RADIUS_M: f64 = 0.5;
 
 /// Every parameter's domain, in the order of [`Param`].
-static TABLE: [Domain; 20] = [
+static TABLE: [Domain; 27] = [
     number(Param::Stiffness, "N/m", 0.0, true, ABSURD_STIFFNESS_N_PER_M),
     number(Param::Damping, "N·s/m", 0.0, false, 1e3),
     number(Param::StaticFriction, "", 0.0, false, 10.0),
@@ -84,6 +84,13 @@ static TABLE: [Domain; 20] = [
     number(Param::MotionFrequency, "Hz", 0.0, false, 500.0),
     vector(Param::MotionAxis, "", 0.0, true, f64::MAX),
     number(Param::MotionRate, "rad/s", -1000.0, false, 1000.0),
+    number(Param::TextureAmplitude, "m", 0.0, false, 0.01),
+    number(Param::TextureWavelength, "m", 0.0, true, 1.0),
+    number(Param::VibrationFrequency, "Hz", 0.0, true, 20_000.0),
+    vector(Param::EffectForce, "N", 0.0, false, ABSURD_FORCE_N),
+    number(Param::Viscosity, "N·s/m", 0.0, false, 1e3),
+    number(Param::EffectStiffness, "N/m", 0.0, false, ABSURD_STIFFNESS_N_PER_M),
+    number(Param::MagnetDistance, "m", 0.0, true, 1.0),
 ];
 
 const fn number(param: Param, unit: &'static str, low: f64, low_open: bool, high: f64) -> Domain {

@@ -47,6 +47,24 @@ pub enum ParamError {
         /// The diagonal of the box bounding the scene's objects, metres.
         diagonal: f64,
     },
+    /// A texture's bumps steeper than a slope of 1 (`amplitude > wavelength / 2π`): the
+    /// force across the surface would outgrow the force into it.
+    TooSteep {
+        /// The amplitude given, metres.
+        amplitude: f64,
+        /// The wavelength given, metres.
+        wavelength: f64,
+    },
+    /// A frequency above half the servo rate, which the servo cannot render (it would be
+    /// felt as a slower alias).
+    AboveHalfRate {
+        /// The parameter.
+        param: Param,
+        /// The frequency given, Hz.
+        value: f64,
+        /// The servo rate, Hz.
+        rate: f64,
+    },
 }
 
 impl ParamError {
@@ -55,8 +73,10 @@ impl ParamError {
         match *self {
             ParamError::OutOfDomain { param, .. }
             | ParamError::NotFinite { param, .. }
-            | ParamError::LargerThanScene { param, .. } => param,
+            | ParamError::LargerThanScene { param, .. }
+            | ParamError::AboveHalfRate { param, .. } => param,
             ParamError::FrictionOrder { .. } => Param::DynamicFriction,
+            ParamError::TooSteep { .. } => Param::TextureAmplitude,
         }
     }
 
@@ -65,7 +85,9 @@ impl ParamError {
         match *self {
             ParamError::OutOfDomain { value, .. }
             | ParamError::NotFinite { value, .. }
-            | ParamError::LargerThanScene { value, .. } => value,
+            | ParamError::LargerThanScene { value, .. }
+            | ParamError::AboveHalfRate { value, .. } => value,
+            ParamError::TooSteep { amplitude, .. } => amplitude,
             ParamError::FrictionOrder {
                 dynamic_friction, ..
             } => dynamic_friction,
@@ -107,6 +129,22 @@ impl ParamError {
                 f,
                 "{name} must be at most {} m, the diagonal of the box bounding the scene's objects (a larger tool holds the whole scene), not {}",
                 Floor4(diagonal),
+                Number(value)
+            ),
+            ParamError::TooSteep {
+                amplitude,
+                wavelength,
+            } => write!(
+                f,
+                "{name} must be at most the wavelength / 2π ({}, a slope of 1: steeper bumps push sideways harder than into the surface), not {}",
+                Number(wavelength / std::f64::consts::TAU),
+                Number(amplitude)
+            ),
+            ParamError::AboveHalfRate { value, rate, .. } => write!(
+                f,
+                "{name} must be at most half the servo rate ({} Hz at {} Hz), not {}",
+                Number(rate / 2.0),
+                Number(rate),
                 Number(value)
             ),
         }

@@ -28,6 +28,7 @@
 mod broad;
 mod clear;
 mod domain;
+mod effect;
 mod extent;
 mod gltf;
 mod handoff;
@@ -41,12 +42,18 @@ mod param;
 mod pose;
 mod removals;
 mod shape;
+mod spec;
+mod texture;
 mod tool;
 mod world;
 
 #[doc(hidden)]
 pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};
 pub use domain::DEFAULT_MAX_FORCE_N;
+pub use effect::{Effect, Zone};
+#[doc(hidden)]
+pub use effect::MAX_EFFECTS;
+pub(crate) use effect::EffectKind;
 #[doc(hidden)]
 pub use domain::{ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M};
 #[doc(hidden)]
@@ -63,6 +70,9 @@ pub use object::{ObjectId, SceneObject, Sides};
 pub use param::Param;
 pub use pose::Pose;
 pub use shape::{Shape, ShapeError};
+pub use spec::SpecError;
+pub use texture::Texture;
+pub(crate) use texture::Relief;
 pub use world::Scene;
 
 pub(crate) use broad::Near;

@@ -8,6 +8,7 @@ use glam::DVec3;
 use super::material::Material;
 use super::pose::Pose;
 use super::shape::Shape;
+use super::texture::Texture;
 
 /// A stable name for an object of a scene, chosen by the caller.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -28,6 +29,8 @@ pub struct SceneObject {
     pub material: Material,
     /// Which sides of the surface can be touched.
     pub sides: Sides,
+    /// The texture felt on the surface, if any.
+    pub texture: Option<Texture>,
 }
 
 /// Which sides of an object's surface the proxy touches.
@@ -56,7 +59,14 @@ impl SceneObject {
             previous_pose: pose,
             material,
             sides,
+            texture: None,
         }
+    }
+
+    /// The same object with `texture` felt on its surface.
+    pub fn with_texture(mut self, texture: Texture) -> SceneObject {
+        self.texture = Some(texture);
+        self
     }
 
     /// The same object touched on `sides`.

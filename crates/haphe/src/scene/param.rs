@@ -47,11 +47,26 @@ pub enum Param {
     MotionAxis,
     /// A rotating motion's angular speed, rad/s (either sign).
     MotionRate,
+    /// A texture's height amplitude, m.
+    TextureAmplitude,
+    /// A texture's wavelength, m.
+    TextureWavelength,
+    /// A vibration effect's frequency, Hz.
+    VibrationFrequency,
+    /// An effect's force (a vibration's amplitude, a magnet's pull, a constant force, a
+    /// stick-slip's breakaway force), N.
+    EffectForce,
+    /// A viscosity effect's drag coefficient, N·s/m.
+    Viscosity,
+    /// A spring or stick-slip effect's stiffness, N/m.
+    EffectStiffness,
+    /// How far a magnet effect reaches from the surface, m.
+    MagnetDistance,
 }
 
 impl Param {
     /// Every parameter, in table order.
-    pub const ALL: [Param; 20] = [
+    pub const ALL: [Param; 27] = [
         Param::Stiffness,
         Param::Damping,
         Param::StaticFriction,
@@ -72,6 +87,13 @@ impl Param {
         Param::MotionFrequency,
         Param::MotionAxis,
         Param::MotionRate,
+        Param::TextureAmplitude,
+        Param::TextureWavelength,
+        Param::VibrationFrequency,
+        Param::EffectForce,
+        Param::Viscosity,
+        Param::EffectStiffness,
+        Param::MagnetDistance,
     ];
 
     /// The name the front ends spell it with.
@@ -97,6 +119,13 @@ impl Param {
             Param::MotionFrequency => "motion frequency",
             Param::MotionAxis => "motion axis",
             Param::MotionRate => "motion rate",
+            Param::TextureAmplitude => "texture amplitude",
+            Param::TextureWavelength => "texture wavelength",
+            Param::VibrationFrequency => "vibration frequency",
+            Param::EffectForce => "effect force",
+            Param::Viscosity => "viscosity",
+            Param::EffectStiffness => "effect stiffness",
+            Param::MagnetDistance => "magnet distance",
         }
     }
 }

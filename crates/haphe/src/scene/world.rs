@@ -12,7 +12,8 @@ use super::hit::{Hit, SurfaceRef};
 use super::object::Sides;
 use super::object::{BOUND_SLACK, ObjectId, SceneObject, sphere_of};
 use super::removals::RemovalLog;
-use super::{EditError, Material};
+use super::effect::{Effect, MAX_EFFECTS};
+use super::{EditError, Material, Texture};
 use crate::query::{
     Probe, SurfacePoint, WalkStatus, distance_to_segment, first_crossing_where,
     nearest_within_bounded, walk_to_nearest,
@@ -46,6 +47,8 @@ pub struct Scene {
     pub(super) epoch: u64,
     /// The last removals (where the indices went).
     pub(super) removals: RemovalLog,
+    /// The force effects (room for `MAX_EFFECTS`, reserved).
+    pub(super) effects: Vec<Effect>,
 }
 
 /// The names of scenes (see `Scene::uid`).
@@ -82,6 +85,7 @@ impl Scene {
             uid: NEXT_UID.fetch_add(1, Ordering::Relaxed),
             epoch: 0,
             removals: RemovalLog::new(),
+            effects: Vec::with_capacity(MAX_EFFECTS),
         }
     }
 
@@ -163,6 +167,36 @@ impl Scene {
         self.index_of(id)
             .map(|i| self.objects[i].material = material)
             .is_some()
+    }
+
+    /// Changes the texture of the object named `id` (`None`: none). `false` when there is
+    /// no such object.
+    pub fn set_texture(&mut self, id: ObjectId, texture: Option<Texture>) -> bool {
+        self.index_of(id)
+            .map(|i| self.objects[i].texture = texture)
+            .is_some()
+    }
+
+    /// Adds a force effect (see [`Effect`]).
+    ///
+    /// # Errors
+    /// [`EditError::Full`] when the scene holds `MAX_EFFECTS` (16) already.
+    pub fn add_effect(&mut self, effect: Effect) -> Result<(), EditError> {
+        if self.effects.len() >= MAX_EFFECTS {
+            return Err(EditError::Full);
+        }
+        self.effects.push(effect);
+        Ok(())
+    }
+
+    /// The force effects, in the order added.
+    pub fn effects(&self) -> &[Effect] {
+        &self.effects
+    }
+
+    /// Removes every force effect.
+    pub fn clear_effects(&mut self) {
+        self.effects.clear();
     }
 
     /// A superset of the objects whose bounding sphere (with its slack) comes within the

@@ -7,7 +7,7 @@ use crate::proxy::constrain::{Start, Sweep, constrain};
 use crate::proxy::force::contact_force;
 use crate::proxy::godobject::{Hand, Proxy, contact_at};
 use crate::proxy::output::{TickOutput, TickStatus};
-use crate::scene::Scene;
+use crate::scene::{Relief, Scene};
 
 impl Proxy {
     /// The hold of a tick whose god-object steps ended with the device point beyond the
@@ -123,7 +123,7 @@ impl Proxy {
             hip,
             hand.velocity,
             contact.map(|c| (c.normal, c.normal, c.constraints)),
-            &material,
+            (&material, &Relief::FLAT),
             self.options.max_force,
         );
         status.force_clamped = force_clamped;

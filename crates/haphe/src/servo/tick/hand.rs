@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use super::clutch::Clutch;
+use super::effects::{EffectState, Sensed, bounded, effects_force};
 use super::options::ServoOptions;
 use super::stats::TickStats;
 use crate::proxy::{Proxy, TickStatus};
@@ -30,6 +31,8 @@ pub(super) struct Hand<D: Device> {
     ramp_start: f64,
     /// What the device read at this tick.
     state: DeviceState,
+    /// What the scene's effects remember for this device.
+    effects: EffectState,
 }
 
 impl<D: Device> Hand<D> {
@@ -55,6 +58,7 @@ impl<D: Device> Hand<D> {
             phase: Phase::Holding,
             ramp_start: 0.0,
             state: DeviceState::default(),
+            effects: EffectState::new(),
         })
     }
 
@@ -180,7 +184,19 @@ impl<D: Device> Hand<D> {
         if self.phase == Phase::Holding {
             return;
         }
-        let out = self.proxy.tick(scene, hip, velocity);
+        let mut out = self.proxy.tick(scene, hip, velocity);
+        if !scene.effects().is_empty() {
+            let max = self.options.proxy.max_force;
+            let sensed = Sensed {
+                hip,
+                velocity,
+                t,
+                contact: out.contact.as_ref(),
+            };
+            let sum = out.force + effects_force(scene, &mut self.effects, &sensed, max);
+            out.force = bounded(sum, max);
+            out.status.force_clamped |= out.force != sum;
+        }
         let gain = self.ramp_gain(t);
         record.phase = self.phase;
         record.proxy = out.proxy;

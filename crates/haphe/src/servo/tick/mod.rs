@@ -3,6 +3,7 @@
 //! it on a virtual clock.
 
 mod clutch;
+mod effects;
 mod hand;
 mod motion;
 mod options;
@@ -17,7 +18,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::proxy::Proxy;
-use crate::scene::{ObjectKey, Param, Scene};
+use crate::scene::{ObjectKey, Param, ParamError, Scene};
 use crate::servo::device::{Device, DeviceError, DeviceFault, DeviceMapping, DeviceSpec};
 use crate::servo::trace::{Phase, TickRecord};
 use hand::Hand;
@@ -62,6 +63,10 @@ pub enum ServoError {
     /// thread ticks every device on the same deadlines).
     #[error("{0}")]
     Devices(&'static str),
+    /// An effect of the scene cannot be rendered at the servo's rate (a vibration above
+    /// half of it).
+    #[error("an effect of the scene: {0}")]
+    Effect(#[source] ParamError),
 }
 
 /// Why a run ended.
@@ -130,8 +135,10 @@ impl<D: Device> Servo<D> {
     /// Opens and calibrates `device` and prepares to render `scene`.
     ///
     /// # Errors
-    /// [`ServoError::Device`] when the device cannot be opened or calibrated.
+    /// [`ServoError::Device`] when the device cannot be opened or calibrated;
+    /// [`ServoError::Effect`] when an effect of the scene cannot be rendered at the rate.
     pub fn new(device: D, scene: Scene, options: ServoOptions) -> Result<Servo<D>, ServoError> {
+        check_effects(&scene, options.rate_hz)?;
         let hand = Hand::open(device, options)?;
         Ok(Servo::of_hands(vec![hand], scene))
     }
@@ -142,7 +149,8 @@ impl<D: Device> Servo<D> {
     ///
     /// # Errors
     /// [`ServoError::Devices`] for no device or devices at different rates (nothing is
-    /// opened then); [`ServoError::DeviceAt`] naming the first device that cannot be
+    /// opened then), or an effect of the scene that cannot be rendered at their rate
+    /// ([`ServoError::Effect`]); [`ServoError::DeviceAt`] naming the first device that cannot be
     /// opened or calibrated (the devices opened before it are closed, with zero force).
     pub fn with_devices(
         devices: Vec<(D, ServoOptions)>,
@@ -156,6 +164,7 @@ impl<D: Device> Servo<D> {
                 "the devices of one servo tick at one rate, and their options give several",
             ));
         }
+        check_effects(&scene, rate)?;
         let mut hands: Vec<Hand<D>> = Vec::with_capacity(devices.len());
         for (device, (d, options)) in devices.into_iter().enumerate() {
             match Hand::open(d, options) {
@@ -408,6 +417,14 @@ impl<D: Device> Servo<D> {
             self.closed = true;
         }
     }
+}
+
+/// Whether every effect of `scene` renders at `rate_hz`.
+fn check_effects(scene: &Scene, rate_hz: f64) -> Result<(), ServoError> {
+    for e in scene.effects() {
+        e.check_rate(rate_hz).map_err(ServoError::Effect)?;
+    }
+    Ok(())
 }
 
 impl<D: Device> Drop for Servo<D> {

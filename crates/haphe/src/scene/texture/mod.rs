@@ -1,0 +1,270 @@
+//! Haptic textures: a height field over an object's surface that displaces the proxy's
+//! constraint along the contact normal.
+//!
+//! A texture is a height `h` (metres, `|h| ≤ A`, the amplitude) at each surface point, in
+//! the object's frame: a solid procedural field (sine, band-limited noise), which needs no
+//! texture coordinates, or a grey image read through the shape's texture coordinates. On
+//! a face the force is that of the surface moved out by `h` along the contact normal:
+//!
+//! - with `d` the device point's depth behind the contact plane, the felt depth is
+//!   `e = d + h·φ(d)`, where `φ(d) = min(1, d / A)` fades the texture in over the first
+//!   `A` of depth (so that touching down never starts on a bump: `e ≥ 0` and `e = 0` at
+//!   `d = 0`);
+//! - the force is `−∇` of the potential `k e² / 2`: along the normal `k e (1 + h φ'(d))`,
+//!   and across it `−k e φ ∇h` (the slope of the bumps pushes the hand downhill).
+//!
+//! Being the gradient of a potential of the device point (the proxy follows the device
+//! point across a frictionless face), a texture gives back over a closed path exactly the
+//! work it took: it never injects energy. Sliding at speed `v` over a wavelength `L` is
+//! felt at `v / L` Hz.
+
+use std::f64::consts::TAU;
+use std::str::FromStr;
+
+use glam::DVec3;
+
+use super::invalid::ParamError;
+use super::param::Param;
+use super::spec::{Spec, SpecError};
+use super::world::Scene;
+
+/// The kinds a texture specification names.
+const KINDS: &str = "`sine:A:L`, `noise:A:L`";
+
+/// A haptic texture (see the [module](self) for how it is felt), every value checked.
+///
+/// ```
+/// use haphe::scene::Texture;
+/// let t: Texture = "sine:0.0002:0.002".parse()?;
+/// assert_eq!(t.amplitude(), 0.0002);
+/// assert!("sine:-1:0.002".parse::<Texture>().is_err());
+/// # Ok::<(), haphe::scene::SpecError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texture {
+    kind: Kind,
+    amplitude: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Kind {
+    /// The mean of three sines along the object's axes, of wavelength `L`.
+    Sine { wavelength: f64 },
+    /// A sum of plane waves in fixed directions, wavelengths around `L`.
+    Noise { wavelength: f64 },
+}
+
+/// The height of a texture at a point and its gradient, object frame: what the force
+/// rule needs (see the module). `amplitude` 0: no texture.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Relief {
+    /// Height, metres (`|height| ≤ amplitude`).
+    pub(crate) height: f64,
+    /// Gradient of the height (dimensionless), world frame once placed, in the contact
+    /// plane once projected.
+    pub(crate) gradient: DVec3,
+    /// The texture's amplitude, metres: the depth over which it fades in.
+    pub(crate) amplitude: f64,
+}
+
+impl Relief {
+    /// No texture.
+    pub(crate) const FLAT: Relief = Relief {
+        height: 0.0,
+        gradient: DVec3::ZERO,
+        amplitude: 0.0,
+    };
+}
+
+/// The plane waves of the noise texture: unit directions spread over the sphere (a
+/// golden-angle spiral), wavelengths from 0.75 to 1.33 times the texture's, phases.
+const NOISE_WAVES: usize = 8;
+
+fn noise_wave(j: usize) -> (DVec3, f64, f64) {
+    let golden = TAU * (1.0 - 1.0 / 1.618_033_988_749_895);
+    let z = 1.0 - (2.0 * j as f64 + 1.0) / NOISE_WAVES as f64;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let a = golden * j as f64;
+    let direction = DVec3::new(r * a.cos(), r * a.sin(), z);
+    let scale = 0.75 * (16.0_f64 / 9.0).powf(j as f64 / (NOISE_WAVES - 1) as f64);
+    let phase = (j as f64 * 2.399_963_229_728_653).rem_euclid(TAU);
+    (direction, scale, phase)
+}
+
+impl Texture {
+    /// A solid sine texture: the height `A · (sin(2πx/L) + sin(2πy/L) + sin(2πz/L)) / 3`
+    /// in the object's frame (so `|h| ≤ A`; on a face across an axis, sliding along
+    /// another feels ridges of amplitude `A/3` every `L`).
+    ///
+    /// # Errors
+    /// [`ParamError`] naming the texture amplitude (0 to 1 cm) or wavelength (above 0, at
+    /// most 1 m), or [`ParamError::TooSteep`] when `A > L / 2π`.
+    pub fn sine(amplitude: f64, wavelength: f64) -> Result<Texture, ParamError> {
+        let amplitude = checked(amplitude, wavelength)?;
+        Ok(Texture {
+            kind: Kind::Sine { wavelength },
+            amplitude,
+        })
+    }
+
+    /// A band-limited noise texture: the mean of eight plane waves in fixed directions,
+    /// wavelengths from 0.75 L to 1.33 L (so `|h| ≤ A`).
+    ///
+    /// # Errors
+    /// As [`Texture::sine`].
+    pub fn noise(amplitude: f64, wavelength: f64) -> Result<Texture, ParamError> {
+        let amplitude = checked(amplitude, wavelength)?;
+        Ok(Texture {
+            kind: Kind::Noise { wavelength },
+            amplitude,
+        })
+    }
+
+    /// The amplitude, metres: the largest height.
+    pub fn amplitude(&self) -> f64 {
+        self.amplitude
+    }
+
+    /// The height at `p` (object frame) and its gradient (object frame).
+    ///
+    /// # Real-time
+    /// No allocation; a few sines.
+    pub(crate) fn relief(&self, p: DVec3) -> Relief {
+        let a = self.amplitude;
+        let (height, gradient) = match self.kind {
+            Kind::Sine { wavelength } => {
+                let w = TAU / wavelength;
+                let (s, c) = (
+                    DVec3::new((w * p.x).sin(), (w * p.y).sin(), (w * p.z).sin()),
+                    DVec3::new((w * p.x).cos(), (w * p.y).cos(), (w * p.z).cos()),
+                );
+                (a * s.element_sum() / 3.0, c * (a * w / 3.0))
+            }
+            Kind::Noise { wavelength } => {
+                let mut h = 0.0;
+                let mut g = DVec3::ZERO;
+                for j in 0..NOISE_WAVES {
+                    let (direction, scale, phase) = noise_wave(j);
+                    let k = direction * (TAU / (wavelength * scale));
+                    let (s, c) = (k.dot(p) + phase).sin_cos();
+                    h += s;
+                    g += c * k;
+                }
+                let m = a / NOISE_WAVES as f64;
+                (m * h, m * g)
+            }
+        };
+        if height.is_finite() && gradient.is_finite() {
+            Relief {
+                height,
+                gradient,
+                amplitude: a,
+            }
+        } else {
+            Relief::FLAT
+        }
+    }
+}
+
+impl Scene {
+    /// The texture of object `object` at the surface point `point` (world frame), its
+    /// gradient in the world frame projected into the plane of the unit `normal`;
+    /// [`Relief::FLAT`] where the object has none.
+    ///
+    /// # Real-time
+    /// No allocation; one texture evaluation.
+    pub(crate) fn relief(&self, object: usize, point: DVec3, n: DVec3) -> Relief {
+        let Some(o) = self.objects.get(object) else {
+            return Relief::FLAT;
+        };
+        let Some(texture) = &o.texture else {
+            return Relief::FLAT;
+        };
+        let r = texture.relief(o.pose.to_object(point));
+        let g = o.pose.vector_to_world(r.gradient);
+        Relief {
+            gradient: g - g.dot(n) * n,
+            ..r
+        }
+    }
+}
+
+/// The amplitude, when it and the wavelength are in their domains and the bumps no
+/// steeper than a slope of 1.
+fn checked(amplitude: f64, wavelength: f64) -> Result<f64, ParamError> {
+    let amplitude = Param::TextureAmplitude.check(amplitude)?;
+    let wavelength = Param::TextureWavelength.check(wavelength)?;
+    if amplitude * TAU > wavelength {
+        return Err(ParamError::TooSteep {
+            amplitude,
+            wavelength,
+        });
+    }
+    Ok(amplitude)
+}
+
+impl FromStr for Texture {
+    type Err = SpecError;
+
+    /// `sine:A:L` or `noise:A:L` (metres).
+    fn from_str(text: &str) -> Result<Texture, SpecError> {
+        let spec = Spec::split(text);
+        let make = match spec.kind {
+            "sine" => Texture::sine,
+            "noise" => Texture::noise,
+            _ => return Err(spec.unknown(KINDS)),
+        };
+        let [a, l] = spec.numbers("`KIND:AMPLITUDE:WAVELENGTH` (metres)")?;
+        make(a, l).map_err(|e| spec.param(e))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The gradient is the height's: central differences agree.
+    #[test]
+    fn the_gradient_is_the_heights() {
+        for t in [Texture::sine(2e-4, 2e-3), Texture::noise(1e-4, 1e-3)] {
+            let t = t.unwrap();
+            for p in [
+                DVec3::new(0.01, 0.02, -0.03),
+                DVec3::new(-0.1234, 0.0007, 0.05),
+            ] {
+                let r = t.relief(p);
+                assert!(r.height.abs() <= t.amplitude());
+                let e = 1e-8;
+                for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
+                    let numeric = (t.relief(p + e * axis).height - t.relief(p - e * axis).height)
+                        / (2.0 * e);
+                    assert!(
+                        (numeric - r.gradient.dot(axis)).abs() < 1e-5,
+                        "{numeric} vs {}",
+                        r.gradient.dot(axis)
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn specifications_are_read_and_checked() {
+        assert_eq!(
+            "sine:0.0002:0.002".parse::<Texture>(),
+            Texture::sine(0.0002, 0.002).map_err(|_| unreachable!())
+        );
+        let unknown = "bumps:1:2".parse::<Texture>().unwrap_err().to_string();
+        assert!(unknown.contains("unknown kind `bumps`"), "{unknown}");
+        let short = "sine:0.001".parse::<Texture>().unwrap_err().to_string();
+        assert!(short.contains("expected"), "{short}");
+        let negative = "noise:-0.001:0.01".parse::<Texture>().unwrap_err().to_string();
+        assert!(negative.contains("texture amplitude must be"), "{negative}");
+        let nan = "sine:0.001:nan".parse::<Texture>().unwrap_err().to_string();
+        assert!(nan.contains("texture wavelength must be"), "{nan}");
+        let word = "sine:x:1".parse::<Texture>().unwrap_err().to_string();
+        assert!(word.contains("`x` is not a number"), "{word}");
+        let steep = "sine:0.001:0.001".parse::<Texture>().unwrap_err().to_string();
+        assert!(steep.contains("steep"), "{steep}");
+    }
+}
