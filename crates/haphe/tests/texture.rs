@@ -63,7 +63,10 @@ fn sliding_over_a_sine_texture_is_felt_at_speed_over_wavelength() {
         "amplitude {m} N, expected {expected}"
     );
     let (_, plain_there) = peak_near(&freqs, &p_mag, 24.0, 26.0);
-    assert!(plain_there < 1e-3 * m, "untextured: {plain_there} N at 25 Hz");
+    assert!(
+        plain_there < 1e-3 * m,
+        "untextured: {plain_there} N at 25 Hz"
+    );
 }
 
 /// The force's change from one tick to the next while sliding at 50 mm/s is within
@@ -83,8 +86,14 @@ fn the_force_changes_per_tick_within_the_textures_slope_and_curvature() {
             .fold(0.0, f64::max);
         let dt = 1.0 / rate;
         let bound = STIFFNESS * v * dt * (a * w * (1.0 + a * w) + (depth + a) * a * w * w);
-        assert!(largest <= bound, "{rate} Hz: {largest} N per tick, bound {bound}");
-        assert!(largest > 0.1 * bound, "{rate} Hz: the texture is felt ({largest} N)");
+        assert!(
+            largest <= bound,
+            "{rate} Hz: {largest} N per tick, bound {bound}"
+        );
+        assert!(
+            largest > 0.1 * bound,
+            "{rate} Hz: the texture is felt ({largest} N)"
+        );
     }
 }
 
@@ -96,7 +105,10 @@ fn the_force_changes_per_tick_within_the_textures_slope_and_curvature() {
 /// a height only) does positive work one way round: the check can fail.
 #[test]
 fn a_texture_gives_back_no_more_work_than_it_took() {
-    let textures = [sine(), "noise:0.0001:0.0015".parse().expect("a valid texture")];
+    let textures = [
+        sine(),
+        "noise:0.0001:0.0015".parse().expect("a valid texture"),
+    ];
     for texture in textures {
         for (centre, radius) in [
             // Half in contact.

@@ -55,8 +55,8 @@ pub fn contact_force(
             (1.0, 0.0)
         };
         let felt = dn + relief.height * fade;
-        spring += (felt * (1.0 + relief.height * slope) - dn) * along
-            - (felt * fade) * relief.gradient;
+        spring +=
+            (felt * (1.0 + relief.height * slope) - dn) * along - (felt * fade) * relief.gradient;
     }
     let mut force = material.stiffness * spring;
     let len = d.length();

@@ -303,7 +303,10 @@ impl Proxy {
             hand.hip,
             hand.velocity,
             contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
-            (material, &contact.map_or(Relief::FLAT, |c| scene.relief(c.object, c.point, c.normal))),
+            (
+                material,
+                &contact.map_or(Relief::FLAT, |c| scene.relief(c.object, c.point, c.normal)),
+            ),
             self.options.max_force,
         );
         status.force_clamped = force_clamped;

@@ -89,7 +89,13 @@ static TABLE: [Domain; 27] = [
     number(Param::VibrationFrequency, "Hz", 0.0, true, 20_000.0),
     vector(Param::EffectForce, "N", 0.0, false, ABSURD_FORCE_N),
     number(Param::Viscosity, "N·s/m", 0.0, false, 1e3),
-    number(Param::EffectStiffness, "N/m", 0.0, false, ABSURD_STIFFNESS_N_PER_M),
+    number(
+        Param::EffectStiffness,
+        "N/m",
+        0.0,
+        false,
+        ABSURD_STIFFNESS_N_PER_M,
+    ),
     number(Param::MagnetDistance, "m", 0.0, true, 1.0),
 ];
 

@@ -271,9 +271,7 @@ fn viscosity(spec: &Spec<'_>) -> Result<Effect, SpecError> {
     };
     let zone = match rest {
         [] => Zone::Everywhere,
-        ["inside", id] => Zone::Inside(ObjectId(
-            id.parse::<u32>().map_err(|_| spec.form(FORM))?,
-        )),
+        ["inside", id] => Zone::Inside(ObjectId(id.parse::<u32>().map_err(|_| spec.form(FORM))?)),
         ["box", corners @ ..] if corners.len() == 6 => {
             let mut c = [0.0; 6];
             for (v, s) in c.iter_mut().zip(corners) {
@@ -344,7 +342,10 @@ mod tests {
         }
         let e = Effect::vibration(600.0, 0.3).unwrap();
         let refused = e.check_rate(1000.0).unwrap_err().to_string();
-        assert!(refused.contains("at most half the servo rate (500 Hz"), "{refused}");
+        assert!(
+            refused.contains("at most half the servo rate (500 Hz"),
+            "{refused}"
+        );
         assert!(e.check_rate(1200.0).is_ok());
     }
 }

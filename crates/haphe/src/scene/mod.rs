@@ -50,14 +50,14 @@ mod world;
 #[doc(hidden)]
 pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};
 pub use domain::DEFAULT_MAX_FORCE_N;
-pub use effect::{Effect, Zone};
-#[doc(hidden)]
-pub use effect::MAX_EFFECTS;
-pub(crate) use effect::EffectKind;
 #[doc(hidden)]
 pub use domain::{ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M};
 #[doc(hidden)]
 pub use domain::{Domain, DomainKind};
+pub(crate) use effect::EffectKind;
+#[doc(hidden)]
+pub use effect::MAX_EFFECTS;
+pub use effect::{Effect, Zone};
 #[doc(hidden)]
 pub use handoff::MAX_EDITS_PER_TICK;
 pub use handoff::{Edit, EditError, Returned, SceneEditor};
@@ -71,8 +71,8 @@ pub use param::Param;
 pub use pose::Pose;
 pub use shape::{Shape, ShapeError};
 pub use spec::SpecError;
-pub use texture::Texture;
 pub(crate) use texture::Relief;
+pub use texture::Texture;
 pub use world::Scene;
 
 pub(crate) use broad::Near;

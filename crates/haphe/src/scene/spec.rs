@@ -97,7 +97,10 @@ impl<'a> Spec<'a> {
     }
 
     /// The values as numbers, exactly `N` of them (else `form`).
-    pub(super) fn numbers<const N: usize>(&self, form: &'static str) -> Result<[f64; N], SpecError> {
+    pub(super) fn numbers<const N: usize>(
+        &self,
+        form: &'static str,
+    ) -> Result<[f64; N], SpecError> {
         if self.values.len() != N {
             return Err(self.form(form));
         }

@@ -7,12 +7,12 @@ use glam::DVec3;
 use rustc_hash::FxHashMap;
 
 use super::broad::{Broad, Near};
+use super::effect::{Effect, MAX_EFFECTS};
 use super::handoff::{self, Edit, Inbox, MAX_EDITS_PER_TICK, Returned, SceneEditor};
 use super::hit::{Hit, SurfaceRef};
 use super::object::Sides;
 use super::object::{BOUND_SLACK, ObjectId, SceneObject, sphere_of};
 use super::removals::RemovalLog;
-use super::effect::{Effect, MAX_EFFECTS};
 use super::{EditError, Material, Texture};
 use crate::query::{
     Probe, SurfacePoint, WalkStatus, distance_to_segment, first_crossing_where,

@@ -131,12 +131,7 @@ pub fn work_of(records: &[TickRecord], forces: &[DVec3]) -> f64 {
 /// `centre` (`turn` 1: from +x toward +z; −1 the other way), reached from 5 mm above its
 /// start, going round twice at 20 mm/s; returns the rendered force's work on the hand over
 /// the second turn, and that turn's records.
-pub fn work_around(
-    scene: Scene,
-    centre: DVec3,
-    radius: f64,
-    turn: f64,
-) -> (f64, Vec<TickRecord>) {
+pub fn work_around(scene: Scene, centre: DVec3, radius: f64, turn: f64) -> (f64, Vec<TickRecord>) {
     let at = |a: f64| centre + radius * DVec3::new(a.cos(), 0.0, turn * a.sin());
     let start = at(0.0);
     let rate = 10_000.0;
@@ -144,7 +139,10 @@ pub fn work_around(
     let lap_ticks = (std::f64::consts::TAU * radius / 0.02 * rate).round() as u64;
     let approach_ticks = 3_000;
     let (lap, approach) = (lap_ticks as f64 / rate, approach_ticks as f64 / rate);
-    let mut keys = vec![(0.0, start + DVec3::Z * (0.005 + radius)), (approach, start)];
+    let mut keys = vec![
+        (0.0, start + DVec3::Z * (0.005 + radius)),
+        (approach, start),
+    ];
     let steps = 2000;
     for i in 1..=2 * steps {
         let a = std::f64::consts::TAU * i as f64 / steps as f64;

@@ -5,7 +5,7 @@
 use haphe::DVec3;
 use haphe::glam::DQuat;
 use haphe::proxy::ProxyOptions;
-use haphe::scene::{DomainKind, Material, Param, ParamError, Pose};
+use haphe::scene::{DomainKind, Effect, Material, Param, ParamError, Pose, Texture, Zone};
 use haphe::servo::{
     DeviceMapping, MAX_MOTION_AMPLITUDE, Motion, RealtimeOptions, ServoOptions, simulated_spec,
 };
@@ -21,7 +21,7 @@ struct Expected {
     absurd: Option<f64>,
 }
 
-const EXPECTED: [Expected; 20] = [
+const EXPECTED: [Expected; 27] = [
     // A material with no stiffness renders nothing; damping and friction may be absent.
     expect(Param::Stiffness, 800.0, false, false, Some(1e7)),
     expect(Param::Damping, 1.0, true, false, Some(1e5)),
@@ -48,6 +48,15 @@ const EXPECTED: [Expected; 20] = [
     expect(Param::MotionAxis, 1.0, false, true, None),
     // Turning either way, or not at all.
     expect(Param::MotionRate, 1.0, true, true, Some(1e5)),
+    // A texture of no height is none; a wavelength of nothing is no texture.
+    expect(Param::TextureAmplitude, 1e-4, true, false, Some(1.0)),
+    expect(Param::TextureWavelength, 2e-3, false, false, Some(100.0)),
+    expect(Param::VibrationFrequency, 150.0, false, false, Some(1e6)),
+    // An effect may be switched off by a zero force, stiffness or viscosity.
+    expect(Param::EffectForce, 0.3, true, true, Some(1e4)),
+    expect(Param::Viscosity, 2.0, true, false, Some(1e5)),
+    expect(Param::EffectStiffness, 100.0, true, false, Some(1e7)),
+    expect(Param::MagnetDistance, 0.01, false, false, Some(100.0)),
 ];
 
 const fn expect(
@@ -119,6 +128,14 @@ fn build(param: Param, v: f64) -> Result<(), ParamError> {
         }
         .checked()
         .map(drop),
+        Param::TextureAmplitude => Texture::sine(v, 1.0).map(drop),
+        Param::TextureWavelength => Texture::noise(0.0, v).map(drop),
+        Param::VibrationFrequency => Effect::vibration(v, 0.3).map(drop),
+        // A vector: the constant force's component.
+        Param::EffectForce => Effect::constant(x).map(drop),
+        Param::Viscosity => Effect::viscosity(v, Zone::Everywhere).map(drop),
+        Param::EffectStiffness => Effect::spring(v, DVec3::ZERO).map(drop),
+        Param::MagnetDistance => Effect::magnet(v, 1.0).map(drop),
         other => panic!("no constructor in this test for {other}"),
     }
 }

@@ -236,8 +236,8 @@ mod tests {
                 assert!(r.height.abs() <= t.amplitude());
                 let e = 1e-8;
                 for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
-                    let numeric = (t.relief(p + e * axis).height - t.relief(p - e * axis).height)
-                        / (2.0 * e);
+                    let numeric =
+                        (t.relief(p + e * axis).height - t.relief(p - e * axis).height) / (2.0 * e);
                     assert!(
                         (numeric - r.gradient.dot(axis)).abs() < 1e-5,
                         "{numeric} vs {}",
@@ -258,13 +258,19 @@ mod tests {
         assert!(unknown.contains("unknown kind `bumps`"), "{unknown}");
         let short = "sine:0.001".parse::<Texture>().unwrap_err().to_string();
         assert!(short.contains("expected"), "{short}");
-        let negative = "noise:-0.001:0.01".parse::<Texture>().unwrap_err().to_string();
+        let negative = "noise:-0.001:0.01"
+            .parse::<Texture>()
+            .unwrap_err()
+            .to_string();
         assert!(negative.contains("texture amplitude must be"), "{negative}");
         let nan = "sine:0.001:nan".parse::<Texture>().unwrap_err().to_string();
         assert!(nan.contains("texture wavelength must be"), "{nan}");
         let word = "sine:x:1".parse::<Texture>().unwrap_err().to_string();
         assert!(word.contains("`x` is not a number"), "{word}");
-        let steep = "sine:0.001:0.001".parse::<Texture>().unwrap_err().to_string();
+        let steep = "sine:0.001:0.001"
+            .parse::<Texture>()
+            .unwrap_err()
+            .to_string();
         assert!(steep.contains("steep"), "{steep}");
     }
 }

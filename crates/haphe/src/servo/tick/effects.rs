@@ -79,7 +79,7 @@ pub(super) fn effects_force(
 /// `f` scaled down to `max` newtons when longer; zero when not finite.
 pub(super) fn bounded(f: DVec3, max: f64) -> DVec3 {
     let length = f.length();
-    if !length.is_finite() || !(max > 0.0) {
+    if !length.is_finite() || max.is_nan() || max <= 0.0 {
         DVec3::ZERO
     } else if length > max {
         f * (max / length)
@@ -117,8 +117,7 @@ fn magnet(scene: &Scene, sensed: &Sensed<'_>, distance: f64, force: f64) -> DVec
         let o = &objects[i];
         let shape = &*o.shape;
         let within = nearest.map_or(distance, |(d, _)| d);
-        if let Some(n) = nearest_within(shape.surface(), shape.map(), o.pose.to_object(p), within)
-        {
+        if let Some(n) = nearest_within(shape.surface(), shape.map(), o.pose.to_object(p), within) {
             let q = o.pose.to_world(n.closest.point);
             let d = q.distance(p);
             if d < within {
