@@ -1,5 +1,6 @@
 //! The servo path allocates nothing with the device and the statistics in the loop: the
-//! simulated hand exploring two objects (with a clutch held twice), one of them moving by
+//! simulated hand exploring two textured objects (with a clutch held twice) under every kind
+//! of force effect, one of them moving by
 //! script, another moved and re-inserted by edits from "another thread", with tick timing
 //! and counters, run in simulation mode on this thread under a counting allocator; and the
 //! same for replay.
@@ -35,17 +36,32 @@ fn servo_ticks_allocate_nothing() {
     let torus = shape(Catalog::Torus, 5_000);
     let (mut scene, mut editor) = Scene::new(8);
     scene
-        .insert(SceneObject::new(
-            ObjectId(0),
-            blob,
-            Pose::IDENTITY,
-            material,
-        ))
+        .insert(
+            SceneObject::new(ObjectId(0), blob, Pose::IDENTITY, material)
+                .with_texture("noise:0.0001:0.002".parse().expect("a valid texture")),
+        )
         .expect("room");
     let plate_pose = Pose::from_translation(DVec3::new(0.3, 0.0, 0.0)).expect("a valid pose");
     scene
-        .insert(SceneObject::new(ObjectId(1), plate, plate_pose, material))
+        .insert(
+            SceneObject::new(ObjectId(1), plate, plate_pose, material)
+                .with_texture("sine:0.0002:0.002".parse().expect("a valid texture")),
+        )
         .expect("room");
+    // Every kind of effect, evaluated on the servo path.
+    for spec in [
+        "vibration:150:0.3",
+        "viscosity:1:inside:0",
+        "viscosity:1:box:-0.1:-0.1:-0.1:0:0:0",
+        "spring:5:0:0:0.1",
+        "magnet:0.005:0.3",
+        "constant:0:0:-0.1",
+        "stick-slip",
+    ] {
+        scene
+            .add_effect(spec.parse().expect("a valid effect"))
+            .expect("room for the effect");
+    }
     let path = scripted_path(PathKind::Explore, &scene, 20.0, 5).expect("a path");
     // The clutch held twice: its presses are read and its offset moved on the servo path.
     let hand = SimulatedHand::new(path, HandOptions::default())

@@ -36,6 +36,7 @@ mod plot;
 mod streams;
 mod structures;
 mod table;
+mod texture;
 mod timing;
 mod tool;
 

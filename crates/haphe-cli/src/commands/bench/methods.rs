@@ -58,6 +58,9 @@ pub enum Query {
     Tool,
     /// The same with a tool of radius 2 % of the object's size.
     ToolWide,
+    /// The contact tick with a sine texture on the object (amplitude 0.1 mm, wavelength
+    /// 2 mm, scaled as the paths are).
+    Textured,
     /// Building the structures from the welded mesh.
     Build,
     /// Loading a saved surface and map (checks included).
@@ -68,7 +71,7 @@ pub enum Query {
 
 impl Query {
     /// Every kind, in the order of the report.
-    pub const ALL: [Query; 13] = [
+    pub const ALL: [Query; 14] = [
         Query::FreeSpace,
         Query::Segment,
         Query::SegmentRandom,
@@ -79,13 +82,14 @@ impl Query {
         Query::Contact,
         Query::Tool,
         Query::ToolWide,
+        Query::Textured,
         Query::Build,
         Query::Decode,
         Query::Zones,
     ];
 
     /// The kinds timed one query at a time.
-    pub const TIMED: [Query; 10] = [
+    pub const TIMED: [Query; 11] = [
         Query::FreeSpace,
         Query::Segment,
         Query::SegmentRandom,
@@ -96,6 +100,7 @@ impl Query {
         Query::Contact,
         Query::Tool,
         Query::ToolWide,
+        Query::Textured,
     ];
 
     /// The name in tables, JSON records and plot file names.
@@ -111,6 +116,7 @@ impl Query {
             Query::Contact => "contact",
             Query::Tool => "tool",
             Query::ToolWide => "tool_wide",
+            Query::Textured => "textured",
             Query::Build => "build",
             Query::Decode => "decode",
             Query::Zones => "zones",
@@ -167,6 +173,12 @@ impl Query {
             }
             Query::ToolWide => {
                 "tool tick with a tool of radius 2 % of the object's size (same calls)"
+            }
+            Query::Textured => {
+                "textured contact tick: the contact path over the object with the texture \
+                 `sine:A:L`, A = 0.1 mm and L = 2 mm scaled as the paths are (haphe \
+                 `Proxy::tick`: the same tick, and the texture's height and slope under the \
+                 contact in the force)"
             }
             Query::Build => {
                 "build from the welded mesh (haphe `Surface::new` + `VoxelMap::build`; parry \
@@ -315,6 +327,7 @@ fn chunk_lengths(query: Query, streams: &Streams) -> Vec<usize> {
         Query::Contact => lengths(&streams.contact),
         Query::Tool => lengths(&streams.tool[0].1),
         Query::ToolWide => lengths(&streams.tool[1].1),
+        Query::Textured => lengths(&streams.contact),
         Query::Build | Query::Decode | Query::Zones => Vec::new(),
     }
 }
@@ -503,6 +516,12 @@ fn runners<'a>(query: Query, cx: Context<'a>, lengths: &[usize]) -> Vec<Runner<'
                 if let Some(run) = run {
                     add(method, run, 1);
                 }
+            }
+        }
+        Query::Textured => {
+            let unit = streams.tool[0].0;
+            if let Some(run) = super::texture::run(scene, unit, &streams.contact) {
+                add(Method::Haphe, run, 1);
             }
         }
         Query::Build | Query::Decode | Query::Zones => {}

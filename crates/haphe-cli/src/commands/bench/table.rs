@@ -291,6 +291,7 @@ fn targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
     }
     contact_targets(out, records)?;
     tool_targets(out, records)?;
+    texture_target(out, records)?;
     for (a, b) in extremes(records)
         .into_iter()
         .filter(|(a, _)| a.method == Method::Haphe && a.clock_overhead_ns.is_some())
@@ -418,6 +419,30 @@ fn tool_targets(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
                 &format!("worst haphe ÷ parry {} ({})", times(Some(x)), r.mesh),
             )?;
         }
+    }
+    Ok(())
+}
+
+/// The textured contact tick's p50 within 1.3× the plain one's on the same mesh. The
+/// worst mesh.
+fn texture_target(out: &mut impl Write, records: &[Record]) -> io::Result<()> {
+    let plain = |mesh: &str| {
+        records
+            .iter()
+            .find(|r| r.mesh == mesh && r.query == Query::Contact && r.method == Method::Haphe)
+    };
+    let worst = records
+        .iter()
+        .filter(|r| r.query == Query::Textured && r.method == Method::Haphe)
+        .filter_map(|r| Some((ratio(r.p50_ns, plain(&r.mesh)?.p50_ns)?, r)))
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some((x, r)) = worst {
+        verdict(
+            out,
+            x <= 1.3,
+            "textured contact tick within 1.3× the plain one at p50",
+            &format!("worst {} ({})", times(Some(x)), r.mesh),
+        )?;
     }
     Ok(())
 }

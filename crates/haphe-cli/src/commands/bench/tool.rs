@@ -1,5 +1,7 @@
 //! The tool tick's methods: haphe's sphere proxy, and parry's nearest-point ball proxy.
 
+use std::borrow::Borrow;
+
 use haphe::DVec3;
 use haphe::proxy::{Proxy, ProxyOptions};
 use haphe::scene::{Material, Scene};
@@ -26,8 +28,13 @@ pub fn runs<'a>(
     (haphe, parry)
 }
 
-/// haphe's tool along the chunks of `path`, its proxy carried from chunk to chunk.
-fn haphe_run<'a>(options: ProxyOptions, path: &'a [Vec<DVec3>], scene: &'a Scene) -> Run<'a> {
+/// haphe's proxy (a tool when `options` say so) along the chunks of `path` over `scene`
+/// (borrowed or owned), carried from chunk to chunk.
+pub fn haphe_run<'a>(
+    options: ProxyOptions,
+    path: &'a [Vec<DVec3>],
+    scene: impl Borrow<Scene> + 'a,
+) -> Run<'a> {
     let mut state: Option<(Proxy, DVec3)> = None;
     Box::new(move |c, out| {
         let chunk = &path[c];
@@ -38,7 +45,7 @@ fn haphe_run<'a>(options: ProxyOptions, path: &'a [Vec<DVec3>], scene: &'a Scene
             |hip| {
                 let velocity = (hip - *previous) * TICK_RATE_HZ;
                 *previous = hip;
-                proxy.tick(scene, hip, velocity)
+                proxy.tick(scene.borrow(), hip, velocity)
             },
             out,
         )
