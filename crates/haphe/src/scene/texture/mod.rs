@@ -31,7 +31,14 @@ use super::world::Scene;
 /// The kinds a texture specification names.
 const KINDS: &str = "`sine:A:L`, `noise:A:L`";
 
-/// A haptic texture (see the [module](self) for how it is felt), every value checked.
+/// A haptic texture, every value checked: a height `h` (`|h| ≤ A`) over the surface that
+/// moves the constraint out along the contact normal. With `d` the device point's depth
+/// behind the contact plane, the felt depth is `e = d + h·min(1, d / A)` (faded in over
+/// the first `A` of depth, so that touching down never starts on a bump) and the force is
+/// `−∇(k e² / 2)`: along the normal `k e (1 + h φ')`, and across it `−k e φ ∇h` (the
+/// bumps' slope pushes the hand downhill). Being the gradient of a potential, it gives
+/// back over a closed path no more work than it took. Sliding at `v` over a wavelength `L`
+/// is felt at `v / L` Hz.
 ///
 /// ```
 /// use haphe::scene::Texture;
