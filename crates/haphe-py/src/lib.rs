@@ -12,6 +12,7 @@ mod files;
 mod run;
 mod scene;
 mod shape;
+mod spec;
 
 #[cfg(feature = "count-allocations")]
 mod alloc;

@@ -75,7 +75,11 @@ fn simulated_hand(
 /// the scene's objects, else ``HapheError`` naming it. With several devices, one radius
 /// for all or a list, one per device.
 ///
+/// The scene's effects (``Scene.add_effect``) are rendered with the surfaces; a vibration
+/// above half ``rate_hz`` raises ``HapheError`` naming ``effect`` and its specification.
+///
 /// Returns a dict of arrays, one row per tick: ``t`` (s), ``hip``, ``proxy`` (N, 3) m,
+/// ``velocity`` (N, 3) m/s (the device point's, as the damping and the effects use it),
 /// ``force`` (N, 3) N, ``contact`` bool, ``object`` (id, -1 when free), ``triangle``
 /// (the file's face index, -1 when free), ``penetration`` m, ``buttons`` (uint32, bit 0
 /// the first button), ``clutch`` bool; the ``offset`` (3,) m the clutch moved the device's
@@ -149,6 +153,8 @@ pub fn run<'py>(
     }
     check_lengths(seconds, rate_hz, udp_timeout, udp_workspace)?;
     let world = scene.snapshot();
+    // A vibration above half the rate, refused naming its specification.
+    crate::spec::check_rate(&world, scene.effect_specs(), options.rate_hz())?;
     drop(scene);
     // The tool against its domain and the scene's size, as the command checks it.
     let proxies = tools(&world, &options, tool_radius, &devices)?;
@@ -353,6 +359,7 @@ fn arrays<'py>(py: Python<'py>, outcome: DeviceOutcome) -> PyResult<Bound<'py, P
     let n = records.len();
     let mut t = Array1::zeros(n);
     let mut hip = Array2::zeros((n, 3));
+    let mut velocity = Array2::zeros((n, 3));
     let mut proxy = Array2::zeros((n, 3));
     let mut force = Array2::zeros((n, 3));
     let mut contact = Array1::from_elem(n, false);
@@ -365,6 +372,7 @@ fn arrays<'py>(py: Python<'py>, outcome: DeviceOutcome) -> PyResult<Bound<'py, P
         t[i] = r.t;
         for k in 0..3 {
             hip[[i, k]] = r.hip[k];
+            velocity[[i, k]] = r.velocity[k];
             proxy[[i, k]] = r.proxy[k];
             force[[i, k]] = r.force[k];
         }
@@ -378,6 +386,7 @@ fn arrays<'py>(py: Python<'py>, outcome: DeviceOutcome) -> PyResult<Bound<'py, P
     let d = PyDict::new(py);
     d.set_item("t", t.into_pyarray(py))?;
     d.set_item("hip", hip.into_pyarray(py))?;
+    d.set_item("velocity", velocity.into_pyarray(py))?;
     d.set_item("proxy", proxy.into_pyarray(py))?;
     d.set_item("force", force.into_pyarray(py))?;
     d.set_item("contact", contact.into_pyarray(py))?;

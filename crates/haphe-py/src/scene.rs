@@ -13,6 +13,7 @@ use pyo3::prelude::*;
 use crate::errors::{haphe_error, param_error};
 use crate::files::{Folder, read_bytes, read_options, units_warning, warn};
 use crate::shape::Shape;
+use crate::spec;
 
 /// Objects the proxy touches: shapes placed in the world (metres) with a material.
 ///
@@ -28,6 +29,10 @@ pub struct Scene {
     next_id: u32,
     /// The names of the objects that have one (from a glTF file's nodes), by id.
     names: BTreeMap<u32, String>,
+    /// The specifications of the objects' textures, by id.
+    textures: BTreeMap<u32, String>,
+    /// The specifications of the scene's effects, in the scene's order.
+    effects: Vec<String>,
 }
 
 /// A rotation from a quaternion ``(x, y, z, w)`` (the order of SciPy's ``as_quat``) or a
@@ -87,6 +92,8 @@ impl Scene {
             inner: Mutex::new(hs::Scene::local(capacity)),
             next_id: 0,
             names: BTreeMap::new(),
+            textures: BTreeMap::new(),
+            effects: Vec::new(),
         }
     }
 
@@ -163,16 +170,22 @@ impl Scene {
         self.names.clone()
     }
 
-    /// add(shape, position=(0, 0, 0), rotation=None, stiffness=500.0, damping=0.0, friction=0.0, dynamic_friction=None, two_sided=None)
+    /// add(shape, position=(0, 0, 0), rotation=None, stiffness=500.0, damping=0.0, friction=0.0, dynamic_friction=None, two_sided=None, texture=None)
     /// --
     ///
     /// Places ``shape`` at ``position`` (metres) turned by ``rotation`` (a quaternion
     /// ``(x, y, z, w)`` or a 3×3 matrix; object to world) with a material: ``stiffness``
     /// N/m, ``damping`` N·s/m, static ``friction`` coefficient and ``dynamic_friction``
     /// (default: equal to ``friction``). A closed solid is touched from outside only, an
-    /// open surface from both sides, unless ``two_sided`` says otherwise. Returns the
-    /// object's id.
-    #[pyo3(signature = (shape, position = [0.0; 3], rotation = None, stiffness = Material::DEFAULT.stiffness(), damping = Material::DEFAULT.damping(), friction = Material::DEFAULT.static_friction(), dynamic_friction = None, two_sided = None))]
+    /// open surface from both sides, unless ``two_sided`` says otherwise. ``texture`` is
+    /// felt on the surface: ``"sine:A:L"`` (a solid sine of amplitude ``A`` and wavelength
+    /// ``L`` metres in the object's frame) or ``"noise:A:L"`` (band-limited noise);
+    /// ``None`` (or ``""``) for none. Returns the object's id.
+    ///
+    /// Raises ``HapheError`` naming the keyword: for a texture, ``texture`` and the
+    /// specification (an unknown kind, a value not a number, non-finite or outside its
+    /// domain, bumps steeper than a slope of 1).
+    #[pyo3(signature = (shape, position = [0.0; 3], rotation = None, stiffness = Material::DEFAULT.stiffness(), damping = Material::DEFAULT.damping(), friction = Material::DEFAULT.static_friction(), dynamic_friction = None, two_sided = None, texture = None))]
     #[allow(clippy::too_many_arguments)]
     fn add(
         &mut self,
@@ -184,11 +197,15 @@ impl Scene {
         friction: f64,
         dynamic_friction: Option<f64>,
         two_sided: Option<bool>,
+        texture: Option<&str>,
     ) -> PyResult<u32> {
         let pose = pose(position, rotation)?;
         let material = material(stiffness, damping, friction, dynamic_friction)?;
+        let felt = spec::texture(texture)?;
         let id = ObjectId(self.next_id);
         let mut object = SceneObject::new(id, shape.inner.clone(), pose, material);
+        let textured = felt.is_some();
+        object.texture = felt;
         if let Some(two) = two_sided {
             object = object.with_sides(if two {
                 hs::Sides::Both
@@ -199,6 +216,9 @@ impl Scene {
         self.scene()
             .insert(object)
             .map_err(|(e, _)| haphe_error("scene", e))?;
+        if let (true, Some(t)) = (textured, texture) {
+            self.textures.insert(id.0, t.to_owned());
+        }
         self.next_id += 1;
         Ok(id.0)
     }
@@ -229,6 +249,7 @@ impl Scene {
     /// Removes object ``id``. Raises ``KeyError`` for an unknown id.
     fn remove(&mut self, id: u32) -> PyResult<()> {
         self.names.remove(&id);
+        self.textures.remove(&id);
         self.scene()
             .remove(ObjectId(id))
             .map(|_| ())
@@ -248,13 +269,89 @@ impl Scene {
             .map_err(param_error)
     }
 
+    /// set_texture(id, texture)
+    /// --
+    ///
+    /// Changes the texture of object ``id``: a specification as ``add`` takes (``"sine:A:L"``,
+    /// ``"noise:A:L"``), or ``None`` (or ``""``) for none. Raises ``HapheError`` naming
+    /// ``texture`` and the specification when it is refused (the object keeps its
+    /// texture), ``KeyError`` for an unknown id.
+    #[pyo3(signature = (id, texture))]
+    fn set_texture(&mut self, id: u32, texture: Option<&str>) -> PyResult<()> {
+        let felt = spec::texture(texture)?;
+        let set = felt.is_some();
+        if !self.scene().set_texture(ObjectId(id), felt) {
+            return Err(pyo3::exceptions::PyKeyError::new_err(id));
+        }
+        match texture {
+            Some(t) if set => self.textures.insert(id, t.to_owned()),
+            _ => self.textures.remove(&id),
+        };
+        Ok(())
+    }
+
+    /// The specifications of the objects' textures, by id (``{id: "sine:0.0002:0.002"}``;
+    /// objects without one are not listed).
+    #[getter]
+    fn textures(&self) -> BTreeMap<u32, String> {
+        self.textures.clone()
+    }
+
+    /// add_effect(effect)
+    /// --
+    ///
+    /// Adds a force effect to the scene, from its specification:
+    ///
+    /// - ``"vibration:FREQ:AMPLITUDE"``: in contact, ``AMPLITUDE · sin(2π FREQ t)`` newtons
+    ///   along the contact normal (FREQ in Hz, at most half the servo's rate);
+    /// - ``"viscosity:B"``: a drag ``−B v`` (N·s/m) everywhere; ``"viscosity:B:inside:ID"``
+    ///   where the device point is inside object ``ID``; ``"viscosity:B:box:X0:Y0:Z0:X1:Y1:Z1"``
+    ///   inside that box (world, metres);
+    /// - ``"spring:K:X:Y:Z"``: ``K (anchor − p)`` toward the point (N/m, metres);
+    /// - ``"magnet:DISTANCE:FORCE"``: ``FORCE`` newtons toward the nearest surface within
+    ///   ``DISTANCE`` metres of the device point;
+    /// - ``"constant:FX:FY:FZ"``: that force, newtons;
+    /// - ``"stick-slip"`` or ``"stick-slip:K:FORCE"``: in contact, a spring of ``K`` N/m across
+    ///   the surface to an anchor that slips when it pulls harder than ``FORCE`` newtons
+    ///   (1000 N/m and 0.5 N by default).
+    ///
+    /// Each effect is bounded by the device's maximum force, added to the surface's force
+    /// and the sum clamped to that maximum. The servo loop (``haphe.run``) renders them; a
+    /// bare ``Proxy.tick`` renders the surfaces and their textures only. At most 16 per
+    /// scene.
+    ///
+    /// Raises ``HapheError`` naming ``effect`` and the specification: an unknown kind, a
+    /// value not a number, non-finite or outside its domain, or a full scene. ``haphe.run``
+    /// refuses a vibration above half its ``rate_hz`` the same way.
+    fn add_effect(&mut self, effect: &str) -> PyResult<()> {
+        spec::add_effect(self.scene(), effect)?;
+        self.effects.push(effect.to_owned());
+        Ok(())
+    }
+
+    /// The specifications of the scene's effects, in the order added.
+    #[getter]
+    fn effects(&self) -> Vec<String> {
+        self.effects.clone()
+    }
+
+    /// clear_effects()
+    /// --
+    ///
+    /// Removes every force effect.
+    fn clear_effects(&mut self) {
+        self.scene().clear_effects();
+        self.effects.clear();
+    }
+
     fn __len__(&mut self) -> usize {
         self.scene().objects().len()
     }
 }
 
 impl Scene {
-    /// A copy of the objects in a new scene (shapes shared), for a servo run.
+    /// A copy of the objects (shapes shared) and the effects in a new scene, for a servo
+    /// run.
     pub fn snapshot(&self) -> hs::Scene {
         let scene = self.inner.lock().unwrap_or_else(PoisonError::into_inner);
         let objects = scene.objects();
@@ -263,7 +360,16 @@ impl Scene {
             // Cannot fail: the copy has room for every object and the ids are unique.
             let _ = copy.insert(o.clone());
         }
+        for e in scene.effects() {
+            // Cannot fail: the copy has room for as many effects as the scene.
+            let _ = copy.add_effect(*e);
+        }
         copy
+    }
+
+    /// The specifications of the effects, in the scene's order.
+    pub fn effect_specs(&self) -> &[String] {
+        &self.effects
     }
 
     /// The scene, reached without a lock through the exclusive borrow.
@@ -366,7 +472,9 @@ impl Proxy {
     /// One servo tick: starts the scene's tick, moves the proxy toward the device point
     /// ``hip`` (metres, world frame; ``velocity`` in m/s, for damping) and returns
     /// ``(force, position, contact)``: the force to render (N, world frame, finite and
-    /// within ``max_force``), the proxy position (m) and a ``Contact`` or ``None``.
+    /// within ``max_force``), the proxy position (m) and a ``Contact`` or ``None``. The
+    /// objects' textures are felt; the scene's effects are not (``haphe.run`` renders
+    /// them, with the time and each device's state they need).
     ///
     /// Allocates nothing on the Rust side; a non-finite input gives zero force and leaves
     /// the proxy where it was.

@@ -78,11 +78,17 @@ def test_every_parameter_is_checked_by_the_library(name, call, value, accepted):
     if accepted:
         call(value)
         return
+    assert_refused(lambda: call(value), f"{name} must be", value)
+
+
+def assert_refused(call, prefix, value):
+    """call() raises a HapheError (a ValueError) whose message starts with `prefix` and
+    ends naming `value`."""
     with pytest.raises(haphe.HapheError) as e:
-        call(value)
+        call()
     message = str(e.value)
     assert isinstance(e.value, ValueError)
-    assert message.startswith(f"{name} must be"), message
+    assert message.startswith(prefix), message
     # The value (or a vector's length) is named, NaN and infinities included.
     shown = message.rsplit("not ", 1)[1]
     if math.isnan(value):

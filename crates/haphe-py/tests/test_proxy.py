@@ -31,12 +31,18 @@ def test_rotation_and_friction_are_accepted():
     assert len(scene) == 2
 
 
-def test_tick_loop_allocates_nothing():
+@pytest.mark.parametrize("texture, effects", [
+    (None, []),
+    ("sine:0.0002:0.002", ["viscosity:2", "vibration:150:0.3"]),
+])
+def test_tick_loop_allocates_nothing(texture, effects):
     count = haphe.allocations()
     if count is None:
         pytest.fail("built without the count-allocations feature")
     scene = haphe.Scene()
-    scene.add(cube(), position=(0, 0, -1), stiffness=800.0, friction=0.3)
+    scene.add(cube(), position=(0, 0, -1), stiffness=800.0, friction=0.3, texture=texture)
+    for e in effects:
+        scene.add_effect(e)
     proxy = haphe.Proxy(position=(0.5, 0.5, 0.1))
     proxy.tick(scene, (0.5, 0.5, 0.1))  # the first tick may prepare what it needs
     t = np.linspace(0, 20 * np.pi, 100_000)
@@ -50,6 +56,25 @@ def test_tick_loop_allocates_nothing():
     after = haphe.allocations()
     assert touched > 10_000
     assert after - before == 0, f"{after - before} allocations in 100000 ticks"
+
+
+def test_the_servo_ticks_allocate_nothing_with_a_texture_and_effects():
+    """A run allocates what it sets up and its arrays, whatever its length: a run twice as
+    long (1000 ticks more, the hand sliding on the textured face with the effects on)
+    allocates exactly as much."""
+    if haphe.allocations() is None:
+        pytest.fail("built without the count-allocations feature")
+    scene = haphe.Scene()
+    scene.add(cube(), position=(-0.5, -0.5, -1.0), texture="sine:0.0002:0.002")
+    for e in ("viscosity:2", "vibration:150:0.3", "stick-slip", "magnet:0.01:0.5"):
+        scene.add_effect(e)
+    counts = {}
+    for seconds in (1.0, 2.0, 1.0, 2.0):
+        before = haphe.allocations()
+        out = haphe.run(scene, device="hand", seconds=seconds, path="slide")
+        counts.setdefault(seconds, set()).add(haphe.allocations() - before)
+        assert out["contact"].sum() > 100 * seconds  # guard: the hand slides on the face
+    assert counts[1.0] == counts[2.0] and len(counts[1.0]) == 1, counts
 
 
 def test_run_with_the_simulated_hand():

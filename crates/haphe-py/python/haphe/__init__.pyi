@@ -51,9 +51,10 @@ def run(
     tool_radius: Union[float, Sequence[float]] = 0.0,
 ) -> Union[Dict[str, Any], List[Dict[str, Any]]]:
     """Runs the servo loop with a device: "hand" (simulated, simulated clock), "dhd",
-    "openhaptics" or "udp:HOST:PORT" (real, wall clock, mapped onto the scene). Arrays t,
-    hip, proxy, force, contact, object, triangle, penetration, buttons (uint32), clutch,
-    one row per tick; offset (3,), how far the clutch moved the device's origin; strings
+    "openhaptics" or "udp:HOST:PORT" (real, wall clock, mapped onto the scene), rendering
+    the scene's textures and effects (a vibration above half ``rate_hz`` raises HapheError
+    naming ``effect`` and its specification). Arrays t, hip, proxy, velocity, force,
+    contact, object, triangle, penetration, buttons (uint32), clutch, one row per tick; offset (3,), how far the clutch moved the device's origin; strings
     device, stop and report (or None). While button ``clutch_button`` is held, the tool
     stays and the force fades out (a clutch); ``presses`` (button, from, until) holds
     buttons of the simulated hand. Raises DeviceError when the device or its library
@@ -136,9 +137,26 @@ class Scene:
         friction: float = 0.0,
         dynamic_friction: Optional[float] = None,
         two_sided: Optional[bool] = None,
-    ) -> int: ...
+        texture: Optional[str] = None,
+    ) -> int:
+        """The object's id. ``texture``: "sine:A:L" or "noise:A:L" (metres), None or ""
+        for none; a refused one raises HapheError naming ``texture`` and it."""
     def move(self, id: int, position: _Vec3, rotation: Optional[_Rotation] = None) -> None: ...
     def remove(self, id: int) -> None: ...
+    def set_texture(self, id: int, texture: Optional[str]) -> None:
+        """Changes object id's texture (None or "": none); KeyError for an unknown id."""
+    @property
+    def textures(self) -> Dict[int, str]:
+        """{id: specification} of the objects with a texture."""
+    def add_effect(self, effect: str) -> None:
+        """Adds a force effect ("vibration:FREQ:AMPLITUDE", "viscosity:B[:inside:ID |
+        :box:X0:Y0:Z0:X1:Y1:Z1]", "spring:K:X:Y:Z", "magnet:DISTANCE:FORCE",
+        "constant:FX:FY:FZ", "stick-slip[:K:FORCE]"), rendered by haphe.run; at most 16.
+        A refused one raises HapheError naming ``effect`` and it."""
+    @property
+    def effects(self) -> List[str]:
+        """The effects' specifications, in the order added."""
+    def clear_effects(self) -> None: ...
     def check_tool_radius(self, tool_radius: float) -> float:
         """tool_radius (m) if a tool of that radius fits the scene (0 to 0.5 m, at most
         the diagonal of the box bounding its objects); else raises HapheError."""
@@ -169,7 +187,8 @@ class Proxy:
     def tick(
         self, scene: Scene, hip: _Vec3, velocity: _Vec3 = (0.0, 0.0, 0.0)
     ) -> Tuple[Tuple[float, float, float], Tuple[float, float, float], Optional[Contact]]:
-        """One tick: (force N, proxy position m, contact or None)."""
+        """One tick: (force N, proxy position m, contact or None). Textures are felt;
+        the scene's effects are rendered by haphe.run, not here."""
     def reset(self, position: _Vec3) -> None: ...
     @property
     def position(self) -> Tuple[float, float, float]: ...
