@@ -107,6 +107,8 @@ typedef struct HapheTickRecord {
   // 1 while the clutch is held (`haphe_run_with_buttons`): the tool (`hip`) stays while
   // the device moves.
   uint8_t clutch;
+  // The device point's velocity, m/s (as the damping and the effects use it).
+  double velocity[3];
 } HapheTickRecord;
 
 // Called once per tick with the tick's record (valid for the call only) and the caller's
@@ -147,6 +149,44 @@ extern "C" {
 // the `count-allocations` feature, for tests: `HAPHE_COUNT_ALLOCATIONS`).
 uint64_t haphe_allocations(void);
 #endif
+
+// Gives object `id` of `scene` the texture of the specification `texture`
+// (NUL-terminated): `"sine:A:L"`, a solid sine of amplitude `A` and wavelength `L` metres
+// in the object's frame, or `"noise:A:L"`, band-limited noise; null or `""` for none.
+// The proxy feels it from the next tick. Errors: `HAPHE_STATUS_INVALID_ARGUMENT`, the
+// object keeping its texture, for an unknown id or a refused specification:
+// `haphe_last_error()` names `texture` and the specification (an unknown kind, a value
+// not a number, non-finite or outside its domain, bumps steeper than a slope of 1).
+enum HapheStatus haphe_scene_set_texture(struct HapheScene *scene,
+                                         uint32_t id,
+                                         const char *texture);
+
+// Adds to `scene` the force effect of the specification `effect` (NUL-terminated):
+//
+// - `"vibration:FREQ:AMPLITUDE"`: in contact, `AMPLITUDE · sin(2π FREQ t)` newtons along
+//   the contact normal (FREQ in Hz, at most half the servo's rate);
+// - `"viscosity:B"`: a drag `−B v` (N·s/m) everywhere; `"viscosity:B:inside:ID"` where the
+//   device point is inside object `ID`; `"viscosity:B:box:X0:Y0:Z0:X1:Y1:Z1"` inside that
+//   box (world, metres);
+// - `"spring:K:X:Y:Z"`: `K (anchor − p)` toward the point (N/m, metres);
+// - `"magnet:DISTANCE:FORCE"`: `FORCE` newtons toward the nearest surface within
+//   `DISTANCE` metres of the device point;
+// - `"constant:FX:FY:FZ"`: that force, newtons;
+// - `"stick-slip"` or `"stick-slip:K:FORCE"`: in contact, a spring of `K` N/m across the
+//   surface to an anchor that slips when it pulls harder than `FORCE` newtons (1000 N/m
+//   and 0.5 N by default).
+//
+// Each is bounded by the device's maximum force, added to the surface's force and the
+// sum clamped. The servo loop (`haphe_run`) renders them; `haphe_proxy_tick` renders the
+// surfaces and their textures only. Errors: `HAPHE_STATUS_INVALID_ARGUMENT` for a refused
+// specification, `haphe_last_error()` naming `effect` and the specification (an unknown
+// kind, a value not a number, non-finite or outside its domain); `HAPHE_STATUS_FULL` when
+// the scene holds 16 effects. `haphe_run` refuses a vibration above half its rate.
+enum HapheStatus haphe_scene_add_effect(struct HapheScene *scene, const char *effect);
+
+// Removes every force effect of `scene`. Errors: `HAPHE_STATUS_INVALID_ARGUMENT` for a
+// null scene.
+enum HapheStatus haphe_scene_clear_effects(struct HapheScene *scene);
 
 // The message of the last failed call on this thread (empty when none failed yet).
 //
@@ -217,6 +257,9 @@ void haphe_proxy_free(struct HapheProxy *proxy);
 // proxy), moves the proxy toward the device point `hip` (3 doubles, metres, world frame;
 // `velocity` 3 doubles m/s or null) and writes the force, proxy and contact to `*out`.
 //
+// The objects' textures are felt; the scene's effects are not (`haphe_run` renders them,
+// with the time and the device's state they need).
+//
 // Real-time: allocates nothing, takes no lock, never panics; a non-finite input gives
 // zero force and leaves the proxy where it was. One proxy per scene.
 enum HapheStatus haphe_proxy_tick(struct HapheProxy *proxy,
@@ -230,10 +273,12 @@ enum HapheStatus haphe_proxy_tick(struct HapheProxy *proxy,
 // `path`: `"press"`, `"slide"`, `"circle"`, `"explore"` or `"strike"`), on a simulated
 // clock as fast as the machine goes, calling `callback` (may be null) after every tick.
 // Safe start: no force until the device point is outside every solid, then a 50 ms ramp.
-// `*ticks` (may be null) receives the number of ticks run. The scene is only read.
+// The scene's textures and effects are rendered. `*ticks` (may be null) receives the
+// number of ticks run. The scene is only read.
 // Errors: `HAPHE_STATUS_DEVICE` (unknown device, or one that faulted),
 // `HAPHE_STATUS_INVALID_ARGUMENT` (`rate_hz` outside 1 to 40000 Hz, named by
-// `haphe_last_error()`; `seconds` not positive).
+// `haphe_last_error()`; `seconds` not positive; a vibration effect above half `rate_hz`,
+// `haphe_last_error()` naming `effect` and its specification).
 enum HapheStatus haphe_run(struct HapheScene *scene,
                            const char *device,
                            const char *path,

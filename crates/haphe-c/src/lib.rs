@@ -12,6 +12,7 @@
 //! `unsafe fn` would change nothing for a C caller.
 #![allow(clippy::not_unsafe_ptr_arg_deref)]
 
+mod effects;
 mod error;
 mod scene;
 mod servo;
@@ -20,6 +21,7 @@ mod shape;
 #[cfg(feature = "count-allocations")]
 mod alloc;
 
+pub use effects::{haphe_scene_add_effect, haphe_scene_clear_effects, haphe_scene_set_texture};
 pub use error::{HapheStatus, haphe_last_error};
 pub use scene::{
     HapheMaterial, HapheProxy, HapheScene, HapheTick, haphe_proxy_free, haphe_proxy_new,

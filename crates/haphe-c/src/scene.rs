@@ -13,6 +13,8 @@ use crate::shape::{HapheShape, shape};
 pub struct HapheScene {
     pub(crate) inner: Scene,
     next_id: u32,
+    /// The specifications of the scene's effects, in the scene's order.
+    pub(crate) effects: Vec<String>,
 }
 
 /// The god-object proxy of one device, the centre of its tool. Opaque; made by `haphe_proxy_new`, freed by
@@ -118,6 +120,7 @@ pub extern "C" fn haphe_scene_new(capacity: usize, out: *mut *mut HapheScene) ->
             HapheScene {
                 inner: Scene::local(capacity),
                 next_id: 0,
+                effects: Vec::new(),
             },
         )
     })
@@ -265,6 +268,9 @@ pub extern "C" fn haphe_proxy_free(proxy: *mut HapheProxy) {
 /// One servo tick: starts the scene's tick (objects moved since the last one push the
 /// proxy), moves the proxy toward the device point `hip` (3 doubles, metres, world frame;
 /// `velocity` 3 doubles m/s or null) and writes the force, proxy and contact to `*out`.
+///
+/// The objects' textures are felt; the scene's effects are not (`haphe_run` renders them,
+/// with the time and the device's state they need).
 ///
 /// Real-time: allocates nothing, takes no lock, never panics; a non-finite input gives
 /// zero force and leaves the proxy where it was. One proxy per scene.

@@ -6,6 +6,7 @@ use haphe_lib::servo::{
     Device, HandOptions, PathKind, Servo, ServoOptions, SimulatedHand, TickRecord, scripted_path,
 };
 
+use crate::effects::check_rate;
 use crate::error::{Failure, HapheStatus, guard};
 use crate::scene::{HapheScene, scene_mut};
 use crate::shape::text;
@@ -35,6 +36,8 @@ pub struct HapheTickRecord {
     /// 1 while the clutch is held (`haphe_run_with_buttons`): the tool (`hip`) stays while
     /// the device moves.
     pub clutch: u8,
+    /// The device point's velocity, m/s (as the damping and the effects use it).
+    pub velocity: [f64; 3],
 }
 
 /// A button of the simulated hand held from `from` until `until`, seconds of the run.
@@ -100,6 +103,7 @@ fn record(r: &TickRecord) -> HapheTickRecord {
         penetration: r.penetration,
         buttons: r.buttons.0,
         clutch: u8::from(r.clutch),
+        velocity: r.velocity.to_array(),
     }
 }
 
@@ -108,10 +112,12 @@ fn record(r: &TickRecord) -> HapheTickRecord {
 /// `path`: `"press"`, `"slide"`, `"circle"`, `"explore"` or `"strike"`), on a simulated
 /// clock as fast as the machine goes, calling `callback` (may be null) after every tick.
 /// Safe start: no force until the device point is outside every solid, then a 50 ms ramp.
-/// `*ticks` (may be null) receives the number of ticks run. The scene is only read.
+/// The scene's textures and effects are rendered. `*ticks` (may be null) receives the
+/// number of ticks run. The scene is only read.
 /// Errors: `HAPHE_STATUS_DEVICE` (unknown device, or one that faulted),
 /// `HAPHE_STATUS_INVALID_ARGUMENT` (`rate_hz` outside 1 to 40000 Hz, named by
-/// `haphe_last_error()`; `seconds` not positive).
+/// `haphe_last_error()`; `seconds` not positive; a vibration effect above half `rate_hz`,
+/// `haphe_last_error()` naming `effect` and its specification).
 #[unsafe(no_mangle)]
 pub extern "C" fn haphe_run(
     scene: *mut HapheScene,
@@ -195,6 +201,11 @@ pub extern "C" fn haphe_run_with_buttons(
             // Cannot fail: room for every object, ids unique.
             let _ = world.insert(o.clone());
         }
+        for e in sc.inner.effects() {
+            // Cannot fail: room for as many effects as the scene holds.
+            let _ = world.add_effect(*e);
+        }
+        check_rate(&world, &sc.effects, rate_hz)?;
         let dev = open_device(device, path, &world, seconds, presses)?;
         let mut servo = Servo::new(dev, world, options)
             .map_err(|e| Failure(HapheStatus::Device, e.to_string()))?;

@@ -5,6 +5,8 @@ use std::ffi::CStr;
 
 use super::*;
 
+mod effects;
+
 #[test]
 fn header_is_current() {
     let dir = env!("CARGO_MANIFEST_DIR");
@@ -215,6 +217,21 @@ fn run_with_buttons(presses: &[HapheButtonPress]) -> Vec<HapheTickRecord> {
     records
 }
 
+/// One tick of `proxy` against `scene` with the device point at `hip`, at rest.
+fn tick(proxy: *mut HapheProxy, scene: *mut HapheScene, hip: [f64; 3]) -> HapheTick {
+    let mut out = std::mem::MaybeUninit::<HapheTick>::uninit();
+    let status = haphe_proxy_tick(
+        proxy,
+        scene,
+        hip.as_ptr(),
+        std::ptr::null(),
+        out.as_mut_ptr(),
+    );
+    assert_eq!(status, HapheStatus::Ok, "{}", last_error());
+    // SAFETY: written on success.
+    unsafe { out.assume_init() }
+}
+
 /// A scene holding the unit cube centred on the origin.
 fn cube_scene() -> *mut HapheScene {
     let shape = cube();
@@ -327,19 +344,7 @@ fn the_proxy_takes_a_tool_radius() {
         HapheStatus::Ok
     );
     let hip = [0.0, 0.0, 0.5 + r - 1e-3];
-    let tick = |proxy| {
-        let mut out = std::mem::MaybeUninit::<HapheTick>::uninit();
-        let status = haphe_proxy_tick(
-            proxy,
-            scene,
-            hip.as_ptr(),
-            std::ptr::null(),
-            out.as_mut_ptr(),
-        );
-        assert_eq!(status, HapheStatus::Ok, "{}", last_error());
-        // SAFETY: written on success.
-        unsafe { out.assume_init() }
-    };
+    let tick = |proxy| tick(proxy, scene, hip);
     let free = tick(point);
     assert_eq!(free.in_contact, 0);
     let touching = tick(tool);
