@@ -1,7 +1,8 @@
 //! The arguments several commands share, their parsers and checks, and the command's
 //! defaults: units and welding, map options, the objects of a session (a mesh file, a
 //! scene file or a built-in shape, and the material of a lone object), the files a
-//! session writes, the mapping of a device's workspace, and the lengths of runs.
+//! session writes, the mapping of a device's workspace, the lengths of runs, and the
+//! textures and effects of a session ([`feel`]).
 
 use std::path::PathBuf;
 
@@ -14,6 +15,8 @@ use haphe::scene::{Material, Param, Scene};
 use haphe::servo::RealtimeOptions;
 
 use crate::input::model::Model;
+
+pub mod feel;
 
 /// Default length of a run, seconds.
 pub const DEFAULT_SECONDS: f64 = 5.0;

@@ -268,3 +268,119 @@ fn realtime_at_normal_priority_spins_the_whole_period() {
         assert!(text.contains("slept 0 time(s)"), "{text}");
     }
 }
+
+/// The rows of the trace `name` of `haphe simulate` on a box, the device point on the
+/// slide path (no hand: the same path in every run), `args` added: per row its columns.
+fn slide_rows(dir: &std::path::Path, name: &str, args: &[&str]) -> Vec<Vec<String>> {
+    let csv = dir.join(name);
+    let mut all = vec![
+        "simulate",
+        "--shape",
+        "box",
+        "--triangles",
+        "500",
+        "--stiffness",
+        "500",
+        "--path",
+        "slide",
+        "--no-hand",
+        "--seconds",
+        "2",
+        "--out",
+        s(&csv),
+    ];
+    all.extend_from_slice(args);
+    ok(&all);
+    let text = std::fs::read_to_string(&csv).expect("the trace is written");
+    text.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+/// Columns `first..first + 3` of `row` (hip 1, force 7) as a vector.
+fn column3(row: &[String], first: usize) -> [f64; 3] {
+    [0, 1, 2].map(|k| row[first + k].parse().expect("a number"))
+}
+
+#[test]
+fn a_viscosity_pulls_against_the_velocity_in_free_space() {
+    let dir = scratch("viscosity");
+    let plain = slide_rows(&dir, "plain.csv", &[]);
+    let viscous = slide_rows(&dir, "viscous.csv", &["--effect", "viscosity:2"]);
+    assert_eq!(plain.len(), viscous.len());
+    let (mut examined, mut fastest) = (0usize, 0.0f64);
+    for i in 1..plain.len() - 1 {
+        let (row, v) = (&plain[i], &viscous[i]);
+        // The same path: the device point is where it was.
+        assert_eq!(row[1..4], v[1..4], "row {i}");
+        if row[13] != "free" || v[13] != "free" {
+            continue;
+        }
+        // The velocity from the positions: the mean over each tick before and after; the
+        // true velocity lies between them where it changes monotonically (and the path's
+        // own velocity, which the servo is given, is its derivative to within 0.1 %).
+        let t = |r: &[String]| r[0].parse::<f64>().expect("t");
+        let (p0, p1, p2) = (
+            column3(&plain[i - 1], 1),
+            column3(row, 1),
+            column3(&plain[i + 1], 1),
+        );
+        let force = column3(v, 7);
+        assert_eq!(column3(row, 7), [0.0; 3], "row {i}: free, no effect");
+        let mut speed = 0.0;
+        for k in 0..3 {
+            let before = (p1[k] - p0[k]) / (t(row) - t(&plain[i - 1]));
+            let after = (p2[k] - p1[k]) / (t(&plain[i + 1]) - t(row));
+            let velocity = 0.5 * (before + after);
+            speed += velocity * velocity;
+            assert!(
+                (force[k] + 2.0 * velocity).abs()
+                    <= (after - before).abs() + 1e-3 * velocity.abs() + 1e-9,
+                "row {i}, axis {k}: force {} for a velocity {velocity}",
+                force[k]
+            );
+        }
+        examined += 1;
+        fastest = fastest.max(speed.sqrt());
+    }
+    // The slide path approaches the box and leaves it through free space: hundreds of
+    // free rows, moving (else −2 v would be 0 and prove nothing).
+    assert!(examined > 200, "{examined} free rows");
+    assert!(fastest > 0.05, "fastest {fastest} m/s");
+}
+
+#[test]
+fn a_texture_makes_a_steady_slide_felt_as_bumps() {
+    let dir = scratch("texture");
+    let plain = slide_rows(&dir, "plain.csv", &[]);
+    let (amplitude, stiffness) = (0.0002, 500.0);
+    let textured = slide_rows(&dir, "textured.csv", &["--texture", "sine:0.0002:0.002"]);
+    assert_eq!(plain.len(), textured.len());
+    // Where the device point slides at one height across the box's top face (its z
+    // unchanged from the row before), both runs in contact: the plain run's force is
+    // steady, the textured one's rises and falls over the ridges of the sine.
+    let (mut plain_z, mut textured_z) = (Vec::new(), Vec::new());
+    for i in 1..plain.len() {
+        let same_height = plain[i][3] == plain[i - 1][3];
+        if same_height && plain[i][13] == "contact" && textured[i][13] == "contact" {
+            plain_z.push(column3(&plain[i], 7)[2]);
+            textured_z.push(column3(&textured[i], 7)[2]);
+        }
+    }
+    let spread = |v: &[f64]| {
+        v.iter().copied().fold(f64::MIN, f64::max) - v.iter().copied().fold(f64::MAX, f64::min)
+    };
+    // The slide covers many wavelengths (2 mm) at 1 kHz: hundreds of rows.
+    assert!(plain_z.len() > 200, "{} rows", plain_z.len());
+    assert!(spread(&plain_z) < 1e-9, "plain: {}", spread(&plain_z));
+    // Along one axis of a face across another the height swings by 2A/3 (the mean of the
+    // three sines), pressed by the stiffness; sampled 18 times a wavelength, the extremes
+    // are reached to within cos(π/18).
+    let swing = stiffness * 2.0 * amplitude / 3.0;
+    let felt = spread(&textured_z);
+    assert!(
+        felt >= 0.95 * swing && felt <= swing + 1e-9,
+        "textured: {felt} N, expected {swing} N"
+    );
+}

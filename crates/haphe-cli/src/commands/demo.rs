@@ -112,7 +112,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     #[cfg(feature = "view")]
     if args.view {
         return crate::session::live::live(
-            objects,
+            objects.into(),
             crate::session::live::ViewDevice::Hand(seconds),
             args.rate,
             &tool,
@@ -132,6 +132,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             }
         ),
         objects,
+        effects: Vec::new(),
         build_seconds,
         device: DeviceChoice::Hand(PathKind::Explore, HandOptions::default()),
         rate_hz: args.rate,

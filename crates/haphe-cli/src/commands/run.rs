@@ -9,6 +9,7 @@ use anyhow::bail;
 use haphe::DVec3;
 use haphe_devices::UdpOptions;
 
+use crate::args::feel::FeelArgs;
 use crate::args::{
     ClutchArgs, DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs, ToolArgs, per_device,
 };
@@ -29,6 +30,8 @@ pub struct Args {
     device: Vec<String>,
     #[command(flatten)]
     model: ModelArgs,
+    #[command(flatten)]
+    feel: FeelArgs,
     /// Length of the run, seconds (default: until Ctrl-C; 5 s for the simulated hand).
     #[arg(long)]
     seconds: Option<f64>,
@@ -78,11 +81,13 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         ToolArgs { tool_radius }.radius(None)?;
     }
     check(args)?;
+    let feel = args.feel.check(args.rate)?;
     catch_interrupts()?;
     let material = args.model.material()?;
     crate::args::proxy_options(args.max_force)?;
     let started = Instant::now();
-    let (loaded, what) = load_model(args.model.model(), material)?;
+    let (mut loaded, what) = load_model(args.model.model(), material)?;
+    feel.apply(&mut loaded, args.rate)?;
     let build_seconds = started.elapsed().as_secs_f64();
     let h = args.udp_workspace;
     let udp = UdpOptions {
@@ -105,6 +110,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let session = Session {
         title: format!("haphe run: device {} on {what}", args.device.join(", ")),
         objects: loaded.objects,
+        effects: loaded.effects,
         build_seconds,
         rate_hz: args.rate,
         seconds: args.seconds,

@@ -10,6 +10,7 @@ use std::time::Instant;
 use anyhow::anyhow;
 use haphe::servo::{HandOptions, HipTrace, PathKind, ServoOptions};
 
+use crate::args::feel::FeelArgs;
 use crate::args::{ClutchArgs, ModelArgs, OutputArgs, ToolArgs, proxy_options, spin};
 use crate::input::files::{self, read_input};
 use crate::input::model::load_model;
@@ -22,6 +23,8 @@ use crate::session::{DeviceChoice, Session};
 pub struct Args {
     #[command(flatten)]
     model: ModelArgs,
+    #[command(flatten)]
+    feel: FeelArgs,
     /// The motion: press, slide, circle, explore or strike (over the top of the objects).
     #[arg(long, default_value = "explore")]
     path: PathKind,
@@ -98,6 +101,7 @@ fn parse_press(s: &str) -> Result<(u32, f64, f64), String> {
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // The library's table of domains checks every number, named as its flag.
     ServoOptions::new(args.rate).map_err(|e| anyhow!("{}", e.named("--rate")))?;
+    let feel = args.feel.check(args.rate)?;
     let outputs: Vec<&Path> = [&args.output.out, &args.output.plot]
         .into_iter()
         .flatten()
@@ -119,7 +123,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let started = Instant::now();
     // The flag's domain first; its fit to the scene once the scene is built.
     args.tool.radius(None)?;
-    let (loaded, what) = load_model(args.model.model(), material)?;
+    let (mut loaded, what) = load_model(args.model.model(), material)?;
+    feel.apply(&mut loaded, args.rate)?;
     let build_seconds = started.elapsed().as_secs_f64();
     let device = if let Some(file) = &args.replay {
         let name = file.display().to_string();
@@ -133,6 +138,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let session = Session {
         title: format!("haphe simulate: {} on {what}", device.describe()),
         objects: loaded.objects,
+        effects: loaded.effects,
         build_seconds,
         device,
         rate_hz: args.rate,

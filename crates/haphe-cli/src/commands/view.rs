@@ -13,6 +13,7 @@ use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe_view::{Model, Source, Trace};
 
+use crate::args::feel::FeelArgs;
 use crate::args::{ClutchArgs, MappingArgs, ToolArgs, parse_units};
 use crate::input::files::{self, read_input};
 use crate::input::mesh::UnitsGiven;
@@ -73,6 +74,8 @@ pub struct Args {
     #[command(flatten)]
     tool: ToolArgs,
     #[command(flatten)]
+    feel: FeelArgs,
+    #[command(flatten)]
     serve: Serve,
 }
 
@@ -94,7 +97,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     // The flag's domain first; its fit to the scene once the scene is built.
     args.tool.radius(None)?;
-    let loaded = if let Some(file) = &args.scene {
+    let feel = args.feel.check(args.rate)?;
+    let mut loaded = if let Some(file) = &args.scene {
         load_scene(file, &map)?
     } else if let Some(file) = &args.mesh {
         single(
@@ -110,13 +114,14 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     } else {
         bail!("say what to show: --mesh FILE, --shape NAME, --scene FILE or --replay RUN.csv");
     };
-    let tool = args.tool.radius(loaded.tool_radius)?;
+    feel.apply(&mut loaded, args.rate)?;
+    let tool = args.tool.radius(loaded.tool_radius.clone())?;
     if let Some(file) = &args.replay {
         let name = file.display().to_string();
         // Through the input module, like every command: a size limit, devices refused.
         let bytes = read_input(file, files::TRACE)?;
         let trace = Trace::read(&name, bytes.as_slice())?;
-        let (scene, names, motions) = scene_of(loaded.objects)?;
+        let (scene, names, motions) = scene_of(loaded)?;
         let proxy = tool.apply(ProxyOptions::default(), &scene)?;
         let model = Model::from_scene(&scene, &names)
             .with_motions(motions)
@@ -148,5 +153,5 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .map(|p| p.display().to_string())
         .or(args.shape.clone())
         .unwrap_or_default();
-    live(loaded.objects, device, args.rate, &tool, &what, &args.serve)
+    live(loaded, device, args.rate, &tool, &what, &args.serve)
 }

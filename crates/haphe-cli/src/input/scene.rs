@@ -12,7 +12,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{ReadOptions, Units, Weld};
 use haphe::scene::{Material, SceneObject, Shape};
 use haphe::servo::ObjectMotion;
-use haphe::servo::scene_file::{ObjectSource, parse_scene_spec};
+use haphe::servo::scene_file::{FileEffect, ObjectSource, parse_scene_spec};
 
 use crate::input::mesh::{SideCars, UnitsGiven, warn_units};
 use crate::input::object::{check_beside, open};
@@ -27,12 +27,15 @@ pub struct LoadedObject {
     pub motion: Option<ObjectMotion>,
 }
 
-/// The objects of a scene file, and its tool's radius when it gives one.
+/// The objects of a scene file, its tool's radius when it gives one, and its effects.
 pub struct LoadedScene {
     /// The objects, built.
     pub objects: Vec<LoadedObject>,
     /// The file's `tool_radius`, metres, and its place (`FILE: line L: tool_radius`).
     pub tool_radius: Option<(f64, String)>,
+    /// The file's `effects` (and, once [`Feel::apply`](crate::args::feel::Feel::apply)
+    /// added them, the flags'), each with its place.
+    pub effects: Vec<FileEffect>,
 }
 
 impl From<Vec<LoadedObject>> for LoadedScene {
@@ -41,6 +44,7 @@ impl From<Vec<LoadedObject>> for LoadedScene {
         LoadedScene {
             objects,
             tool_radius: None,
+            effects: Vec::new(),
         }
     }
 }
@@ -72,15 +76,18 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<LoadedScene> 
                 s
             }
         };
+        let mut object = SceneObject::new(entry.id, shape, entry.pose, entry.material);
+        object.texture = entry.texture;
         out.push(LoadedObject {
             name: entry.name,
-            object: SceneObject::new(entry.id, shape, entry.pose, entry.material),
+            object,
             motion: entry.motion,
         });
     }
     Ok(LoadedScene {
         objects: out,
         tool_radius: spec.tool_radius,
+        effects: spec.effects,
     })
 }
 

@@ -14,7 +14,7 @@ use std::process::ExitCode;
 use super::device::{self, VendorChoice};
 use super::wait;
 use crate::args::ToolRadius;
-use crate::input::scene::LoadedObject;
+use crate::input::scene::LoadedScene;
 
 /// Port the view serves on by default.
 pub const DEFAULT_PORT: u16 = 8417;
@@ -45,14 +45,14 @@ pub enum ViewDevice {
     Vendor(Vec<VendorChoice>, Option<f64>, Option<u32>),
 }
 
-/// Builds the scene of `objects`: the scene, the objects' names and their motions.
-pub fn scene_of(
-    objects: Vec<LoadedObject>,
-) -> anyhow::Result<(Scene, Vec<String>, Vec<ObjectMotion>)> {
-    let mut scene = Scene::local(objects.len() + 4);
+/// Builds the scene of `loaded` (its objects and effects): the scene, the objects' names
+/// and their motions.
+pub fn scene_of(loaded: LoadedScene) -> anyhow::Result<(Scene, Vec<String>, Vec<ObjectMotion>)> {
+    let mut scene = Scene::local(loaded.objects.len() + 4);
     let mut names = Vec::new();
     let mut motions = Vec::new();
-    for o in objects {
+    super::add_effects(&mut scene, &loaded.effects)?;
+    for o in loaded.objects {
         names.push(o.name);
         motions.extend(o.motion);
         scene
@@ -62,10 +62,10 @@ pub fn scene_of(
     Ok((scene, names, motions))
 }
 
-/// Serves a live view of `objects` touched by `device` with a tool of radius `tool` until
-/// Ctrl-C.
+/// Serves a live view of `loaded` (its objects and effects) touched by `device` with a
+/// tool of radius `tool` until Ctrl-C.
 pub fn live(
-    objects: Vec<LoadedObject>,
+    loaded: LoadedScene,
     device: ViewDevice,
     rate_hz: f64,
     tool: &ToolRadius,
@@ -73,7 +73,7 @@ pub fn live(
     serve_options: &Serve,
 ) -> anyhow::Result<ExitCode> {
     let options = ServoOptions::new(rate_hz).map_err(|e| anyhow!("{}", e.named("--rate")))?;
-    let (scene, names, motions) = scene_of(objects)?;
+    let (scene, names, motions) = scene_of(loaded)?;
     let options = options.with_proxy(tool.apply(*options.proxy(), &scene)?);
     let model = Model::from_scene(&scene, &names);
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;

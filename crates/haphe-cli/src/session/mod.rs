@@ -17,6 +17,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{anyhow, bail};
 use haphe::DVec3;
 use haphe::scene::Scene;
+use haphe::servo::scene_file::FileEffect;
 use haphe::servo::{
     Device, HandOptions, HipTrace, Interference, ObjectMotion, PathKind, RealtimeOptions,
     RealtimeSetup, ReplayDevice, ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand,
@@ -61,6 +62,8 @@ impl DeviceChoice {
 pub struct Session {
     pub title: String,
     pub objects: Vec<LoadedObject>,
+    /// The force effects (a scene file's, `--effect`), checked against the rate.
+    pub effects: Vec<FileEffect>,
     pub build_seconds: f64,
     pub device: DeviceChoice,
     pub rate_hz: f64,
@@ -135,8 +138,18 @@ fn devices_ran<D: Device>(servo: &Servo<D>) -> Vec<DeviceRan> {
         .collect()
 }
 
-/// Inserts `objects` into a new scene.
-fn build_scene(objects: Vec<LoadedObject>) -> anyhow::Result<Built> {
+/// Adds `effects` to `scene`, each named as it was given in an error.
+pub fn add_effects(scene: &mut Scene, effects: &[FileEffect]) -> anyhow::Result<()> {
+    for e in effects {
+        scene
+            .add_effect(e.effect)
+            .map_err(|error| anyhow!("{} `{}`: {error}", e.place, e.spec))?;
+    }
+    Ok(())
+}
+
+/// Inserts `objects` into a new scene with `effects`.
+fn build_scene(objects: Vec<LoadedObject>, effects: &[FileEffect]) -> anyhow::Result<Built> {
     let capacity = objects.len() + 4;
     let mut scene = Scene::local(capacity);
     let mut motions: Vec<ObjectMotion> = Vec::new();
@@ -144,8 +157,11 @@ fn build_scene(objects: Vec<LoadedObject>) -> anyhow::Result<Built> {
     let mut triangles = 0usize;
     for o in objects {
         triangles += o.object.shape.surface().triangles().len();
+        let texture = o.object.texture.as_ref().map_or(String::new(), |t| {
+            format!(", texture of amplitude {:.3} mm", t.amplitude() * 1e3)
+        });
         names.push(format!(
-            "{} (id {}, {} triangles, {:.0} N/m, friction {}/{})",
+            "{} (id {}, {} triangles, {:.0} N/m, friction {}/{}{texture})",
             o.name,
             o.object.id.0,
             o.object.shape.surface().triangles().len(),
@@ -158,6 +174,7 @@ fn build_scene(objects: Vec<LoadedObject>) -> anyhow::Result<Built> {
             .insert(o.object)
             .map_err(|(e, _)| anyhow!("cannot add an object: {e}"))?;
     }
+    add_effects(&mut scene, effects)?;
     Ok(Built {
         scene,
         motions,
@@ -175,7 +192,7 @@ impl Session {
             motions,
             names,
             triangles,
-        } = build_scene(self.objects)?;
+        } = build_scene(self.objects, &self.effects)?;
         let proxy = ToolRadius::apply(&self.tool_radius, proxy_options(self.max_force)?, &scene)?;
         // A real device runs until Ctrl-C unless told otherwise.
         let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.iter().any(|c| !c.is_hand()))
@@ -203,6 +220,10 @@ impl Session {
             _ => 0.0,
         };
         print_scene(out, &names, triangles, self.build_seconds, tool)?;
+        if !self.effects.is_empty() {
+            let specs: Vec<&str> = self.effects.iter().map(|e| e.spec.as_str()).collect();
+            writeln!(out, "effects: {}", specs.join(", "))?;
+        }
         devices::print(out, &servo, &vendors, stiffness)?;
         let realtime = self.realtime || vendors.iter().any(Option::is_some);
         let limit = (!until_stopped).then_some(seconds);

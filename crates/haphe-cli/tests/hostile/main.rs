@@ -5,6 +5,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 mod disk_full;
+mod feel;
 mod inputs;
 mod maps;
 mod messages;

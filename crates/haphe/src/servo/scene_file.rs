@@ -3,6 +3,7 @@
 //!
 //! ```toml
 //! tool_radius = 0.002         # metres (optional, 0 by default: a point), before any object
+//! effects = ["viscosity:2"]   # force effects (optional), before any object
 //!
 //! [[object]]
 //! shape = "blob"              # sphere, torus, box, thin-plate, concave-corner, blob
@@ -10,6 +11,7 @@
 //! position = [0.0, 0.0, 0.0]  # metres, world frame
 //! rotation = [0.0, 0.0, 90.0] # degrees about x, then y, then z (optional)
 //! material = { stiffness = 600.0, damping = 1.0, static_friction = 0.4, dynamic_friction = 0.3 }
+//! texture = "sine:0.0002:0.002"   # a haptic texture (optional)
 //!
 //! [[object]]
 //! mesh = "part.stl"           # relative to this file
@@ -19,14 +21,16 @@
 //! # or { kind = "linear", velocity = [...] }, { kind = "rotating", axis = [0, 0, 1], rate = 0.5 }
 //! ```
 //!
-//! An object with a `grid` table is repeated on a grid (see [`grid`]).
+//! An object with a `grid` table is repeated on a grid (see [`grid`]). Textures and
+//! effects are the library's specifications ([`Texture`],
+//! [`Effect`](crate::scene::Effect); see [`feel`]).
 //!
 //! `tool_radius` is the radius of the tool, a sphere centred on the proxy (see
 //! [`ProxyOptions::with_tool_radius`](crate::proxy::ProxyOptions::with_tool_radius)),
 //! checked against its domain here; a front end also checks it against the scene's size
 //! ([`Scene::check_tool_radius`](crate::scene::Scene::check_tool_radius)) once the shapes
-//! are built. It is a top-level key: TOML puts a key written after an `[[object]]` header
-//! into that object.
+//! are built. It and `effects` are top-level keys: TOML puts a key written after an
+//! `[[object]]` header into that object.
 //!
 //! Errors name the file, the object and the line.
 
@@ -37,13 +41,15 @@ use serde::Deserialize;
 
 use crate::mesh::Units;
 use crate::mesh::shapes::Catalog;
-use crate::scene::{Material, ObjectId, Param, Pose};
+use crate::scene::{Material, ObjectId, Param, Pose, Texture};
 use crate::servo::{Motion, ObjectMotion};
 
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
     tool_radius: Option<toml::Spanned<f64>>,
+    #[serde(default)]
+    effects: Vec<toml::Spanned<String>>,
     #[serde(default)]
     object: Vec<toml::Spanned<ObjectSpec>>,
 }
@@ -65,6 +71,7 @@ struct ObjectSpec {
     material: MaterialSpec,
     motion: Option<MotionSpec>,
     grid: Option<grid::GridSpec>,
+    texture: Option<toml::Spanned<String>>,
 }
 
 /// A material table: each field missing takes [`Material::DEFAULT`]'s.
@@ -154,6 +161,8 @@ pub struct SceneEntry {
     pub material: Material,
     /// Its scripted motion (checked by [`Motion::checked`]).
     pub motion: Option<ObjectMotion>,
+    /// Its texture (the `texture` key).
+    pub texture: Option<Texture>,
     /// `FILE: object N (line L)`, to name the object in later errors (building its shape).
     pub place: String,
 }
@@ -166,10 +175,12 @@ macro_rules! bail {
 }
 
 mod error;
+pub mod feel;
 mod grid;
 
 use error::fail;
 pub use error::{MAX_OBJECTS, SceneFileError};
+pub use feel::FileEffect;
 
 /// 1-based line of a byte offset.
 fn line_of(text: &str, offset: usize) -> usize {
@@ -189,6 +200,8 @@ pub struct SceneSpec {
     /// The `tool_radius` key, metres, checked against its domain, and its place
     /// (`FILE: line L: tool_radius`) to name it in later errors (the scene's size).
     pub tool_radius: Option<(f64, String)>,
+    /// The `effects` key's, in order, each with its place.
+    pub effects: Vec<FileEffect>,
 }
 
 /// Parses and checks the text of the scene file at `path` (used for messages and as the
@@ -197,27 +210,30 @@ pub struct SceneSpec {
 /// # Errors
 /// A [`SceneFileError`] naming the file, and the object and line where there is one: TOML
 /// syntax, unknown fields, both or neither of `shape` and `mesh`, an unknown shape or
-/// unit, a triangle count out of range, a non-finite pose, an unusable material or motion,
-/// a repeated id, no object or more than [`MAX_OBJECTS`].
+/// unit, a triangle count out of range, a non-finite pose, an unusable material, motion or
+/// texture, a repeated id, no object or more than [`MAX_OBJECTS`].
 pub fn parse_scene(path: &Path, text: &str) -> Result<Vec<SceneEntry>, SceneFileError> {
     parse_scene_spec(path, text).map(|spec| spec.objects)
 }
 
-/// [`parse_scene`] with the file's `tool_radius` (metres, checked against its domain).
+/// [`parse_scene`] with the file's `tool_radius` (metres, checked against its domain) and
+/// its `effects`.
 ///
 /// # Errors
-/// Those of [`parse_scene`], and a `tool_radius` outside its domain, naming its line.
+/// Those of [`parse_scene`], a `tool_radius` outside its domain, and an effect that is
+/// not one ([`Effect`](crate::scene::Effect)'s specifications), more than 16 of them, or a zone inside an object the file does not have, naming its line.
 #[doc(hidden)]
 pub fn parse_scene_spec(path: &Path, text: &str) -> Result<SceneSpec, SceneFileError> {
     let file = path.display().to_string();
     let parsed: SceneFile = toml::from_str(text).map_err(|e| {
         let line = e.span().map(|s| line_of(text, s.start));
         // A top-level key written after an `[[object]]` header belongs to that object.
-        let hint = if e.message().contains("unknown field `tool_radius`") {
-            " (`tool_radius` is a top-level key: write it before the first [[object]])"
-        } else {
-            ""
-        };
+        let hint = ["tool_radius", "effects"]
+            .into_iter()
+            .find(|key| e.message().contains(&format!("unknown field `{key}`")))
+            .map_or(String::new(), |key| {
+                format!(" (`{key}` is a top-level key: write it before the first [[object]])")
+            });
         fail(match line {
             Some(line) => format!("{file}: line {line}: {}{hint}", e.message()),
             None => format!("{file}: {}{hint}", e.message()),
@@ -246,8 +262,11 @@ pub fn parse_scene_spec(path: &Path, text: &str) -> Result<SceneSpec, SceneFileE
         );
     }
     let base = path.parent().unwrap_or(Path::new("."));
+    let objects = entries_of(&parsed.object, text, &file, base)?;
+    let ids = objects.iter().map(|o| o.id).collect();
     Ok(SceneSpec {
-        objects: entries_of(&parsed.object, text, &file, base)?,
+        effects: feel::effects_of(&parsed.effects, text, &file, &ids)?,
+        objects,
         tool_radius,
     })
 }
@@ -294,6 +313,7 @@ fn entries_of(
         }
         let first = spec.id.unwrap_or(out.len() as u32);
         let motion = motion_of(spec, &place)?;
+        let texture = feel::texture_of(spec.texture.as_ref(), text, file)?;
         for copy in copies {
             let Some(id) = first.checked_add(copy.index).map(ObjectId) else {
                 bail!("{place}: the ids of the grid's copies pass {}", u32::MAX);
@@ -314,6 +334,7 @@ fn entries_of(
                     base: pose,
                     motion,
                 }),
+                texture: texture.clone(),
                 place: place.clone(),
             });
         }

@@ -145,3 +145,88 @@ fn the_tool_radius_is_read_and_checked_naming_its_line() {
     assert!(inside.starts_with("dir/s.toml: line 3:"), "{inside}");
     assert!(inside.contains("before the first [[object]]"), "{inside}");
 }
+
+#[test]
+fn textures_and_effects_are_read_as_their_specifications_are() {
+    let text = "# how it feels\neffects = [\n  \"viscosity:2\",\n  \"spring:100:0:0:0.1\",\n  \"viscosity:1:inside:4\",\n]\n\n\
+                [[object]]\nshape = \"box\"\nid = 4\ntexture = \"sine:0.0002:0.002\"\n\
+                grid = { count = [2, 1, 1], spacing = [1.0, 1.0, 1.0] }\n\n[[object]]\nshape = \"sphere\"\n";
+    let spec = parse_scene_spec(Path::new("dir/s.toml"), text).unwrap();
+    let texture: Texture = "sine:0.0002:0.002".parse().unwrap();
+    // Both copies of the grid have the texture; the object without one has none.
+    let textures: Vec<Option<&Texture>> = spec.objects.iter().map(|o| o.texture.as_ref()).collect();
+    assert_eq!(textures, [Some(&texture), Some(&texture), None]);
+    let effects: Vec<(&str, &str)> = spec
+        .effects
+        .iter()
+        .map(|e| (e.spec.as_str(), e.place.as_str()))
+        .collect();
+    assert_eq!(
+        effects,
+        [
+            ("viscosity:2", "dir/s.toml: line 3: effect"),
+            ("spring:100:0:0:0.1", "dir/s.toml: line 4: effect"),
+            ("viscosity:1:inside:4", "dir/s.toml: line 5: effect"),
+        ]
+    );
+    for e in &spec.effects {
+        assert_eq!(Ok(e.effect), e.spec.parse::<crate::scene::Effect>());
+    }
+    // No key: no texture, no effect.
+    let plain = parse_scene_spec(Path::new("dir/s.toml"), "[[object]]\nshape = \"box\"\n").unwrap();
+    assert!(plain.effects.is_empty() && plain.objects[0].texture.is_none());
+}
+
+#[test]
+fn bad_textures_and_effects_name_the_file_and_the_line() {
+    let object = "[[object]]\nshape = \"box\"\nid = 3\n";
+    // A texture: the line of its key.
+    for (texture, says) in [
+        ("bumps:1:2", "unknown kind `bumps`"),
+        ("sine:-0.001:0.01", "texture amplitude must be"),
+        ("sine:nan:0.01", "texture amplitude must be"),
+        ("sine:0.001:inf", "texture wavelength must be"),
+        ("sine:0.001", "expected `KIND:AMPLITUDE:WAVELENGTH`"),
+    ] {
+        let e = err(&format!("{object}\ntexture = \"{texture}\"\n"));
+        assert!(
+            e.starts_with(&format!("dir/s.toml: line 5: texture `{texture}`: ")),
+            "{e}"
+        );
+        assert!(e.contains(says), "{e}");
+    }
+    // An effect: the line of its element.
+    for (effect, says) in [
+        ("wobble:1", "unknown kind `wobble`"),
+        ("viscosity:-2", "viscosity must be"),
+        ("constant:0:0:nan", "effect force must be finite"),
+        ("vibration:-150:0.3", "vibration frequency must be"),
+        ("viscosity:2:inside:9", "no object of the file has id 9"),
+        ("viscosity:2:box:1:0:0:0:1:1", "position must be"),
+    ] {
+        let e = err(&format!(
+            "effects = [\n  \"viscosity:1\",\n  \"{effect}\",\n]\n{object}"
+        ));
+        assert!(
+            e.starts_with(&format!("dir/s.toml: line 3: effect `{effect}`: ")),
+            "{e}"
+        );
+        assert!(e.contains(says), "{e}");
+    }
+    // Not a list of text; too many; written inside an object.
+    assert!(
+        err(&format!("effects = \"viscosity:2\"\n{object}")).starts_with("dir/s.toml: line 1:")
+    );
+    let many = vec!["\"viscosity:1\""; crate::scene::MAX_EFFECTS + 1].join(",\n");
+    let e = err(&format!("effects = [\n{many}]\n{object}"));
+    assert!(
+        e.starts_with(&format!(
+            "dir/s.toml: line {}: effects: 17 effects, more than the limit of 16",
+            crate::scene::MAX_EFFECTS + 2
+        )),
+        "{e}"
+    );
+    let inside = err(&format!("{object}effects = [\"viscosity:2\"]\n"));
+    assert!(inside.starts_with("dir/s.toml: line 4:"), "{inside}");
+    assert!(inside.contains("before the first [[object]]"), "{inside}");
+}
