@@ -129,6 +129,24 @@ pub enum ReadErrorKind {
         /// The vertex (or its line).
         at: Place,
     },
+    /// A face corner refers to a texture coordinate that does not exist (an OBJ `f 1/9`).
+    #[error(
+        "{at}: texture coordinate index {index} is out of range (the file has {count} texture coordinates)"
+    )]
+    TextureIndexOutOfRange {
+        /// The face (or its line).
+        at: Place,
+        /// The index as written in the file.
+        index: i64,
+        /// How many texture coordinates there are.
+        count: usize,
+    },
+    /// A texture coordinate is NaN or infinite.
+    #[error("{at}: a texture coordinate is not a finite number")]
+    NonFiniteTextureCoordinate {
+        /// The texture coordinate or vertex (or its line).
+        at: Place,
+    },
     /// A vertex coordinate is larger than `MAX_COORDINATE`
     /// (areas and volumes of such a mesh overflow).
     #[error(

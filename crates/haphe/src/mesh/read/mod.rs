@@ -161,6 +161,46 @@ pub fn read_mesh(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<Mesh
     read_unwelded(file, bytes, options).map(|mesh| weld(&mesh, options.weld).0)
 }
 
+/// The texture coordinates `[u, v]` of each triangle's three corners, in the order of the
+/// mesh's triangles and of each triangle's corners.
+pub(crate) type CornerTextureCoords = Vec<[[f32; 2]; 3]>;
+
+/// A mesh as a reader returns it, with its corners' texture coordinates if it has some.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct TexturedMesh {
+    /// The mesh, unwelded, in file units.
+    pub(crate) mesh: Mesh,
+    /// One entry per triangle of `mesh`, or `None`.
+    pub(crate) texture_coords: Option<CornerTextureCoords>,
+}
+
+impl From<Mesh> for TexturedMesh {
+    fn from(mesh: Mesh) -> TexturedMesh {
+        TexturedMesh {
+            mesh,
+            texture_coords: None,
+        }
+    }
+}
+
+/// The texture coordinates of the triangles' corners from those of their vertices; `None`
+/// if a corner's vertex has none.
+pub(crate) fn corner_texture_coords(
+    triangles: &[[u32; 3]],
+    per_vertex: &[[f32; 2]],
+) -> Option<CornerTextureCoords> {
+    triangles
+        .iter()
+        .map(|t| {
+            Some([
+                *per_vertex.get(t[0] as usize)?,
+                *per_vertex.get(t[1] as usize)?,
+                *per_vertex.get(t[2] as usize)?,
+            ])
+        })
+        .collect()
+}
+
 /// A mesh file read and welded, with what was found on the way.
 #[derive(Debug, Clone)]
 pub struct ReadMesh {
@@ -170,6 +210,19 @@ pub struct ReadMesh {
     pub format: Format,
     /// What welding did.
     pub weld: WeldStats,
+    /// The texture coordinates `[u, v]` of each triangle's corners: entry `t` belongs to
+    /// `mesh.triangles[t]`, its corners in that triangle's order (polygons triangulated as
+    /// their positions are; welding keeps every triangle). Read from OBJ `vt` (through the
+    /// `v/vt` and `v/vt/vn` corner forms), PLY per-vertex `u, v`, `s, t` or
+    /// `texture_u, texture_v`, and glTF `TEXCOORD_0`. One convention for every format: `v`
+    /// points up the image (`v = 0` is its bottom row, as in OBJ and PLY); glTF, whose `v`
+    /// points down (`v = 0` is the top row), is turned over on reading (`v ↦ 1 − v`), so a
+    /// model textured the same way in two formats reads the same.
+    ///
+    /// `None` for a file without texture coordinates, and for a file where only some
+    /// corners have one (an OBJ face without `vt`, a glTF primitive without `TEXCOORD_0`):
+    /// that is not an error, the mesh is read without them.
+    pub texture_coords: Option<Vec<[[f32; 2]; 3]>>,
 }
 
 /// Like [`read_mesh`], also saying which format was read and what welding did (what the
@@ -208,9 +261,15 @@ pub fn read_mesh_resolving(
         format: Some(format),
         ..*options
     };
-    let raw = read_unwelded_with(file, bytes, &options, resolver)?;
-    let (mesh, weld) = weld(&raw, options.weld);
-    Ok(ReadMesh { mesh, format, weld })
+    let raw = read_textured(file, bytes, &options, resolver)?;
+    // Welding renumbers vertices and keeps every triangle, in order.
+    let (mesh, weld) = weld(&raw.mesh, options.weld);
+    Ok(ReadMesh {
+        mesh,
+        format,
+        weld,
+        texture_coords: raw.texture_coords,
+    })
 }
 
 /// Like [`read_mesh`] but without welding: the mesh exactly as the file indexes it (scaled
@@ -233,6 +292,16 @@ pub fn read_unwelded_with(
     options: &ReadOptions,
     resolver: &mut dyn Resolve,
 ) -> Result<Mesh, ReadError> {
+    read_textured(file, bytes, options, resolver).map(|read| read.mesh)
+}
+
+/// [`read_unwelded_with`], with the texture coordinates of the corners.
+fn read_textured(
+    file: &str,
+    bytes: &[u8],
+    options: &ReadOptions,
+    resolver: &mut dyn Resolve,
+) -> Result<TexturedMesh, ReadError> {
     let fail = |kind| ReadError {
         file: file.to_owned(),
         kind,
@@ -249,17 +318,20 @@ pub fn read_unwelded_with(
         Some(f) => f,
         None => Format::detect(file, bytes).map_err(fail)?,
     };
-    let mut mesh = match format {
+    let TexturedMesh {
+        mut mesh,
+        texture_coords,
+    } = match format {
         Format::Obj => obj::read_obj(bytes),
-        Format::Stl => stl::read_stl(bytes),
+        Format::Stl => stl::read_stl(bytes).map(TexturedMesh::from),
         Format::Ply => ply::read_ply(bytes),
-        Format::Off => off::read_off(bytes),
+        Format::Off => off::read_off(bytes).map(TexturedMesh::from),
         Format::Gltf => {
             // Scaled to metres by the reader (translations too); weld as for the others.
             let scene = gltf::read_gltf(file, bytes, options.units, resolver)?;
-            let mesh = scene.flatten();
-            mesh.check_indices_and_finite().map_err(fail)?;
-            return Ok(mesh);
+            let read = scene.flatten_textured();
+            read.mesh.check_indices_and_finite().map_err(fail)?;
+            return Ok(read);
         }
     }
     .map_err(fail)?;
@@ -276,7 +348,10 @@ pub fn read_unwelded_with(
     // Readers check as they go, with lines; this is the backstop (a scaled huge value can
     // overflow to infinity).
     mesh.check_indices_and_finite().map_err(fail)?;
-    Ok(mesh)
+    Ok(TexturedMesh {
+        mesh,
+        texture_coords,
+    })
 }
 
 #[cfg(test)]
@@ -307,6 +382,143 @@ mod tests {
                 Ok(Format::Off),
                 "{other}"
             );
+        }
+    }
+}
+
+#[cfg(test)]
+mod texture_tests {
+    use base64::Engine;
+    use glam::DVec3;
+
+    use super::*;
+
+    /// Reads `bytes` welded and checks that every corner's texture coordinate is `uv_of`
+    /// its position; returns the mesh.
+    fn corners_follow(file: &str, bytes: &[u8], uv_of: impl Fn(DVec3) -> [f32; 2]) -> Mesh {
+        let read = read_mesh_with_stats(file, bytes, &ReadOptions::default()).unwrap();
+        let uvs = read.texture_coords.expect("texture coordinates");
+        assert_eq!(uvs.len(), read.mesh.triangles.len());
+        for (t, tri_uvs) in uvs.iter().enumerate() {
+            assert_eq!(*tri_uvs, read.mesh.corners(t).map(&uv_of), "triangle {t}");
+        }
+        read.mesh
+    }
+
+    #[test]
+    fn welding_keeps_the_texture_coordinates_with_their_triangles() {
+        // Two quads sharing an edge, every vertex written twice (welded to 6), in cm.
+        let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\n\
+                   vt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nvt 1 0\nvt 1 1\n\
+                   f 1/1 2/2 3/3 4/4\nf 5/2 6/5 7/6 8/3\n";
+        let options = ReadOptions {
+            units: Units::Centimetres,
+            ..ReadOptions::default()
+        };
+        let read = read_mesh_with_stats("two.obj", obj.as_bytes(), &options).unwrap();
+        assert_eq!(read.mesh.vertices.len(), 6);
+        let uvs = read.texture_coords.unwrap();
+        for (t, tri_uvs) in uvs.iter().enumerate() {
+            let expected = read
+                .mesh
+                .corners(t)
+                .map(|p| [(p.x * 50.0) as f32, (p.y * 100.0) as f32]);
+            assert_eq!(*tri_uvs, expected, "triangle {t}");
+        }
+    }
+
+    /// A glTF quad (indexed, `TEXCOORD_0` as normalised unsigned bytes) and a triangle
+    /// (not indexed, `TEXCOORD_0` as floats unless `second_without`), both with u = x and
+    /// glTF's v = 1 − y, in one mesh placed by a node that mirrors x.
+    fn textured_gltf(second_without: bool) -> String {
+        let mut buffer = Vec::new();
+        for p in [[0f32, 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]] {
+            buffer.extend(p.iter().flat_map(|c| c.to_le_bytes()));
+        }
+        for i in [0u16, 1, 2, 0, 2, 3] {
+            buffer.extend(i.to_le_bytes());
+        }
+        for [x, y] in [[0u8, 0], [1, 0], [1, 1], [0, 1]] {
+            buffer.extend([255 * x, 255 * (1 - y)]);
+        }
+        let triangle = [[0f32, 0., 1.], [0.5, 0., 1.], [0., 0.25, 1.]];
+        for p in triangle {
+            buffer.extend(p.iter().flat_map(|c| c.to_le_bytes()));
+        }
+        for p in triangle {
+            buffer.extend([p[0], 1.0 - p[1]].iter().flat_map(|c| c.to_le_bytes()));
+        }
+        assert_eq!(buffer.len(), 128);
+        let data = base64::engine::general_purpose::STANDARD.encode(&buffer);
+        let second_attributes = if second_without {
+            r#"{"POSITION": 3}"#
+        } else {
+            r#"{"POSITION": 3, "TEXCOORD_0": 4}"#
+        };
+        format!(
+            r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+            "nodes": [{{"mesh": 0, "scale": [-1, 1, 1]}}],
+            "meshes": [{{"primitives": [
+                {{"attributes": {{"POSITION": 0, "TEXCOORD_0": 2}}, "indices": 1}},
+                {{"attributes": {second_attributes}}}]}}],
+            "buffers": [{{"byteLength": 128, "uri": "data:application/octet-stream;base64,{data}"}}],
+            "bufferViews": [
+                {{"buffer": 0, "byteOffset": 0, "byteLength": 48}},
+                {{"buffer": 0, "byteOffset": 48, "byteLength": 12}},
+                {{"buffer": 0, "byteOffset": 60, "byteLength": 8}},
+                {{"buffer": 0, "byteOffset": 68, "byteLength": 36}},
+                {{"buffer": 0, "byteOffset": 104, "byteLength": 24}}],
+            "accessors": [
+                {{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                  "min": [0, 0, 0], "max": [1, 1, 0]}},
+                {{"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}},
+                {{"bufferView": 2, "componentType": 5121, "normalized": true, "count": 4,
+                  "type": "VEC2"}},
+                {{"bufferView": 3, "componentType": 5126, "count": 3, "type": "VEC3",
+                  "min": [0, 0, 1], "max": [0.5, 0.25, 1]}},
+                {{"bufferView": 4, "componentType": 5126, "count": 3, "type": "VEC2"}}]}}"#
+        )
+    }
+
+    #[test]
+    fn gltf_texture_coordinates_follow_the_corners_with_v_turned_up() {
+        // Placed with x mirrored (the triangles turned over): u = −x in the world, and v
+        // = y once glTF's downward v is turned up.
+        let gltf = textured_gltf(false);
+        let mesh = corners_follow("quad.gltf", gltf.as_bytes(), |p| {
+            [(-p.x) as f32, p.y as f32]
+        });
+        assert_eq!(mesh.triangles.len(), 3);
+        let without = textured_gltf(true);
+        let read =
+            read_mesh_with_stats("quad.gltf", without.as_bytes(), &ReadOptions::default()).unwrap();
+        assert_eq!(read.mesh.triangles.len(), 3);
+        assert_eq!(read.texture_coords, None);
+    }
+
+    #[test]
+    fn gltf_texture_coordinates_must_match_the_positions() {
+        let gltf = textured_gltf(false).replace(
+            r#""count": 3, "type": "VEC2""#,
+            r#""count": 2, "type": "VEC2""#,
+        );
+        let err = read_mesh_with_stats("quad.gltf", gltf.as_bytes(), &ReadOptions::default())
+            .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "quad.gltf: mesh 0, primitive 1, accessor 4 (TEXCOORD_0): 2 texture coordinates \
+             for 3 positions"
+        );
+    }
+
+    #[test]
+    fn formats_without_texture_coordinates_read_none() {
+        let stl = b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n\
+                    vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+        let off = b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        for (file, bytes) in [("t.stl", &stl[..]), ("t.off", &off[..])] {
+            let read = read_mesh_with_stats(file, bytes, &ReadOptions::default()).unwrap();
+            assert_eq!(read.texture_coords, None, "{file}");
         }
     }
 }

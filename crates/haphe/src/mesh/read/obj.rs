@@ -1,10 +1,12 @@
 //! Wavefront OBJ reader.
 //!
 //! Reads `v x y z [w] [r g b]` (only `x y z` are used; a weight or vertex colours, even NaN
-//! ones, are ignored) and `f` with the `v`, `v/vt`, `v//vn` and `v/vt/vn` corner forms,
-//! 1-based or negative (relative) indices, and polygons of any size (triangulated, see
-//! [`super::polygon`]). Everything else — `vt`, `vn`, `o`, `g`, `s`, `usemtl`, `mtllib`,
-//! lines `l`, points `p`, unknown statements — is skipped. Comments (`#` to the end of the
+//! ones, are ignored), `vt u [v] [w]` (texture coordinates: `u` and `v`, `v` 0 when left
+//! out) and `f` with the `v`, `v/vt`, `v//vn` and `v/vt/vn` corner forms, 1-based or
+//! negative (relative) indices, and polygons of any size (triangulated, see
+//! [`super::polygon`]). The texture coordinates of the corners follow their triangles; a
+//! file where some corner has none gives none at all. Everything else — `vn`, `o`, `g`,
+//! `s`, `usemtl`, `mtllib`, lines `l`, points `p`, unknown statements — is skipped. Comments (`#` to the end of the
 //! line), CRLF line ends, tabs and line continuation with a trailing backslash are handled.
 //!
 //! Why not `tobj`: it reports parse errors without a line number, and DESIGN §7 requires
@@ -16,9 +18,13 @@
 
 use glam::DVec3;
 
+use super::TexturedMesh;
 use super::polygon::Triangulator;
 use super::text::{Lines, show, tokens};
 use crate::mesh::{Mesh, Place, ReadErrorKind};
+
+/// A corner without a texture coordinate (`v` or `v//vn`).
+const NO_TEXTURE: u32 = u32::MAX;
 
 /// Statements `looks_like_obj` accepts, besides comments and blank lines.
 const OBJ_KEYWORDS: &[&[u8]] = &[
@@ -77,16 +83,24 @@ struct Faces {
     lines: Vec<usize>,
     /// The largest corner index of each face.
     max_corner: Vec<u32>,
+    /// The texture coordinate of each corner (0-based, not yet checked against the count),
+    /// or [`NO_TEXTURE`].
+    texture: Vec<u32>,
+    /// The largest texture coordinate index of each face, if it names any.
+    max_texture: Vec<Option<u32>>,
 }
 
-/// Reads OBJ bytes into a mesh in file units.
+/// Reads OBJ bytes into a mesh in file units, with the texture coordinates of its
+/// triangles' corners when every corner has one.
 ///
 /// # Errors
-/// With the line: malformed numbers or indices, index 0 or out of range, a face with fewer
-/// than three corners, a non-finite position. [`ReadErrorKind::Empty`] when the file holds
-/// no statement at all (only blank lines and comments).
-pub(super) fn read_obj(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
+/// With the line: malformed numbers or indices, index 0 or out of range (vertex or texture
+/// coordinate), a face with fewer than three corners, a non-finite position or texture
+/// coordinate. [`ReadErrorKind::Empty`] when the file holds no statement at all (only blank
+/// lines and comments).
+pub(super) fn read_obj(bytes: &[u8]) -> Result<TexturedMesh, ReadErrorKind> {
     let mut vertices: Vec<DVec3> = Vec::new();
+    let mut texture: Vec<[f32; 2]> = Vec::new();
     let mut faces = Faces::default();
     let mut statements = 0usize;
     let mut joined: Vec<u8> = Vec::new();
@@ -122,18 +136,20 @@ pub(super) fn read_obj(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
         statements += 1;
         match keyword {
             b"v" => vertices.push(parse_vertex(tokens, first_line, vertices.len())?),
-            b"f" => parse_face(tokens, first_line, vertices.len(), &mut faces)?,
+            b"vt" => texture.push(parse_texture(tokens, first_line, texture.len())?),
+            b"f" => parse_face(
+                tokens,
+                first_line,
+                [vertices.len(), texture.len()],
+                &mut faces,
+            )?,
             _ => {}
         }
     }
     if statements == 0 {
         return Err(ReadErrorKind::Empty);
     }
-    let triangles = triangulate_faces(&faces, &vertices)?;
-    Ok(Mesh {
-        vertices,
-        triangles,
-    })
+    triangulate_faces(&faces, vertices, &texture)
 }
 
 /// True when the bytes look like OBJ statements: among the first non-comment lines, only
@@ -229,36 +245,110 @@ fn parse_vertex<'a>(
     Ok(p)
 }
 
-/// `f v1 v2 v3 ...` with `v`, `v/vt`, `v//vn` or `v/vt/vn` corners.
+/// `vt u [v] [w]`: `u` and `v` (0 when left out); `w` is ignored.
+fn parse_texture<'a>(
+    mut tokens: impl Iterator<Item = &'a [u8]>,
+    line: usize,
+    count: usize,
+) -> Result<[f32; 2], ReadErrorKind> {
+    if count >= NO_TEXTURE as usize {
+        return Err(ReadErrorKind::TooLarge {
+            at: Place::Line(line),
+            message: format!("more than {NO_TEXTURE} texture coordinates"),
+        });
+    }
+    let mut uv = [0.0f32; 2];
+    for (axis, value) in uv.iter_mut().enumerate() {
+        let Some(token) = tokens.next() else {
+            if axis == 0 {
+                return Err(ReadErrorKind::Syntax {
+                    at: Place::Line(line),
+                    message: "a texture coordinate needs at least 1 number, found 0".to_owned(),
+                });
+            }
+            break;
+        };
+        let read = parse_f64(token).ok_or_else(|| ReadErrorKind::Syntax {
+            at: Place::Line(line),
+            message: format!("'{}' is not a number", show(token)),
+        })?;
+        // Past f32's range is infinite too.
+        *value = read as f32;
+        if !value.is_finite() {
+            return Err(ReadErrorKind::NonFiniteTextureCoordinate {
+                at: Place::Line(line),
+            });
+        }
+    }
+    Ok(uv)
+}
+
+/// An OBJ index as written (1-based, or negative: relative to the `count` read so far),
+/// 0-based. A positive index may name an element defined further down: checked at the end.
+///
+/// # Errors
+/// `out_of_range` for index 0 or one before the first element.
+fn resolve_index(
+    written: i64,
+    count: usize,
+    out_of_range: impl Fn() -> ReadErrorKind,
+) -> Result<u32, ReadErrorKind> {
+    let resolved = match written {
+        0 => return Err(out_of_range()),
+        w if w > 0 => w - 1,
+        w => count as i64 + w,
+    };
+    u32::try_from(resolved)
+        .ok()
+        .filter(|&i| i != NO_TEXTURE)
+        .ok_or_else(out_of_range)
+}
+
+/// `f v1 v2 v3 ...` with `v`, `v/vt`, `v//vn` or `v/vt/vn` corners; `counts` are the
+/// vertices and texture coordinates read so far.
 fn parse_face<'a>(
     tokens: impl Iterator<Item = &'a [u8]>,
     line: usize,
-    vertex_count: usize,
+    counts: [usize; 2],
     faces: &mut Faces,
 ) -> Result<(), ReadErrorKind> {
+    let [vertex_count, texture_count] = counts;
     let start = faces.corners.len();
     let mut max_corner = 0u32;
+    let mut max_texture: Option<u32> = None;
     for token in tokens {
-        let position = token.split(|&b| b == b'/').next().unwrap_or(token);
+        let mut parts = token.split(|&b| b == b'/');
+        let position = parts.next().unwrap_or(token);
         let written = parse_i64(position).ok_or_else(|| ReadErrorKind::Syntax {
             at: Place::Line(line),
             message: format!("'{}' is not a vertex index", show(token)),
         })?;
-        let out_of_range = || ReadErrorKind::IndexOutOfRange {
+        let corner = resolve_index(written, vertex_count, || ReadErrorKind::IndexOutOfRange {
             at: Place::Line(line),
             index: written,
             count: vertex_count,
-        };
-        // 1-based from the start, or negative: relative to the vertices read so far.
-        let resolved = match written {
-            0 => return Err(out_of_range()),
-            w if w > 0 => w - 1,
-            w => vertex_count as i64 + w,
-        };
-        // A positive index may name a vertex defined further down: checked at the end.
-        let corner = u32::try_from(resolved).map_err(|_| out_of_range())?;
+        })?;
         max_corner = max_corner.max(corner);
         faces.corners.push(corner);
+        let texture = match parts.next() {
+            None | Some(b"") => NO_TEXTURE,
+            Some(written) => {
+                let written = parse_i64(written).ok_or_else(|| ReadErrorKind::Syntax {
+                    at: Place::Line(line),
+                    message: format!("'{}' is not a texture coordinate index", show(token)),
+                })?;
+                let t = resolve_index(written, texture_count, || {
+                    ReadErrorKind::TextureIndexOutOfRange {
+                        at: Place::Line(line),
+                        index: written,
+                        count: texture_count,
+                    }
+                })?;
+                max_texture = Some(max_texture.map_or(t, |m| m.max(t)));
+                t
+            }
+        };
+        faces.texture.push(texture);
     }
     let corners = faces.corners.len() - start;
     if corners < 3 {
@@ -270,11 +360,17 @@ fn parse_face<'a>(
     faces.ends.push(faces.corners.len());
     faces.lines.push(line);
     faces.max_corner.push(max_corner);
+    faces.max_texture.push(max_texture);
     Ok(())
 }
 
-/// Checks every face against the final vertex count and triangulates, in file order.
-fn triangulate_faces(faces: &Faces, vertices: &[DVec3]) -> Result<Vec<[u32; 3]>, ReadErrorKind> {
+/// Checks every face against the final vertex and texture coordinate counts and
+/// triangulates, in file order; the corners' texture coordinates follow their triangles.
+fn triangulate_faces(
+    faces: &Faces,
+    vertices: Vec<DVec3>,
+    texture: &[[f32; 2]],
+) -> Result<TexturedMesh, ReadErrorKind> {
     let count = vertices.len();
     if let Some(face) = faces.max_corner.iter().position(|&m| m as usize >= count) {
         return Err(ReadErrorKind::IndexOutOfRange {
@@ -283,21 +379,56 @@ fn triangulate_faces(faces: &Faces, vertices: &[DVec3]) -> Result<Vec<[u32; 3]>,
             count,
         });
     }
-    let mut triangles =
-        Vec::with_capacity(faces.corners.len().saturating_sub(2 * faces.ends.len()));
+    if let Some((face, m)) = faces
+        .max_texture
+        .iter()
+        .enumerate()
+        .find_map(|(f, m)| m.filter(|&m| m as usize >= texture.len()).map(|m| (f, m)))
+    {
+        return Err(ReadErrorKind::TextureIndexOutOfRange {
+            at: Place::Line(faces.lines[face]),
+            index: i64::from(m) + 1,
+            count: texture.len(),
+        });
+    }
+    let capacity = faces.corners.len().saturating_sub(2 * faces.ends.len());
+    let mut triangles = Vec::with_capacity(capacity);
+    // Dropped at the first corner without a texture coordinate.
+    let mut uvs = faces
+        .texture
+        .iter()
+        .all(|&t| t != NO_TEXTURE)
+        .then(|| Vec::with_capacity(capacity));
     let mut triangulator = Triangulator::default();
+    let mut local = Vec::new();
     let mut start = 0;
     for (face, &end) in faces.ends.iter().enumerate() {
+        local.clear();
         triangulator
-            .triangulate(&faces.corners[start..end], vertices, &mut triangles)
+            .triangulate_corners(&faces.corners[start..end], &vertices, &mut local)
             .map_err(|e| ReadErrorKind::PolygonTooComplex {
                 at: Place::Line(faces.lines[face]),
                 face,
                 corners: e.corners,
             })?;
+        let of = |list: &[u32], k: u32| list[start + k as usize];
+        triangles.extend(local.iter().map(|t| t.map(|k| of(&faces.corners, k))));
+        if let Some(uvs) = &mut uvs {
+            uvs.extend(
+                local
+                    .iter()
+                    .map(|t| t.map(|k| texture[of(&faces.texture, k) as usize])),
+            );
+        }
         start = end;
     }
-    Ok(triangles)
+    Ok(TexturedMesh {
+        mesh: Mesh {
+            vertices,
+            triangles,
+        },
+        texture_coords: uvs,
+    })
 }
 
 #[cfg(test)]
@@ -305,7 +436,11 @@ mod tests {
     use super::*;
 
     fn read(text: &str) -> Result<Mesh, ReadErrorKind> {
-        read_obj(text.as_bytes())
+        read_obj(text.as_bytes()).map(|read| read.mesh)
+    }
+
+    fn read_uvs(text: &str) -> Option<Vec<[[f32; 2]; 3]>> {
+        read_obj(text.as_bytes()).unwrap().texture_coords
     }
 
     const SQUARE: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
@@ -346,6 +481,114 @@ mod tests {
             .inspect(|&a| assert!(a > 0.0))
             .sum();
         assert!((area - 5.0).abs() < 1e-12);
+    }
+
+    /// Whether every corner's texture coordinate is `uv_of` its position.
+    fn corners_follow(text: &str, uv_of: impl Fn(DVec3) -> [f32; 2]) {
+        let read = read_obj(text.as_bytes()).unwrap();
+        let uvs = read.texture_coords.expect("texture coordinates");
+        assert_eq!(uvs.len(), read.mesh.triangles.len());
+        for (t, tri_uvs) in uvs.iter().enumerate() {
+            let expected = read.mesh.corners(t).map(&uv_of);
+            assert_eq!(*tri_uvs, expected, "triangle {t}");
+        }
+    }
+
+    #[test]
+    fn texture_coordinates_follow_the_corners_of_a_quad() {
+        // The texture coordinates listed in another order than the vertices, so that a
+        // corner's vt index differs from its v index; u = x / 2, v = y.
+        let text = format!(
+            "{SQUARE}vt 0.5 1\nvt 0 0\nvt 0.5 0\nvt 0 1\n\
+             f 1/2 2/3/1 3/1 4/4\nf -4/-3 -2/-4 -1/-1\n"
+        );
+        corners_follow(&text, |p| [p.x as f32 / 2.0, p.y as f32]);
+        let read = read_obj(text.as_bytes()).unwrap();
+        assert_eq!(read.mesh.triangles.len(), 3);
+    }
+
+    #[test]
+    fn texture_coordinates_follow_an_ear_clipped_polygon() {
+        // The L of `non_convex_polygon_is_ear_clipped`, u = x, v = y: the reflex corner
+        // is cut around, and each corner keeps its own vt.
+        let text = "v 0 0 0\nv 3 0 0\nv 3 1 0\nv 1 1 0\nv 1 3 0\nv 0 3 0\n\
+                    vt 0 3\nvt 1 3\nvt 1 1\nvt 3 1\nvt 3 0\nvt 0 0\n\
+                    f 1/6 2/5 3/4 4/3 5/2 6/1\n";
+        corners_follow(text, |p| [p.x as f32, p.y as f32]);
+    }
+
+    #[test]
+    fn texture_coordinates_may_come_after_the_faces_and_default_v_to_0() {
+        corners_follow(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/2 3/3\nvt 0\nvt 2\nvt 0 0\n",
+            |p| [2.0 * p.x as f32, 0.0],
+        );
+    }
+
+    #[test]
+    fn a_face_without_texture_coordinates_leaves_the_file_without() {
+        for text in [
+            format!("{SQUARE}vt 0 0\nf 1/1 2/1 3/1\nf 1 3 4\n"),
+            format!("{SQUARE}vt 0 0\nf 1/1 2//1 3/1\n"),
+            format!("{SQUARE}f 1 2 3\n"),
+        ] {
+            let read = read_obj(text.as_bytes()).unwrap();
+            assert!(!read.mesh.triangles.is_empty());
+            assert_eq!(read_uvs(&text), None, "{text}");
+        }
+    }
+
+    #[test]
+    fn bad_texture_coordinates_name_the_line() {
+        assert_eq!(
+            read(&format!("{SQUARE}vt 0 x\n")),
+            Err(ReadErrorKind::Syntax {
+                at: Place::Line(5),
+                message: "'x' is not a number".to_owned()
+            })
+        );
+        assert!(matches!(
+            read(&format!("{SQUARE}vt\n")),
+            Err(ReadErrorKind::Syntax {
+                at: Place::Line(5),
+                ..
+            })
+        ));
+        for value in ["nan", "inf", "1e39"] {
+            assert_eq!(
+                read(&format!("{SQUARE}vt 0 {value}\n")),
+                Err(ReadErrorKind::NonFiniteTextureCoordinate { at: Place::Line(5) }),
+                "{value}"
+            );
+        }
+        let err = read(&format!("{SQUARE}vt 0 0\n\nf 1/1 2/9 3/1\n")).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "line 7: texture coordinate index 9 is out of range (the file has 1 texture coordinates)"
+        );
+        assert_eq!(
+            read(&format!("{SQUARE}vt 0 0\nf 1/1 2/-2 3/1\n")),
+            Err(ReadErrorKind::TextureIndexOutOfRange {
+                at: Place::Line(6),
+                index: -2,
+                count: 1
+            })
+        );
+        assert_eq!(
+            read(&format!("{SQUARE}vt 0 0\nf 1/1 2/0 3/1\n")),
+            Err(ReadErrorKind::TextureIndexOutOfRange {
+                at: Place::Line(6),
+                index: 0,
+                count: 1
+            })
+        );
+        assert!(matches!(
+            read(&format!("{SQUARE}vt 0 0\nf 1/1 2/a 3/1\n")),
+            Err(ReadErrorKind::Syntax {
+                at: Place::Line(6),
+                ..
+            })
+        ));
     }
 
     #[test]

@@ -1,7 +1,9 @@
 //! PLY reader (ASCII, binary little and big endian), through `ply-rs-bw`.
 //!
-//! - `vertex` elements give the positions: `x`, `y`, `z` of any numeric type; other
-//!   properties (normals, colours, confidence) are ignored.
+//! - `vertex` elements give the positions: `x`, `y`, `z` of any numeric type, and texture
+//!   coordinates: the first of the pairs `u, v`, `s, t`, `texture_u, texture_v` the header
+//!   declares whole (any numeric type); other properties (normals, colours, confidence) are
+//!   ignored.
 //! - `face` elements give polygons through a `vertex_indices` (or `vertex_index`) list of any
 //!   integer types; polygons are triangulated ([`super::polygon`]).
 //! - `tristrips` elements give triangle strips through a `vertex_indices` list where `-1`
@@ -30,17 +32,19 @@ mod entries;
 mod header;
 mod source;
 
-use entries::{IndexList, Skip, VertexEntry};
+use super::{TexturedMesh, corner_texture_coords};
+use entries::{IndexList, Skip, TEXTURE_NAMES, VertexEntry};
 use source::{Source, map_parse_error};
 
-/// Reads PLY bytes into a mesh in file units.
+/// Reads PLY bytes into a mesh in file units, with the texture coordinates of its
+/// triangles' corners when its vertices have some.
 ///
 /// # Errors
 /// A malformed header (its line), a malformed or missing entry (its line in ASCII, its byte
 /// offset in binary), an index out of range or a face with fewer than three corners (the
-/// face or strip), a non-finite position (the vertex), [`ReadErrorKind::Empty`] for no
-/// content.
-pub(super) fn read_ply(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
+/// face or strip), a non-finite position or texture coordinate (the vertex),
+/// [`ReadErrorKind::Empty`] for no content.
+pub(super) fn read_ply(bytes: &[u8]) -> Result<TexturedMesh, ReadErrorKind> {
     if skip_ascii_whitespace(bytes).is_empty() {
         return Err(ReadErrorKind::Empty);
     }
@@ -70,6 +74,7 @@ pub(super) fn read_ply(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
     let mut reading = Reading {
         vertex_count,
         vertices: Vec::new(),
+        texture: None,
         corners: Vec::new(),
         ends: Vec::new(),
         strip_triangles: Vec::new(),
@@ -97,6 +102,8 @@ struct Reading {
     /// The vertex count the header announces (faces may come before the vertices).
     vertex_count: usize,
     vertices: Vec<DVec3>,
+    /// The vertices' texture coordinates, when the `vertex` element has some.
+    texture: Option<Vec<[f32; 2]>>,
     /// Face corners, checked against `vertex_count`, face after face.
     corners: Vec<u32>,
     /// End of each face in `corners`.
@@ -129,17 +136,39 @@ impl Reading {
                 message: format!("{} vertices do not fit 32-bit indices", def.count),
             });
         }
+        let scalar = |name: &str| {
+            matches!(
+                def.properties.get(name).map(|p| &p.data_type),
+                Some(PropertyType::Scalar(_))
+            )
+        };
+        let pair = TEXTURE_NAMES
+            .iter()
+            .position(|names| names.iter().all(|&n| scalar(n)));
         self.vertices.reserve(source.capacity_for(def.count));
+        let mut texture = pair.map(|_| Vec::with_capacity(source.capacity_for(def.count)));
         let parser = Parser::<VertexEntry>::new();
         for i in 0..def.count {
-            let p = DVec3::from_array(source.entry(&parser, def, i)?.xyz);
+            let entry = source.entry(&parser, def, i)?;
+            let p = DVec3::from_array(entry.xyz);
             if !p.is_finite() {
                 return Err(ReadErrorKind::NonFinite {
                     at: Place::Vertex(i),
                 });
             }
             self.vertices.push(p);
+            if let (Some(pair), Some(texture)) = (pair, &mut texture) {
+                // Past f32's range is infinite too.
+                let uv = entry.texture[pair].map(|x| x as f32);
+                if !uv.iter().all(|x| x.is_finite()) {
+                    return Err(ReadErrorKind::NonFiniteTextureCoordinate {
+                        at: Place::Vertex(i),
+                    });
+                }
+                texture.push(uv);
+            }
         }
+        self.texture = texture;
         Ok(())
     }
 
@@ -208,8 +237,9 @@ impl Reading {
         }
     }
 
-    /// Triangulates the faces (now that every vertex is known) and appends the strips.
-    fn finish(self) -> Result<Mesh, ReadErrorKind> {
+    /// Triangulates the faces (now that every vertex is known) and appends the strips; the
+    /// corners take their vertices' texture coordinates.
+    fn finish(self) -> Result<TexturedMesh, ReadErrorKind> {
         let mut triangles = Vec::with_capacity(
             self.corners.len().saturating_sub(2 * self.ends.len()) + self.strip_triangles.len(),
         );
@@ -226,9 +256,15 @@ impl Reading {
             start = end;
         }
         triangles.extend(self.strip_triangles);
-        Ok(Mesh {
-            vertices: self.vertices,
-            triangles,
+        let texture_coords = self
+            .texture
+            .and_then(|texture| corner_texture_coords(&triangles, &texture));
+        Ok(TexturedMesh {
+            mesh: Mesh {
+                vertices: self.vertices,
+                triangles,
+            },
+            texture_coords,
         })
     }
 }

@@ -45,6 +45,8 @@ pub(crate) struct Triangulator {
     prev: Vec<usize>,
     /// Ring of remaining corners: next corner of each.
     next: Vec<usize>,
+    /// The triangles of one polygon as places in it, before they are turned into vertices.
+    local: Vec<[u32; 3]>,
 }
 
 impl Triangulator {
@@ -67,23 +69,44 @@ impl Triangulator {
         positions: &[DVec3],
         out: &mut Vec<[u32; 3]>,
     ) -> Result<(), PolygonTooComplex> {
-        match polygon {
-            [] | [_] | [_, _] => {}
-            &[a, b, c] => out.push([a, b, c]),
+        let mut local = std::mem::take(&mut self.local);
+        local.clear();
+        let done = self.triangulate_corners(polygon, positions, &mut local);
+        if done.is_ok() {
+            out.extend(local.iter().map(|t| t.map(|k| polygon[k as usize])));
+        }
+        self.local = local;
+        done
+    }
+
+    /// Like [`Triangulator::triangulate`], but each output triangle names its corners by
+    /// their place in `polygon` (`0..polygon.len()`), not by vertex: what a reader needs
+    /// to carry data of the polygon's corners (texture coordinates) into the triangles.
+    ///
+    /// # Errors
+    /// As [`Triangulator::triangulate`].
+    pub(crate) fn triangulate_corners(
+        &mut self,
+        polygon: &[u32],
+        positions: &[DVec3],
+        out: &mut Vec<[u32; 3]>,
+    ) -> Result<(), PolygonTooComplex> {
+        let n = polygon.len();
+        match n {
+            0..=2 => {}
+            3 => out.push([0, 1, 2]),
             _ => {
                 let Some(tol) = self.project(polygon, positions) else {
-                    fan(polygon, out);
+                    fan(n, out);
                     return Ok(());
                 };
                 if self.is_convex(tol) {
-                    fan(polygon, out);
+                    fan(n, out);
                 } else {
                     let before = out.len();
-                    if self.clip_ears(polygon, tol, out).is_none() {
+                    if self.clip_ears(n, tol, out).is_none() {
                         out.truncate(before);
-                        return Err(PolygonTooComplex {
-                            corners: polygon.len(),
-                        });
+                        return Err(PolygonTooComplex { corners: n });
                     }
                 }
             }
@@ -145,8 +168,7 @@ impl Triangulator {
     /// Ear clipping over the projected corners; fans what is left if no ear is found in a
     /// full turn around the ring (the polygon self-intersects). `None` when the budget runs
     /// out.
-    fn clip_ears(&mut self, polygon: &[u32], tol: f64, out: &mut Vec<[u32; 3]>) -> Option<()> {
-        let n = polygon.len();
+    fn clip_ears(&mut self, n: usize, tol: f64, out: &mut Vec<[u32; 3]>) -> Option<()> {
         self.prev.clear();
         self.prev.extend((0..n).map(|i| (i + n - 1) % n));
         self.next.clear();
@@ -162,7 +184,7 @@ impl Triangulator {
             let (a, c) = (self.prev[i], self.next[i]);
             match self.is_ear(a, i, c, tol, &mut budget) {
                 Some(true) => {
-                    out.push([polygon[a], polygon[i], polygon[c]]);
+                    out.push([a as u32, i as u32, c as u32]);
                     self.next[a] = c;
                     self.prev[c] = a;
                     remaining -= 1;
@@ -181,7 +203,7 @@ impl Triangulator {
         let mut k = self.next[start];
         for _ in 0..remaining.saturating_sub(2) {
             let k_next = self.next[k];
-            out.push([polygon[start], polygon[k], polygon[k_next]]);
+            out.push([start as u32, k as u32, k_next as u32]);
             k = k_next;
         }
         Some(())
@@ -216,11 +238,10 @@ fn in_triangle(p: DVec2, a: DVec2, b: DVec2, c: DVec2, tol: f64) -> bool {
         && (a - c).perp_dot(p - c) >= -tol
 }
 
-/// Fan from the first corner: `n − 2` triangles with the polygon's winding.
-fn fan(polygon: &[u32], out: &mut Vec<[u32; 3]>) {
-    if let Some((&first, rest)) = polygon.split_first() {
-        out.extend(rest.windows(2).map(|w| [first, w[0], w[1]]));
-    }
+/// Fan from the first corner of an `n`-gon: `n − 2` triangles with the polygon's winding,
+/// as places in the polygon.
+fn fan(n: usize, out: &mut Vec<[u32; 3]>) {
+    out.extend((1..n.saturating_sub(1)).map(|k| [0, k as u32, k as u32 + 1]));
 }
 
 /// Triangulates one polygon with fresh scratch space; see [`Triangulator::triangulate`].
@@ -481,6 +502,30 @@ mod tests {
             .triangulate(&[0, 1, 2, 3], &l, &mut out)
             .unwrap();
         assert_eq!(out.len(), 4 + 2);
+    }
+
+    #[test]
+    fn corners_name_the_places_of_the_vertices_triangulate_gives() {
+        let l = l_shape();
+        // The polygon's vertices in another order than their places in it.
+        let polygon = [3, 4, 5, 0, 1, 2];
+        let mut by_vertex = Vec::new();
+        let mut by_place = Vec::new();
+        let mut triangulator = Triangulator::default();
+        for p in [&polygon[..], &polygon[..3], &[0, 1, 2, 3][..]] {
+            by_vertex.clear();
+            by_place.clear();
+            triangulator.triangulate(p, &l, &mut by_vertex).unwrap();
+            triangulator
+                .triangulate_corners(p, &l, &mut by_place)
+                .unwrap();
+            let mapped: Vec<[u32; 3]> = by_place
+                .iter()
+                .map(|t| t.map(|k| p[k as usize]))
+                .collect();
+            assert_eq!(mapped, by_vertex, "{p:?}");
+            assert_eq!(by_place.len(), p.len() - 2);
+        }
     }
 
     #[test]

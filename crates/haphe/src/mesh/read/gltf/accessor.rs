@@ -33,6 +33,20 @@ pub(super) const POSITIONS: Expect = Expect {
     ],
 };
 
+/// Texture coordinates: floats, normalised unsigned bytes or shorts, or
+/// (`KHR_mesh_quantization`) other integers, normalised or not.
+pub(super) const TEXTURE_COORDS: Expect = Expect {
+    what: "TEXCOORD_0",
+    kind: Type::Vec2,
+    components: &[
+        ComponentType::F32,
+        ComponentType::I8,
+        ComponentType::U8,
+        ComponentType::I16,
+        ComponentType::U16,
+    ],
+};
+
 /// Vertex indices: unsigned integers of any width.
 pub(super) const INDICES: Expect = Expect {
     what: "indices",

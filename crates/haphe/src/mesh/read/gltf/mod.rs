@@ -176,9 +176,11 @@ fn read(
     };
     let mut skipped = Vec::new();
     let mut meshes: Vec<Option<Mesh>> = vec![None; root.meshes.len()];
+    let mut texture_coords: Vec<Option<Vec<[f32; 2]>>> = vec![None; root.meshes.len()];
     for (index, slot) in meshes.iter_mut().enumerate() {
         if used[index] {
-            let mut mesh = primitive::read_mesh(&mut accessors, index, &mut skipped)?;
+            let (mut mesh, texture) = primitive::read_mesh(&mut accessors, index, &mut skipped)?;
+            texture_coords[index] = texture;
             if scale != 1.0 {
                 for p in &mut mesh.vertices {
                     *p *= scale;
@@ -209,6 +211,7 @@ fn read(
         meshes,
         nodes,
         skipped,
+        texture_coords,
     };
     let triangles = out.placed_triangles();
     if triangles > MAX_TRIANGLES {

@@ -6,7 +6,7 @@ use gltf::json;
 use gltf::json::mesh::{Mode, Semantic};
 use gltf::json::validation::Checked;
 
-use super::accessor::{Accessors, INDICES, POSITIONS};
+use super::accessor::{Accessors, INDICES, POSITIONS, TEXTURE_COORDS};
 use super::places::{ix, place};
 use super::scene::SkippedPrimitive;
 use crate::mesh::GltfPlace;
@@ -62,20 +62,24 @@ fn assemble(mode: Mode, sequence: &[u32], out: &mut Vec<[u32; 3]>) {
 }
 
 /// Mesh `index` of the file: the triangles of all its triangle primitives, in its own
-/// frame, only the vertices they use kept.
+/// frame, only the vertices they use kept; with its vertices' texture coordinates
+/// (`TEXCOORD_0`, `v` turned to point up: `1 − v`) when every triangle primitive has them.
 ///
 /// # Errors
 /// Naming the mesh, primitive and accessor: an unknown mode, a primitive without
 /// `POSITION`, a Draco-compressed primitive with no uncompressed data, a bad accessor, an
-/// index past the positions.
+/// index past the positions, texture coordinates that are not finite or not one per
+/// position.
 pub(super) fn read_mesh(
     accessors: &mut Accessors<'_>,
     index: usize,
     skipped: &mut Vec<SkippedPrimitive>,
-) -> Result<Mesh, ReadErrorKind> {
+) -> Result<(Mesh, Option<Vec<[f32; 2]>>), ReadErrorKind> {
     let root: &json::Root = accessors.root;
     let mesh = &root.meshes[index];
     let mut out = Mesh::default();
+    // Dropped at the first triangle primitive without texture coordinates.
+    let mut texture = Some(Vec::new());
     for (p, primitive) in mesh.primitives.iter().enumerate() {
         let at = GltfPlace {
             mesh: Some(ix(index)),
@@ -105,8 +109,60 @@ pub(super) fn read_mesh(
         let vertex_count = read_positions(accessors, position, at, &mut out.vertices)?;
         let sequence = read_sequence(accessors, primitive, at, base, vertex_count)?;
         assemble(mode, &sequence, &mut out.triangles);
+        if let Some(list) = &mut texture {
+            if !read_texture_coords(accessors, primitive, at, vertex_count, list)? {
+                texture = None;
+            }
+        }
     }
-    Ok(compact(out))
+    Ok(compact(out, texture))
+}
+
+/// Appends the `TEXCOORD_0` of a primitive with `vertex_count` vertices to `texture`, `v`
+/// turned to point up (`1 − v`); `false` when it has none.
+///
+/// # Errors
+/// A bad accessor, a count other than the positions', a non-finite value.
+fn read_texture_coords(
+    accessors: &mut Accessors<'_>,
+    primitive: &json::mesh::Primitive,
+    at: GltfPlace,
+    vertex_count: usize,
+    texture: &mut Vec<[f32; 2]>,
+) -> Result<bool, ReadErrorKind> {
+    let Some(accessor) = primitive
+        .attributes
+        .get(&Checked::Valid(Semantic::TexCoords(0)))
+        .map(|a| a.value())
+    else {
+        return Ok(false);
+    };
+    let values = accessors.read(accessor, &TEXTURE_COORDS, at)?;
+    let at = place(GltfPlace {
+        accessor: Some((ix(accessor), "TEXCOORD_0")),
+        ..at
+    });
+    if values.len() / 2 != vertex_count {
+        return Err(ReadErrorKind::Invalid {
+            at,
+            message: format!(
+                "{} texture coordinates for {vertex_count} positions",
+                values.len() / 2
+            ),
+        });
+    }
+    for (e, uv) in values.chunks_exact(2).enumerate() {
+        // Past f32's range is infinite too.
+        let uv = [uv[0] as f32, (1.0 - uv[1]) as f32];
+        if !uv.iter().all(|x| x.is_finite()) {
+            return Err(ReadErrorKind::Invalid {
+                at,
+                message: format!("element {e}: a texture coordinate is NaN or infinite"),
+            });
+        }
+        texture.push(uv);
+    }
+    Ok(true)
 }
 
 /// The `POSITION` accessor of a triangle primitive.
@@ -221,10 +277,12 @@ fn read_sequence(
     Ok(sequence)
 }
 
-/// `mesh` with only the vertices its triangles use, in the order first used.
-fn compact(mesh: Mesh) -> Mesh {
+/// `mesh` with only the vertices its triangles use, in the order first used; the
+/// vertices' `texture` coordinates follow them.
+fn compact(mesh: Mesh, texture: Option<Vec<[f32; 2]>>) -> (Mesh, Option<Vec<[f32; 2]>>) {
     let mut new_index = vec![u32::MAX; mesh.vertices.len()];
     let mut vertices = Vec::new();
+    let mut kept_texture = texture.as_ref().map(|_| Vec::new());
     let triangles = mesh
         .triangles
         .iter()
@@ -234,15 +292,21 @@ fn compact(mesh: Mesh) -> Mesh {
                 if *slot == u32::MAX {
                     *slot = vertices.len() as u32;
                     vertices.push(mesh.vertices[v as usize]);
+                    if let (Some(kept), Some(all)) = (&mut kept_texture, &texture) {
+                        kept.push(all[v as usize]);
+                    }
                 }
                 *slot
             })
         })
         .collect();
-    Mesh {
-        vertices,
-        triangles,
-    }
+    (
+        Mesh {
+            vertices,
+            triangles,
+        },
+        kept_texture,
+    )
 }
 
 #[cfg(test)]

@@ -4,6 +4,7 @@
 use glam::DAffine3;
 
 use crate::mesh::Mesh;
+use crate::mesh::read::{TexturedMesh, corner_texture_coords};
 
 /// A node of the default scene that holds a mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -63,6 +64,9 @@ pub struct GltfScene {
     pub nodes: Vec<GltfNode>,
     /// The primitives of those meshes that draw points or lines, not read.
     pub skipped: Vec<SkippedPrimitive>,
+    /// The texture coordinates of each mesh's vertices (`v` pointing up), where every
+    /// triangle primitive of the mesh has `TEXCOORD_0`.
+    pub(crate) texture_coords: Vec<Option<Vec<[f32; 2]>>>,
 }
 
 impl GltfScene {
@@ -119,6 +123,27 @@ impl GltfScene {
             self.place_into(node, &mut out);
         }
         out
+    }
+
+    /// [`GltfScene::flatten`], with the texture coordinates of the triangles' corners when
+    /// every placed mesh has them.
+    pub(crate) fn flatten_textured(&self) -> TexturedMesh {
+        let mesh = self.flatten();
+        let mut per_vertex = Some(Vec::with_capacity(mesh.vertices.len()));
+        for node in &self.nodes {
+            let texture = self.texture_coords.get(node.mesh).and_then(Option::as_ref);
+            match (&mut per_vertex, texture) {
+                (Some(all), Some(texture)) => all.extend_from_slice(texture),
+                _ => per_vertex = None,
+            }
+        }
+        // Vertices are placed node after node, as `flatten` does.
+        let texture_coords =
+            per_vertex.and_then(|all| corner_texture_coords(&mesh.triangles, &all));
+        TexturedMesh {
+            mesh,
+            texture_coords,
+        }
     }
 
     /// How many triangles the scene places (a mesh counted once per node using it).

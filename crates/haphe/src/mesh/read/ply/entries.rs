@@ -2,10 +2,18 @@
 
 use ply_rs_bw::ply::{PropertyAccess, PropertyAccessResult};
 
-/// A `vertex` entry: `x`, `y`, `z` of any numeric type, as `f64`; the rest is ignored.
+/// The names of the texture coordinates a `vertex` may have, in pairs `(u, v)`, the first
+/// pair the header declares whole being the one read.
+pub(super) const TEXTURE_NAMES: [[&str; 2]; 3] =
+    [["u", "v"], ["s", "t"], ["texture_u", "texture_v"]];
+
+/// A `vertex` entry: `x`, `y`, `z` and the texture coordinates of any numeric type, as
+/// `f64`; the rest is ignored.
 pub(super) struct VertexEntry {
     /// The position in file units.
     pub(super) xyz: [f64; 3],
+    /// The values of [`TEXTURE_NAMES`], pair after pair (0 for those the header lacks).
+    pub(super) texture: [[f64; 2]; 3],
 }
 
 impl VertexEntry {
@@ -14,7 +22,15 @@ impl VertexEntry {
             "x" => 0,
             "y" => 1,
             "z" => 2,
-            _ => return PropertyAccessResult::Ignored,
+            _ => {
+                for (pair, names) in TEXTURE_NAMES.iter().enumerate() {
+                    if let Some(k) = names.iter().position(|&n| n == name) {
+                        self.texture[pair][k] = value;
+                        return PropertyAccessResult::Set;
+                    }
+                }
+                return PropertyAccessResult::Ignored;
+            }
         };
         self.xyz[axis] = value;
         PropertyAccessResult::Set
@@ -23,7 +39,10 @@ impl VertexEntry {
 
 impl PropertyAccess for VertexEntry {
     fn new() -> Self {
-        VertexEntry { xyz: [0.0; 3] }
+        VertexEntry {
+            xyz: [0.0; 3],
+            texture: [[0.0; 2]; 3],
+        }
     }
     fn set_char(&mut self, name: &str, value: i8) -> PropertyAccessResult {
         self.set(name, f64::from(value))

@@ -7,7 +7,7 @@ const ASCII_SQUARE: &str = "ply\nformat ascii 1.0\ncomment square\n\
     0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
 
 fn read(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
-    read_ply(bytes)
+    read_ply(bytes).map(|read| read.mesh)
 }
 
 /// Binary PLY of the unit square as one quad, with mixed property types: x double, y
@@ -316,4 +316,94 @@ fn no_faces_and_empty() {
     let mesh = read(no_index_list.as_bytes()).unwrap();
     assert!(mesh.vertices.is_empty() && mesh.triangles.is_empty());
     assert_eq!(read(b" \n"), Err(ReadErrorKind::Empty));
+}
+
+/// Whether every corner's texture coordinate is `uv_of` its position.
+fn corners_follow(bytes: &[u8], uv_of: impl Fn(DVec3) -> [f32; 2]) {
+    let read = read_ply(bytes).unwrap();
+    let uvs = read.texture_coords.expect("texture coordinates");
+    assert_eq!(uvs.len(), read.mesh.triangles.len());
+    for (t, tri_uvs) in uvs.iter().enumerate() {
+        assert_eq!(*tri_uvs, read.mesh.corners(t).map(&uv_of), "triangle {t}");
+    }
+}
+
+/// The unit square of [`ASCII_SQUARE`] with texture coordinates `names` per vertex:
+/// `(x / 2, 1 − y)`.
+fn ascii_textured_square(names: [&str; 2]) -> String {
+    format!(
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float {}\n\
+         property float y\nproperty float z\nproperty double {}\n\
+         element face 2\nproperty list uchar int vertex_indices\nend_header\n\
+         0 0 0 0 1\n1 0.5 0 0 1\n1 0.5 1 0 0\n0 0 1 0 0\n3 0 1 2\n3 0 2 3\n",
+        names[0], names[1]
+    )
+}
+
+#[test]
+fn ascii_texture_coordinates_follow_the_corners_under_each_name() {
+    for names in [["u", "v"], ["s", "t"], ["texture_u", "texture_v"]] {
+        corners_follow(ascii_textured_square(names).as_bytes(), |p| {
+            [p.x as f32 / 2.0, 1.0 - p.y as f32]
+        });
+    }
+    // Half a pair is no pair; no pair is no texture coordinates.
+    let half = ascii_textured_square(["u", "t"]);
+    assert_eq!(read_ply(half.as_bytes()).unwrap().texture_coords, None);
+    assert_eq!(
+        read_ply(ASCII_SQUARE.as_bytes()).unwrap().texture_coords,
+        None
+    );
+}
+
+#[test]
+fn binary_texture_coordinates_of_a_quad_follow_its_triangles() {
+    for big_endian in [false, true] {
+        let mut bytes = format!(
+            "ply\nformat {} 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+             property float z\nproperty float u\nproperty ushort v\nelement face 1\n\
+             property list uchar int vertex_indices\nend_header\n",
+            if big_endian {
+                "binary_big_endian"
+            } else {
+                "binary_little_endian"
+            }
+        )
+        .into_bytes();
+        macro_rules! put {
+            ($v:expr) => {
+                if big_endian {
+                    bytes.extend($v.to_be_bytes())
+                } else {
+                    bytes.extend($v.to_le_bytes())
+                }
+            };
+        }
+        // u = 3x, v = 7y, as a float and an unsigned short.
+        for (x, y) in [(0.0f32, 0.0f32), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            put!(x);
+            put!(y);
+            put!(0.0f32);
+            put!(3.0 * x);
+            put!(7 * y as u16);
+        }
+        bytes.push(4);
+        for i in 0..4i32 {
+            put!(i);
+        }
+        corners_follow(&bytes, |p| [3.0 * p.x as f32, 7.0 * p.y as f32]);
+        assert_eq!(read(&bytes).unwrap().triangles.len(), 2);
+    }
+}
+
+#[test]
+fn a_non_finite_texture_coordinate_names_its_vertex() {
+    // Past f32's range (ASCII PLY has no NaN).
+    let text = ascii_textured_square(["u", "v"]).replace("1 0.5 1 0 0\n", "1 0.5 1 0 1e39\n");
+    assert_eq!(
+        read(text.as_bytes()),
+        Err(ReadErrorKind::NonFiniteTextureCoordinate {
+            at: Place::Vertex(2)
+        })
+    );
 }
