@@ -44,6 +44,7 @@ mod removals;
 mod shape;
 mod spec;
 mod texture;
+mod texture_coords;
 mod tool;
 mod world;
 
@@ -77,3 +78,5 @@ pub use world::Scene;
 
 pub(crate) use broad::Near;
 pub(crate) use clear::others_box;
+#[allow(unused_imports)] // Used by the textures, which read it.
+pub(crate) use texture_coords::UvPoint;

@@ -2,7 +2,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use crate::map::{MapError, MapOptions, VoxelMap};
 use crate::mesh::{
@@ -10,6 +10,8 @@ use crate::mesh::{
     read_mesh_with_stats,
 };
 use crate::query::{ClearZone, zone_from_bits, zone_height};
+
+use super::texture_coords::{self, UvPoint};
 
 /// Why a mesh could not become a [`Shape`]: its file is not a mesh, or the mesh has no
 /// usable surface, or its map cannot be built. The last two name the mesh.
@@ -35,6 +37,22 @@ pub enum ShapeError {
         /// What is wrong.
         source: MapError,
     },
+    /// Texture coordinates given for another number of triangles than the shape has.
+    #[error("texture coordinates for {given} triangles, but the shape has {triangles} triangles")]
+    TextureCoordsCount {
+        /// How many triangles the coordinates were given for.
+        given: usize,
+        /// How many the shape has.
+        triangles: usize,
+    },
+    /// A texture coordinate is NaN or infinite.
+    #[error("triangle {triangle}, corner {corner}: a texture coordinate is not a finite number")]
+    TextureCoordNotFinite {
+        /// The triangle, as numbered in the mesh the shape was made from.
+        triangle: usize,
+        /// The corner (0, 1 or 2).
+        corner: usize,
+    },
 }
 
 /// An immutable collision shape: a [`Surface`] with its [`VoxelMap`] and a bounding sphere,
@@ -43,6 +61,10 @@ pub enum ShapeError {
 /// that does is a cache: each triangle's [`ClearZone`], computed the first time a proxy
 /// slides on the triangle (or all at once by [`Shape::prepare_clear_zones`]) and kept in
 /// an atomic slot (8 bytes a triangle), so that reading it takes no lock.
+///
+/// A shape may carry texture coordinates at its triangles' corners (read from the mesh
+/// file by [`Shape::read`], or given by [`Shape::with_texture_coords`]), which image
+/// textures follow: 48 bytes more a triangle.
 #[derive(Debug)]
 pub struct Shape {
     surface: Surface,
@@ -52,6 +74,8 @@ pub struct Shape {
     /// Packed [`ClearZone`] per triangle, 0 until computed.
     zones: Box<[AtomicU64]>,
     zone_height: f32,
+    /// `[u, v]` at each corner of each surface triangle, in the surface's order.
+    texture_coords: Option<Box<[[DVec2; 3]]>>,
 }
 
 impl Shape {
@@ -77,6 +101,7 @@ impl Shape {
             bound_radius,
             zones,
             zone_height,
+            texture_coords: None,
         }
     }
 
@@ -112,7 +137,10 @@ impl Shape {
     }
 
     /// Reads the mesh file `file` whose contents are `bytes` (the format from `read`, or
-    /// told apart by content) and makes its shape as [`Shape::from_mesh`] does.
+    /// told apart by content) and makes its shape as [`Shape::from_mesh`] does, with the
+    /// file's texture coordinates when it has them for every corner
+    /// ([`ReadMesh::texture_coords`](crate::mesh::ReadMesh::texture_coords)): each surface
+    /// corner takes the coordinate of the file's corner at its place.
     ///
     /// # Errors
     /// [`ShapeError::Read`] naming the file and the place, or those of
@@ -124,7 +152,95 @@ impl Shape {
         options: &MapOptions,
     ) -> Result<Shape, ShapeError> {
         let loaded = read_mesh_with_stats(file, bytes, read)?;
-        Shape::from_mesh(file, loaded.mesh, options)
+        let texture = loaded.texture_coords.map(|uvs| {
+            let corners: Vec<[DVec3; 3]> = (0..loaded.mesh.triangles.len())
+                .map(|t| loaded.mesh.corners(t))
+                .collect();
+            (widen(&uvs), corners)
+        });
+        let shape = Shape::from_mesh(file, loaded.mesh, options)?;
+        match texture {
+            Some((uvs, corners)) => shape.attach_texture_coords(&uvs, Some(&corners)),
+            None => Ok(shape),
+        }
+    }
+
+    /// The shape with texture coordinates `[u, v]` at its triangles' corners (`v`
+    /// pointing up the image: `v = 0` is its bottom row), for a shape made from a mesh of
+    /// one's own: entry `t` is for triangle `t` of the mesh given to [`Surface::new`] (or
+    /// [`Shape::from_mesh`]), its corners in that triangle's order. Replaces any the shape
+    /// had.
+    ///
+    /// # Errors
+    /// [`ShapeError::TextureCoordsCount`] when the length is not the number of triangles;
+    /// [`ShapeError::TextureCoordNotFinite`] naming the first triangle and corner with a
+    /// NaN or infinite coordinate.
+    ///
+    /// # Examples
+    /// ```
+    /// use haphe::map::MapOptions;
+    /// use haphe::mesh::shapes;
+    /// use haphe::scene::Shape;
+    /// let mesh = shapes::sphere(0.05, 1);
+    /// let triangles = mesh.triangles.len();
+    /// let shape = Shape::from_mesh("cube", mesh, &MapOptions::default()).unwrap();
+    /// assert!(!shape.has_texture_coords());
+    /// let shape = shape
+    ///     .with_texture_coords(vec![[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]; triangles])
+    ///     .unwrap();
+    /// assert!(shape.has_texture_coords());
+    /// ```
+    pub fn with_texture_coords(
+        self,
+        per_loaded_triangle: Vec<[[f64; 2]; 3]>,
+    ) -> Result<Shape, ShapeError> {
+        self.attach_texture_coords(&per_loaded_triangle, None)
+    }
+
+    /// The shape with `per_loaded` texture coordinates, checked, in the surface's order
+    /// (see [`texture_coords::in_surface_order`]).
+    fn attach_texture_coords(
+        self,
+        per_loaded: &[[[f64; 2]; 3]],
+        loaded_corners: Option<&[[DVec3; 3]]>,
+    ) -> Result<Shape, ShapeError> {
+        let triangles = self.surface.triangle_count();
+        if per_loaded.len() != triangles || loaded_corners.is_some_and(|c| c.len() != triangles) {
+            return Err(ShapeError::TextureCoordsCount {
+                given: per_loaded.len(),
+                triangles,
+            });
+        }
+        for (triangle, uvs) in per_loaded.iter().enumerate() {
+            if let Some(corner) = uvs.iter().position(|uv| !uv.iter().all(|x| x.is_finite())) {
+                return Err(ShapeError::TextureCoordNotFinite { triangle, corner });
+            }
+        }
+        let in_order = texture_coords::in_surface_order(&self.surface, per_loaded, loaded_corners);
+        Ok(Shape {
+            texture_coords: Some(in_order),
+            ..self
+        })
+    }
+
+    /// Whether the shape has texture coordinates (so that an image texture can follow
+    /// them).
+    pub fn has_texture_coords(&self) -> bool {
+        self.texture_coords.is_some()
+    }
+
+    /// The texture coordinate at barycentric `weights` of triangle `t`, with the gradients
+    /// of `u` and `v` over its plane (object frame). `None` without texture coordinates,
+    /// for `t` out of range, and where the triangle's texture map is degenerate (no area
+    /// in 3D or in the image).
+    ///
+    /// # Real-time
+    /// No allocation, no lock, no panic; a few dozen flops.
+    #[allow(dead_code)] // Used by the textures, which read it.
+    #[inline]
+    pub(crate) fn uv_at(&self, t: TriId, weights: [f64; 3]) -> Option<UvPoint> {
+        let uvs = self.texture_coords.as_deref()?.get(t.index())?;
+        texture_coords::uv_at(self.surface.frame(t), uvs, weights)
     }
 
     /// The shape with every triangle's clear zone computed ([`Shape::prepare_clear_zones`]):
@@ -196,4 +312,9 @@ impl Shape {
             })
             .count()
     }
+}
+
+/// Texture coordinates as read (`f32`) in the shape's precision.
+fn widen(uvs: &[[[f32; 2]; 3]]) -> Vec<[[f64; 2]; 3]> {
+    uvs.iter().map(|t| t.map(|uv| uv.map(f64::from))).collect()
 }

@@ -13,6 +13,7 @@ mod ply;
 pub(crate) mod polygon;
 mod stl;
 mod text;
+mod textured;
 mod units;
 
 pub use units::{
@@ -21,6 +22,7 @@ pub use units::{
 
 use self::gltf::{NoSideCars, Resolve};
 use self::text::{skip_ascii_whitespace, starts_with_word};
+pub(crate) use self::textured::TexturedMesh;
 use super::{Mesh, ReadError, ReadErrorKind, Weld, WeldStats, weld};
 
 /// A mesh file format.
@@ -159,46 +161,6 @@ pub struct ReadOptions {
 /// ```
 pub fn read_mesh(file: &str, bytes: &[u8], options: &ReadOptions) -> Result<Mesh, ReadError> {
     read_unwelded(file, bytes, options).map(|mesh| weld(&mesh, options.weld).0)
-}
-
-/// The texture coordinates `[u, v]` of each triangle's three corners, in the order of the
-/// mesh's triangles and of each triangle's corners.
-pub(crate) type CornerTextureCoords = Vec<[[f32; 2]; 3]>;
-
-/// A mesh as a reader returns it, with its corners' texture coordinates if it has some.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct TexturedMesh {
-    /// The mesh, unwelded, in file units.
-    pub(crate) mesh: Mesh,
-    /// One entry per triangle of `mesh`, or `None`.
-    pub(crate) texture_coords: Option<CornerTextureCoords>,
-}
-
-impl From<Mesh> for TexturedMesh {
-    fn from(mesh: Mesh) -> TexturedMesh {
-        TexturedMesh {
-            mesh,
-            texture_coords: None,
-        }
-    }
-}
-
-/// The texture coordinates of the triangles' corners from those of their vertices; `None`
-/// if a corner's vertex has none.
-pub(crate) fn corner_texture_coords(
-    triangles: &[[u32; 3]],
-    per_vertex: &[[f32; 2]],
-) -> Option<CornerTextureCoords> {
-    triangles
-        .iter()
-        .map(|t| {
-            Some([
-                *per_vertex.get(t[0] as usize)?,
-                *per_vertex.get(t[1] as usize)?,
-                *per_vertex.get(t[2] as usize)?,
-            ])
-        })
-        .collect()
 }
 
 /// A mesh file read and welded, with what was found on the way.

@@ -18,9 +18,9 @@
 
 use glam::DVec3;
 
-use super::TexturedMesh;
 use super::polygon::Triangulator;
 use super::text::{Lines, show, tokens};
+use super::textured::TexturedMesh;
 use crate::mesh::{Mesh, Place, ReadErrorKind};
 
 /// A corner without a texture coordinate (`v` or `v//vn`).

@@ -32,7 +32,7 @@ mod entries;
 mod header;
 mod source;
 
-use super::{TexturedMesh, corner_texture_coords};
+use super::textured::{TexturedMesh, VertexTextureCoords, corner_texture_coords};
 use entries::{IndexList, Skip, TEXTURE_NAMES, VertexEntry};
 use source::{Source, map_parse_error};
 
@@ -103,7 +103,7 @@ struct Reading {
     vertex_count: usize,
     vertices: Vec<DVec3>,
     /// The vertices' texture coordinates, when the `vertex` element has some.
-    texture: Option<Vec<[f32; 2]>>,
+    texture: Option<VertexTextureCoords>,
     /// Face corners, checked against `vertex_count`, face after face.
     corners: Vec<u32>,
     /// End of each face in `corners`.

@@ -519,10 +519,7 @@ mod tests {
             triangulator
                 .triangulate_corners(p, &l, &mut by_place)
                 .unwrap();
-            let mapped: Vec<[u32; 3]> = by_place
-                .iter()
-                .map(|t| t.map(|k| p[k as usize]))
-                .collect();
+            let mapped: Vec<[u32; 3]> = by_place.iter().map(|t| t.map(|k| p[k as usize])).collect();
             assert_eq!(mapped, by_vertex, "{p:?}");
             assert_eq!(by_place.len(), p.len() - 2);
         }

@@ -20,17 +20,20 @@ pub(super) struct Expect {
     pub components: &'static [ComponentType],
 }
 
+/// Floats, or (`KHR_mesh_quantization`) integers of 8 or 16 bits, normalised or not.
+const FLOAT_OR_QUANTIZED: &[ComponentType] = &[
+    ComponentType::F32,
+    ComponentType::I8,
+    ComponentType::U8,
+    ComponentType::I16,
+    ComponentType::U16,
+];
+
 /// Positions: floats, or (`KHR_mesh_quantization`) integers, normalised or not.
 pub(super) const POSITIONS: Expect = Expect {
     what: "POSITION",
     kind: Type::Vec3,
-    components: &[
-        ComponentType::F32,
-        ComponentType::I8,
-        ComponentType::U8,
-        ComponentType::I16,
-        ComponentType::U16,
-    ],
+    components: FLOAT_OR_QUANTIZED,
 };
 
 /// Texture coordinates: floats, normalised unsigned bytes or shorts, or
@@ -38,13 +41,7 @@ pub(super) const POSITIONS: Expect = Expect {
 pub(super) const TEXTURE_COORDS: Expect = Expect {
     what: "TEXCOORD_0",
     kind: Type::Vec2,
-    components: &[
-        ComponentType::F32,
-        ComponentType::I8,
-        ComponentType::U8,
-        ComponentType::I16,
-        ComponentType::U16,
-    ],
+    components: FLOAT_OR_QUANTIZED,
 };
 
 /// Vertex indices: unsigned integers of any width.

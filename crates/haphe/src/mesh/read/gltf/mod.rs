@@ -37,6 +37,7 @@ pub use summary::{GltfNodeSummary, GltfSummary, SkippedSummary};
 
 use gltf::json;
 
+use crate::mesh::read::textured::VertexTextureCoords;
 use crate::mesh::{Mesh, Place, ReadError, ReadErrorKind, Units};
 
 /// Required extensions that change only how a surface looks, which haphe may ignore.
@@ -176,7 +177,7 @@ fn read(
     };
     let mut skipped = Vec::new();
     let mut meshes: Vec<Option<Mesh>> = vec![None; root.meshes.len()];
-    let mut texture_coords: Vec<Option<Vec<[f32; 2]>>> = vec![None; root.meshes.len()];
+    let mut texture_coords: Vec<Option<VertexTextureCoords>> = vec![None; root.meshes.len()];
     for (index, slot) in meshes.iter_mut().enumerate() {
         if used[index] {
             let (mut mesh, texture) = primitive::read_mesh(&mut accessors, index, &mut skipped)?;

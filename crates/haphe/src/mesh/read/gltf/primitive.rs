@@ -10,6 +10,7 @@ use super::accessor::{Accessors, INDICES, POSITIONS, TEXTURE_COORDS};
 use super::places::{ix, place};
 use super::scene::SkippedPrimitive;
 use crate::mesh::GltfPlace;
+use crate::mesh::read::textured::VertexTextureCoords;
 use crate::mesh::{Mesh, ReadErrorKind};
 
 /// The extension name of Draco-compressed primitives.
@@ -74,7 +75,7 @@ pub(super) fn read_mesh(
     accessors: &mut Accessors<'_>,
     index: usize,
     skipped: &mut Vec<SkippedPrimitive>,
-) -> Result<(Mesh, Option<Vec<[f32; 2]>>), ReadErrorKind> {
+) -> Result<(Mesh, Option<VertexTextureCoords>), ReadErrorKind> {
     let root: &json::Root = accessors.root;
     let mesh = &root.meshes[index];
     let mut out = Mesh::default();
@@ -109,10 +110,10 @@ pub(super) fn read_mesh(
         let vertex_count = read_positions(accessors, position, at, &mut out.vertices)?;
         let sequence = read_sequence(accessors, primitive, at, base, vertex_count)?;
         assemble(mode, &sequence, &mut out.triangles);
-        if let Some(list) = &mut texture {
-            if !read_texture_coords(accessors, primitive, at, vertex_count, list)? {
-                texture = None;
-            }
+        if let Some(list) = &mut texture
+            && !read_texture_coords(accessors, primitive, at, vertex_count, list)?
+        {
+            texture = None;
         }
     }
     Ok(compact(out, texture))
@@ -128,7 +129,7 @@ fn read_texture_coords(
     primitive: &json::mesh::Primitive,
     at: GltfPlace,
     vertex_count: usize,
-    texture: &mut Vec<[f32; 2]>,
+    texture: &mut VertexTextureCoords,
 ) -> Result<bool, ReadErrorKind> {
     let Some(accessor) = primitive
         .attributes
@@ -279,7 +280,10 @@ fn read_sequence(
 
 /// `mesh` with only the vertices its triangles use, in the order first used; the
 /// vertices' `texture` coordinates follow them.
-fn compact(mesh: Mesh, texture: Option<Vec<[f32; 2]>>) -> (Mesh, Option<Vec<[f32; 2]>>) {
+fn compact(
+    mesh: Mesh,
+    texture: Option<VertexTextureCoords>,
+) -> (Mesh, Option<VertexTextureCoords>) {
     let mut new_index = vec![u32::MAX; mesh.vertices.len()];
     let mut vertices = Vec::new();
     let mut kept_texture = texture.as_ref().map(|_| Vec::new());

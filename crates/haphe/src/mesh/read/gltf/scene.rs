@@ -4,7 +4,7 @@
 use glam::DAffine3;
 
 use crate::mesh::Mesh;
-use crate::mesh::read::{TexturedMesh, corner_texture_coords};
+use crate::mesh::read::textured::{TexturedMesh, VertexTextureCoords, corner_texture_coords};
 
 /// A node of the default scene that holds a mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -66,7 +66,7 @@ pub struct GltfScene {
     pub skipped: Vec<SkippedPrimitive>,
     /// The texture coordinates of each mesh's vertices (`v` pointing up), where every
     /// triangle primitive of the mesh has `TEXCOORD_0`.
-    pub(crate) texture_coords: Vec<Option<Vec<[f32; 2]>>>,
+    pub(crate) texture_coords: Vec<Option<VertexTextureCoords>>,
 }
 
 impl GltfScene {

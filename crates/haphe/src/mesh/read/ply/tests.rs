@@ -6,6 +6,17 @@ const ASCII_SQUARE: &str = "ply\nformat ascii 1.0\ncomment square\n\
     element face 2\nproperty list uchar int vertex_indices\nend_header\n\
     0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
 
+/// Appends a number to `bytes` in the byte order `big_endian` says.
+macro_rules! put_number {
+    ($bytes:expr, $big_endian:expr, $v:expr) => {
+        if $big_endian {
+            $bytes.extend($v.to_be_bytes())
+        } else {
+            $bytes.extend($v.to_le_bytes())
+        }
+    };
+}
+
 fn read(bytes: &[u8]) -> Result<Mesh, ReadErrorKind> {
     read_ply(bytes).map(|read| read.mesh)
 }
@@ -26,11 +37,7 @@ fn binary_square(big_endian: bool) -> Vec<u8> {
     .into_bytes();
     macro_rules! put {
         ($v:expr) => {
-            if big_endian {
-                bytes.extend($v.to_be_bytes())
-            } else {
-                bytes.extend($v.to_le_bytes())
-            }
+            put_number!(bytes, big_endian, $v)
         };
     }
     for (x, y) in [(0.0f64, 0i16), (1.0, 0), (1.0, 1), (0.0, 1)] {
@@ -372,11 +379,7 @@ fn binary_texture_coordinates_of_a_quad_follow_its_triangles() {
         .into_bytes();
         macro_rules! put {
             ($v:expr) => {
-                if big_endian {
-                    bytes.extend($v.to_be_bytes())
-                } else {
-                    bytes.extend($v.to_le_bytes())
-                }
+                put_number!(bytes, big_endian, $v)
             };
         }
         // u = 3x, v = 7y, as a float and an unsigned short.
