@@ -260,3 +260,46 @@ fn the_view_tells_the_page_the_tool_radius() {
     let _ = std::fs::remove_file(&trace);
     let _ = std::fs::remove_file(&scene);
 }
+
+/// The page learns where the effects act, from the flags and from a scene file.
+#[test]
+fn the_view_tells_the_page_where_the_effects_act() {
+    let effects = |info: &str| {
+        let info: serde_json::Value = serde_json::from_str(info).expect("JSON");
+        info["effects"].as_array().expect("a list").clone()
+    };
+    let (info, printed) = serve_and_interrupt(&[
+        "--shape",
+        "sphere",
+        "--triangles",
+        "500",
+        "--texture",
+        "sine:0.0002:0.002",
+        "--effect",
+        "viscosity:2:box:0.2:-0.1:-0.1:0.3:0.1:0.1",
+        "--effect",
+        "spring:10:0:0:0.2",
+    ]);
+    let list = effects(&info);
+    assert_eq!(list.len(), 2, "{info}\n{printed}");
+    assert_eq!(list[0]["effect"], "viscosity");
+    let place = &list[0]["place"];
+    assert_eq!(place["kind"], "box");
+    assert_eq!(place["min"], serde_json::json!([0.2, -0.1, -0.1]));
+    assert_eq!(place["max"], serde_json::json!([0.3, 0.1, 0.1]));
+    assert_eq!(list[1]["place"]["at"], serde_json::json!([0.0, 0.0, 0.2]));
+    let scene = scratch("effects.toml");
+    std::fs::write(
+        &scene,
+        "effects = [\"viscosity:2:inside:4\"]\n[[object]]\nid = 4\nshape = \"sphere\"\ntriangles = 500\n",
+    )
+    .expect("write");
+    let (info, _) = serve_and_interrupt(&["--scene", scene.to_str().expect("utf-8")]);
+    let list = effects(&info);
+    assert_eq!(list.len(), 1, "{info}");
+    assert_eq!(
+        list[0]["place"],
+        serde_json::json!({"kind": "object", "id": 4})
+    );
+    let _ = std::fs::remove_file(&scene);
+}

@@ -107,6 +107,53 @@ for (const o of [hipMark, proxyMark, link, forceArrow, normalArrow, contactTri])
 }
 const maxForce = 3.3;
 
+// The scene's force effects, info.effects: [{ effect, place: { kind, ... } }]. A viscosity
+// in a box is that box, translucent, with its edges; one inside an object tints the object;
+// a spring's anchor is a marker; the others act everywhere or in contact and are named in
+// the panel. state.effects says what was drawn, world frame.
+const effectColour = 0xb07cff;
+state.effects = [];
+const effectNames = [];
+for (const e of info.effects ?? []) {
+  const p = e.place;
+  let drawn = null;
+  let where = '';
+  if (p.kind === 'box') {
+    const sides = [0, 1, 2].map((k) => Math.max(p.max[k] - p.min[k], size * 1e-4));
+    const geometry = new THREE.BoxGeometry(sides[0], sides[1], sides[2]);
+    const box = new THREE.Mesh(geometry, new THREE.MeshBasicMaterial({
+      color: effectColour, transparent: true, opacity: 0.2, depthWrite: false, side: THREE.DoubleSide,
+    }));
+    box.add(new THREE.LineSegments(new THREE.EdgesGeometry(geometry),
+      new THREE.LineBasicMaterial({ color: effectColour })));
+    box.position.set(...[0, 1, 2].map((k) => (p.min[k] + p.max[k]) / 2));
+    scene.add(box);
+    box.updateMatrixWorld(true);
+    const bounds = new THREE.Box3().setFromObject(box);
+    drawn = { min: bounds.min.toArray(), max: bounds.max.toArray() };
+    where = ' in the box';
+  } else if (p.kind === 'object') {
+    const o = objects.get(p.id);
+    if (o) {
+      o.material.color.setHex(effectColour);
+      drawn = { id: p.id, colour: o.material.color.getHex() };
+    }
+    where = ` inside ${info.objects.find((x) => x.id === p.id)?.name ?? `object ${p.id}`}`;
+  } else if (p.kind === 'point') {
+    // Seen through the objects, as the device point is: an anchor may lie inside one.
+    const marker = new THREE.Mesh(new THREE.OctahedronGeometry(r * 0.9),
+      new THREE.MeshBasicMaterial({ color: effectColour, depthTest: false, transparent: true }));
+    marker.renderOrder = 10;
+    marker.position.set(p.at[0], p.at[1], p.at[2]);
+    scene.add(marker);
+    drawn = { at: marker.position.toArray() };
+    where = ' to the marker';
+  }
+  state.effects.push({ effect: e.effect, kind: p.kind, drawn });
+  effectNames.push(e.effect + where);
+}
+$('effects').textContent = effectNames.length ? effectNames.join(', ') : '–';
+
 // The other devices of a run of several (two hands): each one's device point, its tool (a
 // sphere of its radius, or the marker for a point) and the line between them, in a colour
 // of its own, made when a frame first carries it.

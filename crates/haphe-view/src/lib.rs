@@ -3,8 +3,10 @@
 //! [`ViewServer::start`] serves a page on `http://127.0.0.1:PORT/` that draws the scene's
 //! meshes, the device point, the proxy (the tool: a sphere of its radius, or a marker for
 //! a point), the line between them, the force arrow, the contact triangle and its normal,
-//! the contact and sticking state, the tick rate and compute-time percentiles, and a
-//! force/penetration chart over the last seconds; orbit, pan and zoom with the mouse. The page and three.js are embedded in the binary: it works offline.
+//! the contact and sticking state, the tick rate and compute-time percentiles, a
+//! force/penetration chart over the last seconds, and where the scene's force effects act
+//! (a viscosity's box or object, a spring's anchor: [`EffectMark`]); orbit, pan and zoom
+//! with the mouse. The page and three.js are embedded in the binary: it works offline.
 //!
 //! Two sources:
 //! - [`Source::Live`]: any [`Device`] (the [`MouseDevice`], whose
@@ -24,6 +26,7 @@
 //!
 //! SI units; everything the page draws is in the world frame, z up.
 
+mod effects;
 mod live;
 mod model;
 mod mouse;
@@ -32,6 +35,7 @@ mod replay;
 mod server;
 mod timing;
 
+pub use effects::{EffectMark, Place};
 pub use live::{FRAME_RATE_HZ, Frame, LiveRun, LiveSource, OtherTool, Published, STATS_WINDOW_S};
 pub use model::{MESH_MAGIC, Model, ObjectInfo, ObjectMesh};
 pub use mouse::{MOUSE_MAX_FORCE_N, MOUSE_VELOCITY_TAU_S, MouseDevice, MouseHandle};
@@ -120,6 +124,8 @@ struct Info<'a> {
     /// Ids of the objects moved by script, in the order of a replay's poses.
     moving: Vec<u32>,
     pose_values: usize,
+    /// The scene's force effects, where they act.
+    effects: &'a [EffectMark],
 }
 
 impl ViewServer {
@@ -178,6 +184,7 @@ impl ViewServer {
             row_values: ROW_VALUES,
             moving,
             pose_values: POSE_VALUES,
+            effects: &model.effects,
         };
         let shared = Arc::new(Shared {
             info: serde_json::to_string(&info).unwrap_or_else(|_| "{}".into()),

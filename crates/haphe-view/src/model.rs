@@ -1,10 +1,13 @@
 //! What the page draws of the scene: each object's surface (positions and triangles, in
-//! the object frame) and its pose, sent once at connect as one binary message.
+//! the object frame) and its pose, sent once at connect as one binary message; and the
+//! scene's force effects ([`EffectMark`]), sent with the page's `/info`.
 
 use glam::{DQuat, DVec3};
 use haphe::scene::Scene;
 use haphe::servo::ObjectMotion;
 use serde::Serialize;
+
+use crate::effects::EffectMark;
 
 /// One object as the page draws it.
 #[derive(Debug, Clone)]
@@ -37,6 +40,8 @@ pub struct Model {
     /// of (a live view takes the servo's own,
     /// [`ProxyOptions::tool_radius`](haphe::proxy::ProxyOptions::tool_radius)).
     pub tool_radius: f64,
+    /// The scene's force effects, where they act.
+    pub effects: Vec<EffectMark>,
 }
 
 /// What the page learns at connect besides the meshes (JSON).
@@ -54,8 +59,8 @@ pub struct ObjectInfo {
 pub const MESH_MAGIC: u32 = u32::from_le_bytes(*b"HPV1");
 
 impl Model {
-    /// The objects of `scene` as they are placed now; `names[i]` names the `i`-th object
-    /// (missing names become `object N`).
+    /// The objects of `scene` as they are placed now, and its effects; `names[i]` names
+    /// the `i`-th object (missing names become `object N`).
     pub fn from_scene(scene: &Scene, names: &[String]) -> Model {
         let objects = scene
             .objects()
@@ -85,6 +90,7 @@ impl Model {
             objects,
             motions: Vec::new(),
             tool_radius: 0.0,
+            effects: scene.effects().iter().map(EffectMark::of).collect(),
         }
     }
 

@@ -2,7 +2,7 @@
 //! DevTools protocol): the page loads without console errors and draws the scene; mouse
 //! events push the device point into a sphere and the server reports contact with a force
 //! pointing out of it; a recorded trace replays to its last tick; with two devices, each
-//! one's tool is drawn.
+//! one's tool is drawn; the scene's effect zones are drawn where they act.
 //!
 //! Needs Chromium (`apt-get install chromium`; `.ci/run` installs it). With
 //! `HAPHE_VIEW_SCREENSHOT=docs/view.png` the test also writes the screenshot of the
@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use haphe::DVec3;
 use haphe::proxy::ProxyOptions;
-use haphe::scene::{Material, ObjectId, Pose, Scene};
+use haphe::scene::{Effect, Material, ObjectId, Pose, Scene, Zone};
 use haphe::servo::{
     Motion, ObjectMotion, PathKind, RealtimeOptions, ScriptedDevice, Servo, ServoOptions,
     Trajectory, scene_bounds, scripted_path,
@@ -518,4 +518,105 @@ fn every_devices_tool_is_drawn() {
     drop(browser);
     let run = view.stop().expect("stops").expect("a live run");
     assert_eq!(run.servo.devices(), 2);
+}
+
+/// The translucent violet of an effect's box over the dark background or the floor grid
+/// (both grey: their green above their red).
+fn zone_colour(px: [u8; 4]) -> bool {
+    let [r, g, b, _] = px.map(i32::from);
+    r > g && b > g + 15
+}
+
+#[test]
+fn effect_zones_are_drawn_where_they_act() {
+    let mut scene = sphere_scene();
+    let (lo, hi, centre, radius) = sphere_bounds(&scene);
+    // A viscous box beside the sphere, a viscosity inside the sphere (id 0), a spring
+    // anchored above it, and a vibration, which has no place to draw.
+    let min = DVec3::new(hi.x + 0.3 * radius, lo.y, lo.z);
+    let max = DVec3::new(hi.x + 1.1 * radius, hi.y, hi.z);
+    let anchor = DVec3::new(centre.x, centre.y, hi.z + 0.5 * radius);
+    for effect in [
+        Effect::viscosity(2.0, Zone::Box { min, max }),
+        Effect::viscosity(5.0, Zone::Inside(ObjectId(0))),
+        Effect::spring(10.0, anchor),
+        Effect::vibration(150.0, 0.3),
+    ] {
+        scene
+            .add_effect(effect.expect("a valid effect"))
+            .expect("room for it");
+    }
+    let model = Model::from_scene(&scene, &["sphere".to_string()]);
+    let start = DVec3::new(centre.x - radius, centre.y, hi.z + 0.6 * radius);
+    let view = live_view(
+        model,
+        scene,
+        start,
+        (Vec::new(), None),
+        false,
+        "effects around a sphere",
+        ServoOptions::default(),
+    );
+    let mut browser = Browser::start(WIDTH, HEIGHT);
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.ready && window.haphe.frames > 2)",
+        Duration::from_secs(40),
+        "the page to draw and receive frames",
+    );
+    let effects = browser.eval("window.haphe.effects");
+    let list = effects.as_array().expect("a list of effects");
+    let kinds: Vec<(&str, &str)> = list
+        .iter()
+        .map(|e| {
+            (
+                e["effect"].as_str().expect("a kind"),
+                e["kind"].as_str().expect("a place"),
+            )
+        })
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            ("viscosity", "box"),
+            ("viscosity", "object"),
+            ("spring", "point"),
+            ("vibration", "everywhere")
+        ]
+    );
+    // The box drawn spans the zone (the page draws in f32).
+    let corner = |v: &Value| DVec3::from_array([0, 1, 2].map(|k| v[k].as_f64().expect("a number")));
+    let drawn = &list[0]["drawn"];
+    for (at, zone) in [(corner(&drawn["min"]), min), (corner(&drawn["max"]), max)] {
+        assert!(
+            (at - zone).length() < 1e-6 * radius.max(1.0),
+            "{at} vs {zone}"
+        );
+    }
+    assert_eq!(list[1]["drawn"]["id"].as_u64(), Some(0));
+    assert!((corner(&list[2]["drawn"]["at"]) - anchor).length() < 1e-6 * radius.max(1.0));
+    assert!(list[3]["drawn"].is_null());
+    // On the screen: the box's violet where its centre is, over the background.
+    let (w, _, pixels) = decode_png(&browser.screenshot());
+    let middle = project(&mut browser, 0.5 * (min + max));
+    let px = pixels[(middle.1 as u32 * w + middle.0 as u32) as usize];
+    assert!(zone_colour(px), "no zone at {middle:?}: {px:?}");
+    let outside = project(
+        &mut browser,
+        DVec3::new(
+            max.x + 0.5 * radius,
+            0.5 * (min.y + max.y),
+            max.z + 0.3 * radius,
+        ),
+    );
+    let px = pixels[(outside.1 as u32 * w + outside.0 as u32) as usize];
+    assert!(!zone_colour(px), "the zone reaches {outside:?}: {px:?}");
+    let text = browser.eval("document.getElementById('effects').textContent");
+    assert_eq!(
+        text.as_str(),
+        Some("viscosity in the box, viscosity inside sphere, spring to the marker, vibration")
+    );
+    view.stop().expect("stops");
+    let errors = std::mem::take(&mut browser.errors);
+    assert!(errors.is_empty(), "console errors: {errors:#?}");
 }
