@@ -137,7 +137,7 @@ impl ParamError {
             } => write!(
                 f,
                 "{name} must be at most the wavelength / 2π ({}, a slope of 1: steeper bumps push sideways harder than into the surface), not {}",
-                Number(wavelength / std::f64::consts::TAU),
+                Floor4(wavelength / std::f64::consts::TAU),
                 Number(amplitude)
             ),
             ParamError::AboveHalfRate { value, rate, .. } => write!(
