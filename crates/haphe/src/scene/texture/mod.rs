@@ -61,7 +61,7 @@ enum Kind {
     /// vectors (radians per metre) and phases, computed once.
     Noise {
         wavelength: f64,
-        waves: [(DVec3, f64); NOISE_WAVES],
+        waves: Box<[(DVec3, f64); NOISE_WAVES]>,
     },
 }
 
@@ -125,10 +125,10 @@ impl Texture {
     /// As [`Texture::sine`].
     pub fn noise(amplitude: f64, wavelength: f64) -> Result<Texture, ParamError> {
         let amplitude = checked(amplitude, wavelength)?;
-        let waves = std::array::from_fn(|j| {
+        let waves = Box::new(std::array::from_fn(|j| {
             let (direction, scale, phase) = noise_wave(j);
             (direction * (TAU / (wavelength * scale)), phase)
-        });
+        }));
         Ok(Texture {
             kind: Kind::Noise { wavelength, waves },
             amplitude,
@@ -160,7 +160,7 @@ impl Texture {
             Kind::Noise { waves, .. } => {
                 let mut h = 0.0;
                 let mut g = DVec3::ZERO;
-                for &(k, phase) in waves {
+                for &(k, phase) in waves.iter() {
                     let (s, c) = sin_cos(k.dot(p) + phase);
                     h += s;
                     g += c * k;
@@ -217,7 +217,7 @@ fn sin_cos(x: f64) -> (f64, f64) {
     // 2²⁰ (|x| below 1.6 million), the second what it leaves out.
     const HI: f64 = 1.570_796_326_734_125_6;
     const LO: f64 = 6.077_100_506_506_192e-11;
-    if !(x.abs() <= 1e9) {
+    if x.is_nan() || x.abs() > 1e9 {
         return (0.0, 1.0);
     }
     let q = (x * std::f64::consts::FRAC_2_PI).round();
