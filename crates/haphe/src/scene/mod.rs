@@ -73,7 +73,7 @@ pub use pose::Pose;
 pub use shape::{Shape, ShapeError};
 pub use spec::SpecError;
 pub(crate) use texture::Relief;
-pub use texture::Texture;
+pub use texture::{HeightImage, Texture};
 pub use world::Scene;
 
 pub(crate) use broad::Near;

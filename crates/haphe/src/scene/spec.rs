@@ -43,6 +43,15 @@ pub enum SpecError {
         #[source]
         error: ParamError,
     },
+    /// A height image refused: its file (unreadable, not a PNG, no pixels, too large) or
+    /// the values given for it.
+    #[error("{image}: {reason}")]
+    HeightImage {
+        /// The image file, or "height image values".
+        image: String,
+        /// Why.
+        reason: String,
+    },
     /// An image could not be used.
     #[error("`{spec}`: {path}: {reason}")]
     Image {

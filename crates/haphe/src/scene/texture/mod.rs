@@ -28,6 +28,9 @@ use super::param::Param;
 use super::spec::{Spec, SpecError};
 use super::world::Scene;
 
+mod image;
+pub use image::HeightImage;
+
 /// The kinds a texture specification names.
 const KINDS: &str = "`sine:A:L`, `noise:A:L`";
 
