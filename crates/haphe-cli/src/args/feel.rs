@@ -87,6 +87,9 @@ impl Feel {
     /// file's `texture` wins), and the effects of the scene file then of the flags, every
     /// one checked against the servo rate `rate_hz` and the objects loaded.
     ///
+    /// A zone inside an object that is not a closed solid (an open surface has no inside)
+    /// is warned about on stderr.
+    ///
     /// # Errors
     /// A scene file's vibration above half the rate (named by its line), more effects
     /// than a scene holds, or a zone inside an object that no object has the id of.
@@ -130,6 +133,17 @@ impl Feel {
             }
         }
         loaded.effects.extend(self.effects);
+        for e in &loaded.effects {
+            if let Some(Zone::Inside(id)) = e.effect.zone()
+                && let Some(o) = loaded.objects.iter().find(|o| o.object.id == id)
+                && !o.object.shape.is_solid()
+            {
+                eprintln!(
+                    "haphe: warning: {} `{}`: {} (id {}) is not a closed solid, so nothing is inside it: the effect acts nowhere",
+                    e.place, e.spec, o.name, id.0
+                );
+            }
+        }
         Ok(())
     }
 }

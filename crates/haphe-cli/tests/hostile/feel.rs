@@ -2,9 +2,10 @@
 //! that is not one (an unknown kind, a value non-finite, negative or out of its domain, a
 //! vibration above half the servo rate, a zone inside an object that is not there) is
 //! refused before anything runs, naming the flag (or the file's line) and the
-//! specification, exit 2; a scene file's texture wins over the flag's.
+//! specification, exit 2; a scene file's texture wins over the flag's; a zone inside an
+//! open surface, which has no inside, is warned about.
 
-use crate::common::{assert_error, haphe, ok, scratch, write};
+use crate::common::{assert_error, haphe, ok, scratch, stderr, write};
 
 /// The commands that take `--texture` and `--effect`, on a small sphere, writing a trace
 /// to `out` where they can: short runs, and (in a build with the view) a view that would
@@ -201,4 +202,37 @@ fn scene_files_name_the_line_and_their_textures_win_over_the_flag() {
         &haphe(&args),
         &["1 effects from the scene file and 16 from --effect, more than the limit of 16"],
     );
+}
+
+#[test]
+fn a_zone_inside_an_open_surface_is_warned_about() {
+    let dir = scratch("feel-open");
+    // A tetrahedron without its slanted face: an open surface.
+    let open = write(
+        &dir,
+        "open.obj",
+        "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n",
+    );
+    let closed = write(&dir, "closed.obj", crate::common::tetrahedron(0.0));
+    let run = |mesh: &str| {
+        let o = haphe(&[
+            "simulate",
+            "--mesh",
+            mesh,
+            "--seconds",
+            "0.05",
+            "--effect",
+            "viscosity:2:inside:0",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let warned = run(&open);
+    assert!(
+        warned.contains("warning: --effect `viscosity:2:inside:0`: ")
+            && warned.contains("open.obj (id 0) is not a closed solid"),
+        "{warned}"
+    );
+    let quiet = run(&closed);
+    assert!(!quiet.contains("not a closed solid"), "{quiet}");
 }
