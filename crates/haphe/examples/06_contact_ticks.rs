@@ -10,7 +10,8 @@
 //! `loaded` to tick on the shape saved to map bytes and loaded in place
 //! ([`haphe::map::decode_in_place`], as an application that loads a built map does), and
 //! `tool=R` to tick a tool of radius `R` metres on the same path moved out by `R`
-//! ([`haphe::verify::lifted_for_tool`]). For
+//! ([`haphe::verify::lifted_for_tool`]), and `texture=SPEC` to give the shape a texture
+//! (`texture=sine:0.0001:0.002`). For
 //! an instruction count that does not depend on the machine's load, run it under
 //! callgrind, counting inside the tick only:
 //!
@@ -41,6 +42,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(r) => r.parse()?,
         None => 0.0,
     };
+    let texture = match rest.iter().find_map(|a| a.strip_prefix("texture=")) {
+        Some(spec) => Some(spec.parse::<haphe::scene::Texture>()?),
+        None => None,
+    };
 
     let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
     let mut shape = Shape::build(surface, &MapOptions::default())?;
@@ -54,7 +59,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // below computes one.
     shape.prepare_clear_zones();
     let mut scene = Scene::local(1);
-    let object = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, Material::default());
+    let mut object = SceneObject::new(ObjectId(0), shape, Pose::IDENTITY, Material::default());
+    object.texture = texture;
     scene.insert(object).map_err(|(e, _)| e)?;
     let mut path = haptic_path_in_contact(&scene, ticks, (0.05, 0.5), (0.0005, 0.003), 1e3, 1);
     if radius > 0.0 {

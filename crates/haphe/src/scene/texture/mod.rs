@@ -245,12 +245,18 @@ fn sin_cos(x: f64) -> (f64, f64) {
                             + r2 * (1.0 / 479_001_600.0
                                 + r2 * (-1.0 / 87_178_291_200.0
                                     + r2 * (1.0 / 20_922_789_888_000.0))))))));
-    match (q as i64) & 3 {
-        0 => (s, c),
-        1 => (c, -s),
-        2 => (-s, -c),
-        _ => (-c, s),
-    }
+    // The quadrant by bit masks rather than a branch (the hand crosses quadrants at
+    // random): odd quadrants swap sine and cosine, the sine's sign flips in quadrants 2
+    // and 3, the cosine's in 1 and 2.
+    let k = (q as i64) as u64;
+    let swap = (k & 1).wrapping_neg();
+    let (sb, cb) = (s.to_bits(), c.to_bits());
+    let a = (sb & !swap) | (cb & swap);
+    let b = (cb & !swap) | (sb & swap);
+    (
+        f64::from_bits(a ^ ((k & 2) << 62)),
+        f64::from_bits(b ^ ((k.wrapping_add(1) & 2) << 62)),
+    )
 }
 
 /// The amplitude, when it and the wavelength are in their domains and the bumps no
