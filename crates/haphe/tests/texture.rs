@@ -5,6 +5,8 @@
 
 mod feel;
 
+use std::sync::Arc;
+
 use haphe::DVec3;
 use haphe::scene::Texture;
 
@@ -131,4 +133,101 @@ fn a_texture_gives_back_no_more_work_than_it_took() {
             assert!(most > 1e-6, "{texture:?}: the height alone does {most} J");
         }
     }
+}
+
+/// Acceptance 4: a height image on a textured OBJ (both written here: a 10 cm square with
+/// texture coordinates over the whole image, and a 64 × 64 PNG, black but for a bright
+/// spot at pixel (48, 16)) is felt where the image says: pressing 2 mm into the square
+/// over a grid of points, the force is largest over the spot, at the point whose texture
+/// coordinates are that pixel's centre (u = 48.5 / 64, v = 1 − 16.5 / 64), within a pixel.
+#[test]
+fn an_image_texture_is_felt_where_the_image_says() {
+    use haphe::map::MapOptions;
+    use haphe::mesh::ReadOptions;
+    use haphe::proxy::{Proxy, ProxyOptions};
+    use haphe::scene::{Material, ObjectId, Pose, Scene, SceneObject, Shape};
+
+    let dir = std::env::temp_dir().join(format!("haphe-image-texture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let (side, spot) = (64u32, (48.0, 16.0));
+    let png = dir.join("spot.png");
+    let pixels = image::GrayImage::from_fn(side, side, |x, y| {
+        let r2 = (f64::from(x) - spot.0).powi(2) + (f64::from(y) - spot.1).powi(2);
+        image::Luma([(255.0 * (-r2 / 8.0).exp()).round() as u8])
+    });
+    pixels.save(&png).expect("the PNG written");
+    let obj = "v -0.05 -0.05 0\nv 0.05 -0.05 0\nv 0.05 0.05 0\nv -0.05 0.05 0\n\
+               vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+    let shape = Shape::read(
+        "square.obj",
+        obj.as_bytes(),
+        &ReadOptions::default(),
+        &MapOptions::default(),
+    )
+    .expect("a textured square");
+    assert!(shape.has_texture_coords());
+    let texture: Texture = format!("image:{}:0.0005", png.display())
+        .parse()
+        .expect("the image texture");
+    let mut scene = Scene::local(1);
+    let square = SceneObject::new(
+        ObjectId(0),
+        Arc::new(shape),
+        Pose::IDENTITY,
+        Material::default(),
+    )
+    .with_texture(texture);
+    scene.insert(square).map_err(|(e, _)| e).expect("room");
+
+    let depth = 0.002;
+    let press = |x: f64, y: f64| {
+        let above = DVec3::new(x, y, 0.003);
+        let mut proxy = Proxy::new(above, ProxyOptions::default());
+        proxy.tick(&scene, above, DVec3::ZERO);
+        proxy
+            .tick(&scene, DVec3::new(x, y, -depth), DVec3::ZERO)
+            .force
+            .z
+    };
+    let step = 0.0005;
+    let mut strongest = (f64::MIN, 0.0, 0.0);
+    let mut weakest = f64::MAX;
+    for i in 0..=100 {
+        for j in 0..=100 {
+            let (x, y) = (-0.01 + step * f64::from(i), -0.01 + step * f64::from(j));
+            let f = press(x, y);
+            weakest = weakest.min(f);
+            if f > strongest.0 {
+                strongest = (f, x, y);
+            }
+        }
+    }
+    let (u, v) = (
+        (spot.0 + 0.5) / f64::from(side),
+        1.0 - (spot.1 + 0.5) / f64::from(side),
+    );
+    let expected = (-0.05 + 0.1 * u, -0.05 + 0.1 * v);
+    let pixel = 0.1 / f64::from(side);
+    assert!(
+        (strongest.1 - expected.0).abs() <= pixel && (strongest.2 - expected.1).abs() <= pixel,
+        "strongest at ({}, {}), the spot's pixel at {expected:?}",
+        strongest.1,
+        strongest.2
+    );
+    // White is A above the plane, black A below: k (d ± A) with k 500 N/m, the depth
+    // counted from the proxy a skin (1 µm, 0.5 mN) above the surface. The grid's nearest
+    // point to the spot is a fifth of a pixel from it, where the bilinear value is within
+    // 5 % of the peak.
+    let (k, skin) = (500.0, 1e-6);
+    let top = k * (depth + skin + 0.0005);
+    assert!(
+        strongest.0 <= top + 1e-9 && strongest.0 > top - 0.05 * k * 2.0 * 0.0005,
+        "{}",
+        strongest.0
+    );
+    assert!(
+        (weakest - k * (depth + skin - 0.0005)).abs() < 1e-9,
+        "{weakest}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -305,7 +305,9 @@ impl Proxy {
             contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
             (
                 material,
-                &contact.map_or(Relief::FLAT, |c| scene.relief(c.object, c.point, c.normal)),
+                &contact.map_or(Relief::FLAT, |c| {
+                    scene.relief((c.object, c.triangle, c.weights), c.point, c.normal)
+                }),
             ),
             self.options.max_force,
         );

@@ -173,7 +173,6 @@ impl HeightImage {
     ///
     /// # Real-time
     /// No allocation, no panic; four values read.
-    #[allow(dead_code)] // Used by the image texture.
     pub(crate) fn sample(&self, uv: DVec2) -> (f64, DVec2) {
         if !uv.is_finite() {
             return (0.0, DVec2::ZERO);

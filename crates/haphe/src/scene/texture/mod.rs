@@ -19,20 +19,24 @@
 //! felt at `v / L` Hz.
 
 use std::f64::consts::TAU;
+use std::path::Path;
 use std::str::FromStr;
+use std::sync::Arc;
 
 use glam::DVec3;
 
 use super::invalid::ParamError;
 use super::param::Param;
-use super::spec::{Spec, SpecError};
+use super::spec::{Spec, SpecError, number};
+use super::texture_coords::UvPoint;
 use super::world::Scene;
+use crate::mesh::TriId;
 
 mod image;
 pub use image::HeightImage;
 
 /// The kinds a texture specification names.
-const KINDS: &str = "`sine:A:L`, `noise:A:L`";
+const KINDS: &str = "`sine:A:L`, `noise:A:L`, `image:PNG:A`";
 
 /// A haptic texture, every value checked: a height `h` (`|h| ≤ A`) over the surface that
 /// moves the constraint out along the contact normal. With `d` the device point's depth
@@ -66,6 +70,9 @@ enum Kind {
         wavelength: f64,
         waves: Box<[(DVec3, f64); NOISE_WAVES]>,
     },
+    /// A height image read through the shape's texture coordinates: height
+    /// `A · (2 value − 1)`.
+    Image { image: Arc<HeightImage> },
 }
 
 /// The height of a texture at a point and its gradient, object frame: what the force
@@ -138,16 +145,34 @@ impl Texture {
         })
     }
 
+    /// A height image read through the shape's texture coordinates: the height is
+    /// `A · (2 value − 1)` (black `−A`, white `A`), bilinear between pixel centres (see
+    /// [`HeightImage`]), its slope through the triangle's map from the surface to the
+    /// image. Felt only on shapes with texture coordinates (an OBJ's `vt`, a PLY's `u,v`,
+    /// a glTF's `TEXCOORD_0`, or [`Shape::with_texture_coords`](super::Shape::with_texture_coords));
+    /// elsewhere the surface is plain. Its steepness depends on the image's pixels over
+    /// the mesh's size and is not checked: keep the bumps wider than they are high.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming the texture amplitude (0 to 1 cm).
+    pub fn image(image: Arc<HeightImage>, amplitude: f64) -> Result<Texture, ParamError> {
+        Ok(Texture {
+            kind: Kind::Image { image },
+            amplitude: Param::TextureAmplitude.check(amplitude)?,
+        })
+    }
+
     /// The amplitude, metres: the largest height.
     pub fn amplitude(&self) -> f64 {
         self.amplitude
     }
 
-    /// The height at `p` (object frame) and its gradient (object frame).
+    /// The height at `p` (object frame) and its gradient (object frame); for an image,
+    /// at the texture coordinates `uv` gives (flat where it gives none).
     ///
     /// # Real-time
-    /// No allocation; a few sines.
-    pub(crate) fn relief(&self, p: DVec3) -> Relief {
+    /// No allocation; a few sines, or four pixels.
+    pub(crate) fn relief(&self, p: DVec3, uv: impl FnOnce() -> Option<UvPoint>) -> Relief {
         let a = self.amplitude;
         let (height, gradient) = match &self.kind {
             Kind::Sine { wavelength } => {
@@ -171,6 +196,16 @@ impl Texture {
                 let m = a / NOISE_WAVES as f64;
                 (m * h, m * g)
             }
+            Kind::Image { image } => {
+                let Some(at) = uv() else {
+                    return Relief::FLAT;
+                };
+                let (value, slope) = image.sample(at.uv);
+                (
+                    a * (2.0 * value - 1.0),
+                    (2.0 * a) * (slope.x * at.grad_u + slope.y * at.grad_v),
+                )
+            }
         };
         if height.is_finite() && gradient.is_finite() {
             Relief {
@@ -185,20 +220,26 @@ impl Texture {
 }
 
 impl Scene {
-    /// The texture of object `object` at the surface point `point` (world frame), its
-    /// gradient in the world frame projected into the plane of the unit `normal`;
-    /// [`Relief::FLAT`] where the object has none.
+    /// The texture of object `object` at the surface point `point` (world frame), at
+    /// barycentric `weights` of its triangle `triangle`, its gradient in the world frame
+    /// projected into the plane of the unit `normal`; [`Relief::FLAT`] where the object
+    /// has none.
     ///
     /// # Real-time
     /// No allocation; one texture evaluation.
-    pub(crate) fn relief(&self, object: usize, point: DVec3, n: DVec3) -> Relief {
+    pub(crate) fn relief(
+        &self,
+        (object, triangle, weights): (usize, TriId, [f64; 3]),
+        point: DVec3,
+        n: DVec3,
+    ) -> Relief {
         let Some(o) = self.objects.get(object) else {
             return Relief::FLAT;
         };
         let Some(texture) = &o.texture else {
             return Relief::FLAT;
         };
-        let r = texture.relief(o.pose.to_object(point));
+        let r = texture.relief(o.pose.to_object(point), || o.shape.uv_at(triangle, weights));
         let g = o.pose.vector_to_world(r.gradient);
         Relief {
             gradient: g - g.dot(n) * n,
@@ -276,17 +317,43 @@ fn checked(amplitude: f64, wavelength: f64) -> Result<f64, ParamError> {
 impl FromStr for Texture {
     type Err = SpecError;
 
-    /// `sine:A:L` or `noise:A:L` (metres).
+    /// `sine:A:L` or `noise:A:L` (metres), or `image:PNG:A` (a height image's file and the
+    /// amplitude in metres; the path may hold colons, the amplitude is after the last).
     fn from_str(text: &str) -> Result<Texture, SpecError> {
         let spec = Spec::split(text);
         let make = match spec.kind {
             "sine" => Texture::sine,
             "noise" => Texture::noise,
+            "image" => return image_spec(&spec),
             _ => return Err(spec.unknown(KINDS)),
         };
         let [a, l] = spec.numbers("`KIND:AMPLITUDE:WAVELENGTH` (metres)")?;
         make(a, l).map_err(|e| spec.param(e))
     }
+}
+
+/// `image:PNG:A`: the image read, and the amplitude.
+fn image_spec(spec: &Spec<'_>) -> Result<Texture, SpecError> {
+    let form = "`image:PNG:AMPLITUDE` (a PNG file, metres)";
+    let Some((amplitude, path)) = spec.values.split_last() else {
+        return Err(spec.form(form));
+    };
+    if path.is_empty() || path.iter().all(|p| p.is_empty()) {
+        return Err(spec.form(form));
+    }
+    let a = number(spec.text, amplitude)?;
+    let a = Param::TextureAmplitude
+        .check(a)
+        .map_err(|e| spec.param(e))?;
+    let image = HeightImage::read(Path::new(&path.join(":"))).map_err(|e| match e {
+        SpecError::HeightImage { image, reason } => SpecError::Image {
+            spec: spec.text.to_owned(),
+            path: image,
+            reason,
+        },
+        other => other,
+    })?;
+    Texture::image(Arc::new(image), a).map_err(|e| spec.param(e))
 }
 
 #[cfg(test)]
@@ -302,12 +369,13 @@ mod tests {
                 DVec3::new(0.01, 0.02, -0.03),
                 DVec3::new(-0.1234, 0.0007, 0.05),
             ] {
-                let r = t.relief(p);
+                let r = t.relief(p, || None);
                 assert!(r.height.abs() <= t.amplitude());
                 let e = 1e-8;
                 for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
-                    let numeric =
-                        (t.relief(p + e * axis).height - t.relief(p - e * axis).height) / (2.0 * e);
+                    let numeric = (t.relief(p + e * axis, || None).height
+                        - t.relief(p - e * axis, || None).height)
+                        / (2.0 * e);
                     assert!(
                         (numeric - r.gradient.dot(axis)).abs() < 1e-5,
                         "{numeric} vs {}",
