@@ -219,11 +219,8 @@ impl Session {
             1 => servo.options().proxy().tool_radius(),
             _ => 0.0,
         };
-        print_scene(out, &names, triangles, self.build_seconds, tool)?;
-        if !self.effects.is_empty() {
-            let specs: Vec<&str> = self.effects.iter().map(|e| e.spec.as_str()).collect();
-            writeln!(out, "effects: {}", specs.join(", "))?;
-        }
+        let effects: Vec<&str> = self.effects.iter().map(|e| e.spec.as_str()).collect();
+        print_scene(out, &names, triangles, self.build_seconds, (tool, &effects))?;
         devices::print(out, &servo, &vendors, stiffness)?;
         let realtime = self.realtime || vendors.iter().any(Option::is_some);
         let limit = (!until_stopped).then_some(seconds);
@@ -413,7 +410,7 @@ fn print_scene(
     names: &[String],
     triangles: usize,
     build_seconds: f64,
-    tool_radius: f64,
+    (tool_radius, effects): (f64, &[&str]),
 ) -> std::io::Result<()> {
     writeln!(
         out,
@@ -429,6 +426,9 @@ fn print_scene(
     // A point tool (the default) says nothing: its output stays the point proxy's.
     if tool_radius > 0.0 {
         writeln!(out, "tool: a sphere of radius {:.3} mm", tool_radius * 1e3)?;
+    }
+    if !effects.is_empty() {
+        writeln!(out, "effects: {}", effects.join(", "))?;
     }
     Ok(())
 }

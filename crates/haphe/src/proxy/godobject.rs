@@ -298,17 +298,18 @@ impl Proxy {
     ) -> (Option<Contact>, DVec3) {
         let (surface, normal, planes) = on;
         let contact = contact_at(scene, surface, p, hand.hip, (normal, planes), status);
+        // The texture under the contact, if its object has one.
+        let relief = contact.map_or(Relief::FLAT, |c| {
+            scene.objects().get(c.object).map_or(Relief::FLAT, |o| {
+                o.relief((c.triangle, c.weights), c.point, c.normal)
+            })
+        });
         let (force, force_clamped) = contact_force(
             p,
             hand.hip,
             hand.velocity,
             contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
-            (
-                material,
-                &contact.map_or(Relief::FLAT, |c| {
-                    scene.relief((c.object, c.triangle, c.weights), c.point, c.normal)
-                }),
-            ),
+            (material, &relief),
             self.options.max_force,
         );
         status.force_clamped = force_clamped;

@@ -8,7 +8,8 @@ use glam::DVec3;
 use super::material::Material;
 use super::pose::Pose;
 use super::shape::Shape;
-use super::texture::Texture;
+use super::texture::{Relief, Texture};
+use crate::mesh::TriId;
 
 /// A stable name for an object of a scene, chosen by the caller.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -73,6 +74,32 @@ impl SceneObject {
     pub fn with_sides(mut self, sides: Sides) -> SceneObject {
         self.sides = sides;
         self
+    }
+
+    /// The object's texture at the surface point `point` (world frame), at barycentric
+    /// `weights` of its triangle `triangle`, its gradient in the world frame projected
+    /// into the plane of the unit `normal`; [`Relief::FLAT`] where it has none.
+    ///
+    /// # Real-time
+    /// No allocation; one texture evaluation.
+    pub(crate) fn relief(
+        &self,
+        (triangle, weights): (TriId, [f64; 3]),
+        point: DVec3,
+        normal: DVec3,
+    ) -> Relief {
+        let Some(texture) = &self.texture else {
+            return Relief::FLAT;
+        };
+        let pose = &self.pose;
+        let r = texture.relief(pose.to_object(point), || {
+            self.shape.uv_at(triangle, weights)
+        });
+        let g = pose.vector_to_world(r.gradient);
+        Relief {
+            gradient: g - g.dot(normal) * normal,
+            ..r
+        }
     }
 
     /// Whether the object moved since the previous tick.

@@ -178,14 +178,9 @@ mod error;
 pub mod feel;
 mod grid;
 
-use error::fail;
 pub use error::{MAX_OBJECTS, SceneFileError};
+use error::{fail, line_of};
 pub use feel::FileEffect;
-
-/// 1-based line of a byte offset.
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
-}
 
 fn vec3(a: [f64; 3]) -> DVec3 {
     DVec3::from_array(a)

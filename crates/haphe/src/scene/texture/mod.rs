@@ -29,8 +29,6 @@ use super::invalid::ParamError;
 use super::param::Param;
 use super::spec::{Spec, SpecError, number};
 use super::texture_coords::UvPoint;
-use super::world::Scene;
-use crate::mesh::TriId;
 
 mod image;
 pub use image::HeightImage;
@@ -215,35 +213,6 @@ impl Texture {
             }
         } else {
             Relief::FLAT
-        }
-    }
-}
-
-impl Scene {
-    /// The texture of object `object` at the surface point `point` (world frame), at
-    /// barycentric `weights` of its triangle `triangle`, its gradient in the world frame
-    /// projected into the plane of the unit `normal`; [`Relief::FLAT`] where the object
-    /// has none.
-    ///
-    /// # Real-time
-    /// No allocation; one texture evaluation.
-    pub(crate) fn relief(
-        &self,
-        (object, triangle, weights): (usize, TriId, [f64; 3]),
-        point: DVec3,
-        n: DVec3,
-    ) -> Relief {
-        let Some(o) = self.objects.get(object) else {
-            return Relief::FLAT;
-        };
-        let Some(texture) = &o.texture else {
-            return Relief::FLAT;
-        };
-        let r = texture.relief(o.pose.to_object(point), || o.shape.uv_at(triangle, weights));
-        let g = o.pose.vector_to_world(r.gradient);
-        Relief {
-            gradient: g - g.dot(n) * n,
-            ..r
         }
     }
 }

@@ -9,6 +9,11 @@ pub struct SceneFileError {
     pub message: String,
 }
 
+/// 1-based line of a byte offset.
+pub(super) fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
+}
+
 pub(super) fn fail(message: String) -> SceneFileError {
     SceneFileError { message }
 }

@@ -14,8 +14,7 @@ use std::collections::HashSet;
 
 use crate::scene::{Effect, MAX_EFFECTS, ObjectId, Texture, Zone};
 
-use super::error::{SceneFileError, fail};
-use super::line_of;
+use super::error::{SceneFileError, fail, line_of};
 
 /// An effect of a scene file's `effects`, with how it was written and where.
 #[derive(Debug, Clone, PartialEq)]
