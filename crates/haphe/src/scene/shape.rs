@@ -236,7 +236,6 @@ impl Shape {
     ///
     /// # Real-time
     /// No allocation, no lock, no panic; a few dozen flops.
-    #[allow(dead_code)] // Used by the textures, which read it.
     #[inline]
     pub(crate) fn uv_at(&self, t: TriId, weights: [f64; 3]) -> Option<UvPoint> {
         let uvs = self.texture_coords.as_deref()?.get(t.index())?;
