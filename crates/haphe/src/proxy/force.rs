@@ -38,12 +38,9 @@ pub fn contact_force(
     };
     let d = proxy - hip;
     let dn = d.dot(normal);
-    let along = if constraints == 1 && shading_normal.is_finite() {
-        shading_normal
-    } else {
-        normal
-    };
-    let mut spring = if constraints == 1 && shading_normal.is_finite() {
+    let shaded = constraints == 1 && shading_normal.is_finite();
+    let along = if shaded { shading_normal } else { normal };
+    let mut spring = if shaded {
         dn * shading_normal + (d - dn * normal)
     } else {
         d
@@ -64,6 +61,13 @@ pub fn contact_force(
         let u = d / len;
         force -= material.damping * velocity.dot(u) * u;
     }
+    clamp_force(force, max_force)
+}
+
+/// `force` (newtons) scaled down to `max_force` when longer, and whether it was; zero
+/// (not clamped) when it is not finite. The last step of the proxy's force and of the
+/// servo's sum with the effects.
+pub(crate) fn clamp_force(force: DVec3, max_force: f64) -> (DVec3, bool) {
     if !force.is_finite() {
         return (DVec3::ZERO, false);
     }

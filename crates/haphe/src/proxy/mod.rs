@@ -141,6 +141,8 @@ pub use hold::saturation_depth;
 pub use options::DEFAULT_SKIN;
 pub use options::ProxyOptions;
 pub use output::{Contact, TickOutput, TickStatus};
+// The clamp of the servo's sum of the proxy's force and the effects.
+pub(crate) use force::clamp_force;
 // The god-object's geometric steps, which the brute-force proxy of `verify` runs too.
 #[cfg(any(test, feature = "testing"))]
 pub(crate) use {

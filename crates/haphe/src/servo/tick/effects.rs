@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
-use crate::proxy::Contact;
+use crate::proxy::{Contact, clamp_force};
 use crate::query::{Side, classify_point, nearest_within};
 use crate::scene::{EffectKind, MAX_EFFECTS, Scene, Zone};
 
@@ -71,21 +71,9 @@ pub(super) fn effects_force(
                 breakaway,
             } => stick_slip(anchor, sensed, stiffness, breakaway),
         };
-        total += bounded(f, max_force);
+        total += clamp_force(f, max_force).0;
     }
     total
-}
-
-/// `f` scaled down to `max` newtons when longer; zero when not finite.
-pub(super) fn bounded(f: DVec3, max: f64) -> DVec3 {
-    let length = f.length();
-    if !length.is_finite() || max.is_nan() || max <= 0.0 {
-        DVec3::ZERO
-    } else if length > max {
-        f * (max / length)
-    } else {
-        f
-    }
 }
 
 /// Whether the device point `p` lies in `zone`.

@@ -5,10 +5,10 @@
 use glam::DVec3;
 
 use super::clutch::Clutch;
-use super::effects::{EffectState, Sensed, bounded, effects_force};
+use super::effects::{EffectState, Sensed, effects_force};
 use super::options::ServoOptions;
 use super::stats::TickStats;
-use crate::proxy::{Proxy, TickStatus};
+use crate::proxy::{Proxy, TickStatus, clamp_force};
 use crate::query::{Side, classify_point};
 use crate::scene::Scene;
 use crate::servo::device::{
@@ -194,8 +194,9 @@ impl<D: Device> Hand<D> {
                 contact: out.contact.as_ref(),
             };
             let sum = out.force + effects_force(scene, &mut self.effects, &sensed, max);
-            out.force = bounded(sum, max);
-            out.status.force_clamped |= out.force != sum;
+            let (force, clamped) = clamp_force(sum, max);
+            out.force = force;
+            out.status.force_clamped |= clamped;
         }
         let gain = self.ramp_gain(t);
         record.phase = self.phase;
