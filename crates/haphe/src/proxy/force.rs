@@ -39,7 +39,6 @@ pub fn contact_force(
     let d = proxy - hip;
     let dn = d.dot(normal);
     let shaded = constraints == 1 && shading_normal.is_finite();
-    let along = if shaded { shading_normal } else { normal };
     let mut spring = if shaded {
         dn * shading_normal + (d - dn * normal)
     } else {
@@ -52,6 +51,7 @@ pub fn contact_force(
             (1.0, 0.0)
         };
         let felt = dn + relief.height * fade;
+        let along = if shaded { shading_normal } else { normal };
         spring +=
             (felt * (1.0 + relief.height * slope) - dn) * along - (felt * fade) * relief.gradient;
     }

@@ -10,7 +10,7 @@ use super::meet::{carry, move_checked};
 use super::near::NearCache;
 use super::options::ProxyOptions;
 use super::output::{Contact, TickOutput, TickStatus};
-use crate::scene::{Hit, Material, Param, Relief, Scene, SurfaceRef, others_box};
+use crate::scene::{Hit, Material, Param, Relief, Scene, SceneObject, SurfaceRef, others_box};
 
 /// The device on one tick: its point (metres, world frame, pulled into the workspace), its
 /// velocity (m/s) and its point on the previous tick.
@@ -179,7 +179,8 @@ impl Proxy {
             self.sticking = false;
             return self.output(sweep.position, DVec3::ZERO, None, status);
         };
-        let material = scene.objects()[hit.object].material;
+        let object = &scene.objects()[hit.object];
+        let material = object.material;
         // 3. Friction.
         let p = self.friction(
             scene,
@@ -190,7 +191,7 @@ impl Proxy {
         );
         // 4. Contact and force.
         let on = (hit.surface(), plane.normal, sweep.planes.len() as u8);
-        let (contact, force) = self.contact_and_force(scene, on, p, &hand, &material, &mut status);
+        let (contact, force) = self.contact_and_force(scene, on, p, &hand, object, &mut status);
         // 5. Deep penetration: the hold begins. Tested before the output is built, so that
         // the common case builds it once, in place.
         let depth = saturation_depth(&material, self.options.max_force);
@@ -283,9 +284,9 @@ impl Proxy {
         p
     }
 
-    /// Step 4: the contact of the proxy at `p` on the surface `on` (with the contact
-    /// plane's unit normal and the number of active planes), found by walking from there,
-    /// and the force toward the proxy, shaded and clamped.
+    /// Step 4: the contact of the proxy at `p` on the surface `on` of `object` (with the
+    /// contact plane's unit normal and the number of active planes), found by walking from
+    /// there, and the force toward the proxy, shaded, textured and clamped.
     #[inline]
     fn contact_and_force(
         &mut self,
@@ -293,23 +294,22 @@ impl Proxy {
         on: (SurfaceRef, DVec3, u8),
         p: DVec3,
         hand: &Hand,
-        material: &Material,
+        object: &SceneObject,
         status: &mut TickStatus,
     ) -> (Option<Contact>, DVec3) {
         let (surface, normal, planes) = on;
         let contact = contact_at(scene, surface, p, hand.hip, (normal, planes), status);
-        // The texture under the contact, if its object has one.
-        let relief = contact.map_or(Relief::FLAT, |c| {
-            scene.objects().get(c.object).map_or(Relief::FLAT, |o| {
-                o.relief((c.triangle, c.weights), c.point, c.normal)
-            })
-        });
+        // The texture under the contact, if the object has one.
+        let relief = match (&object.texture, contact) {
+            (Some(_), Some(c)) => object.relief((c.triangle, c.weights), c.point, c.normal),
+            _ => Relief::FLAT,
+        };
         let (force, force_clamped) = contact_force(
             p,
             hand.hip,
             hand.velocity,
             contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
-            (material, &relief),
+            (&object.material, &relief),
             self.options.max_force,
         );
         status.force_clamped = force_clamped;
