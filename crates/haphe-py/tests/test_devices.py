@@ -165,7 +165,12 @@ def test_run_with_a_udp_peer():
     thread = threading.Thread(target=drive)
     thread.start()
     try:
-        out = haphe.run(centred_cube(), device=f"udp:127.0.0.1:{port}", seconds=2.0)
+        # The peer is a Python thread that shares two cores with the servo and the
+        # build: under load it can miss 100 ms and more, which the default 50 ms
+        # timeout would rightly call a lost peer. Losing it is tested above.
+        out = haphe.run(
+            centred_cube(), device=f"udp:127.0.0.1:{port}", seconds=2.0, udp_timeout=1.0
+        )
     finally:
         done.set()
         thread.join()
