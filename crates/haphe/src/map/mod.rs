@@ -52,6 +52,7 @@ mod grid;
 mod overlap;
 mod params;
 mod provenance;
+mod refresh;
 mod slabs;
 mod validate;
 mod voxel_map;

@@ -12,6 +12,7 @@
 //! - [`Surface`] is the validated, navigable form every later stage uses.
 //! - [`shapes`] makes procedural meshes for tests, benchmarks and the demo.
 
+mod deform;
 mod edges;
 mod error;
 mod frame;

@@ -70,15 +70,17 @@ pub enum SurfaceError {
 /// [`report`](Surface::report) speaks of the mesh as given, in its indices.
 #[derive(Debug, Clone)]
 pub struct Surface {
-    vertices: Array<DVec3>,
-    triangles: Array<[u32; 3]>,
-    neighbours: Array<[u32; 3]>,
-    frames: Array<TriFrame>,
-    corner_normals: Array<CornerNormals>,
-    fan_start: Array<u32>,
-    fan_triangles: Array<u32>,
-    source: Array<u32>,
-    report: MeshReport,
+    pub(super) vertices: Array<DVec3>,
+    pub(super) triangles: Array<[u32; 3]>,
+    pub(super) neighbours: Array<[u32; 3]>,
+    pub(super) frames: Array<TriFrame>,
+    pub(super) corner_normals: Array<CornerNormals>,
+    pub(super) fan_start: Array<u32>,
+    pub(super) fan_triangles: Array<u32>,
+    pub(super) source: Array<u32>,
+    pub(super) report: MeshReport,
+    /// The crease angle the shading normals were computed with (for a deformation).
+    pub(super) crease_angle_rad: f64,
 }
 
 impl Surface {
@@ -160,6 +162,7 @@ impl Surface {
             fan_triangles: fan_triangles.into(),
             source: source.into(),
             report,
+            crease_angle_rad: options.crease_angle_rad,
         })
     }
 
@@ -354,6 +357,7 @@ impl Surface {
             fan_triangles,
             source,
             report,
+            crease_angle_rad: DEFAULT_CREASE_ANGLE_RAD,
         }
     }
 

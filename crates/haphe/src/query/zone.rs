@@ -111,6 +111,24 @@ impl ClearZone {
         }
     }
 
+    /// The box (object frame) holding every point whose triangles decide the zone of
+    /// triangle `t`: a triangle with no point in it leaves the zone unchanged. `None` for
+    /// `t` out of range or a degenerate triangle (its zone is [`ClearZone::NONE`]).
+    pub(crate) fn reach_box(surface: &Surface, map: &VoxelMap, t: TriId) -> Option<(DVec3, DVec3)> {
+        if t.index() >= surface.triangle_count() {
+            return None;
+        }
+        let frame = surface.frame(t);
+        let height = map.grid().cell_size() * ZONE_HEIGHT_OF_CELL;
+        if frame.is_degenerate() || !(height > 0.0 && height.is_finite()) {
+            return None;
+        }
+        let reach = Reach::of(frame, surface.corners(t), height);
+        // The cells `of` reads reach a cell beyond the box.
+        let h = map.grid().cell_size();
+        Some((reach.lo - DVec3::splat(h), reach.hi + DVec3::splat(h)))
+    }
+
     /// Whether the straight move `from → to` (object frame) of a point, with every point
     /// within `reach` metres of it, keeps more than `reach` from every triangle of the
     /// surface: both ends lie in the zone of `frame`'s triangle (its frame), on the same

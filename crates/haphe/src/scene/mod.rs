@@ -27,6 +27,7 @@
 
 mod broad;
 mod clear;
+mod deform;
 mod domain;
 mod effect;
 mod extent;
@@ -50,6 +51,7 @@ mod world;
 
 #[doc(hidden)]
 pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};
+pub use deform::DeformError;
 pub use domain::DEFAULT_MAX_FORCE_N;
 #[doc(hidden)]
 pub use domain::{ABSURD_DISTANCE_M, ABSURD_FORCE_N, ABSURD_STIFFNESS_N_PER_M};

@@ -1,5 +1,6 @@
 //! Shapes: a surface and its voxel map, built once and shared by every object that uses it.
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::{DVec2, DVec3};
@@ -67,15 +68,17 @@ pub enum ShapeError {
 /// textures follow: 48 bytes more a triangle.
 #[derive(Debug)]
 pub struct Shape {
-    surface: Surface,
-    map: VoxelMap,
-    bound_centre: DVec3,
-    bound_radius: f64,
+    pub(super) surface: Surface,
+    pub(super) map: VoxelMap,
+    pub(super) bound_centre: DVec3,
+    pub(super) bound_radius: f64,
     /// Packed [`ClearZone`] per triangle, 0 until computed.
-    zones: Box<[AtomicU64]>,
-    zone_height: f32,
+    pub(super) zones: Box<[AtomicU64]>,
+    pub(super) zone_height: f32,
     /// `[u, v]` at each corner of each surface triangle, in the surface's order.
-    texture_coords: Option<Box<[[DVec2; 3]]>>,
+    pub(super) texture_coords: Option<Arc<[[DVec2; 3]]>>,
+    /// How many deformations made this shape from the one first built.
+    pub(super) version: u64,
 }
 
 impl Shape {
@@ -102,6 +105,7 @@ impl Shape {
             zones,
             zone_height,
             texture_coords: None,
+            version: 0,
         }
     }
 
@@ -218,7 +222,7 @@ impl Shape {
         }
         let in_order = texture_coords::in_surface_order(&self.surface, per_loaded, loaded_corners);
         Ok(Shape {
-            texture_coords: Some(in_order),
+            texture_coords: Some(in_order.into()),
             ..self
         })
     }

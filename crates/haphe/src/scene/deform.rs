@@ -1,0 +1,244 @@
+//! Deformation: a shape's vertices at new positions, its triangles unchanged. The new
+//! shape is made off the servo thread; only what the moved triangles touch is recomputed
+//! (frames, shading normals, map cells, clear zones), and the new shape shares the rest
+//! with the old one, which stays as it was.
+
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use glam::DVec3;
+
+use super::shape::Shape;
+use crate::map::{CellBox, MapError};
+use crate::mesh::{MAX_COORDINATE, TriId};
+use crate::query::ClearZone;
+
+/// Why a deformation was refused. The shape (or scene) is left unchanged.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DeformError {
+    /// Not one position per vertex.
+    #[error("{given} vertex positions given, but the shape has {vertices} vertices")]
+    Count {
+        /// How many positions were given.
+        given: usize,
+        /// How many vertices the shape has.
+        vertices: usize,
+    },
+    /// A subset's indices and positions differ in number.
+    #[error("{indices} vertex indices but {positions} positions")]
+    IndicesCount {
+        /// How many indices were given.
+        indices: usize,
+        /// How many positions were given.
+        positions: usize,
+    },
+    /// A vertex index is not one of the shape's.
+    #[error("row {row}: vertex index {index} is out of range (the shape has {vertices} vertices)")]
+    Index {
+        /// The row of the subset.
+        row: usize,
+        /// The index given there.
+        index: u64,
+        /// How many vertices the shape has.
+        vertices: usize,
+    },
+    /// A coordinate is NaN, infinite, or beyond the largest a mesh may have.
+    #[error("row {row}: a coordinate is not a finite number within ±{MAX_COORDINATE} m")]
+    NotFinite {
+        /// The first row with such a coordinate.
+        row: usize,
+    },
+    /// No object has this id.
+    #[error("no object {0} in the scene")]
+    UnknownObject(u32),
+    /// The deformed surface left the map's grid and a grown grid would be too large.
+    #[error(transparent)]
+    Map(#[from] MapError),
+}
+
+impl Shape {
+    /// The shape with its vertices at `vertices`: one position per vertex, in the order
+    /// of [`Surface::vertices`](crate::mesh::Surface::vertices) (metres, object frame).
+    /// The triangles, and the texture coordinates, stay; this shape is not changed (other
+    /// objects may share it).
+    ///
+    /// Only what the moved triangles touch is recomputed: their frames, the shading
+    /// normals around their corners, the map cells they leave and enter, and the clear
+    /// zones they may reach (computed now, so that no tick computes one). A triangle
+    /// moved outside the map's grid grows the grid (a rebuild of the map, with room to
+    /// spare). The result answers every query as a shape built from scratch on the
+    /// deformed mesh does.
+    ///
+    /// # Errors
+    /// [`DeformError::Count`] for a wrong number of positions; [`DeformError::NotFinite`]
+    /// naming the first bad row; [`DeformError::Map`] when a grown grid is too large.
+    ///
+    /// # Examples
+    /// ```
+    /// use haphe::map::MapOptions;
+    /// use haphe::mesh::shapes;
+    /// use haphe::scene::Shape;
+    /// let shape = Shape::from_mesh("ball", shapes::sphere(0.05, 3), &MapOptions::default()).unwrap();
+    /// let wider: Vec<_> = shape.surface().vertices().iter().map(|&p| 1.1 * p).collect();
+    /// let breathed = shape.deformed(&wider).unwrap();
+    /// assert_eq!(breathed.version(), shape.version() + 1);
+    /// ```
+    pub fn deformed(&self, vertices: &[DVec3]) -> Result<Shape, DeformError> {
+        let count = self.surface.vertex_count();
+        if vertices.len() != count {
+            return Err(DeformError::Count {
+                given: vertices.len(),
+                vertices: count,
+            });
+        }
+        check_finite(vertices)?;
+        Ok(self.deformed_unchecked(vertices.to_vec())?)
+    }
+
+    /// The shape with the vertices `indices[i]` at `positions[i]`, the others where they
+    /// are: [`Shape::deformed`] for a subset.
+    ///
+    /// # Errors
+    /// [`DeformError::IndicesCount`] when the two lengths differ; [`DeformError::Index`]
+    /// naming the first index out of range; those of [`Shape::deformed`].
+    pub fn deformed_at(&self, indices: &[u32], positions: &[DVec3]) -> Result<Shape, DeformError> {
+        if indices.len() != positions.len() {
+            return Err(DeformError::IndicesCount {
+                indices: indices.len(),
+                positions: positions.len(),
+            });
+        }
+        let count = self.surface.vertex_count();
+        if let Some(row) = indices.iter().position(|&v| v as usize >= count) {
+            return Err(DeformError::Index {
+                row,
+                index: u64::from(indices[row]),
+                vertices: count,
+            });
+        }
+        check_finite(positions)?;
+        let mut vertices = self.surface.vertices().to_vec();
+        for (&v, &p) in indices.iter().zip(positions) {
+            vertices[v as usize] = p;
+        }
+        Ok(self.deformed_unchecked(vertices)?)
+    }
+
+    /// How many deformations made this shape from the one first built (0 for a shape
+    /// that was never deformed).
+    pub fn version(&self) -> u64 {
+        self.version
+    }
+
+    /// [`Shape::deformed`] once the positions are checked.
+    fn deformed_unchecked(&self, vertices: Vec<DVec3>) -> Result<Shape, MapError> {
+        let (surface, moved) = self.surface.deformed(vertices);
+        let map = self.map.refreshed(&self.surface, &surface, &moved)?;
+        let mut shape = Shape::new(surface, map);
+        shape.texture_coords = self.texture_coords.clone();
+        shape.version = self.version + 1;
+        if shape.map.grid() == self.map.grid() {
+            // Keep the zones no moved triangle can change; the others are computed below.
+            let stale = stale_zones(&shape, &moved);
+            shape.zones = self
+                .zones
+                .iter()
+                .zip(&stale)
+                .map(|(zone, &stale)| {
+                    AtomicU64::new(if stale {
+                        0
+                    } else {
+                        zone.load(Ordering::Relaxed)
+                    })
+                })
+                .collect();
+        }
+        shape.prepare_clear_zones();
+        Ok(shape)
+    }
+}
+
+/// The first row with a coordinate that is not finite or beyond [`MAX_COORDINATE`].
+fn check_finite(positions: &[DVec3]) -> Result<(), DeformError> {
+    match positions
+        .iter()
+        .position(|p| !(p.is_finite() && p.abs().max_element() <= MAX_COORDINATE))
+    {
+        Some(row) => Err(DeformError::NotFinite { row }),
+        None => Ok(()),
+    }
+}
+
+/// Which triangles' clear zones a deformation may have changed (on an unchanged grid):
+/// the moved triangles, and those whose zone's reach meets a moved triangle's box. A
+/// triangle that left a zone leaves it clearer, so the zone it had stays true.
+fn stale_zones(shape: &Shape, moved: &[u32]) -> Vec<bool> {
+    use crate::par::*;
+    let (surface, map) = (shape.surface(), shape.map());
+    let grid = map.grid();
+    // The moved triangles' boxes, by the bricks of cells they meet.
+    let brick = |p: DVec3| {
+        let c = CellBox::around(grid, p, p).lo;
+        c.map(|k| k.div_euclid(8))
+    };
+    let mut boxes: Vec<(DVec3, DVec3)> = Vec::with_capacity(moved.len());
+    let mut by_brick: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    for &t in moved {
+        let [a, b, c] = surface.corners(TriId(t));
+        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+        let (blo, bhi) = (brick(lo), brick(hi));
+        for x in blo[0]..=bhi[0] {
+            for y in blo[1]..=bhi[1] {
+                for z in blo[2]..=bhi[2] {
+                    by_brick
+                        .entry([x, y, z])
+                        .or_default()
+                        .push(boxes.len() as u32);
+                }
+            }
+        }
+        boxes.push((lo, hi));
+    }
+    let Some(all) = boxes
+        .iter()
+        .copied()
+        .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
+    else {
+        return vec![false; surface.triangle_count()];
+    };
+    let mut stale = vec![false; surface.triangle_count()];
+    for &t in moved {
+        stale[t as usize] = true;
+    }
+    stale
+        .par_iter_mut()
+        .enumerate()
+        .filter(|(_, s)| !**s)
+        .for_each(|(t, s)| {
+            let Some((lo, hi)) = ClearZone::reach_box(surface, map, TriId(t as u32)) else {
+                return;
+            };
+            if lo.cmpgt(all.1).any() || hi.cmplt(all.0).any() {
+                return;
+            }
+            let (blo, bhi) = (brick(lo), brick(hi));
+            'bricks: for x in blo[0]..=bhi[0] {
+                for y in blo[1]..=bhi[1] {
+                    for z in blo[2]..=bhi[2] {
+                        let Some(listed) = by_brick.get(&[x, y, z]) else {
+                            continue;
+                        };
+                        if listed.iter().any(|&i| {
+                            let (l, h) = boxes[i as usize];
+                            l.cmple(hi).all() && h.cmpge(lo).all()
+                        }) {
+                            *s = true;
+                            break 'bricks;
+                        }
+                    }
+                }
+            }
+        });
+    stale
+}
