@@ -11,9 +11,7 @@ use haphe::map::MapOptions;
 use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Surface, SurfaceOptions};
 use haphe::proxy::{Proxy, ProxyOptions};
-use haphe::scene::{
-    Edit, EditError, Material, ObjectId, Pose, Returned, Scene, SceneObject, Shape,
-};
+use haphe::scene::{Edit, EditError, Material, ObjectId, Pose, Scene, SceneObject, Shape};
 
 /// Where object `k` of a 22 × 22 × 22 grid sits: 0.25 m apart (0.2 m spheres).
 fn grid(k: u32) -> DVec3 {
@@ -87,9 +85,7 @@ fn ticks_with_edits_from_another_thread_allocate_nothing() {
                 }
                 // Removed objects and refused insertions are dropped here.
                 for r in editor.collect() {
-                    match r {
-                        Returned::Removed(o) | Returned::Refused(o, _) => drop(o),
-                    }
+                    drop(r);
                 }
             }
             sent

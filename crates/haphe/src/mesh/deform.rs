@@ -71,6 +71,7 @@ impl Surface {
             source: self.source.clone(),
             report,
             crease_angle_rad: self.crease_angle_rad,
+            uid: super::topology::next_uid(),
         };
         (surface, moved)
     }

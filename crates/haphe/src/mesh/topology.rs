@@ -81,6 +81,15 @@ pub struct Surface {
     pub(super) report: MeshReport,
     /// The crease angle the shading normals were computed with (for a deformation).
     pub(super) crease_angle_rad: f64,
+    /// A name no other surface made in this process has (see [`Surface::uid`]).
+    pub(super) uid: u64,
+}
+
+/// The next [`Surface::uid`].
+pub(super) fn next_uid() -> u64 {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static NEXT: AtomicU64 = AtomicU64::new(1);
+    NEXT.fetch_add(1, Ordering::Relaxed)
 }
 
 impl Surface {
@@ -163,7 +172,16 @@ impl Surface {
             source: source.into(),
             report,
             crease_angle_rad: options.crease_angle_rad,
+            uid: next_uid(),
         })
+    }
+
+    /// A name of this surface no other surface made in this process has (a deformed
+    /// surface gets a new one), so that what is kept about a surface from tick to tick
+    /// is never taken for another's that a freed one's memory now holds.
+    #[inline]
+    pub(crate) fn uid(&self) -> u64 {
+        self.uid
     }
 
     /// Number of triangles.
@@ -358,6 +376,7 @@ impl Surface {
             source,
             report,
             crease_angle_rad: DEFAULT_CREASE_ANGLE_RAD,
+            uid: next_uid(),
         }
     }
 

@@ -57,6 +57,8 @@ pub struct Proxy {
     /// The scene and its count of removals when the indices above were kept (see
     /// [`Proxy::follow_removals`]).
     pub(super) removals_seen: Option<(u64, u64)>,
+    /// The scene's count of deformations at the previous tick.
+    pub(super) deformations_seen: u64,
 }
 
 impl Proxy {
@@ -79,6 +81,7 @@ impl Proxy {
             near: NearCache::new(),
             previous_hip: None,
             removals_seen: None,
+            deformations_seen: 0,
         }
     }
 
@@ -107,6 +110,12 @@ impl Proxy {
     #[cfg(any(test, feature = "testing"))]
     pub(crate) fn hold(&self) -> Option<Hold> {
         self.hold
+    }
+
+    /// The object the proxy touched at the end of the previous tick (for the oracles).
+    #[cfg(any(test, feature = "testing"))]
+    pub(crate) fn touched(&self) -> Option<usize> {
+        self.under.map(|u| u.object)
     }
 
     /// The device point of the previous tick (for the oracles).
@@ -147,8 +156,17 @@ impl Proxy {
             return self.output(self.position, DVec3::ZERO, None, status);
         };
         self.follow_removals(scene);
-        // 1. Carry: objects that moved push the proxy.
-        let carried = carry(scene, &mut self.near, self.position, &self.options);
+        // 1. Carry: objects that moved push the proxy; surfaces that deformed carry it
+        // or push it out.
+        let mut carried = carry(scene, &mut self.near, self.position, &self.options);
+        if scene.deformations() != self.deformations_seen {
+            if self.placed {
+                // Just placed: a proxy that starts inside an object stays there.
+                self.deformations_seen = scene.deformations();
+            } else {
+                carried = self.follow_deformations(scene, carried);
+            }
+        }
         // 5. Deep penetration, begun on an earlier tick: while the hand stays that deep,
         // the hold stands for steps 2 to 4.
         let held = self

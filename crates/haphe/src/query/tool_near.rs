@@ -20,8 +20,8 @@ pub(crate) const NEAR_TOOL_TRIANGLES: usize = 96;
 /// The triangles of one shape near a centre (object frame), nearest first.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ToolNear {
-    /// The shape they belong to (its surface's address), `None` when empty.
-    shape: Option<usize>,
+    /// The surface they belong to ([`Surface::uid`]), `None` when empty.
+    shape: Option<u64>,
     centre: DVec3,
     /// Every triangle nearer than this to the centre is listed, metres.
     complete_to: f64,
@@ -46,7 +46,7 @@ impl ToolNear {
     /// Whether the kept triangles are those of `surface`.
     #[inline]
     pub(crate) fn is_of(&self, surface: &Surface) -> bool {
-        self.shape == Some(surface as *const Surface as usize)
+        self.shape == Some(surface.uid())
     }
 
     /// Whether gathering around `at` for `surface` may help: not when the triangles kept
@@ -75,7 +75,7 @@ impl ToolNear {
         if !(centre.is_finite() && distance.is_finite() && distance > 0.0) {
             return;
         }
-        self.shape = Some(surface as *const Surface as usize);
+        self.shape = Some(surface.uid());
         self.centre = centre;
         self.complete_to = distance;
         if beyond_bounds(surface, centre, centre, distance) {

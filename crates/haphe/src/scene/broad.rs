@@ -262,6 +262,16 @@ impl Broad {
         self.link(i, cell_at(level, centre));
     }
 
+    /// Object `i` changed shape: its sphere is now at `centre` with `radius` (its level
+    /// follows the radius). Returns whether it changed cell.
+    pub(crate) fn reshape(&mut self, i: usize, centre: DVec3, radius: f64) -> bool {
+        if i >= self.cell.len() {
+            return false;
+        }
+        self.level[i] = level_of(radius);
+        self.relink(i, centre)
+    }
+
     /// Object `i` moved: its sphere (of the radius it was placed with) is now at `centre`.
     /// Returns whether it changed cell.
     ///

@@ -4,11 +4,15 @@
 //! with the old one, which stays as it was.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::DVec3;
 
+use super::handoff::{EditError, Returned};
+use super::object::{ObjectId, sphere_of};
 use super::shape::Shape;
+use super::world::Scene;
 use crate::map::{CellBox, MapError};
 use crate::mesh::{MAX_COORDINATE, TriId};
 use crate::query::ClearZone;
@@ -156,6 +160,98 @@ impl Shape {
         }
         shape.prepare_clear_zones();
         Ok(shape)
+    }
+}
+
+impl Scene {
+    /// Deforms object `id`: its shape becomes [`Shape::deformed`] of `vertices` (one
+    /// position per vertex of its surface, object frame). Other objects sharing the shape
+    /// keep it as it was. The refresh runs here, on the caller's thread, and the
+    /// deformation is in force from the next tick: a proxy resting on the surface rides
+    /// it (it keeps its barycentric point on the triangle under it, at the same height),
+    /// and a surface that moved over a proxy pushes it out (see [`Proxy`]).
+    ///
+    /// Call it between ticks on the thread that owns the scene; from another thread, make
+    /// the shape there and send it with [`Edit::SetShape`](super::Edit::SetShape).
+    ///
+    /// # Errors
+    /// [`DeformError::UnknownObject`], or those of [`Shape::deformed`]; the scene is then
+    /// unchanged.
+    ///
+    /// [`Proxy`]: crate::proxy::Proxy
+    pub fn deform(&mut self, id: ObjectId, vertices: &[DVec3]) -> Result<(), DeformError> {
+        let i = self.index_of(id).ok_or(DeformError::UnknownObject(id.0))?;
+        let shape = self.objects[i].shape.deformed(vertices)?;
+        self.set_shape(i, Arc::new(shape));
+        Ok(())
+    }
+
+    /// [`Scene::deform`] for a subset of the vertices: vertex `indices[k]` moves to
+    /// `positions[k]` ([`Shape::deformed_at`]).
+    ///
+    /// # Errors
+    /// [`DeformError::UnknownObject`], or those of [`Shape::deformed_at`]; the scene is
+    /// then unchanged.
+    pub fn deform_at(
+        &mut self,
+        id: ObjectId,
+        indices: &[u32],
+        positions: &[DVec3],
+    ) -> Result<(), DeformError> {
+        let i = self.index_of(id).ok_or(DeformError::UnknownObject(id.0))?;
+        let shape = self.objects[i].shape.deformed_at(indices, positions)?;
+        self.set_shape(i, Arc::new(shape));
+        Ok(())
+    }
+
+    /// How many deformations the scene has applied.
+    #[inline]
+    pub(crate) fn deformations(&self) -> u64 {
+        self.deformations
+    }
+
+    /// [`Edit::SetShape`](super::Edit::SetShape) on the servo thread: what goes back to
+    /// the editor, a shape no longer used or the one refused.
+    pub(super) fn replace_shape(&mut self, id: ObjectId, shape: Arc<Shape>) -> Option<Returned> {
+        let Some(i) = self.index_of(id) else {
+            return Some(Returned::RefusedShape(id, shape, EditError::UnknownObject));
+        };
+        let (old, new) = (self.objects[i].shape.surface(), shape.surface());
+        if old.vertex_count() != new.vertex_count() || old.triangle_count() != new.triangle_count()
+        {
+            return Some(Returned::RefusedShape(
+                id,
+                shape,
+                EditError::NotADeformation,
+            ));
+        }
+        self.set_shape(i, shape).map(|s| Returned::Replaced(id, s))
+    }
+
+    /// Gives object `i` `shape`, keeping the one the last tick saw as its previous shape
+    /// (for a proxy to ride from); returns the shape no longer kept, if any.
+    ///
+    /// # Real-time
+    /// No allocation; a relink in the broad phase.
+    fn set_shape(&mut self, i: usize, shape: Arc<Shape>) -> Option<Arc<Shape>> {
+        self.deformations += 1;
+        let ticks = self.ticks;
+        let o = &mut self.objects[i];
+        let current = std::mem::replace(&mut o.shape, shape);
+        // Deformed twice between two ticks: the shape in between was never seen.
+        let unused = if o.previous_shape.is_some() && o.previous_since == ticks {
+            Some(current)
+        } else {
+            o.previous_since = ticks;
+            o.previous_shape.replace(current)
+        };
+        o.deformed_at = self.deformations;
+        let (centre, radius) = sphere_of(o);
+        self.broad.reshape(i, centre, radius);
+        // The bounding sphere changed: sets of nearby objects kept from earlier ticks are
+        // found again.
+        self.epoch += 1;
+        unused
     }
 }
 

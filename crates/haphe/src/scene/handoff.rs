@@ -1,10 +1,13 @@
 //! The wait-free hand-off of scene edits from other threads to the servo thread.
 
+use std::sync::Arc;
+
 use rtrb::{Consumer, Producer, RingBuffer};
 
 use super::material::Material;
 use super::object::{ObjectId, SceneObject};
 use super::pose::Pose;
+use super::shape::Shape;
 
 /// Most edits applied in one [`Scene::begin_tick`](super::Scene::begin_tick); the rest wait for the next tick.
 pub const MAX_EDITS_PER_TICK: usize = 16;
@@ -20,6 +23,12 @@ pub enum Edit {
     SetPose(ObjectId, Pose),
     /// Change how an object feels.
     SetMaterial(ObjectId, Material),
+    /// Give an object a deformed version of its shape, made on the editor's thread with
+    /// [`Shape::deformed`] (the refresh is done before the edit is sent). In force from
+    /// the first tick that applies it; the version it replaces comes back
+    /// ([`Returned::Replaced`]). Refused, and handed back, for an unknown object or a
+    /// shape with other counts of vertices and triangles.
+    SetShape(ObjectId, Arc<Shape>),
 }
 
 /// Why an edit was refused.
@@ -34,15 +43,31 @@ pub enum EditError {
     /// Too many edits are waiting for the servo thread; try again after a tick.
     #[error("too many edits are waiting for the servo thread")]
     Busy,
+    /// No object has that id.
+    #[error("no object with that id is in the scene")]
+    UnknownObject,
+    /// A shape sent as a deformation has other counts of vertices or triangles than the
+    /// object's.
+    #[error(
+        "the shape is not a deformation of the object's: other counts of vertices or triangles"
+    )]
+    NotADeformation,
 }
 
-/// What comes back from the servo thread: removed objects and refused insertions.
+/// What comes back from the servo thread: removed objects, refused insertions, replaced
+/// and refused shapes.
 #[derive(Debug)]
+#[non_exhaustive]
 pub enum Returned {
     /// An object removed from the scene.
     Removed(SceneObject),
     /// An insertion the scene refused, and why.
     Refused(SceneObject, EditError),
+    /// The shape an object had before a [`Edit::SetShape`], to be dropped off the servo
+    /// thread.
+    Replaced(ObjectId, Arc<Shape>),
+    /// A shape the scene refused as a deformation, and why.
+    RefusedShape(ObjectId, Arc<Shape>, EditError),
 }
 
 /// The servo thread's end of the hand-off.

@@ -32,6 +32,14 @@ pub struct SceneObject {
     pub sides: Sides,
     /// The texture felt on the surface, if any.
     pub texture: Option<Texture>,
+    /// The scene's count of deformations when this object's shape was last deformed (0:
+    /// never), so that a proxy knows which surfaces moved since its last tick.
+    pub(crate) deformed_at: u64,
+    /// The shape as the last tick before its latest deformation saw it, for a proxy to
+    /// ride from (see [`Scene::deform`](super::Scene::deform)).
+    pub(crate) previous_shape: Option<Arc<Shape>>,
+    /// The scene's tick count when `previous_shape` was kept.
+    pub(crate) previous_since: u64,
 }
 
 /// Which sides of an object's surface the proxy touches.
@@ -61,6 +69,9 @@ impl SceneObject {
             material,
             sides,
             texture: None,
+            deformed_at: 0,
+            previous_shape: None,
+            previous_since: 0,
         }
     }
 

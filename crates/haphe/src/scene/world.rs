@@ -49,6 +49,10 @@ pub struct Scene {
     pub(super) removals: RemovalLog,
     /// The force effects (room for `MAX_EFFECTS`, reserved).
     pub(super) effects: Vec<Effect>,
+    /// How many deformations the scene has applied (see [`Scene::deform`]).
+    pub(super) deformations: u64,
+    /// How many ticks the scene has begun.
+    pub(super) ticks: u64,
 }
 
 /// The names of scenes (see `Scene::uid`).
@@ -86,6 +90,8 @@ impl Scene {
             epoch: 0,
             removals: RemovalLog::new(),
             effects: Vec::with_capacity(MAX_EFFECTS),
+            deformations: 0,
+            ticks: 0,
         }
     }
 
@@ -249,6 +255,7 @@ impl Scene {
     /// editor); bounded by [`MAX_EDITS_PER_TICK`].
     pub fn begin_tick(&mut self) -> usize {
         self.settle_moved();
+        self.ticks += 1;
         let Some(mut inbox) = self.inbox.take() else {
             return 0;
         };
@@ -278,6 +285,7 @@ impl Scene {
                     self.set_material(id, material);
                     None
                 }
+                Edit::SetShape(id, shape) => self.replace_shape(id, shape),
             };
             if let Some(back) = back {
                 inbox.give_back(back);

@@ -10,6 +10,7 @@
 //! With the `testing` feature (the command line, the tests, benches and fuzz targets turn
 //! it on); an application that only renders does not compile it.
 
+mod deform;
 mod fixtures;
 mod friction;
 mod hold;
@@ -20,6 +21,7 @@ mod proxy;
 mod samples;
 mod strikes;
 
+pub use deform::{DENT_DEPTH_M, Deformation, check_deforming};
 pub use fixtures::{HAND_SCALE_M, hand_sized, one_object_scene, sphere_scene};
 pub use friction::friction_step;
 pub use hold::{HeldContact, hand_deeper_than, saturation_depth_of};

@@ -19,11 +19,11 @@ use super::friction::friction_step;
 use super::hold::{HeldContact, hand_deeper_than, saturation_depth_of};
 use super::limits::KEPT_FAILURES;
 use super::oracle::TriangleBounds;
-use super::oracle::distance_to_surface;
+use super::oracle::{WindingOracle, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, advance_to_plane, clamp_to_radius,
-    rests_on,
+    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Ride, advance_to_plane,
+    clamp_to_radius, pushed_from, rests_on, ride_on,
 };
 use crate::query::{Probe, Side, classify_point, nearest_within_brute_force};
 use crate::scene::{Material, Pose, Scene, Shape, Sides, SurfaceRef};
@@ -40,6 +40,8 @@ struct BruteObject {
     previous_pose: Pose,
     material: Material,
     one_sided: bool,
+    /// The shape before the deformation the last [`BruteProxy::sync`] found, if any.
+    before: Option<Arc<Shape>>,
 }
 
 /// The god-object by brute force: the oracle for [`Proxy`].
@@ -57,6 +59,8 @@ pub struct BruteProxy {
     hold: Option<HeldContact>,
     /// The device point of the previous tick.
     previous_hip: Option<DVec3>,
+    /// The object touched at the end of the previous tick.
+    touched: Option<usize>,
 }
 
 /// The state of the constraint steps of one tick.
@@ -127,6 +131,7 @@ impl BruteProxy {
                 previous_pose: o.previous_pose,
                 material: o.material,
                 one_sided: o.sides == Sides::Front,
+                before: None,
             })
             .collect();
         BruteProxy {
@@ -139,6 +144,7 @@ impl BruteProxy {
             rest: None,
             hold: None,
             previous_hip: None,
+            touched: None,
         }
     }
 
@@ -162,6 +168,7 @@ impl BruteProxy {
             direction: h.direction_object,
         });
         self.previous_hip = proxy.previous_hip();
+        self.touched = proxy.touched();
     }
 
     /// Reads the objects' poses and materials from the scene, which must hold the same
@@ -169,6 +176,10 @@ impl BruteProxy {
     /// [`BruteProxy::tick`]).
     pub fn sync(&mut self, scene: &Scene) {
         for (o, s) in self.objects.iter_mut().zip(scene.objects()) {
+            if !Arc::ptr_eq(&o.shape, &s.shape) {
+                o.before = Some(std::mem::replace(&mut o.shape, s.shape.clone()));
+                o.boxes = TriangleBounds::new(o.shape.surface());
+            }
             o.pose = s.pose;
             o.previous_pose = s.previous_pose;
             o.material = s.material;
@@ -383,6 +394,7 @@ impl BruteProxy {
         self.hold = Some(hold);
         self.position = p;
         self.in_contact = true;
+        self.touched = Some(hold.object);
         Some(p)
     }
 
@@ -390,6 +402,7 @@ impl BruteProxy {
     pub fn tick(&mut self, hip: DVec3) -> (DVec3, bool) {
         if !hip.is_finite() {
             self.in_contact = false;
+            self.touched = None;
             self.sticking = false;
             self.rest = None;
             self.hold = None;
@@ -399,6 +412,7 @@ impl BruteProxy {
         let (hip, _) = clamp_to_radius(hip, self.options.workspace_radius);
         let previous_hip = self.previous_hip.replace(hip);
         let p = self.carried(self.position);
+        let p = self.deformed(p);
         // Beyond the saturation depth of the held plane, the proxy moves by constraint
         // steps toward the hold's goal, without friction.
         if let Some(hold) = self.hold.take()
@@ -413,6 +427,7 @@ impl BruteProxy {
         let Some(touch_down) = step.touch_down else {
             self.position = p;
             self.in_contact = false;
+            self.touched = None;
             self.sticking = false;
             return (p, false);
         };
@@ -429,6 +444,7 @@ impl BruteProxy {
         }
         self.position = p;
         self.in_contact = true;
+        self.touched = Some(step.object);
         (p, true)
     }
 
@@ -441,6 +457,58 @@ impl BruteProxy {
             let from = o.pose.to_world(o.previous_pose.to_object(p));
             if let Some(h) = self.hit(i, from, p) {
                 p = advance_to_plane(from, p, &self.plane(&h, from, p));
+            }
+        }
+        p
+    }
+
+    /// `p` after the objects deformed since the previous tick moved under it (see
+    /// `proxy/deform.rs` for the rule): riding the object touched, on the nearest point of
+    /// its surface before the deformation (every triangle tested), then pushed out of
+    /// every deformed object it lies inside (winding number) or, with a tool radius,
+    /// closer than the radius to (every triangle tested).
+    fn deformed(&mut self, mut p: DVec3) -> DVec3 {
+        let placed = self.placed;
+        let before: Vec<Option<Arc<Shape>>> =
+            self.objects.iter_mut().map(|o| o.before.take()).collect();
+        if placed || before.iter().all(Option::is_none) {
+            return p;
+        }
+        if let Some(i) = self.touched
+            && let Some(old) = &before[i]
+        {
+            let o = &self.objects[i];
+            let q = o.previous_pose.to_object(self.position);
+            if let Some(near) = nearest_within_brute_force(old.surface(), q, f64::MAX) {
+                let ride = Ride::of(i, &o.previous_pose, &near);
+                let ridden = ride_on((&o.shape, &o.pose), &ride, self.position);
+                if let Some(hold) = self.hold.as_mut()
+                    && hold.object == i
+                {
+                    hold.entry += o.pose.vector_to_object(ridden - p);
+                }
+                p = ridden;
+            }
+        }
+        let (radius, skin) = (self.options.tool_radius(), self.options.skin());
+        for (o, old) in self.objects.iter().zip(&before) {
+            if old.is_none() {
+                continue;
+            }
+            let surface = o.shape.surface();
+            let q = o.pose.to_object(p);
+            let inside =
+                o.shape.is_solid() && o.one_sided && WindingOracle::new(surface).winding(q) != 0;
+            if !inside && radius <= 0.0 {
+                continue;
+            }
+            let Some(near) = nearest_within_brute_force(surface, q, f64::MAX) else {
+                continue;
+            };
+            if inside || near.distance < radius {
+                p = o
+                    .pose
+                    .to_world(pushed_from(surface, q, &near, inside, radius + skin));
             }
         }
         p
@@ -583,18 +651,42 @@ impl ProxyCheck {
 /// Runs the fast proxy and the brute-force one along `path` in `scene` (at rest).
 pub fn check_proxy(scene: &Scene, path: &[DVec3], options: ProxyOptions) -> ProxyCheck {
     let start = path.first().copied().unwrap_or(DVec3::ZERO);
-    let mut fast = Proxy::new(start, options);
-    let mut brute = BruteProxy::new(scene, start, options);
+    let mut pair = ProxyPair::new(scene, start, options);
     let mut check = ProxyCheck {
         ticks: path.len(),
         ..ProxyCheck::empty()
     };
-    let mut previous = start;
     for (tick, &hip) in path.iter().enumerate() {
-        let velocity = (hip - previous) * 1e3;
-        previous = hip;
-        let out = fast.tick(scene, hip, velocity);
-        let (b, b_contact) = brute.tick(hip);
+        pair.tick(scene, tick, hip, &mut check);
+    }
+    check
+}
+
+/// The fast proxy and its brute-force oracle, ticked side by side.
+pub(crate) struct ProxyPair {
+    fast: Proxy,
+    brute: BruteProxy,
+    previous: DVec3,
+}
+
+impl ProxyPair {
+    /// Both proxies at `start` in `scene`.
+    pub(crate) fn new(scene: &Scene, start: DVec3, options: ProxyOptions) -> ProxyPair {
+        ProxyPair {
+            fast: Proxy::new(start, options),
+            brute: BruteProxy::new(scene, start, options),
+            previous: start,
+        }
+    }
+
+    /// One tick of both toward `hip` (tick number `tick`), counted in `check`: a
+    /// mismatch resets the oracle to the fast proxy's state.
+    pub(crate) fn tick(&mut self, scene: &Scene, tick: usize, hip: DVec3, check: &mut ProxyCheck) {
+        let options = *self.fast.options();
+        let velocity = (hip - self.previous) * 1e3;
+        self.previous = hip;
+        let out = self.fast.tick(scene, hip, velocity);
+        let (b, b_contact) = self.brute.tick(hip);
         let deviation = out.proxy.distance(b);
         check.max_deviation_m = check.max_deviation_m.max(deviation);
         check.contact_ticks += usize::from(out.contact.is_some());
@@ -605,14 +697,19 @@ pub fn check_proxy(scene: &Scene, path: &[DVec3], options: ProxyOptions) -> Prox
                     .failures
                     .push((tick, out.proxy.to_array(), b.to_array()));
             }
-            brute.resync(&fast, out.contact.is_some(), out.status.sticking);
+            self.brute
+                .resync(&self.fast, out.contact.is_some(), out.status.sticking);
         }
         if !out.force.is_finite() || out.force.length() > options.max_force * (1.0 + 1e-12) {
             check.bad_forces += 1;
         }
         check.inside += breaks_in(scene, out.proxy, &options);
     }
-    check
+
+    /// The oracle, to read the scene's objects again ([`BruteProxy::sync`]).
+    pub(crate) fn brute(&mut self) -> &mut BruteProxy {
+        &mut self.brute
+    }
 }
 
 /// The objects the proxy at `p` has broken into: a solid it lies inside deeper than its
