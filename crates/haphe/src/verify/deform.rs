@@ -29,7 +29,7 @@ pub enum Deformation {
 }
 
 /// Depth of [`Deformation::Dent`], metres.
-pub const DENT_DEPTH_M: f64 = 0.008;
+const DENT_DEPTH_M: f64 = 0.008;
 
 impl Deformation {
     /// Every deformation, for the suites.

@@ -21,7 +21,10 @@ mod proxy;
 mod samples;
 mod strikes;
 
-pub use deform::{DENT_DEPTH_M, Deformation, check_deforming};
+pub use deform::Deformation;
+// The deforming suite's runner, for `haphe verify` and the tests.
+#[doc(hidden)]
+pub use deform::check_deforming;
 pub use fixtures::{HAND_SCALE_M, hand_sized, one_object_scene, sphere_scene};
 pub use friction::friction_step;
 pub use hold::{HeldContact, hand_deeper_than, saturation_depth_of};
