@@ -93,8 +93,8 @@ fn a_proxy_resting_on_a_rising_face_rides_it() {
     let mut proxy =
         haphe::proxy::Proxy::new(DVec3::new(0.01, 0.01, top + 0.01), ProxyOptions::default());
     let hip = DVec3::new(0.01, 0.01, top - 0.002);
-    for tick in 0..200 {
-        let lift = 1e-5 * f64::from(tick);
+    for tick in 0..200u64 {
+        let lift = 1e-5 * tick as f64;
         let lifted: Vec<DVec3> = rest
             .iter()
             .map(|&p| {
@@ -117,6 +117,7 @@ fn a_proxy_resting_on_a_rising_face_rides_it() {
                 top + lift
             );
             assert!(contact.normal.z > 0.99);
+            assert_eq!(contact.version, tick + 1, "the tick felt this deformation");
             assert!(out.force.z > 0.0);
         }
     }

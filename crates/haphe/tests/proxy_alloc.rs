@@ -120,6 +120,16 @@ fn proxy_ticks_allocate_nothing() {
         };
     }
     let spare = SceneObject::new(ObjectId(99), shapes[0].clone(), Pose::IDENTITY, material);
+    // The blob breathes: a deformed version made here, off the servo path, each block.
+    let breathed = [1.01, 0.99].map(|scale| {
+        let vertices: Vec<DVec3> = shapes[0]
+            .surface()
+            .vertices()
+            .iter()
+            .map(|&p| scale * p)
+            .collect();
+        Arc::new(shapes[0].deformed(&vertices).expect("a deformation"))
+    });
     let mut proxy = Proxy::new(hips[0], ProxyOptions::default());
     let mut previous = hips[0];
     let mut contacts = 0usize;
@@ -140,6 +150,7 @@ fn proxy_ticks_allocate_nothing() {
             )
             .expect("a valid pose"),
         ));
+        let _ = editor.send(Edit::SetShape(ObjectId(0), breathed[c % 2].clone()));
         if let Some(object) = spare.take() {
             let _ = editor.send(Edit::Insert(object));
         } else if c % 2 == 0 {
@@ -162,7 +173,8 @@ fn proxy_ticks_allocate_nothing() {
             }
         });
         total_allocations += info.count_total;
-        // Objects that left the scene are dropped here, off the servo thread.
+        // Objects that left the scene, and shapes no longer used, are dropped here, off
+        // the servo thread.
         for returned in editor.collect() {
             if let haphe::scene::Returned::Removed(o) = returned {
                 spare = Some(o);

@@ -385,7 +385,10 @@ pub(super) fn contact_at(
     status: &mut TickStatus,
 ) -> Option<Contact> {
     let object = on.object;
-    let id = scene.objects()[object].id;
+    let (id, version) = {
+        let o = &scene.objects()[object];
+        (o.id, o.shape.version())
+    };
     scene.surface_point(on, p).map(|(s, walk)| {
         status.walk_cap_hit = walk == crate::query::WalkStatus::BoundHit;
         let side = if s.face_normal.dot(normal) >= 0.0 {
@@ -403,6 +406,7 @@ pub(super) fn contact_at(
             shading_normal: side * s.shading_normal,
             penetration: (p - hip).dot(normal).max(0.0),
             constraints,
+            version,
         }
     })
 }

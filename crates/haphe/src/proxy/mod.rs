@@ -143,6 +143,7 @@ pub use options::DEFAULT_SKIN;
 pub use options::ProxyOptions;
 pub use output::{Contact, TickOutput, TickStatus};
 // The clamp of the servo's sum of the proxy's force and the effects.
+#[cfg(any(test, feature = "testing"))]
 pub(crate) use deform::{Ride, pushed_from, ride_on};
 pub(crate) use force::clamp_force;
 // The god-object's geometric steps, which the brute-force proxy of `verify` runs too.

@@ -31,6 +31,12 @@ pub struct Contact {
     /// Number of active constraint planes: 1 on a face, 2 in a concave edge, 3 in a
     /// concave corner.
     pub constraints: u8,
+    /// The version of the object's shape the tick touched ([`Shape::version`]: how many
+    /// deformations made it), so that a deformation sent from another thread can be
+    /// matched with the first tick that felt it.
+    ///
+    /// [`Shape::version`]: crate::scene::Shape::version
+    pub version: u64,
 }
 
 impl Contact {
