@@ -68,7 +68,13 @@ pub(super) fn bin_triangles(
 /// the cells of the row. Each candidate is confirmed with the exact test, so the result is
 /// the listing predicate exactly; the work is proportional to the cells the triangle meets.
 /// Padding cells are never candidates (the surface lies inside the interior cells).
-fn bin_triangle(corners: [DVec3; 3], t: u32, dims: [u32; 3], bdims: [u32; 3], out: &mut Vec<u64>) {
+pub(super) fn bin_triangle(
+    corners: [DVec3; 3],
+    t: u32,
+    dims: [u32; 3],
+    bdims: [u32; 3],
+    out: &mut Vec<u64>,
+) {
     let lo = corners[0].min(corners[1]).min(corners[2]);
     let hi = corners[0].max(corners[1]).max(corners[2]);
     let extent = hi - lo;

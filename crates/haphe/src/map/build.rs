@@ -133,14 +133,7 @@ pub(super) fn build_on_grid(
     if refs >= u64::from(u32::MAX) {
         return Err(MapError::TooManyTriangleRefs { refs });
     }
-    let key_bits = u64::BITS
-        - (brick_dims(grid.dims())
-            .iter()
-            .map(|&d| u64::from(d))
-            .product::<u64>()
-            * BRICK_CELLS as u64)
-            .leading_zeros();
-    let keys = sort_by_cell(keys, key_bits);
+    let keys = sort_by_cell(keys, key_bits(&grid));
     progress(PROGRESS_SORTED);
 
     let solid = surface.is_solid();
@@ -162,6 +155,12 @@ pub(super) fn build_on_grid(
     compute_clearance(&mut map);
     map.derive_free_space();
     map.derive_slabs(surface);
+    shrink(&mut map);
+    Ok(map)
+}
+
+/// Frees the spare capacity of a finished map's arrays.
+pub(super) fn shrink(map: &mut VoxelMap) {
     map.bricks.modify(Vec::shrink_to_fit);
     map.surface_bits.modify(Vec::shrink_to_fit);
     map.inside_bits.modify(Vec::shrink_to_fit);
@@ -171,14 +170,24 @@ pub(super) fn build_on_grid(
     map.triangle_refs.modify(Vec::shrink_to_fit);
     map.slabs.modify(Vec::shrink_to_fit);
     map.clearances.modify(Vec::shrink_to_fit);
-    Ok(map)
+}
+
+/// The bits a cell key of `grid` uses (see [`bin_triangles`]).
+pub(super) fn key_bits(grid: &Grid) -> u32 {
+    u64::BITS
+        - (brick_dims(grid.dims())
+            .iter()
+            .map(|&d| u64::from(d))
+            .product::<u64>()
+            * BRICK_CELLS as u64)
+            .leading_zeros()
 }
 
 /// The map's arrays from the sorted keys: a detailed brick for every brick with a surface
 /// cell (in brick order), with its surface mask, the surface cells' triangle starts, and
 /// the counts of surface cells before each mask word. Inside masks start empty (the flood
 /// fill sets them); uniform bricks start inside for a solid and outside otherwise.
-fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
+pub(super) fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
     let bdims = brick_dims(grid.dims());
     let brick_count = bdims.iter().map(|&d| d as usize).product();
     let free = if solid {

@@ -13,11 +13,11 @@ use super::voxel_map::{
 };
 
 /// No neighbour slot.
-const NO_SLOT: u32 = u32::MAX;
+pub(crate) const NO_SLOT: u32 = u32::MAX;
 
 /// What a brick of the clearance work set stores its clearances in.
 #[derive(Clone, Copy)]
-enum Target {
+pub(crate) enum Target {
     /// Detailed brick `d`: its nibbles.
     Detailed(usize),
     /// Graded brick `g` (uniform, touching a detailed brick): nibbles after the detailed
@@ -42,7 +42,18 @@ enum Target {
 /// Deterministic; parallel over bricks within each step.
 pub(crate) fn compute_clearance(map: &mut VoxelMap) {
     let work = WorkSet::of(map);
-    let steps = count_steps(map, &work);
+    let initial = work
+        .targets
+        .iter()
+        .map(|target| match *target {
+            Target::Detailed(d) => map.surface_bits.get(d).copied().unwrap_or_default(),
+            _ => [0; MASK_WORDS],
+        })
+        .collect();
+    let counted: Vec<usize> = (0..work.slots.len())
+        .filter(|&s| !matches!(work.targets[s], Target::Uniform))
+        .collect();
+    let steps = count_steps(initial, counted, &work.neighbours);
     store(map, &work, &steps);
 }
 
@@ -91,17 +102,7 @@ impl WorkSet {
             });
         }
         drop(mark);
-        let neighbours: Vec<[u32; 6]> = slots
-            .par_iter()
-            .map(|&b| {
-                let bc = brick_coords(b, bdims);
-                FACES.map(|(axis, up)| {
-                    step(bc, axis, up, bdims)
-                        .map(|n| slot_of[brick_of(n.map(|x| x << BRICK_BITS), bdims)])
-                        .unwrap_or(NO_SLOT)
-                })
-            })
-            .collect();
+        let neighbours = neighbour_slots(&slots, &slot_of, bdims);
         WorkSet {
             slot_of,
             slots,
@@ -110,6 +111,24 @@ impl WorkSet {
             neighbours,
         }
     }
+}
+
+/// The slots of each slot's six face neighbours (`NO_SLOT` outside the set), in the
+/// order of [`FACES`], for bricks `slots` of a grid of `bdims` bricks whose slots are
+/// `slot_of` (one per brick, `NO_SLOT` for a brick outside the set).
+pub(crate) fn neighbour_slots(slots: &[usize], slot_of: &[u32], bdims: [u32; 3]) -> Vec<[u32; 6]> {
+    slots
+        .par_iter()
+        .map(|&b| {
+            let bc = brick_coords(b, bdims);
+            FACES.map(|(axis, up)| {
+                step(bc, axis, up, bdims)
+                    .and_then(|n| slot_of.get(brick_of(n.map(|x| x << BRICK_BITS), bdims)))
+                    .copied()
+                    .unwrap_or(NO_SLOT)
+            })
+        })
+        .collect()
 }
 
 /// Every brick's mark: `TOUCHING | NEAR` next to a detailed brick, `NEAR` within the work
@@ -142,30 +161,25 @@ fn near_marks(map: &VoxelMap) -> Vec<u32> {
 /// The dilation steps' counts: for the detailed and graded slots (`counted`), each cell's
 /// number of steps outside `D_k` (`counts`); for every slot, the number of steps with the
 /// whole brick outside (`empty_steps`).
-struct Steps {
-    counted: Vec<usize>,
-    counts: Vec<Counter>,
-    empty_steps: Vec<u8>,
+pub(crate) struct Steps {
+    pub(crate) counted: Vec<usize>,
+    pub(crate) counts: Vec<Counter>,
+    pub(crate) empty_steps: Vec<u8>,
 }
 
-/// Dilates the surface cells `MAX_CLEARANCE − 1` times over the work set, counting.
-fn count_steps(map: &VoxelMap, work: &WorkSet) -> Steps {
-    let (targets, neighbours) = (&work.targets, &work.neighbours);
+/// Dilates the surface cells `MAX_CLEARANCE − 1` times over a set of bricks, counting:
+/// `initial` holds each slot's surface cells, `counted` the slots whose cells are counted
+/// one by one, `neighbours` each slot's face neighbours ([`neighbour_slots`]).
+pub(crate) fn count_steps(
+    initial: Vec<BrickBits>,
+    counted: Vec<usize>,
+    neighbours: &[[u32; 6]],
+) -> Steps {
     // D_0: the surface cells. A cell's clearance is the number of steps k in
     // 0..MAX_CLEARANCE with the cell not yet in D_k: counted per cell, in four bit planes,
     // for detailed and graded bricks; for the other bricks only their smallest clearance
     // is kept, the number of steps with the whole brick still outside D_k.
-    let mut current: Vec<BrickBits> = vec![[0; MASK_WORDS]; work.slots.len()];
-    for (s, target) in targets.iter().enumerate() {
-        if let Target::Detailed(d) = *target
-            && let Some(surface) = map.surface_bits.get(d)
-        {
-            current[s] = *surface;
-        }
-    }
-    let counted: Vec<usize> = (0..work.slots.len())
-        .filter(|&s| !matches!(targets[s], Target::Uniform))
-        .collect();
+    let current = initial;
     let mut counts: Vec<Counter> = counted
         .par_iter()
         .map(|&s| {
@@ -245,7 +259,7 @@ fn store(map: &mut VoxelMap, work: &WorkSet, steps: &Steps) {
 
 /// The entry of a uniform brick `distance` bricks from the nearest detailed one, with its
 /// work-set target and steps (`None` outside the set).
-fn uniform_clearance(
+pub(crate) fn uniform_clearance(
     entry: u32,
     distance: u16,
     target: Option<&Target>,
@@ -264,7 +278,7 @@ fn uniform_clearance(
 
 /// The Chebyshev distance, in bricks, from every brick to the nearest detailed one (0 for
 /// a detailed brick; `u16::MAX` when there is none).
-fn brick_distances(bricks: &[u32], bdims: [u32; 3]) -> Vec<u16> {
+pub(crate) fn brick_distances(bricks: &[u32], bdims: [u32; 3]) -> Vec<u16> {
     chebyshev_distances(bdims, |b| bricks[b] & UNIFORM == 0)
 }
 
@@ -321,7 +335,7 @@ pub(crate) fn chebyshev_distances(dims: [u32; 3], marked: impl Fn(usize) -> bool
 /// A 4-bit counter per cell of a brick, bit-sliced: bit `p` of every cell's count lives
 /// in plane `p`, so adding one to a set of cells costs a few word operations.
 #[derive(Clone, Copy, Default)]
-struct Counter {
+pub(crate) struct Counter {
     planes: [BrickBits; 4],
 }
 
@@ -341,7 +355,7 @@ impl Counter {
     }
 
     /// The counts as nibbles (cell `l` in byte `l / 2`, low nibble first).
-    fn write_nibbles(&self, bytes: &mut [u8]) {
+    pub(crate) fn write_nibbles(&self, bytes: &mut [u8]) {
         for (group, out) in bytes.chunks_exact_mut(4).enumerate() {
             // Eight cells: `group * 8 ..`, the byte `group % 8` of word `group / 8`.
             let (z, shift) = (group / 8, 8 * (group % 8));

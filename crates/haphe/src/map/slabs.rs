@@ -132,6 +132,15 @@ type Corners = [DVec3; 3];
 /// once, in index order).
 type PerBrick = (Vec<u32>, u32, Vec<u32>, Vec<u32>);
 
+/// Reused buffers of the slab of a block: its triangles' corners, and a cell's list keyed
+/// along its slab (see [`order_along`]).
+#[derive(Default)]
+pub(crate) struct SlabScratch {
+    corners: Vec<Corners>,
+    /// The cell's triangles in the order along its slab, with their keys.
+    pub(crate) keyed: Vec<(f64, u32)>,
+}
+
 /// The corners of `triangles`, in `out` (emptied first): read once from the surface for
 /// the slab's passes and the list's order.
 fn gather(surface: &Surface, triangles: &[u32], out: &mut Vec<Corners>) {
@@ -376,8 +385,6 @@ impl VoxelMap {
     /// orders each cell's list along its slab's direction ([`order_along`]). Parallel over
     /// bricks.
     pub(crate) fn derive_slabs(&mut self, surface: &Surface) {
-        let h = self.grid.cell_size();
-        let side = f64::from(BRICK_SIDE) * h;
         // Per detailed brick: its cells' slabs, its own slab, its cells' lists, ordered, and
         // its triangles (each once).
         let per_brick: Vec<PerBrick> = (0..self.bricks.len())
@@ -385,32 +392,25 @@ impl VoxelMap {
             .filter(|&b| self.bricks[b] & UNIFORM == 0)
             .map(|b| {
                 let brick = self.bricks[b] as usize;
-                let bc = brick_coords(b, self.brick_dims);
                 let (mut slabs, mut triangles, mut ordered) = (Vec::new(), Vec::new(), Vec::new());
                 let Some(bits) = self.surface_bits.get(brick) else {
                     return (slabs, FULL_SLAB, ordered, triangles);
                 };
-                let (mut keyed, mut corners) = (Vec::new(), Vec::new());
+                let mut scratch = SlabScratch::default();
                 for (word, &bits) in bits.iter().enumerate() {
                     let mut rest = bits;
                     while rest != 0 {
                         let local = word * 64 + rest.trailing_zeros() as usize;
                         rest &= rest - 1;
-                        let (lo, hi) = self.grid.cell_bounds(cell_in_brick(bc, local));
                         let listed = self.listed(brick, local).unwrap_or(&[]);
-                        gather(surface, listed, &mut corners);
-                        let slab = slab_of(&corners, 0.5 * (lo + hi), h);
-                        slabs.push(slab);
+                        slabs.push(self.cell_slab(surface, b, local, listed, &mut scratch));
                         triangles.extend_from_slice(listed);
-                        order_along(direction(slab), listed, &corners, &mut keyed);
-                        ordered.extend(keyed.iter().map(|&(_, t)| t));
+                        ordered.extend(scratch.keyed.iter().map(|&(_, t)| t));
                     }
                 }
                 triangles.sort_unstable();
                 triangles.dedup();
-                let (lo, _) = self.grid.cell_bounds(cell_in_brick(bc, 0));
-                gather(surface, &triangles, &mut corners);
-                let brick_slab = slab_of(&corners, lo + DVec3::splat(0.5 * side), side);
+                let brick_slab = self.brick_slab_over(surface, b, &triangles, &mut scratch);
                 (slabs, brick_slab, ordered, triangles)
             })
             .collect();
@@ -434,44 +434,96 @@ impl VoxelMap {
             .flat_map(|(slabs, _, _, _)| slabs.iter().copied())
             .collect::<Vec<_>>()
             .into();
-        let dims = region_dims(self.brick_dims);
-        let side = f64::from(REGION_SIDE) * h;
-        let [rx, ry, rz] = dims.map(|d| d as usize);
+        let [rx, ry, rz] = region_dims(self.brick_dims).map(|d| d as usize);
+        // A detailed brick's entry is its index among them, that of `per_brick`.
+        let of_brick = |entry: u32, out: &mut Vec<u32>| {
+            if let Some((_, _, _, listed)) = per_brick.get(entry as usize) {
+                out.extend_from_slice(listed);
+            }
+        };
         self.region_slabs = (0..rx * ry * rz)
             .into_par_iter()
-            .map(|r| {
-                let region = [r % rx, r / rx % ry, r / (rx * ry)].map(|v| v as u32);
-                let mut triangles: Vec<u32> = Vec::new();
-                // The bricks of the region, those of the grid.
-                let per_side = REGION_SIDE / BRICK_SIDE;
-                let [bx, by, bz] = self.brick_dims;
-                for z in region[2] * per_side..((region[2] + 1) * per_side).min(bz) {
-                    for y in region[1] * per_side..((region[1] + 1) * per_side).min(by) {
-                        for x in region[0] * per_side..((region[0] + 1) * per_side).min(bx) {
-                            let b = ((z * by + y) * bx + x) as usize;
-                            // A detailed brick's entry is its index among them, that of
-                            // `per_brick`.
-                            if let Some(&entry) = self.bricks.get(b)
-                                && entry & UNIFORM == 0
-                                && let Some((_, _, _, listed)) = per_brick.get(entry as usize)
-                            {
-                                triangles.extend_from_slice(listed);
-                            }
-                        }
-                    }
-                }
-                if triangles.is_empty() {
-                    return FULL_FINE_SLAB;
-                }
-                triangles.sort_unstable();
-                triangles.dedup();
-                let (lo, _) = self.grid.cell_bounds(region.map(|v| v * REGION_SIDE));
-                let mut corners = Vec::new();
-                gather(surface, &triangles, &mut corners);
-                fine_slab_of(&corners, lo + DVec3::splat(0.5 * side), side)
-            })
+            .map(|r| self.region_slab(surface, r, &of_brick))
             .collect::<Vec<_>>()
             .into();
+    }
+
+    /// The slab of surface cell `local` of the detailed brick at top-level index `b`,
+    /// whose triangles are `listed` (in increasing order, as a build bins them); leaves
+    /// the list ordered along the slab ([`order_along`]) in `scratch.keyed`.
+    pub(crate) fn cell_slab(
+        &self,
+        surface: &Surface,
+        b: usize,
+        local: usize,
+        listed: &[u32],
+        scratch: &mut SlabScratch,
+    ) -> u32 {
+        let bc = brick_coords(b, self.brick_dims);
+        let (lo, hi) = self.grid.cell_bounds(cell_in_brick(bc, local));
+        gather(surface, listed, &mut scratch.corners);
+        let slab = slab_of(&scratch.corners, 0.5 * (lo + hi), self.grid.cell_size());
+        order_along(
+            direction(slab),
+            listed,
+            &scratch.corners,
+            &mut scratch.keyed,
+        );
+        slab
+    }
+
+    /// The slab of the brick at top-level index `b` over `triangles` (those of its
+    /// surface cells, each once, in increasing order).
+    pub(crate) fn brick_slab_over(
+        &self,
+        surface: &Surface,
+        b: usize,
+        triangles: &[u32],
+        scratch: &mut SlabScratch,
+    ) -> u32 {
+        let side = f64::from(BRICK_SIDE) * self.grid.cell_size();
+        let bc = brick_coords(b, self.brick_dims);
+        let (lo, _) = self.grid.cell_bounds(cell_in_brick(bc, 0));
+        gather(surface, triangles, &mut scratch.corners);
+        slab_of(&scratch.corners, lo + DVec3::splat(0.5 * side), side)
+    }
+
+    /// The slab of region `r` (x fastest): `of_brick(entry, out)` appends to `out` the
+    /// triangles of the detailed brick with top-level `entry`.
+    pub(crate) fn region_slab(
+        &self,
+        surface: &Surface,
+        r: usize,
+        of_brick: &(dyn Fn(u32, &mut Vec<u32>) + Sync),
+    ) -> u64 {
+        let [rx, ry, _] = region_dims(self.brick_dims).map(|d| d as usize);
+        let region = [r % rx, r / rx % ry, r / (rx * ry)].map(|v| v as u32);
+        let mut triangles: Vec<u32> = Vec::new();
+        // The bricks of the region, those of the grid.
+        let per_side = REGION_SIDE / BRICK_SIDE;
+        let [bx, by, bz] = self.brick_dims;
+        for z in region[2] * per_side..((region[2] + 1) * per_side).min(bz) {
+            for y in region[1] * per_side..((region[1] + 1) * per_side).min(by) {
+                for x in region[0] * per_side..((region[0] + 1) * per_side).min(bx) {
+                    let b = ((z * by + y) * bx + x) as usize;
+                    if let Some(&entry) = self.bricks.get(b)
+                        && entry & UNIFORM == 0
+                    {
+                        of_brick(entry, &mut triangles);
+                    }
+                }
+            }
+        }
+        if triangles.is_empty() {
+            return FULL_FINE_SLAB;
+        }
+        triangles.sort_unstable();
+        triangles.dedup();
+        let side = f64::from(REGION_SIDE) * self.grid.cell_size();
+        let (lo, _) = self.grid.cell_bounds(region.map(|v| v * REGION_SIDE));
+        let mut corners = Vec::new();
+        gather(surface, &triangles, &mut corners);
+        fine_slab_of(&corners, lo + DVec3::splat(0.5 * side), side)
     }
 
     /// The slab of detailed brick `brick` ([`FULL_SLAB`] when out of range): where in the
