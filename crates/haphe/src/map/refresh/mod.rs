@@ -1,12 +1,37 @@
 //! The map of a deformed surface: the same triangles at new positions.
+//!
+//! On the same grid the map is made again locally, stage by stage as a build makes it,
+//! each stage redoing only what the moved triangles can change and copying the rest
+//! from the map before:
+//!
+//! - the (cell, triangle) pairs ([`keys`]): the old lists less the moved triangles, and
+//!   the moved triangles binned at their new positions;
+//! - inside and outside ([`fill`]): again only in the bricks a moved triangle swept;
+//! - the clearances ([`clearance`]): again only within reach of the cells whose surface
+//!   state changed;
+//! - the slabs ([`slabs`]): again only in the cells, bricks and regions a moved triangle
+//!   overlaps, before or after.
+//!
+//! What is linear in the map's size is a pass over its arrays (the lists, the bricks'
+//! entries, the bricks' distances); the geometry (binning, winding numbers, dilations,
+//! slabs) follows the moved triangles. The result equals the build's on that grid, byte
+//! for byte (`tests.rs` compares them).
+
+mod clearance;
+mod fill;
+mod keys;
+mod slabs;
+#[cfg(test)]
+mod tests;
 
 use glam::DVec3;
 
-use super::build::build_on_grid;
+use super::build::{assemble, build_on_grid, shrink};
 use super::grid::PADDING_SLACK_REL;
-use super::voxel_map::{MAX_BRICKS, brick_dims};
+use super::voxel_map::{BRICK_BITS, MAX_BRICKS, UNIFORM, brick_dims, brick_of};
 use super::{Grid, MapError, VoxelMap};
 use crate::mesh::Surface;
+use crate::par::on_pool;
 
 /// How much a grid grows when a deformation leaves it: a quarter of the surface's extent
 /// on every side, so that a shape that keeps growing rebuilds its map rarely.
@@ -30,9 +55,117 @@ impl VoxelMap {
         surface: &Surface,
         moved: &[u32],
     ) -> Result<VoxelMap, MapError> {
-        let _ = (before, moved);
         let grid = self.grid_holding(surface)?;
-        build_on_grid(surface, grid, self.cell_size_rule, &|_| {})
+        let count = self.triangle_count;
+        let local = grid == self.grid
+            && surface.triangle_count() == count as usize
+            && before.triangle_count() == count as usize
+            && surface.is_solid() == self.solid
+            && moved.windows(2).all(|w| w[0] < w[1])
+            && moved.last().is_none_or(|&t| t < count);
+        if !local {
+            return build_on_grid(surface, grid, self.cell_size_rule, &|_| {});
+        }
+        on_pool(|| self.refreshed_here(before, surface, moved))
+    }
+
+    /// [`VoxelMap::refreshed`] on this map's grid, made locally.
+    fn refreshed_here(
+        &self,
+        before: &Surface,
+        surface: &Surface,
+        moved: &[u32],
+    ) -> Result<VoxelMap, MapError> {
+        let merged = keys::merged_keys(self, surface, moved);
+        let refs = merged.keys.len() as u64;
+        if refs >= u64::from(u32::MAX) {
+            return Err(MapError::TooManyTriangleRefs { refs });
+        }
+        let mut map = assemble(&merged.keys, self.grid, self.solid);
+        map.triangle_refs = merged
+            .keys
+            .iter()
+            .map(|&k| k as u32)
+            .collect::<Vec<u32>>()
+            .into();
+        drop(merged.keys);
+        map.triangle_count = self.triangle_count;
+        map.cell_size_rule = self.cell_size_rule;
+        let swept = self.swept_bricks(before, surface, moved, &merged.touched);
+        if self.solid {
+            fill::refill(&mut map, self, surface, &swept);
+        }
+        let changed: Vec<usize> = swept
+            .iter()
+            .copied()
+            .filter(|&b| self.surface_bits_of(b) != map.surface_bits_of(b))
+            .collect();
+        clearance::reclear(&mut map, self, &changed);
+        map.derive_free_space();
+        slabs::reslab(&mut map, self, surface, &merged.touched);
+        shrink(&mut map);
+        Ok(map)
+    }
+
+    /// The bricks (top-level indices, increasing) that a moved triangle may have swept
+    /// on its way from its corners in `before` to those in `surface`: those meeting the
+    /// box of both, one cell wider, and those holding a cell of `touched` (cell keys).
+    fn swept_bricks(
+        &self,
+        before: &Surface,
+        surface: &Surface,
+        moved: &[u32],
+        touched: &[u64],
+    ) -> Vec<usize> {
+        let (dims, bdims) = (self.grid.dims(), self.brick_dims);
+        let mut bricks: Vec<usize> = touched
+            .iter()
+            .map(|&cell| (cell >> (3 * BRICK_BITS)) as usize)
+            .collect();
+        let last = dims.map(|d| i64::from(d) - 1);
+        for &t in moved {
+            let corners = before
+                .triangles()
+                .get(t as usize)
+                .into_iter()
+                .flat_map(|tri| {
+                    tri.iter().flat_map(|&v| {
+                        [before.vertices(), surface.vertices()]
+                            .map(|vertices| vertices.get(v as usize).copied())
+                    })
+                })
+                .flatten()
+                .map(|p| self.grid.to_grid(p));
+            let (lo, hi) = corners.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p), hi.max(p))
+            });
+            if !(lo.is_finite() && hi.is_finite()) {
+                continue;
+            }
+            let cell = |x: f64, a: usize| (x.floor() as i64).clamp(0, last[a]) as u32;
+            let from: [u32; 3] = std::array::from_fn(|a| cell(lo[a] - 1.0, a) >> BRICK_BITS);
+            let to: [u32; 3] = std::array::from_fn(|a| cell(hi[a] + 1.0, a) >> BRICK_BITS);
+            for z in from[2]..=to[2] {
+                for y in from[1]..=to[1] {
+                    for x in from[0]..=to[0] {
+                        bricks.push(brick_of([x, y, z].map(|v| v << BRICK_BITS), bdims));
+                    }
+                }
+            }
+        }
+        bricks.sort_unstable();
+        bricks.dedup();
+        bricks
+    }
+
+    /// The surface cells of the brick at top-level index `b` (none for a uniform brick).
+    fn surface_bits_of(&self, b: usize) -> super::voxel_map::BrickBits {
+        self.bricks
+            .get(b)
+            .filter(|&&e| e & UNIFORM == 0)
+            .and_then(|&e| self.surface_bits.get(e as usize))
+            .copied()
+            .unwrap_or_default()
     }
 
     /// This map's grid when `surface` lies inside its interior cells (with the padding
