@@ -180,7 +180,7 @@ fn store(
 }
 
 /// The first set cell of `bits`.
-fn first_cell(bits: &BrickBits) -> Option<usize> {
+pub(super) fn first_cell(bits: &BrickBits) -> Option<usize> {
     let z = bits.iter().position(|&w| w != 0)?;
     Some(z * 64 + bits[z].trailing_zeros() as usize)
 }
@@ -308,7 +308,7 @@ pub(super) const COLUMN_X7: u64 = 0x8080_8080_8080_8080;
 
 /// Adds to `seeds` the cells next to the cells `layer` of the neighbour across face
 /// `face` (index into [`FACES`]: −x, +x, −y, +y, −z, +z).
-fn add_face_seeds(seeds: &mut BrickBits, layer: &BrickBits, face: usize) {
+pub(super) fn add_face_seeds(seeds: &mut BrickBits, layer: &BrickBits, face: usize) {
     let last = MASK_WORDS - 1;
     match face {
         0 => (0..=last).for_each(|z| seeds[z] |= (layer[z] & COLUMN_X7) >> 7),
@@ -321,7 +321,7 @@ fn add_face_seeds(seeds: &mut BrickBits, layer: &BrickBits, face: usize) {
 }
 
 /// Whether `bits` has a cell on face `face` (see [`add_face_seeds`]).
-fn touches_face(bits: &BrickBits, face: usize) -> bool {
+pub(super) fn touches_face(bits: &BrickBits, face: usize) -> bool {
     let last = MASK_WORDS - 1;
     match face {
         0 => bits.iter().any(|&w| w & COLUMN_X0 != 0),
@@ -335,7 +335,7 @@ fn touches_face(bits: &BrickBits, face: usize) -> bool {
 
 /// The cells of `free` connected to `seeds ∩ free` through face-adjacent cells of `free`,
 /// within one brick.
-fn flood_brick(seeds: BrickBits, free: &BrickBits) -> BrickBits {
+pub(super) fn flood_brick(seeds: BrickBits, free: &BrickBits) -> BrickBits {
     let last = MASK_WORDS - 1;
     let mut bits = seeds;
     for z in 0..=last {

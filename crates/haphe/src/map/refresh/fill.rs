@@ -6,29 +6,17 @@
 //! A cell of no such box keeps its winding number, so its state (inside, outside, in an
 //! overlap) is the old map's. The cells of the bricks that meet a box (the dirty bricks)
 //! are classified again as the build does: face-adjacent non-surface cells share their
-//! winding number, so each connected group of them takes the state of a clean
-//! non-surface cell next to it, or, with none, the winding number at its first cell.
+//! winding number, so each connected group of them (grown as bit masks, as the build's
+//! flood grows them) takes the state of a clean non-surface cell next to it, or, with
+//! none, the winding number at its first cell.
 
 use super::super::CellState;
-use super::super::fill::{FACES, step};
+use super::super::fill::{FACES, add_face_seeds, first_cell, flood_brick, step, touches_face};
 use super::super::voxel_map::{
-    BRICK_CELLS, BrickBits, MASK_WORDS, UNIFORM, VoxelMap, brick_coords, brick_of, cell_in_brick,
-    entry_state, has, in_grid_bits, local_of, uniform_entry,
+    BRICK_BITS, BrickBits, MASK_WORDS, UNIFORM, VoxelMap, brick_coords, brick_of, cell_in_brick,
+    entry_state, in_grid_bits, uniform_entry,
 };
 use crate::mesh::{Surface, winding_number};
-
-/// A free cell not yet classified.
-const UNKNOWN: u8 = 0;
-/// A surface cell, or one beyond the grid.
-const BLOCKED: u8 = 1;
-/// A free cell on the work list of its group.
-const QUEUED: u8 = 2;
-/// Outside (winding number 0).
-const OUTSIDE: u8 = 3;
-/// Inside, winding number 1.
-const INSIDE: u8 = 4;
-/// Inside, winding number other than 0 and 1 (see `VoxelMap::overlap_bricks`).
-const OVERLAP: u8 = 5;
 
 /// No slot: a clean brick.
 const CLEAN: u32 = u32::MAX;
@@ -60,30 +48,20 @@ pub(super) fn refill(map: &mut VoxelMap, old: &VoxelMap, surface: &Surface, dirt
             *inside = *before;
         }
     }
-    let labels = classify(map, &bricks, old, surface, dirty, &slot_of);
+    let classes = classify(map, &bricks, old, surface, dirty, &slot_of);
     let mut overlap: Vec<(u32, BrickBits)> = Vec::new();
     for (s, &b) in dirty.iter().enumerate() {
-        let label = &labels[s];
-        let pick = |wanted: &[u8]| -> BrickBits {
-            let mut bits = [0; MASK_WORDS];
-            for (l, v) in label.iter().enumerate() {
-                if wanted.contains(v) {
-                    bits[l >> 6] |= 1 << (l & 63);
-                }
-            }
-            bits
-        };
+        let (inside, overlapping) = (classes.inside[s], classes.overlap[s]);
         let entry = bricks[b];
         if entry & UNIFORM != 0 {
             // No surface cell: all its cells form one group.
-            let first = label.iter().copied().find(|&v| v != BLOCKED);
-            let state = if first == Some(OUTSIDE) {
+            let state = if inside == [0; MASK_WORDS] {
                 CellState::Outside
             } else {
                 CellState::Inside
             };
             bricks[b] = uniform_entry(state, 0);
-            if first == Some(OVERLAP) {
+            if overlapping != [0; MASK_WORDS] {
                 let bdims = map.brick_dims;
                 overlap.push((
                     b as u32,
@@ -91,12 +69,11 @@ pub(super) fn refill(map: &mut VoxelMap, old: &VoxelMap, surface: &Surface, dirt
                 ));
             }
         } else {
-            if let Some(inside) = inside_bits.get_mut(entry as usize) {
-                *inside = pick(&[INSIDE, OVERLAP]);
+            if let Some(bits) = inside_bits.get_mut(entry as usize) {
+                *bits = inside;
             }
-            let bits = pick(&[OVERLAP]);
-            if bits != [0; MASK_WORDS] {
-                overlap.push((b as u32, bits));
+            if overlapping != [0; MASK_WORDS] {
+                overlap.push((b as u32, overlapping));
             }
         }
     }
@@ -119,8 +96,24 @@ pub(super) fn refill(map: &mut VoxelMap, old: &VoxelMap, surface: &Surface, dirt
         .into();
 }
 
-/// The label of every cell of the dirty bricks: groups of face-adjacent free cells,
-/// found in brick order, each labelled from a clean neighbour or its winding number.
+/// The inside cells of each dirty brick, and those of them whose winding number is not 1.
+struct Classes {
+    inside: Vec<BrickBits>,
+    overlap: Vec<BrickBits>,
+}
+
+/// What a group of cells is.
+#[derive(Clone, Copy, PartialEq)]
+enum Label {
+    Outside,
+    Inside,
+    /// Inside, winding number other than 0 and 1 (see `VoxelMap::overlap_bricks`).
+    Overlap,
+}
+
+/// Classifies the free cells of the dirty bricks: groups of face-adjacent free cells,
+/// grown in brick order as bit masks (as the build's flood grows them), each labelled
+/// from a clean free cell next to it or by its winding number.
 fn classify(
     map: &VoxelMap,
     bricks: &[u32],
@@ -128,91 +121,136 @@ fn classify(
     surface: &Surface,
     dirty: &[usize],
     slot_of: &[u32],
-) -> Vec<[u8; BRICK_CELLS]> {
+) -> Classes {
     let (dims, bdims) = (map.grid.dims(), map.brick_dims);
-    let mut labels: Vec<[u8; BRICK_CELLS]> = dirty
+    let free = |bits: Option<&BrickBits>, b: usize| -> BrickBits {
+        let in_grid = in_grid_bits(brick_coords(b, bdims), dims);
+        let surface = bits.copied().unwrap_or_default();
+        std::array::from_fn(|z| in_grid[z] & !surface[z])
+    };
+    let surface_of = |entries: &[u32], bits: &[BrickBits], b: usize| {
+        entries
+            .get(b)
+            .filter(|&&e| e & UNIFORM == 0)
+            .and_then(|&e| bits.get(e as usize))
+            .copied()
+    };
+    let mut available: Vec<BrickBits> = dirty
+        .iter()
+        .map(|&b| free(surface_of(bricks, &map.surface_bits, b).as_ref(), b))
+        .collect();
+    // Each slot's face neighbours (top-level indices), in the order of `FACES`.
+    let neighbours: Vec<[Option<usize>; 6]> = dirty
         .iter()
         .map(|&b| {
-            let in_grid = in_grid_bits(brick_coords(b, bdims), dims);
-            let entry = bricks[b];
-            let surface_bits = if entry & UNIFORM != 0 {
-                [0; MASK_WORDS]
-            } else {
-                map.surface_bits
-                    .get(entry as usize)
-                    .copied()
-                    .unwrap_or_default()
-            };
-            std::array::from_fn(|l| {
-                if has(&in_grid, l) && !has(&surface_bits, l) {
-                    UNKNOWN
-                } else {
-                    BLOCKED
-                }
+            let bc = brick_coords(b, bdims);
+            FACES.map(|(axis, up)| {
+                step(bc, axis, up, bdims).map(|n| brick_of(n.map(|x| x << BRICK_BITS), bdims))
             })
         })
         .collect();
-    let mut work: Vec<(usize, usize)> = Vec::new();
-    let mut group: Vec<(usize, usize)> = Vec::new();
-    for s in 0..dirty.len() {
-        for local in 0..BRICK_CELLS {
-            if labels[s][local] != UNKNOWN {
-                continue;
+    let n = dirty.len();
+    let mut classes = Classes {
+        inside: vec![[0; MASK_WORDS]; n],
+        overlap: vec![[0; MASK_WORDS]; n],
+    };
+    let mut reached: Vec<BrickBits> = vec![[0; MASK_WORDS]; n];
+    let mut queued = vec![false; n];
+    let (mut work, mut touched): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+    for s in 0..n {
+        while let Some(seed) = first_cell(&available[s]) {
+            reached[s][seed >> 6] |= 1 << (seed & 63);
+            touched.push(s);
+            queued[s] = true;
+            work.push(s);
+            let mut first = true;
+            while let Some(x) = work.pop() {
+                queued[x] = false;
+                let mut seeds = reached[x];
+                for (face, nb) in neighbours[x].iter().enumerate() {
+                    if let Some(&ns) = nb.and_then(|nb| slot_of.get(nb))
+                        && ns != CLEAN
+                    {
+                        add_face_seeds(&mut seeds, &reached[ns as usize], face);
+                    }
+                }
+                let grown = flood_brick(seeds, &available[x]);
+                if grown == reached[x] && !first {
+                    continue;
+                }
+                first = false;
+                if reached[x] == [0; MASK_WORDS] {
+                    touched.push(x);
+                }
+                reached[x] = grown;
+                for (face, nb) in neighbours[x].iter().enumerate() {
+                    if let Some(&ns) = nb.and_then(|nb| slot_of.get(nb))
+                        && ns != CLEAN
+                        && touches_face(&grown, face)
+                        && !queued[ns as usize]
+                    {
+                        queued[ns as usize] = true;
+                        work.push(ns as usize);
+                    }
+                }
             }
-            labels[s][local] = QUEUED;
-            work.push((s, local));
-            group.clear();
-            let mut found: Option<u8> = None;
-            while let Some((s, l)) = work.pop() {
-                group.push((s, l));
-                let c = cell_in_brick(brick_coords(dirty[s], bdims), l);
-                for (axis, up) in FACES {
-                    let Some(n) = step(c, axis, up, dims) else {
+            // A clean free cell next to the group gives its label.
+            let mut found = None;
+            'search: for &x in &touched {
+                for (face, nb) in neighbours[x].iter().enumerate() {
+                    let Some(nb) = *nb else { continue };
+                    if slot_of.get(nb) != Some(&CLEAN) {
                         continue;
-                    };
-                    let (nb, nl) = (brick_of(n, bdims), local_of(n));
-                    match slot_of.get(nb).copied() {
-                        Some(CLEAN) => {
-                            if found.is_none() {
-                                found = old_label(old, n);
-                            }
+                    }
+                    let mut next_to = [0; MASK_WORDS];
+                    add_face_seeds(&mut next_to, &reached[x], face ^ 1);
+                    let clean_free =
+                        free(surface_of(&old.bricks, &old.surface_bits, nb).as_ref(), nb);
+                    for z in 0..MASK_WORDS {
+                        next_to[z] &= clean_free[z];
+                    }
+                    if let Some(l) = first_cell(&next_to) {
+                        found = old_label(old, cell_in_brick(brick_coords(nb, bdims), l));
+                        if found.is_some() {
+                            break 'search;
                         }
-                        Some(ns) => {
-                            let v = &mut labels[ns as usize][nl];
-                            if *v == UNKNOWN {
-                                *v = QUEUED;
-                                work.push((ns as usize, nl));
-                            }
-                        }
-                        None => {}
                     }
                 }
             }
             let label = found.unwrap_or_else(|| {
-                let c = cell_in_brick(brick_coords(dirty[s], bdims), local);
+                let c = cell_in_brick(brick_coords(dirty[s], bdims), seed);
                 let winding = winding_number(surface, map.grid.cell_centre(c)).round();
                 if winding == 0.0 {
-                    OUTSIDE
+                    Label::Outside
                 } else if winding == 1.0 {
-                    INSIDE
+                    Label::Inside
                 } else {
-                    OVERLAP
+                    Label::Overlap
                 }
             });
-            for &(s, l) in &group {
-                labels[s][l] = label;
+            for x in touched.drain(..) {
+                let cells = std::mem::take(&mut reached[x]);
+                for z in 0..MASK_WORDS {
+                    available[x][z] &= !cells[z];
+                    if label != Label::Outside {
+                        classes.inside[x][z] |= cells[z];
+                    }
+                    if label == Label::Overlap {
+                        classes.overlap[x][z] |= cells[z];
+                    }
+                }
             }
         }
     }
-    labels
+    classes
 }
 
 /// The label of cell `c` in the old map: `None` for a surface cell.
-fn old_label(old: &VoxelMap, c: [u32; 3]) -> Option<u8> {
+fn old_label(old: &VoxelMap, c: [u32; 3]) -> Option<Label> {
     match old.state(c) {
         CellState::Surface => None,
-        CellState::Outside => Some(OUTSIDE),
-        CellState::Inside if old.is_overlap(c) => Some(OVERLAP),
-        CellState::Inside => Some(INSIDE),
+        CellState::Outside => Some(Label::Outside),
+        CellState::Inside if old.is_overlap(c) => Some(Label::Overlap),
+        CellState::Inside => Some(Label::Inside),
     }
 }
