@@ -75,6 +75,13 @@ impl Surface {
         };
         (surface, moved)
     }
+
+    /// [`Surface::deformed`], for the benches (feature `testing`).
+    #[cfg(feature = "testing")]
+    #[doc(hidden)]
+    pub fn deformed_with_moved(&self, vertices: Vec<DVec3>) -> (Surface, Vec<u32>) {
+        self.deformed(vertices)
+    }
 }
 
 #[cfg(test)]

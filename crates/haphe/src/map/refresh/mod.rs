@@ -49,6 +49,18 @@ impl VoxelMap {
     /// # Errors
     /// [`MapError::TooManyCells`] when the grown grid would be too large;
     /// [`MapError::TooManyTriangleRefs`] as for a build.
+    ///
+    /// # Performance
+    /// On the same grid: the geometry (binning, winding numbers, dilations, slabs)
+    /// follows the moved triangles and the cells they sweep, plus a few linear passes
+    /// over the map's arrays (its lists and its bricks' entries and distances), at
+    /// memory speed. Parallel as a build is. Not for a servo tick.
+    ///
+    /// One case keeps the build's answer only where the build checks every region: a
+    /// build that leaves enclosed regions unchecked (beyond
+    /// [`MAX_ENCLOSED_WINDING_WORK`](super::fill::MAX_ENCLOSED_WINDING_WORK), thousands
+    /// of separate parts) takes them as inside, where a refresh classifies a region it
+    /// decides again by its winding number.
     pub(crate) fn refreshed(
         &self,
         before: &Surface,
@@ -67,6 +79,32 @@ impl VoxelMap {
             return build_on_grid(surface, grid, self.cell_size_rule, &|_| {});
         }
         on_pool(|| self.refreshed_here(before, surface, moved))
+    }
+
+    /// [`VoxelMap::refreshed`], for the benches (feature `testing`).
+    ///
+    /// # Errors
+    /// Those of [`VoxelMap::refreshed`].
+    #[cfg(feature = "testing")]
+    #[doc(hidden)]
+    pub fn refreshed_after(
+        &self,
+        before: &Surface,
+        surface: &Surface,
+        moved: &[u32],
+    ) -> Result<VoxelMap, MapError> {
+        self.refreshed(before, surface, moved)
+    }
+
+    /// The map a build makes of `surface` on this map's grid, for the benches (feature
+    /// `testing`): what [`VoxelMap::refreshed`] equals.
+    ///
+    /// # Errors
+    /// Those of a build.
+    #[cfg(feature = "testing")]
+    #[doc(hidden)]
+    pub fn built_on_this_grid(&self, surface: &Surface) -> Result<VoxelMap, MapError> {
+        on_pool(|| build_on_grid(surface, self.grid, self.cell_size_rule, &|_| {}))
     }
 
     /// [`VoxelMap::refreshed`] on this map's grid, made locally.
