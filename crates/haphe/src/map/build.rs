@@ -221,6 +221,28 @@ pub(super) fn assemble(keys: &[u64], grid: Grid, solid: bool) -> VoxelMap {
     }
     surface_first.push(triangle_start.len() as u32);
     triangle_start.push(keys.len() as u32);
+    assembled(
+        grid,
+        solid,
+        bricks,
+        surface_bits,
+        surface_first,
+        triangle_start,
+    )
+}
+
+/// A map of the detailed bricks `surface_bits` (in brick order, their top-level
+/// `bricks` entries their indices, the others uniform), their cells' starts, and no
+/// triangle list yet, as [`assemble`] hands it over.
+pub(super) fn assembled(
+    grid: Grid,
+    solid: bool,
+    bricks: Vec<u32>,
+    surface_bits: Vec<BrickBits>,
+    surface_first: Vec<u32>,
+    triangle_start: Vec<u32>,
+) -> VoxelMap {
+    let bdims = brick_dims(grid.dims());
     let surface_before: Vec<[u16; MASK_WORDS]> = surface_bits
         .iter()
         .map(|bits| {

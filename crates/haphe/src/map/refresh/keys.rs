@@ -1,94 +1,179 @@
 //! The (cell, triangle) pairs of a refreshed map: the old map's, less those of the moved
-//! triangles, merged with the moved triangles' at their new positions.
+//! triangles, merged with the moved triangles' at their new positions. Bricks no moved
+//! triangle reaches are copied whole.
 
 use crate::par::*;
 
 use super::super::bin::bin_triangle;
-use super::super::voxel_map::{BRICK_CELLS, UNIFORM, VoxelMap, brick_dims};
+use super::super::build::assembled;
+use super::super::voxel_map::{
+    BRICK_CELLS, BrickBits, MASK_WORDS, UNIFORM, VoxelMap, brick_dims, has, uniform_entry,
+};
+use super::super::{CellState, MapError};
 use crate::mesh::Surface;
 
 /// Moved triangles binned per parallel task.
 const BIN_CHUNK: usize = 1024;
 
-/// The pairs of a refreshed map, as `cell key << 32 | triangle` (see
-/// [`bin_triangles`](super::super::bin::bin_triangles)), in increasing order of cell.
-pub(super) struct Keys {
-    /// Every pair. Within a cell that no moved triangle overlaps, before or after, the
-    /// old map's order (along the cell's slab); within the others, by triangle, as a
-    /// build sorts them.
-    pub(super) keys: Vec<u64>,
-    /// The cells a moved triangle overlaps, before or after (cell keys, increasing).
+/// The lists of a refreshed map, spliced from the old map's: the map as
+/// [`assemble`](super::super::build::assemble) hands it over, with its lists.
+pub(super) struct Spliced {
+    /// The map, its lists set: within a cell that no moved triangle overlaps, before or
+    /// after, the old map's list (ordered along the cell's slab); within the others, by
+    /// triangle, as a build sorts them.
+    pub(super) map: VoxelMap,
+    /// The cells a moved triangle overlaps, before or after (cell keys `brick · 512 +
+    /// local`, increasing), those left without a triangle too.
     pub(super) touched: Vec<u64>,
 }
 
-/// The pairs of `surface` on the grid of `old`, the map of the surface before the
-/// triangles `moved` (increasing, each below `old`'s triangle count) moved.
+/// The moved triangles (increasing, each below `old`'s triangle count) binned at their
+/// positions in `surface`, on `old`'s grid: pairs `cell key << 32 | triangle`, sorted.
+pub(super) fn fresh_pairs(old: &VoxelMap, surface: &Surface, moved: &[u32]) -> Vec<u64> {
+    bin_moved(old, surface, moved)
+}
+
+/// The lists of `surface` on the grid of `old`, the map of the surface before the
+/// triangles `moved` moved: the old map's bricks copied whole but for those of `swept`
+/// (top-level indices, increasing, holding every cell a moved triangle overlaps, before
+/// or after), where the moved triangles leave their old cells and join their `fresh`
+/// ones ([`fresh_pairs`]).
 ///
-/// Reads the old map's lists once (a linear pass) and bins only the moved triangles.
-pub(super) fn merged_keys(old: &VoxelMap, surface: &Surface, moved: &[u32]) -> Keys {
+/// # Errors
+/// [`MapError::TooManyTriangleRefs`] as for a build.
+pub(super) fn spliced(
+    old: &VoxelMap,
+    moved: &[u32],
+    swept: &[usize],
+    fresh: &[u64],
+) -> Result<Spliced, MapError> {
     let mut is_moved = vec![false; old.triangle_count as usize];
     for &t in moved {
         if let Some(m) = is_moved.get_mut(t as usize) {
             *m = true;
         }
     }
-    let fresh = bin_moved(old, surface, moved);
-    let mut keys: Vec<u64> = Vec::with_capacity(old.triangle_refs.len() + fresh.len());
+    let free = if old.solid {
+        CellState::Inside
+    } else {
+        CellState::Outside
+    };
+    let mut bricks = vec![uniform_entry(free, 0); old.bricks.len()];
+    let extra = swept.len() + fresh.len();
+    let mut surface_bits: Vec<BrickBits> = Vec::with_capacity(old.surface_bits.len() + extra);
+    let mut surface_first: Vec<u32> = Vec::with_capacity(old.surface_first.len() + extra);
+    let mut triangle_start: Vec<u32> = Vec::with_capacity(old.triangle_start.len() + extra);
+    let mut refs: Vec<u32> = Vec::with_capacity(old.triangle_refs.len() + fresh.len());
     let mut touched: Vec<u64> = Vec::new();
-    let mut next = 0;
-    // Appends the fresh pairs of cells before `cell` (each such cell is touched).
-    let flush_before =
-        |cell: u64, next: &mut usize, keys: &mut Vec<u64>, touched: &mut Vec<u64>| {
-            while let Some(&key) = fresh.get(*next)
-                && key >> 32 < cell
-            {
-                if touched.last() != Some(&(key >> 32)) {
-                    touched.push(key >> 32);
-                }
-                keys.push(key);
-                *next += 1;
+    let (mut next_swept, mut next_fresh) = (0, 0);
+    // A swept brick's pairs, `local << 32 | triangle`.
+    let mut pairs: Vec<u64> = Vec::new();
+    for (b, slot) in bricks.iter_mut().enumerate() {
+        let entry = old.bricks[b];
+        if swept.get(next_swept) == Some(&b) {
+            next_swept += 1;
+        } else {
+            if entry & UNIFORM != 0 {
+                continue;
             }
-        };
-    for (b, &entry) in old.bricks.iter().enumerate() {
-        if entry & UNIFORM != 0 {
+            // A clean detailed brick: copied, its starts shifted.
+            let d = entry as usize;
+            let (f0, f1) = (
+                old.surface_first[d] as usize,
+                old.surface_first[d + 1] as usize,
+            );
+            let (r0, r1) = (
+                old.triangle_start[f0] as usize,
+                old.triangle_start[f1] as usize,
+            );
+            *slot = surface_bits.len() as u32;
+            surface_first.push(triangle_start.len() as u32);
+            surface_bits.push(old.surface_bits[d]);
+            let at = refs.len() as u32;
+            triangle_start.extend(
+                old.triangle_start[f0..f1]
+                    .iter()
+                    .map(|&s| s.wrapping_sub(r0 as u32).wrapping_add(at)),
+            );
+            refs.extend_from_slice(&old.triangle_refs[r0..r1]);
             continue;
         }
-        let d = entry as usize;
-        let Some(bits) = old.surface_bits.get(d) else {
-            continue;
-        };
-        for (word, &bits) in bits.iter().enumerate() {
-            let mut rest = bits;
+        // A swept brick: the old lists less the moved triangles, then the fresh pairs.
+        pairs.clear();
+        let mut changed: BrickBits = [0; MASK_WORDS];
+        if entry & UNIFORM == 0
+            && let Some(bits) = old.surface_bits.get(entry as usize)
+        {
+            for (word, &bits) in bits.iter().enumerate() {
+                let mut rest = bits;
+                while rest != 0 {
+                    let local = word * 64 + rest.trailing_zeros() as usize;
+                    rest &= rest - 1;
+                    for &t in old.listed(entry as usize, local).unwrap_or(&[]) {
+                        if is_moved.get(t as usize).copied().unwrap_or(true) {
+                            changed[word] |= 1 << (local & 63);
+                        } else {
+                            pairs.push((local as u64) << 32 | u64::from(t));
+                        }
+                    }
+                }
+            }
+        }
+        while let Some(&key) = fresh.get(next_fresh)
+            && (key >> 32) as usize / BRICK_CELLS <= b
+        {
+            next_fresh += 1;
+            let local = (key >> 32) as usize % BRICK_CELLS;
+            changed[local >> 6] |= 1 << (local & 63);
+            pairs.push((local as u64) << 32 | (key & u64::from(u32::MAX)));
+        }
+        // By cell, each cell's old list in its order, before its fresh pairs; a changed
+        // cell's list by triangle.
+        pairs.sort_by_key(|&p| p >> 32);
+        let first = triangle_start.len() as u32;
+        let mut bits: BrickBits = [0; MASK_WORDS];
+        let mut start = 0;
+        while start < pairs.len() {
+            let local = (pairs[start] >> 32) as usize;
+            let end = start + pairs[start..].partition_point(|&p| (p >> 32) as usize == local);
+            if has(&changed, local) {
+                pairs[start..end].sort_unstable();
+            }
+            bits[local >> 6] |= 1 << (local & 63);
+            triangle_start.push(refs.len() as u32);
+            refs.extend(pairs[start..end].iter().map(|&p| p as u32));
+            start = end;
+        }
+        for (word, &w) in changed.iter().enumerate() {
+            let mut rest = w;
             while rest != 0 {
                 let local = word * 64 + rest.trailing_zeros() as usize;
                 rest &= rest - 1;
-                let cell = (b * BRICK_CELLS + local) as u64;
-                flush_before(cell, &mut next, &mut keys, &mut touched);
-                let start = keys.len();
-                let mut changed = false;
-                for &t in old.listed(d, local).unwrap_or(&[]) {
-                    if is_moved.get(t as usize).copied().unwrap_or(true) {
-                        changed = true;
-                    } else {
-                        keys.push(cell << 32 | u64::from(t));
-                    }
-                }
-                while let Some(&key) = fresh.get(next)
-                    && key >> 32 == cell
-                {
-                    keys.push(key);
-                    next += 1;
-                    changed = true;
-                }
-                if changed {
-                    keys[start..].sort_unstable();
-                    touched.push(cell);
-                }
+                touched.push((b * BRICK_CELLS + local) as u64);
             }
         }
+        if bits != [0; MASK_WORDS] {
+            *slot = surface_bits.len() as u32;
+            surface_first.push(first);
+            surface_bits.push(bits);
+        }
     }
-    flush_before(u64::MAX, &mut next, &mut keys, &mut touched);
-    Keys { keys, touched }
+    let count = refs.len() as u64;
+    if count >= u64::from(u32::MAX) {
+        return Err(MapError::TooManyTriangleRefs { refs: count });
+    }
+    surface_first.push(triangle_start.len() as u32);
+    triangle_start.push(refs.len() as u32);
+    let mut map = assembled(
+        old.grid,
+        old.solid,
+        bricks,
+        surface_bits,
+        surface_first,
+        triangle_start,
+    );
+    map.triangle_refs = refs.into();
+    Ok(Spliced { map, touched })
 }
 
 /// The pairs of the moved triangles at their positions in `surface`, sorted.

@@ -26,7 +26,7 @@ mod tests;
 
 use glam::DVec3;
 
-use super::build::{assemble, build_on_grid, shrink};
+use super::build::{build_on_grid, shrink};
 use super::grid::PADDING_SLACK_REL;
 use super::voxel_map::{BRICK_BITS, MAX_BRICKS, UNIFORM, brick_dims, brick_of};
 use super::{Grid, MapError, VoxelMap};
@@ -114,22 +114,12 @@ impl VoxelMap {
         surface: &Surface,
         moved: &[u32],
     ) -> Result<VoxelMap, MapError> {
-        let merged = keys::merged_keys(self, surface, moved);
-        let refs = merged.keys.len() as u64;
-        if refs >= u64::from(u32::MAX) {
-            return Err(MapError::TooManyTriangleRefs { refs });
-        }
-        let mut map = assemble(&merged.keys, self.grid, self.solid);
-        map.triangle_refs = merged
-            .keys
-            .iter()
-            .map(|&k| k as u32)
-            .collect::<Vec<u32>>()
-            .into();
-        drop(merged.keys);
+        let fresh = keys::fresh_pairs(self, surface, moved);
+        let swept = self.swept_bricks(before, surface, moved, &fresh);
+        let keys::Spliced { mut map, touched } = keys::spliced(self, moved, &swept, &fresh)?;
+        drop(fresh);
         map.triangle_count = self.triangle_count;
         map.cell_size_rule = self.cell_size_rule;
-        let swept = self.swept_bricks(before, surface, moved, &merged.touched);
         if self.solid {
             fill::refill(&mut map, self, surface, &swept);
         }
@@ -140,25 +130,26 @@ impl VoxelMap {
             .collect();
         clearance::reclear(&mut map, self, &changed);
         map.derive_free_space();
-        slabs::reslab(&mut map, self, surface, &merged.touched);
+        slabs::reslab(&mut map, self, surface, &touched);
         shrink(&mut map);
         Ok(map)
     }
 
     /// The bricks (top-level indices, increasing) that a moved triangle may have swept
     /// on its way from its corners in `before` to those in `surface`: those meeting the
-    /// box of both, one cell wider, and those holding a cell of `touched` (cell keys).
+    /// box of both, one cell wider, and those holding a cell of `fresh` (pairs, cell key
+    /// in the upper half).
     fn swept_bricks(
         &self,
         before: &Surface,
         surface: &Surface,
         moved: &[u32],
-        touched: &[u64],
+        fresh: &[u64],
     ) -> Vec<usize> {
         let (dims, bdims) = (self.grid.dims(), self.brick_dims);
-        let mut bricks: Vec<usize> = touched
+        let mut bricks: Vec<usize> = fresh
             .iter()
-            .map(|&cell| (cell >> (3 * BRICK_BITS)) as usize)
+            .map(|&key| (key >> (32 + 3 * BRICK_BITS)) as usize)
             .collect();
         let last = dims.map(|d| i64::from(d) - 1);
         for &t in moved {
