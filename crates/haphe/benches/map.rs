@@ -1,7 +1,7 @@
 //! Stage 2 benches: build a voxel map, encode it with its surface, decode (load and check)
 //! the saved bytes, on a procedural blob of about 10 000 triangles; and refresh a map
 //! after a deformation (group `refresh`): a patch of 1 % of the vertices and every vertex
-//! moved on a blob of 200 000 triangles, and the patch on 20 000 and 1 000 000 beside a
+//! moved on a blob of 200 000 triangles (a build, and made locally all the same), and the patch on 20 000 and 1 000 000 beside a
 //! build on the same grid (throughput: moved triangles per second).
 //!
 //! `cargo bench -p haphe --bench map`; `cargo bench -p haphe --bench map -- refresh`;
@@ -89,6 +89,18 @@ fn refresh(c: &mut Criterion) {
                     map.refreshed_after(black_box(&surface), black_box(&moved_surface), &moved)
                 })
             });
+            if name == "all" {
+                // Made locally all the same (`refreshed` builds when most triangles moved).
+                group.bench_function(format!("{triangles} {name} (local)"), |b| {
+                    b.iter(|| {
+                        map.refreshed_locally(
+                            black_box(&surface),
+                            black_box(&moved_surface),
+                            &moved,
+                        )
+                    })
+                });
+            }
         }
         group.throughput(Throughput::Elements(triangles as u64));
         group.bench_function(format!("{triangles} build on the grid"), |b| {

@@ -117,6 +117,14 @@ impl Shape {
         self.grew |= map.grid != self.map.grid;
         let built = build_on_grid(&surface, map.grid, map.cell_size_rule, &|_| {}).expect("built");
         assert_same(&map, &built, &format!("{}, {what}", self.name));
+        if map.grid == self.map.grid {
+            // The local refresh, also where most triangles moved (`refreshed` builds).
+            let local = self
+                .map
+                .refreshed_here(&self.surface, &surface, &moved)
+                .expect("a refreshed map");
+            assert_same(&local, &built, &format!("{}, {what}, local", self.name));
+        }
         self.overlaps += map.overlap_bricks.len();
         self.surface = surface;
         self.map = map;
