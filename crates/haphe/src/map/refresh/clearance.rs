@@ -32,28 +32,7 @@ const SLOT: u8 = 2;
 pub(super) fn reclear(map: &mut VoxelMap, old: &VoxelMap, changed: &[usize]) {
     let bdims = map.brick_dims;
     let distances = brick_distances(&map.bricks, bdims);
-    let mut mark = vec![0u8; map.bricks.len()];
-    for &b in changed {
-        around(b, bdims, |n| {
-            if distances[n] <= REACH as u16 {
-                mark[n] |= DIRTY;
-            }
-        });
-    }
-    // A brick whose kind changed is near a changed one; checked again all the same, so
-    // that a clean brick always has its old clearances to copy.
-    for (b, m) in mark.iter_mut().enumerate() {
-        if *m & DIRTY == 0
-            && distances[b] <= REACH as u16
-            && !same_kind(old.bricks.get(b).copied(), distances[b])
-        {
-            *m |= DIRTY;
-        }
-    }
-    let dirty: Vec<usize> = (0..mark.len()).filter(|&b| mark[b] & DIRTY != 0).collect();
-    for &b in &dirty {
-        around(b, bdims, |n| mark[n] |= SLOT);
-    }
+    let mark = marks(old, changed, &distances, bdims);
     let slots: Vec<usize> = (0..mark.len()).filter(|&b| mark[b] & SLOT != 0).collect();
     let mut slot_of = vec![NO_SLOT; map.bricks.len()];
     for (s, &b) in slots.iter().enumerate() {
@@ -143,6 +122,35 @@ pub(super) fn reclear(map: &mut VoxelMap, old: &VoxelMap, changed: &[usize]) {
     }
     map.bricks = bricks.into();
     map.clearances = clearances.into();
+}
+
+/// Each brick's marks: [`DIRTY`] within [`REACH`] bricks of a brick of `changed` (and
+/// where the kind of the old brick is not the kind its `distances` give), [`SLOT`] within
+/// [`REACH`] of a dirty brick.
+fn marks(old: &VoxelMap, changed: &[usize], distances: &[u16], bdims: [u32; 3]) -> Vec<u8> {
+    let mut mark = vec![0u8; distances.len()];
+    for &b in changed {
+        around(b, bdims, |n| {
+            if distances[n] <= REACH as u16 {
+                mark[n] |= DIRTY;
+            }
+        });
+    }
+    // A brick whose kind changed is near a changed one; checked again all the same, so
+    // that a clean brick always has its old clearances to copy.
+    for (b, m) in mark.iter_mut().enumerate() {
+        if *m & DIRTY == 0
+            && distances[b] <= REACH as u16
+            && !same_kind(old.bricks.get(b).copied(), distances[b])
+        {
+            *m |= DIRTY;
+        }
+    }
+    let dirty: Vec<usize> = (0..mark.len()).filter(|&b| mark[b] & DIRTY != 0).collect();
+    for &b in &dirty {
+        around(b, bdims, |n| mark[n] |= SLOT);
+    }
+    mark
 }
 
 /// Calls `visit` with every brick within [`REACH`] bricks of brick `b` (itself

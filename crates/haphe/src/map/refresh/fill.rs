@@ -123,102 +123,34 @@ fn classify(
     slot_of: &[u32],
 ) -> Classes {
     let (dims, bdims) = (map.grid.dims(), map.brick_dims);
-    let free = |bits: Option<&BrickBits>, b: usize| -> BrickBits {
-        let in_grid = in_grid_bits(brick_coords(b, bdims), dims);
-        let surface = bits.copied().unwrap_or_default();
-        std::array::from_fn(|z| in_grid[z] & !surface[z])
-    };
-    let surface_of = |entries: &[u32], bits: &[BrickBits], b: usize| {
-        entries
-            .get(b)
-            .filter(|&&e| e & UNIFORM == 0)
-            .and_then(|&e| bits.get(e as usize))
-            .copied()
-    };
-    let mut available: Vec<BrickBits> = dirty
-        .iter()
-        .map(|&b| free(surface_of(bricks, &map.surface_bits, b).as_ref(), b))
-        .collect();
-    // Each slot's face neighbours (top-level indices), in the order of `FACES`.
-    let neighbours: Vec<[Option<usize>; 6]> = dirty
-        .iter()
-        .map(|&b| {
-            let bc = brick_coords(b, bdims);
-            FACES.map(|(axis, up)| {
-                step(bc, axis, up, bdims).map(|n| brick_of(n.map(|x| x << BRICK_BITS), bdims))
+    let mut groups = Groups {
+        available: dirty
+            .iter()
+            .map(|&b| free_cells(bricks, &map.surface_bits, b, bdims, dims))
+            .collect(),
+        neighbours: dirty
+            .iter()
+            .map(|&b| {
+                let bc = brick_coords(b, bdims);
+                FACES.map(|(axis, up)| {
+                    step(bc, axis, up, bdims).map(|n| brick_of(n.map(|x| x << BRICK_BITS), bdims))
+                })
             })
-        })
-        .collect();
-    let n = dirty.len();
-    let mut classes = Classes {
-        inside: vec![[0; MASK_WORDS]; n],
-        overlap: vec![[0; MASK_WORDS]; n],
+            .collect(),
+        reached: vec![[0; MASK_WORDS]; dirty.len()],
+        queued: vec![false; dirty.len()],
+        work: Vec::new(),
+        touched: Vec::new(),
     };
-    let mut reached: Vec<BrickBits> = vec![[0; MASK_WORDS]; n];
-    let mut queued = vec![false; n];
-    let (mut work, mut touched): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
-    for s in 0..n {
-        while let Some(seed) = first_cell(&available[s]) {
-            reached[s][seed >> 6] |= 1 << (seed & 63);
-            touched.push(s);
-            queued[s] = true;
-            work.push(s);
-            let mut first = true;
-            while let Some(x) = work.pop() {
-                queued[x] = false;
-                let mut seeds = reached[x];
-                for (face, nb) in neighbours[x].iter().enumerate() {
-                    if let Some(&ns) = nb.and_then(|nb| slot_of.get(nb))
-                        && ns != CLEAN
-                    {
-                        add_face_seeds(&mut seeds, &reached[ns as usize], face);
-                    }
-                }
-                let grown = flood_brick(seeds, &available[x]);
-                if grown == reached[x] && !first {
-                    continue;
-                }
-                first = false;
-                if reached[x] == [0; MASK_WORDS] {
-                    touched.push(x);
-                }
-                reached[x] = grown;
-                for (face, nb) in neighbours[x].iter().enumerate() {
-                    if let Some(&ns) = nb.and_then(|nb| slot_of.get(nb))
-                        && ns != CLEAN
-                        && touches_face(&grown, face)
-                        && !queued[ns as usize]
-                    {
-                        queued[ns as usize] = true;
-                        work.push(ns as usize);
-                    }
-                }
-            }
-            // A clean free cell next to the group gives its label.
-            let mut found = None;
-            'search: for &x in &touched {
-                for (face, nb) in neighbours[x].iter().enumerate() {
-                    let Some(nb) = *nb else { continue };
-                    if slot_of.get(nb) != Some(&CLEAN) {
-                        continue;
-                    }
-                    let mut next_to = [0; MASK_WORDS];
-                    add_face_seeds(&mut next_to, &reached[x], face ^ 1);
-                    let clean_free =
-                        free(surface_of(&old.bricks, &old.surface_bits, nb).as_ref(), nb);
-                    for z in 0..MASK_WORDS {
-                        next_to[z] &= clean_free[z];
-                    }
-                    if let Some(l) = first_cell(&next_to) {
-                        found = old_label(old, cell_in_brick(brick_coords(nb, bdims), l));
-                        if found.is_some() {
-                            break 'search;
-                        }
-                    }
-                }
-            }
-            let label = found.unwrap_or_else(|| {
-                let c = cell_in_brick(brick_coords(dirty[s], bdims), seed);
+    let mut classes = Classes {
+        inside: vec![[0; MASK_WORDS]; dirty.len()],
+        overlap: vec![[0; MASK_WORDS]; dirty.len()],
+    };
+    for (s, &b) in dirty.iter().enumerate() {
+        while let Some(seed) = first_cell(&groups.available[s]) {
+            groups.grow(s, seed, slot_of);
+            let label = groups.clean_label(old, slot_of).unwrap_or_else(|| {
+                let c = cell_in_brick(brick_coords(b, bdims), seed);
                 let winding = winding_number(surface, map.grid.cell_centre(c)).round();
                 if winding == 0.0 {
                     Label::Outside
@@ -228,21 +160,129 @@ fn classify(
                     Label::Overlap
                 }
             });
-            for x in touched.drain(..) {
-                let cells = std::mem::take(&mut reached[x]);
-                for z in 0..MASK_WORDS {
-                    available[x][z] &= !cells[z];
-                    if label != Label::Outside {
-                        classes.inside[x][z] |= cells[z];
-                    }
-                    if label == Label::Overlap {
-                        classes.overlap[x][z] |= cells[z];
-                    }
+            groups.take(label, &mut classes);
+        }
+    }
+    classes
+}
+
+/// The free (non-surface, in-grid) cells of brick `b` of a map with top-level entries
+/// `entries` and surface masks `bits`.
+fn free_cells(
+    entries: &[u32],
+    bits: &[BrickBits],
+    b: usize,
+    bdims: [u32; 3],
+    dims: [u32; 3],
+) -> BrickBits {
+    let in_grid = in_grid_bits(brick_coords(b, bdims), dims);
+    let surface = entries
+        .get(b)
+        .filter(|&&e| e & UNIFORM == 0)
+        .and_then(|&e| bits.get(e as usize))
+        .copied()
+        .unwrap_or_default();
+    std::array::from_fn(|z| in_grid[z] & !surface[z])
+}
+
+/// The groups of free cells of the dirty bricks (by slot), grown one at a time.
+struct Groups {
+    /// Free cells not yet in a group.
+    available: Vec<BrickBits>,
+    /// Each slot's face neighbours (top-level indices), in the order of `FACES`.
+    neighbours: Vec<[Option<usize>; 6]>,
+    /// The cells of the current group.
+    reached: Vec<BrickBits>,
+    queued: Vec<bool>,
+    work: Vec<usize>,
+    /// The slots the current group reached.
+    touched: Vec<usize>,
+}
+
+impl Groups {
+    /// The dirty neighbour of slot `x` across face `face`.
+    fn dirty_neighbour(&self, x: usize, face: usize, slot_of: &[u32]) -> Option<usize> {
+        let ns = *slot_of.get(self.neighbours[x][face]?)?;
+        (ns != CLEAN).then_some(ns as usize)
+    }
+
+    /// Grows the group of cell `seed` of slot `s` through face-adjacent available cells
+    /// of the dirty bricks.
+    fn grow(&mut self, s: usize, seed: usize, slot_of: &[u32]) {
+        self.reached[s][seed >> 6] |= 1 << (seed & 63);
+        self.touched.push(s);
+        self.queued[s] = true;
+        self.work.push(s);
+        let mut first = true;
+        while let Some(x) = self.work.pop() {
+            self.queued[x] = false;
+            let mut seeds = self.reached[x];
+            for face in 0..FACES.len() {
+                if let Some(ns) = self.dirty_neighbour(x, face, slot_of) {
+                    add_face_seeds(&mut seeds, &self.reached[ns], face);
+                }
+            }
+            let grown = flood_brick(seeds, &self.available[x]);
+            if grown == self.reached[x] && !first {
+                continue;
+            }
+            first = false;
+            if self.reached[x] == [0; MASK_WORDS] {
+                self.touched.push(x);
+            }
+            self.reached[x] = grown;
+            for face in 0..FACES.len() {
+                if let Some(ns) = self.dirty_neighbour(x, face, slot_of)
+                    && touches_face(&grown, face)
+                    && !self.queued[ns]
+                {
+                    self.queued[ns] = true;
+                    self.work.push(ns);
                 }
             }
         }
     }
-    classes
+
+    /// The old label of a clean free cell next to the current group, if any.
+    fn clean_label(&self, old: &VoxelMap, slot_of: &[u32]) -> Option<Label> {
+        let (dims, bdims) = (old.grid.dims(), old.brick_dims);
+        for &x in &self.touched {
+            for (face, nb) in self.neighbours[x].iter().enumerate() {
+                let Some(nb) = *nb else { continue };
+                if slot_of.get(nb) != Some(&CLEAN) {
+                    continue;
+                }
+                let mut next_to = [0; MASK_WORDS];
+                add_face_seeds(&mut next_to, &self.reached[x], face ^ 1);
+                let free = free_cells(&old.bricks, &old.surface_bits, nb, bdims, dims);
+                for z in 0..MASK_WORDS {
+                    next_to[z] &= free[z];
+                }
+                if let Some(l) = first_cell(&next_to)
+                    && let Some(label) = old_label(old, cell_in_brick(brick_coords(nb, bdims), l))
+                {
+                    return Some(label);
+                }
+            }
+        }
+        None
+    }
+
+    /// Ends the current group: its cells leave the available ones and get `label`.
+    fn take(&mut self, label: Label, classes: &mut Classes) {
+        for x in self.touched.drain(..) {
+            let cells = std::mem::take(&mut self.reached[x]);
+            for (z, &w) in cells.iter().enumerate() {
+                self.available[x][z] &= !w;
+                if label != Label::Outside {
+                    classes.inside[x][z] |= w;
+                }
+                if label == Label::Overlap {
+                    classes.overlap[x][z] |= w;
+                }
+            }
+        }
+    }
 }
 
 /// The label of cell `c` in the old map: `None` for a surface cell.
