@@ -23,6 +23,24 @@ pub(crate) fn on_pool<R: Send>(work: impl FnOnce() -> R + Send) -> R {
     work()
 }
 
+/// Runs `work`, and every parallel step inside it, on the calling thread only: for work
+/// done while a servo loop runs (a deformation's refresh), which must not take the other
+/// cores' time from it, as rayon's pool would (its threads also spin a while after each
+/// step). With `parallel`, a pool of the calling thread alone; without it, the call.
+pub(crate) fn on_this_thread<R: Send>(work: impl FnOnce() -> R + Send) -> R {
+    #[cfg(feature = "parallel")]
+    {
+        let alone = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .use_current_thread()
+            .build();
+        if let Ok(pool) = alone {
+            return pool.install(work);
+        }
+    }
+    work()
+}
+
 /// The names of rayon's parallel iterators that haphe uses, as the standard library's
 /// sequential iterators.
 #[cfg(not(feature = "parallel"))]

@@ -53,8 +53,8 @@ impl Proxy {
             && let Some(old) = o.previous_shape.as_deref()
         {
             let q = o.previous_pose.to_object(self.position);
-            let radius = reach_of(old, q);
-            if let Some(near) = nearest_within(old.surface(), old.map(), q, radius) {
+            let close = self.options.tool_radius + 8.0 * self.options.skin;
+            if let Some(near) = nearest(old, q, close) {
                 let ride = Ride::of(under.object, &o.previous_pose, &near);
                 let before = p;
                 p = ride_on((&o.shape, &o.pose), &ride, self.position);
@@ -92,9 +92,15 @@ impl Ride {
     }
 }
 
-/// A radius that holds every triangle of `shape` seen from `q` (object frame).
-fn reach_of(shape: &Shape, q: DVec3) -> f64 {
-    4.0 * shape.bound_radius() + q.distance(shape.bound_centre())
+/// The triangle of `shape` nearest to `q` (object frame), the lowest among equally near
+/// ones: searched within `close` metres first, where the proxy usually is and where a
+/// few triangles pass the plane test, then as far as the shape reaches.
+fn nearest(shape: &Shape, q: DVec3, close: f64) -> Option<NearTriangle> {
+    let (surface, map) = (shape.surface(), shape.map());
+    nearest_within(surface, map, q, close).or_else(|| {
+        let all = 4.0 * shape.bound_radius() + q.distance(shape.bound_centre());
+        nearest_within(surface, map, q, all)
+    })
 }
 
 /// Where a proxy at `position` that touched `ride` at the end of the last tick goes when
@@ -155,12 +161,12 @@ pub(crate) fn push_out(o: &SceneObject, p: DVec3, tool_radius: f64, skin: f64) -
     if !inside && tool_radius <= 0.0 {
         return p;
     }
-    let radius = if inside {
-        reach_of(shape, q)
+    let near = if inside {
+        nearest(shape, q, tool_radius + 8.0 * skin)
     } else {
-        tool_radius
+        nearest_within(surface, map, q, tool_radius)
     };
-    let Some(near) = nearest_within(surface, map, q, radius) else {
+    let Some(near) = near else {
         return p;
     };
     if !inside && near.distance >= tool_radius {

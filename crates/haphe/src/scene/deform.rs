@@ -15,6 +15,7 @@ use super::shape::Shape;
 use super::world::Scene;
 use crate::map::{CellBox, MapError};
 use crate::mesh::{MAX_COORDINATE, TriId};
+use crate::par::on_this_thread;
 use crate::query::ClearZone;
 
 /// Why a deformation was refused. The shape (or scene) is left unchanged.
@@ -72,7 +73,8 @@ impl Shape {
     /// zones they may reach (computed now, so that no tick computes one). A triangle
     /// moved outside the map's grid grows the grid (a rebuild of the map, with room to
     /// spare). The result answers every query as a shape built from scratch on the
-    /// deformed mesh does.
+    /// deformed mesh does. The work runs on the calling thread alone, never on rayon's
+    /// pool, so that a servo loop on another core keeps its core.
     ///
     /// # Errors
     /// [`DeformError::Count`] for a wrong number of positions; [`DeformError::NotFinite`]
@@ -135,8 +137,14 @@ impl Shape {
         self.version
     }
 
-    /// [`Shape::deformed`] once the positions are checked.
+    /// [`Shape::deformed`] once the positions are checked, on the calling thread alone
+    /// (see [`on_this_thread`]).
     fn deformed_unchecked(&self, vertices: Vec<DVec3>) -> Result<Shape, MapError> {
+        on_this_thread(|| self.deformed_here(vertices))
+    }
+
+    /// [`Shape::deformed_unchecked`]'s work.
+    fn deformed_here(&self, vertices: Vec<DVec3>) -> Result<Shape, MapError> {
         let (surface, moved) = self.surface.deformed(vertices);
         let map = self.map.refreshed(&self.surface, &surface, &moved)?;
         let mut shape = Shape::new(surface, map);
