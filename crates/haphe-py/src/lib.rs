@@ -6,6 +6,7 @@
 //! name the file and the place.
 
 mod arrays;
+mod deform;
 mod device;
 mod errors;
 mod files;
@@ -27,6 +28,7 @@ fn haphe_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DeviceError", m.py().get_type::<device::DeviceError>())?;
     m.add_function(wrap_pyfunction!(files::validate, m)?)?;
     m.add_function(wrap_pyfunction!(run::run, m)?)?;
+    m.add_function(wrap_pyfunction!(deform::check_deforming, m)?)?;
     m.add_function(wrap_pyfunction!(allocations, m)?)?;
     m.add_class::<shape::Shape>()?;
     m.add_class::<scene::Scene>()?;

@@ -10,6 +10,7 @@ use std::sync::{Mutex, PoisonError};
 
 use pyo3::prelude::*;
 
+use crate::deform;
 use crate::errors::{haphe_error, param_error};
 use crate::files::{Folder, read_bytes, read_options, units_warning, warn};
 use crate::shape::Shape;
@@ -254,6 +255,60 @@ impl Scene {
             .remove(ObjectId(id))
             .map(|_| ())
             .ok_or_else(|| pyo3::exceptions::PyKeyError::new_err(id))
+    }
+
+    /// deform(id, vertices, indices=None)
+    /// --
+    ///
+    /// Deforms object ``id``: its vertices move, its triangles stay. ``vertices`` is a
+    /// ``(V, 3)`` array of new positions (metres, object frame), one per vertex in the
+    /// order of ``shape.arrays()`` (the surface's order, which may differ from the
+    /// file's); with ``indices`` (a 1-D integer array-like), vertex ``indices[k]`` moves to
+    /// ``vertices[k]`` and the others stay. Both are read as the batch queries read their
+    /// arrays (lists, float32, any strides). Other objects sharing the shape keep it as it
+    /// was (``scene.shape(id)`` is the object's shape now).
+    ///
+    /// Only what the moved triangles touch is recomputed, here, without the GIL; the
+    /// deformation is in force from the next tick: a proxy resting on the surface rides
+    /// it, and a surface that moved over the proxy pushes it out.
+    ///
+    /// Raises ``KeyError`` for an unknown id, ``HapheError`` naming the argument and the
+    /// first bad row for a coordinate that is NaN, infinite or beyond the largest a mesh
+    /// may have, an index out of range, a wrong number of positions or of indices, or an
+    /// array of the wrong shape. A refused deformation leaves the scene unchanged.
+    #[pyo3(signature = (id, vertices, indices = None))]
+    fn deform(
+        &mut self,
+        py: Python<'_>,
+        id: u32,
+        vertices: &Bound<'_, PyAny>,
+        indices: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let scene = self.scene();
+        let count = deform::vertex_count(scene, id)?;
+        let positions = deform::points("vertices", vertices)?;
+        let indices = indices.map(|i| deform::indices(i, count)).transpose()?;
+        py.detach(|| match &indices {
+            None => scene.deform(ObjectId(id), &positions),
+            Some(indices) => scene.deform_at(ObjectId(id), indices, &positions),
+        })
+        .map_err(deform::deform_error)
+    }
+
+    /// shape(id)
+    /// --
+    ///
+    /// The shape of object ``id`` as it is now (deformed, if it was): a ``Shape`` sharing
+    /// it, whose ``version`` counts the deformations. Raises ``KeyError`` for an unknown id.
+    fn shape(&mut self, id: u32) -> PyResult<Shape> {
+        let scene = self.scene();
+        let i = scene
+            .index_of(ObjectId(id))
+            .ok_or_else(|| pyo3::exceptions::PyKeyError::new_err(id))?;
+        Ok(Shape {
+            inner: scene.objects()[i].shape.clone(),
+            name: format!("object {id}"),
+        })
     }
 
     /// check_tool_radius(tool_radius)

@@ -454,6 +454,31 @@ impl Shape {
         Ok((a.into_pyarray(py), b.into_pyarray(py)))
     }
 
+    /// arrays()
+    /// --
+    ///
+    /// The surface as arrays: ``(vertices, faces)``, a ``(V, 3)`` float64 array of vertex
+    /// positions (metres, object frame) and an ``(F, 3)`` int64 array of triangles (vertex
+    /// indices, counter-clockwise seen from outside). They are in the surface's own order,
+    /// the order ``Scene.deform`` takes: vertices after welding, triangles in the spatial
+    /// order the library keeps, which may differ from the file's (or the rows given to
+    /// ``from_arrays``).
+    fn arrays<'py>(&self, py: Python<'py>) -> (Points<'py>, Bound<'py, numpy::PyArray2<i64>>) {
+        let surface = self.inner.surface();
+        let vertices = surface.vertices();
+        let triangles = surface.triangles();
+        let v = Array2::from_shape_fn((vertices.len(), 3), |(i, k)| vertices[i][k]);
+        let f = Array2::from_shape_fn((triangles.len(), 3), |(i, k)| i64::from(triangles[i][k]));
+        (v.into_pyarray(py), f.into_pyarray(py))
+    }
+
+    /// How many deformations made this shape from the one first built (0 for a shape never
+    /// deformed; ``scene.shape(id).version`` after ``scene.deform``).
+    #[getter]
+    fn version(&self) -> u64 {
+        self.inner.version()
+    }
+
     /// Number of triangles of the surface.
     #[getter]
     fn triangles(&self) -> usize {

@@ -6,7 +6,8 @@ run without the GIL; scenes of placed shapes; the god-object proxy ticked agains
 and the servo loop with a device.
 
 Units are SI (metres, newtons, seconds); triangles are counter-clockwise seen from
-outside. Triangle indices are always the face indices of the mesh as given.
+outside. Triangle indices are always the face indices of the mesh as given; the arrays of
+``Shape.arrays`` and ``Scene.deform`` are in the surface's own order instead.
 """
 
 from ._haphe import (
@@ -19,6 +20,7 @@ from ._haphe import (
     Shape,
     __version__,
     allocations,
+    check_deforming,
     run,
     validate,
 )
@@ -33,6 +35,7 @@ __all__ = [
     "Shape",
     "__version__",
     "allocations",
+    "check_deforming",
     "run",
     "validate",
 ]

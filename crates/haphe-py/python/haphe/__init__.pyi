@@ -64,6 +64,17 @@ def run(
     one per device, as lists): a list of dicts, one per device; a fault of one stops all,
     named in stop."""
 
+def check_deforming(
+    scene: Scene,
+    deformation: Literal["breathe", "dent", "breathe-dent", "twist"],
+    path: _Points,
+    rate_hz: float = 1000.0,
+    tool_radius: float = 0.0,
+) -> Dict[str, Union[int, float]]:
+    """The library's check of the proxy against a brute-force proxy while the scene's
+    first object deforms before every tick along ``path`` (one device point a tick):
+    counts ticks, contact_ticks, mismatches, max_deviation (m), inside, bad_forces."""
+
 class Shape:
     """A surface with its voxel map (object frame, metres)."""
 
@@ -101,6 +112,12 @@ class Shape:
         self, points: _Points, max_distance: float, nonfinite: _NonFinite = "error"
     ) -> Dict[str, npt.NDArray[Any]]:
         """Arrays distance (inf none), triangle (-1 none), point (N, 3)."""
+    def arrays(self) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+        """(vertices (V, 3) float64, faces (F, 3) int64) in the surface's own order, the
+        order Scene.deform takes (it may differ from the file's)."""
+    @property
+    def version(self) -> int:
+        """How many deformations made this shape (0: never deformed)."""
     @property
     def triangles(self) -> int: ...
     @property
@@ -143,6 +160,13 @@ class Scene:
         for none; a refused one raises HapheError naming ``texture`` and it."""
     def move(self, id: int, position: _Vec3, rotation: Optional[_Rotation] = None) -> None: ...
     def remove(self, id: int) -> None: ...
+    def deform(self, id: int, vertices: _Points, indices: Optional[npt.ArrayLike] = None) -> None:
+        """Moves object id's vertices (V, 3) in the order of shape.arrays(), or with
+        indices (K,) the vertices indices[k] to vertices[k] (K, 3); in force from the next
+        tick. KeyError for an unknown id; HapheError naming the argument and the first bad
+        row, the scene unchanged."""
+    def shape(self, id: int) -> Shape:
+        """Object id's shape as it is now (deformed, if it was); KeyError if unknown."""
     def set_texture(self, id: int, texture: Optional[str]) -> None:
         """Changes object id's texture (None or "": none); KeyError for an unknown id."""
     @property
