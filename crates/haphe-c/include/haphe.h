@@ -150,6 +150,68 @@ extern "C" {
 uint64_t haphe_allocations(void);
 #endif
 
+// Number of vertices of the shape's surface (after welding; 0 for a null handle): the
+// rows of `haphe_shape_arrays` and of `haphe_scene_deform`.
+uintptr_t haphe_shape_vertex_count(const struct HapheShape *shape);
+
+// How many deformations made this shape from the one first built (0 for a shape never
+// deformed, and for a null handle).
+uint64_t haphe_shape_version(const struct HapheShape *shape);
+
+// Copies the shape's surface out: `vertex_count` vertices (3 doubles each, metres, object
+// frame) to `vertices` and `face_count` triangles (3 vertex indices each,
+// counter-clockwise seen from outside) to `faces`. They are in the surface's own order,
+// the order `haphe_scene_deform` takes: vertices after welding, triangles in the spatial
+// order the library keeps, which may differ from the file's (or the arrays given to
+// `haphe_shape_from_arrays`).
+//
+// `vertex_count` must be `haphe_shape_vertex_count(shape)` and `face_count`
+// `haphe_shape_triangle_count(shape)`; a null `vertices` or `faces` skips that array (its
+// count is then not checked). Both arrays are borrowed for the call. Errors:
+// `HAPHE_STATUS_INVALID_ARGUMENT` naming the count that differs, nothing written.
+enum HapheStatus haphe_shape_arrays(const struct HapheShape *shape,
+                                    double *vertices,
+                                    uintptr_t vertex_count,
+                                    uint32_t *faces,
+                                    uintptr_t face_count);
+
+// Deforms object `id`: its vertices move to `xyz` (`count` points, 3 doubles each,
+// metres, object frame: one per vertex, in the order of `haphe_shape_arrays`), its
+// triangles stay. Other objects sharing the shape keep it as it was. Only what the moved
+// triangles touch is recomputed, on the calling thread (it allocates: call it between
+// ticks, not from a tick callback); the deformation is in force from the next tick: a
+// proxy resting on the surface rides it, and a surface that moved over the proxy pushes
+// it out. `xyz` is borrowed for the call.
+//
+// Errors, the scene then unchanged: `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id
+// (`no object 7 in the scene`), a `count` other than the shape's vertex count, or a
+// coordinate that is NaN, infinite or beyond the largest a mesh may have, naming the
+// first such row (`xyz: row 12: a coordinate is not a finite number …`), or a deformed
+// surface that leaves its map's grid so far that a grown grid would be too large.
+enum HapheStatus haphe_scene_deform(struct HapheScene *scene,
+                                    uint32_t id,
+                                    const double *xyz,
+                                    uintptr_t count);
+
+// `haphe_scene_deform` for a subset: vertex `indices[k]` moves to `xyz[3k..3k+3]` for `k`
+// below `count`, the other vertices stay. Both arrays are borrowed for the call.
+//
+// Errors, the scene then unchanged: those of `haphe_scene_deform`, and
+// `HAPHE_STATUS_INVALID_ARGUMENT` naming the first index out of range (`indices: row 3:
+// vertex index 900 is out of range (the shape has 642 vertices)`).
+enum HapheStatus haphe_scene_deform_at(struct HapheScene *scene,
+                                       uint32_t id,
+                                       const uint32_t *indices,
+                                       const double *xyz,
+                                       uintptr_t count);
+
+// A new handle to the shape object `id` has now (deformed, if it was; its
+// `haphe_shape_version` counts the deformations), for the queries of a shape
+// (`haphe_shape_inside`, `haphe_shape_arrays`, …). On success `*out` is owned by the
+// caller: free it with `haphe_shape_free` (the scene keeps its own reference). Errors:
+// `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id or a null argument.
+enum HapheStatus haphe_scene_shape(struct HapheScene *scene, uint32_t id, struct HapheShape **out);
+
 // Gives object `id` of `scene` the texture of the specification `texture`
 // (NUL-terminated): `"sine:A:L"`, a solid sine of amplitude `A` and wavelength `L` metres
 // in the object's frame, or `"noise:A:L"`, band-limited noise; null or `""` for none.

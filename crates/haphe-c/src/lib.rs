@@ -12,6 +12,7 @@
 //! `unsafe fn` would change nothing for a C caller.
 #![allow(clippy::not_unsafe_ptr_arg_deref)]
 
+mod deform;
 mod effects;
 mod error;
 mod scene;
@@ -21,6 +22,10 @@ mod shape;
 #[cfg(feature = "count-allocations")]
 mod alloc;
 
+pub use deform::{
+    haphe_scene_deform, haphe_scene_deform_at, haphe_scene_shape, haphe_shape_arrays,
+    haphe_shape_version, haphe_shape_vertex_count,
+};
 pub use effects::{haphe_scene_add_effect, haphe_scene_clear_effects, haphe_scene_set_texture};
 pub use error::{HapheStatus, haphe_last_error};
 pub use scene::{
