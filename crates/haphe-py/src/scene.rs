@@ -450,6 +450,9 @@ pub struct Contact {
     pub penetration: f64,
     /// Active constraint planes: 1 on a face, 2 in a concave edge, 3 in a corner.
     pub constraints: u8,
+    /// The version of the object's shape the tick touched (``Shape.version``: how many
+    /// deformations made it).
+    pub version: u64,
 }
 
 #[pymethods]
@@ -555,6 +558,7 @@ impl Proxy {
                 shading_normal: tuple(c.shading_normal),
                 penetration: c.penetration,
                 constraints: c.constraints,
+                version: c.version,
             })
         });
         (tuple(out.force), tuple(out.proxy), contact)

@@ -80,6 +80,7 @@ def test_a_breathing_dented_sphere_deformed_every_tick_is_never_entered():
             assert depth <= skin, f"tick {tick}: the proxy is {depth:.3g} m inside the surface"
             proxy_inside += 1
         touching.append(contact is not None)
+        assert contact is None or contact.version == tick + 1, "the tick felt this deformation"
         examined += 1
     assert examined == ticks
     # Guard: the hand (a path of the scene, not of the proxy) is inside the current surface

@@ -196,6 +196,7 @@ class Contact:
     shading_normal: Tuple[float, float, float]
     penetration: float
     constraints: int
+    version: int
 
 class Proxy:
     """The god-object proxy: the centre of the tool, a point or a sphere of tool_radius."""
