@@ -15,6 +15,7 @@ use haphe::verify::{
 };
 use serde::Serialize;
 
+mod deform;
 mod peer;
 mod proxy;
 
@@ -54,6 +55,11 @@ pub struct Args {
     /// the proxy is a sphere of this radius (0: a point).
     #[arg(long, default_value_t = 0.0, value_name = "METRES")]
     tool_radius: f64,
+    /// Also check the proxy against the brute-force proxy while the model (scaled to
+    /// 0.2 m) deforms at every tick: breathe, dent, breathe-dent, twist, or all (breathe,
+    /// dent and twist); --ticks ticks of pressing paths each, with --tool-radius.
+    #[arg(long, value_name = "KIND", value_parser = deform::parse_kinds)]
+    deform: Option<deform::Kinds>,
     /// Seed of the samples (the same seed gives the same samples).
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -109,6 +115,8 @@ struct Verification {
     proxy: Option<proxy::ProxyReport>,
     /// Deep strikes, when run on a closed model.
     strikes: Option<proxy::StrikeReport>,
+    /// The proxy on the deforming model, when asked for.
+    deforming: Option<deform::DeformReport>,
     passed: bool,
 }
 
@@ -128,6 +136,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     if checked + args.strikes == 0 {
         bail!(
             "nothing to check: --samples 0 (and no --random, --adversarial, --points, --walks, --ticks or --strikes above 0) would pass having checked nothing"
+        );
+    }
+    if args.deform.is_some() && args.ticks.unwrap_or(n) == 0 {
+        bail!(
+            "nothing to check: --deform runs --ticks ticks (default --samples) of each deformation, and they are 0"
         );
     }
     let start = Instant::now();
@@ -171,6 +184,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let strikes = (args.strikes > 0 && surface.is_solid())
         .then(|| proxy::strikes(surface, options, args.strikes, args.seed))
         .transpose()?;
+    let deforming = match &args.deform {
+        Some(kinds) if ticks > 0 => Some(deform::check(
+            surface, &kinds.0, options, ticks, args.seed,
+        )?),
+        _ => None,
+    };
 
     let passed = crossings
         .iter()
@@ -179,7 +198,8 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         && walk.not_local_minimum == 0
         && walk.not_nearest == 0
         && proxy.as_ref().is_none_or(|p| p.passed())
-        && strikes.as_ref().is_none_or(|s| s.passed());
+        && strikes.as_ref().is_none_or(|s| s.passed())
+        && deforming.as_ref().is_none_or(|d| d.passed());
     let report = Verification {
         file: args.file.display().to_string(),
         triangles: surface.triangle_count(),
@@ -195,6 +215,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         walk_seconds,
         proxy,
         strikes,
+        deforming,
         passed,
     };
     let mut out = std::io::stdout().lock();
@@ -298,6 +319,9 @@ fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {
     if let Some(s) = &r.strikes {
         print_strikes(out, s)?;
     }
+    if let Some(d) = &r.deforming {
+        print_deforming(out, d)?;
+    }
     writeln!(out, "\n{}", if r.passed { "PASSED" } else { "FAILED" })?;
     Ok(())
 }
@@ -327,6 +351,40 @@ fn print_proxy(out: &mut impl Write, p: &proxy::ProxyReport) -> std::io::Result<
             row.path,
             row.speeds_m_s.0,
             row.speeds_m_s.1,
+            c.ticks,
+            c.contact_ticks,
+            c.mismatches,
+            c.max_deviation_m,
+            c.inside,
+            c.bad_forces
+        )?;
+    }
+    Ok(())
+}
+
+/// The table of the proxy against the brute-force proxy on the deforming model.
+fn print_deforming(out: &mut impl Write, d: &deform::DeformReport) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "\ndeforming: the proxy against the brute-force proxy while the model deforms at every tick (model scaled by {:.4} to 0.2 m{}; pressing paths at 1 kHz; {:.1} s):\n",
+        d.scale,
+        tool_words(d.tool_radius_m),
+        d.seconds
+    )?;
+    writeln!(
+        out,
+        "| deformation  | ticks   | in contact | mismatches | largest gap (m) | inside | bad forces |"
+    )?;
+    writeln!(
+        out,
+        "|--------------|--------:|-----------:|-----------:|----------------:|-------:|-----------:|"
+    )?;
+    for row in &d.rows {
+        let c = &row.check;
+        writeln!(
+            out,
+            "| {:<12} | {:>7} | {:>10} | {:>10} | {:>15.1e} | {:>6} | {:>10} |",
+            row.deformation,
             c.ticks,
             c.contact_ticks,
             c.mismatches,

@@ -53,7 +53,7 @@ const KINDS: [(&str, (f64, f64)); 3] = [
 ];
 
 /// The material of the proxy checks: 800 N/m, 1 N·s/m, friction 0.5 / 0.3.
-fn verify_material() -> Material {
+pub fn verify_material() -> Material {
     Material::builder()
         .stiffness(800.0)
         .damping(1.0)
@@ -64,7 +64,7 @@ fn verify_material() -> Material {
 
 /// `surface` scaled to a hand's size (its largest side
 /// [`HAND_SCALE_M`](haphe::verify::HAND_SCALE_M)) and mapped, and the scale.
-fn scaled_shape(surface: &Surface) -> anyhow::Result<(std::sync::Arc<Shape>, f64)> {
+pub fn scaled_shape(surface: &Surface) -> anyhow::Result<(std::sync::Arc<Shape>, f64)> {
     let (mesh, scale) = hand_sized(surface);
     let shape = Shape::build(
         Surface::new(mesh, &SurfaceOptions::default())?,
@@ -74,7 +74,7 @@ fn scaled_shape(surface: &Surface) -> anyhow::Result<(std::sync::Arc<Shape>, f64
 }
 
 /// A scene of `shape` alone, at the origin.
-fn scene_of(shape: &std::sync::Arc<Shape>, material: Material) -> anyhow::Result<Scene> {
+pub fn scene_of(shape: &std::sync::Arc<Shape>, material: Material) -> anyhow::Result<Scene> {
     let mut scene = Scene::local(1);
     let object = SceneObject::new(ObjectId(0), shape.clone(), Pose::IDENTITY, material);
     scene.insert(object).map_err(|(e, _)| e)?;
