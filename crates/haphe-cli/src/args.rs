@@ -2,7 +2,7 @@
 //! defaults: units and welding, map options, the objects of a session (a mesh file, a
 //! scene file or a built-in shape, and the material of a lone object), the files a
 //! session writes, the mapping of a device's workspace, the lengths of runs, and the
-//! textures and effects of a session ([`feel`]).
+//! textures and effects of a session ([`feel`]), and its deformation ([`deform`]).
 
 use std::path::PathBuf;
 
@@ -16,6 +16,7 @@ use haphe::servo::RealtimeOptions;
 
 use crate::input::model::Model;
 
+pub mod deform;
 pub mod feel;
 
 /// Default length of a run, seconds.

@@ -143,6 +143,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         standby_core: None,
         clutch_button: None,
         presses: Vec::new(),
+        deform: None,
         seed: 3,
         max_force: haphe::scene::DEFAULT_MAX_FORCE_N,
         tool_radius: tool,

@@ -9,6 +9,7 @@ use anyhow::bail;
 use haphe::DVec3;
 use haphe_devices::UdpOptions;
 
+use crate::args::deform::DeformArgs;
 use crate::args::feel::FeelArgs;
 use crate::args::{
     ClutchArgs, DEFAULT_OVERRUN_BUDGET, MappingArgs, ModelArgs, OutputArgs, ToolArgs, per_device,
@@ -32,6 +33,8 @@ pub struct Args {
     model: ModelArgs,
     #[command(flatten)]
     feel: FeelArgs,
+    #[command(flatten)]
+    deform: DeformArgs,
     /// Length of the run, seconds (default: until Ctrl-C; 5 s for the simulated hand).
     #[arg(long)]
     seconds: Option<f64>,
@@ -82,6 +85,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     }
     check(args)?;
     let feel = args.feel.check(args.rate)?;
+    let deform = args.deform.check(args.rate)?;
     catch_interrupts()?;
     let material = args.model.material()?;
     crate::args::proxy_options(args.max_force)?;
@@ -127,6 +131,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         plot: args.output.plot.clone(),
         clutch_button: args.clutch.clutch_button,
         presses: Vec::new(),
+        deform,
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)

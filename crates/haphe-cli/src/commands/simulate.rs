@@ -10,6 +10,7 @@ use std::time::Instant;
 use anyhow::anyhow;
 use haphe::servo::{HandOptions, HipTrace, PathKind, ServoOptions};
 
+use crate::args::deform::DeformArgs;
 use crate::args::feel::FeelArgs;
 use crate::args::{ClutchArgs, ModelArgs, OutputArgs, ToolArgs, proxy_options, spin};
 use crate::input::files::{self, read_input};
@@ -25,6 +26,8 @@ pub struct Args {
     model: ModelArgs,
     #[command(flatten)]
     feel: FeelArgs,
+    #[command(flatten)]
+    deform: DeformArgs,
     /// The motion: press, slide, circle, explore or strike (over the top of the objects).
     #[arg(long, default_value = "explore")]
     path: PathKind,
@@ -102,6 +105,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // The library's table of domains checks every number, named as its flag.
     ServoOptions::new(args.rate).map_err(|e| anyhow!("{}", e.named("--rate")))?;
     let feel = args.feel.check(args.rate)?;
+    let deform = args.deform.check(args.rate)?;
     let outputs: Vec<&Path> = [&args.output.out, &args.output.plot]
         .into_iter()
         .flatten()
@@ -154,6 +158,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         plot: args.output.plot.clone(),
         clutch_button: args.clutch.clutch_button,
         presses: args.press.clone(),
+        deform,
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)

@@ -2,6 +2,7 @@
 //! servo loop on a virtual clock or a real-time thread, the summary, the CSV trace and
 //! the plot. `haphe simulate`, `run` and `demo` each describe one and run it.
 
+pub mod deform;
 pub mod device;
 pub mod devices;
 #[cfg(feature = "view")]
@@ -16,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail};
 use haphe::DVec3;
-use haphe::scene::Scene;
+use haphe::scene::{Scene, SceneEditor};
 use haphe::servo::scene_file::FileEffect;
 use haphe::servo::{
     Device, HandOptions, HipTrace, Interference, ObjectMotion, PathKind, RealtimeOptions,
@@ -24,10 +25,12 @@ use haphe::servo::{
     StandbyReport, StopReason, TickRecord, TickStats, TrajectoryError, scripted_path,
 };
 
+use self::deform::{Clock, Plan, Refreshes, Versions};
 use self::device::VendorChoice;
 use self::devices::{Opened, Vendor};
 use self::summary::{RunInfo, Summary};
 use self::trace::TraceOut;
+use crate::args::deform::Deform;
 use crate::args::{DEFAULT_SECONDS, MAX_SECONDS, PLOT_SECONDS, ToolRadius, proxy_options};
 use crate::input::scene::LoadedObject;
 
@@ -86,6 +89,8 @@ pub struct Session {
     pub clutch_button: Option<u32>,
     /// Buttons the simulated devices press: (button, from, until), seconds (`--press`).
     pub presses: Vec<(u32, f64, f64)>,
+    /// The deformation of the first object (`--deform`, `--deform-rate`).
+    pub deform: Option<Deform>,
 }
 
 /// Objects listed by name in the summary.
@@ -98,6 +103,8 @@ struct Built {
     /// One line per object: name, id, triangles, material.
     names: Vec<String>,
     triangles: usize,
+    /// The deformation of the first object, with the scene's editor.
+    deforming: Option<Plan>,
 }
 
 /// How the servo ran, whatever the clock.
@@ -112,6 +119,8 @@ struct Ran {
     devices: Vec<DeviceRan>,
     /// The device whose fault stopped the run.
     faulted: Option<usize>,
+    /// The version of the first object's shape when the run ended.
+    last_version: Option<u64>,
 }
 
 /// What a device of the run was and did, for its summary.
@@ -148,10 +157,22 @@ pub fn add_effects(scene: &mut Scene, effects: &[FileEffect]) -> anyhow::Result<
     Ok(())
 }
 
-/// Inserts `objects` into a new scene with `effects`.
-fn build_scene(objects: Vec<LoadedObject>, effects: &[FileEffect]) -> anyhow::Result<Built> {
+/// Inserts `objects` into a new scene with `effects`; with `deform`, a scene with an
+/// editor, and the first object's deformation.
+fn build_scene(
+    objects: Vec<LoadedObject>,
+    effects: &[FileEffect],
+    deform: Option<Deform>,
+) -> anyhow::Result<Built> {
     let capacity = objects.len() + 4;
-    let mut scene = Scene::local(capacity);
+    let (mut scene, editor): (Scene, Option<SceneEditor>) = match deform {
+        Some(_) => {
+            let (scene, editor) = Scene::new(capacity);
+            (scene, Some(editor))
+        }
+        None => (Scene::local(capacity), None),
+    };
+    let first = objects.first().map(|o| o.name.clone()).unwrap_or_default();
     let mut motions: Vec<ObjectMotion> = Vec::new();
     let mut names = Vec::new();
     let mut triangles = 0usize;
@@ -175,11 +196,16 @@ fn build_scene(objects: Vec<LoadedObject>, effects: &[FileEffect]) -> anyhow::Re
             .map_err(|(e, _)| anyhow!("cannot add an object: {e}"))?;
     }
     add_effects(&mut scene, effects)?;
+    let deforming = match (deform, editor) {
+        (Some(deform), Some(editor)) => Some(Plan::new(&scene, editor, &first, deform)?),
+        _ => None,
+    };
     Ok(Built {
         scene,
         motions,
         names,
         triangles,
+        deforming,
     })
 }
 
@@ -192,7 +218,8 @@ impl Session {
             motions,
             names,
             triangles,
-        } = build_scene(self.objects, &self.effects)?;
+            deforming,
+        } = build_scene(self.objects, &self.effects, self.deform)?;
         let proxy = ToolRadius::apply(&self.tool_radius, proxy_options(self.max_force)?, &scene)?;
         // A real device runs until Ctrl-C unless told otherwise.
         let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.iter().any(|c| !c.is_hand()))
@@ -223,6 +250,10 @@ impl Session {
         print_scene(out, &names, triangles, self.build_seconds, (tool, &effects))?;
         devices::print(out, &servo, &vendors, stiffness)?;
         let realtime = self.realtime || vendors.iter().any(Option::is_some);
+        let clock = if realtime { Clock::Wall } else { Clock::Simulated };
+        if let Some(plan) = &deforming {
+            writeln!(out, "{}", plan.describe(clock))?;
+        }
         let limit = (!until_stopped).then_some(seconds);
         let ticks = (seconds * self.rate_hz).round().max(1.0) as u64;
         let n = servo.devices();
@@ -239,14 +270,30 @@ impl Session {
                 t.add(r);
             }
         };
+        let mut deformed: Option<(Refreshes, Option<Versions>)> = None;
         let ran = if realtime {
             let options = RealtimeOptions::default()
                 .with_spin_seconds(self.spin_seconds)?
                 .with_realtime_priority(self.fifo)
                 .with_standby_core(self.standby_core);
-            run_realtime(out, servo, &mut vendors, limit, options, &mut on_tick)?
+            // The deformer starts refreshing now, beside the servo thread about to start.
+            let deformer = deforming.map(|p| p.spawn(clock, None)).transpose()?;
+            let ran = run_realtime(out, servo, &mut vendors, limit, options, &mut on_tick)?;
+            if let Some(d) = deformer {
+                deformed = Some((d.finish()?, None));
+            }
+            ran
         } else {
-            let stop = servo.run_simulated(ticks, &mut on_tick);
+            let stop = match deforming {
+                Some(plan) => {
+                    let mut deformer = plan.spawn(clock, None)?;
+                    let (stop, versions) =
+                        deform::run_lockstep(&mut servo, &mut deformer, ticks, &mut on_tick)?;
+                    deformed = Some((deformer.finish()?, Some(versions)));
+                    stop
+                }
+                None => servo.run_simulated(ticks, &mut on_tick),
+            };
             servo.close();
             Ran {
                 stats: servo.stats().clone(),
@@ -257,6 +304,7 @@ impl Session {
                 dropped: 0,
                 devices: devices_ran(&servo),
                 faulted: servo.faulted_device(),
+                last_version: first_version(servo.scene()),
             }
         };
         writeln!(out, "\nrun:")?;
@@ -279,6 +327,9 @@ impl Session {
             .map(|(i, (s, d))| (devices::name(i, n, vendors[i].as_ref()), s, info(d)))
             .collect();
         summary::print_devices(out, &blocks, &ran.stats)?;
+        if let Some((refreshes, versions)) = &deformed {
+            deform::print(out, refreshes, versions.as_ref(), ran.last_version)?;
+        }
         let plot = self.plot.as_deref().map(|p| (p, placed.as_slice()));
         write_files(out, trace, plot, &self.title, &summaries[0])?;
         let touched: Vec<Touch> = summaries.iter().map(|s| touch_of(replay, s)).collect();
@@ -394,6 +445,11 @@ fn write_files(
     Ok(())
 }
 
+/// The version of the shape of `scene`'s first object (the one `--deform` deforms).
+fn first_version(scene: &Scene) -> Option<u64> {
+    scene.objects().first().map(|o| o.shape.version())
+}
+
 /// The largest stiffness of the scene's objects, N/m (0 for none).
 pub fn stiffest(scene: &Scene) -> f64 {
     scene
@@ -474,6 +530,7 @@ fn run_realtime(
         dropped: run.dropped_records,
         devices: devices_ran(&run.servo),
         faulted: run.servo.faulted_device(),
+        last_version: first_version(run.servo.scene()),
     })
 }
 

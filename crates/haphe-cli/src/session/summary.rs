@@ -125,7 +125,7 @@ impl Summary {
 }
 
 /// Formats nanoseconds as µs with a sensible precision.
-fn us(ns: u64) -> String {
+pub fn us(ns: u64) -> String {
     let v = ns as f64 / 1e3;
     if v < 10.0 {
         format!("{v:.2} µs")
