@@ -11,7 +11,7 @@ const $ = (id) => document.getElementById(id);
 // What the page shows now; tests read it.
 const state = {
   ready: false, info: null, frame: null, frames: 0, sent: 0, connected: false,
-  replay: null, drawn: {}, others: [],
+  replay: null, drawn: {}, others: [], deformed: {},
 };
 window.haphe = state;
 
@@ -268,9 +268,11 @@ if (info.mode === 'live') {
       'moves it in depth (W/S keys too). Drag to orbit, right-drag to pan, Shift+wheel to zoom.'
     : 'Drag to orbit, right-drag to pan, wheel to zoom.';
   socket = new WebSocket(`ws://${location.host}/ws`);
+  socket.binaryType = 'arraybuffer';
   socket.onopen = () => { state.connected = true; };
   socket.onclose = () => { state.connected = false; $('status').textContent = 'disconnected'; };
   socket.onmessage = (event) => {
+    if (event.data instanceof ArrayBuffer) { deform(event.data); return; }
     const f = JSON.parse(event.data);
     state.frame = f;
     state.frames += 1;
@@ -400,6 +402,33 @@ function stepReplay(dt) {
   }
   chart.replace(points);
 }
+
+// A deforming object's new vertices (see `VertexPublisher::publish`): 'HPD1', id (u32),
+// version (u64), vertex count (u32), positions (3 f32 each), object frame. The mesh is
+// redrawn from them; state.deformed[id] says which version is drawn, how many arrived,
+// and state.vertex(id, i) where vertex i is drawn (object frame).
+function deform(buffer) {
+  const view = new DataView(buffer);
+  if (view.byteLength < 20 || view.getUint32(0, true) !== 0x31445048) return;
+  const id = view.getUint32(4, true);
+  const version = Number(view.getBigUint64(8, true));
+  const n = view.getUint32(16, true);
+  const o = objects.get(id);
+  const attribute = o?.mesh.geometry.attributes.position;
+  if (!o || attribute.count !== n || view.byteLength !== 20 + 12 * n) return;
+  const positions = new Float32Array(buffer, 20, 3 * n);
+  attribute.array.set(positions);
+  attribute.needsUpdate = true;
+  o.mesh.geometry.computeVertexNormals();
+  o.mesh.geometry.computeBoundingSphere();
+  o.positions = attribute.array;
+  const seen = state.deformed[id];
+  state.deformed[id] = { version, updates: (seen?.updates ?? 0) + 1 };
+}
+state.vertex = (id, i) => {
+  const a = objects.get(id)?.mesh.geometry.attributes.position;
+  return a ? [a.getX(i), a.getY(i), a.getZ(i)] : null;
+};
 
 // Where a world point is on the page, CSS pixels (for tests and tools driving the page).
 state.project = (x, y, z) => {

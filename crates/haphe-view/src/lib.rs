@@ -5,7 +5,8 @@
 //! a point), the line between them, the force arrow, the contact triangle and its normal,
 //! the contact and sticking state, the tick rate and compute-time percentiles, a
 //! force/penetration chart over the last seconds, and where the scene's force effects act
-//! (a viscosity's box or object, a spring's anchor: [`EffectMark`]); orbit, pan and zoom
+//! (a viscosity's box or object, a spring's anchor: [`EffectMark`]), and objects that
+//! deform redrawn from their current vertices ([`VertexPublisher`]); orbit, pan and zoom
 //! with the mouse. The page and three.js are embedded in the binary: it works offline.
 //!
 //! Two sources:
@@ -26,6 +27,7 @@
 //!
 //! SI units; everything the page draws is in the world frame, z up.
 
+mod deform;
 mod effects;
 mod live;
 mod model;
@@ -35,6 +37,9 @@ mod replay;
 mod server;
 mod timing;
 
+pub use deform::{
+    VERTEX_RATE_HZ, VERTICES_MAGIC, VertexFeed, VertexPublisher, encode_vertices, vertex_channel,
+};
 pub use effects::{EffectMark, Place};
 pub use live::{FRAME_RATE_HZ, Frame, LiveRun, LiveSource, OtherTool, Published, STATS_WINDOW_S};
 pub use model::{MESH_MAGIC, Model, ObjectInfo, ObjectMesh};
@@ -195,6 +200,7 @@ impl ViewServer {
             trace: trace.map(|t| encode_trace(&t)),
             frames: frames.clone(),
             mouse: mouse.map(Mutex::new),
+            deforming: model.deforming.clone(),
             closing: closing_rx.clone(),
         });
         let runtime = tokio::runtime::Builder::new_current_thread()

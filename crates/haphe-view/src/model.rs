@@ -7,6 +7,7 @@ use haphe::scene::Scene;
 use haphe::servo::ObjectMotion;
 use serde::Serialize;
 
+use crate::deform::VertexFeed;
 use crate::effects::EffectMark;
 
 /// One object as the page draws it.
@@ -42,6 +43,8 @@ pub struct Model {
     pub tool_radius: f64,
     /// The scene's force effects, where they act.
     pub effects: Vec<EffectMark>,
+    /// The vertices of objects another thread deforms, as it publishes them.
+    pub deforming: Vec<VertexFeed>,
 }
 
 /// What the page learns at connect besides the meshes (JSON).
@@ -91,7 +94,15 @@ impl Model {
             motions: Vec::new(),
             tool_radius: 0.0,
             effects: scene.effects().iter().map(EffectMark::of).collect(),
+            deforming: Vec::new(),
         }
+    }
+
+    /// The model with an object that deforms: the page redraws it from the vertices
+    /// `feed` receives.
+    pub fn with_deforming(mut self, feed: VertexFeed) -> Model {
+        self.deforming.push(feed);
+        self
     }
 
     /// The model with the scripted motions of its objects.

@@ -14,6 +14,7 @@ use axum::routing::get;
 use glam::DVec3;
 use tokio::sync::watch;
 
+use crate::deform::{VERTEX_RATE_HZ, VertexFeed};
 use crate::live::{FRAME_RATE_HZ, Published};
 use crate::mouse::MouseHandle;
 
@@ -27,6 +28,8 @@ pub(crate) struct Shared {
     pub(crate) frames: watch::Receiver<Option<Published>>,
     pub(crate) mouse: Option<Mutex<MouseHandle>>,
     pub(crate) closing: watch::Receiver<bool>,
+    /// The vertices of deforming objects.
+    pub(crate) deforming: Vec<VertexFeed>,
 }
 
 macro_rules! asset {
@@ -110,13 +113,26 @@ async fn ws(State(s): State<Arc<Shared>>, upgrade: WebSocketUpgrade) -> Response
     upgrade.on_upgrade(move |socket| stream(socket, s))
 }
 
-/// One connection: the latest frame at display rate (when there is a new one), and the
-/// pointer's points to the mouse device.
+/// One connection: the latest frame at display rate (when there is a new one), the
+/// latest vertices of each deforming object at most at [`VERTEX_RATE_HZ`] (when its
+/// version changed; the first at once), and the pointer's points to the mouse device.
 async fn stream(mut socket: WebSocket, s: Arc<Shared>) {
     let mut frames = s.frames.clone();
     let mut closing = s.closing.clone();
     let mut every = tokio::time::interval(Duration::from_secs_f64(1.0 / FRAME_RATE_HZ));
     every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    let mut vertices: Vec<watch::Receiver<_>> = s
+        .deforming
+        .iter()
+        .map(|f| {
+            let mut rx = f.rx.clone();
+            rx.mark_changed();
+            rx
+        })
+        .collect();
+    let mut every_vertices =
+        tokio::time::interval(Duration::from_secs_f64(1.0 / VERTEX_RATE_HZ));
+    every_vertices.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     // The pump drops its sender when the servo loop ends, right after publishing the last
     // frame: that frame is still sent, once.
     let mut last_sent = false;
@@ -133,6 +149,19 @@ async fn stream(mut socket: WebSocket, s: Arc<Shared>) {
                     && socket.send(Message::Text(json.as_ref().into())).await.is_err()
                 {
                     return;
+                }
+            }
+            _ = every_vertices.tick(), if !vertices.is_empty() => {
+                for rx in &mut vertices {
+                    if !rx.has_changed().unwrap_or(false) {
+                        continue;
+                    }
+                    let bytes = rx.borrow_and_update().clone();
+                    if let Some(bytes) = bytes
+                        && socket.send(Message::Binary(bytes.to_vec().into())).await.is_err()
+                    {
+                        return;
+                    }
                 }
             }
             message = socket.recv() => match message {

@@ -13,6 +13,7 @@ use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe_view::{Model, Source, Trace};
 
+use crate::args::deform::DeformArgs;
 use crate::args::feel::FeelArgs;
 use crate::args::{ClutchArgs, MappingArgs, ToolArgs, parse_units};
 use crate::input::files::{self, read_input};
@@ -76,6 +77,8 @@ pub struct Args {
     #[command(flatten)]
     feel: FeelArgs,
     #[command(flatten)]
+    deform: DeformArgs,
+    #[command(flatten)]
     serve: Serve,
 }
 
@@ -98,6 +101,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     // The flag's domain first; its fit to the scene once the scene is built.
     args.tool.radius(None)?;
     let feel = args.feel.check(args.rate)?;
+    let deform = args.deform.check(args.rate)?;
     let mut loaded = if let Some(file) = &args.scene {
         load_scene(file, &map)?
     } else if let Some(file) = &args.mesh {
@@ -117,6 +121,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     feel.apply(&mut loaded, args.rate)?;
     let tool = args.tool.radius(loaded.tool_radius.clone())?;
     if let Some(file) = &args.replay {
+        if deform.is_some() {
+            bail!("--deform deforms the object of a live view; a replay (--replay) shows its trace's objects as they were");
+        }
         let name = file.display().to_string();
         // Through the input module, like every command: a size limit, devices refused.
         let bytes = read_input(file, files::TRACE)?;
@@ -153,5 +160,5 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .map(|p| p.display().to_string())
         .or(args.shape.clone())
         .unwrap_or_default();
-    live(loaded, device, args.rate, &tool, &what, &args.serve)
+    live(loaded, device, args.rate, &tool, &what, (&args.serve, deform))
 }

@@ -153,6 +153,11 @@ impl Plan {
         })
     }
 
+    /// The object it deforms.
+    pub fn id(&self) -> ObjectId {
+        self.id
+    }
+
     /// The line under the scene's: what deforms, how often, on which clock.
     pub fn describe(&self, clock: Clock) -> String {
         let follows = match clock {

@@ -3,7 +3,7 @@
 
 use anyhow::anyhow;
 use haphe::DVec3;
-use haphe::scene::Scene;
+use haphe::scene::{Scene, SceneEditor};
 use haphe::servo::{
     Device, DeviceMapping, HandOptions, ObjectMotion, PathKind, RealtimeOptions, ServoOptions,
     SimulatedHand, scene_bounds, scripted_path,
@@ -11,9 +11,11 @@ use haphe::servo::{
 use haphe_view::{LiveSource, Model, MouseDevice, Source, ViewOptions, ViewServer};
 use std::process::ExitCode;
 
+use super::deform::{self, Clock, Deformer, Plan};
 use super::device::{self, VendorChoice};
 use super::wait;
 use crate::args::ToolRadius;
+use crate::args::deform::Deform;
 use crate::input::scene::LoadedScene;
 
 /// Port the view serves on by default.
@@ -45,10 +47,28 @@ pub enum ViewDevice {
     Vendor(Vec<VendorChoice>, Option<f64>, Option<u32>),
 }
 
+/// The scene of a view: the scene, the objects' names and their motions.
+pub type ViewScene = (Scene, Vec<String>, Vec<ObjectMotion>);
+
 /// Builds the scene of `loaded` (its objects and effects): the scene, the objects' names
 /// and their motions.
-pub fn scene_of(loaded: LoadedScene) -> anyhow::Result<(Scene, Vec<String>, Vec<ObjectMotion>)> {
-    let mut scene = Scene::local(loaded.objects.len() + 4);
+pub fn scene_of(loaded: LoadedScene) -> anyhow::Result<ViewScene> {
+    Ok(editable_scene_of(loaded, false)?.0)
+}
+
+/// [`scene_of`], with the scene's editor when `editor` (a scene that another thread
+/// changes: a deforming object's).
+fn editable_scene_of(
+    loaded: LoadedScene,
+    editor: bool,
+) -> anyhow::Result<(ViewScene, Option<SceneEditor>)> {
+    let capacity = loaded.objects.len() + 4;
+    let (mut scene, editor) = if editor {
+        let (scene, editor) = Scene::new(capacity);
+        (scene, Some(editor))
+    } else {
+        (Scene::local(capacity), None)
+    };
     let mut names = Vec::new();
     let mut motions = Vec::new();
     super::add_effects(&mut scene, &loaded.effects)?;
@@ -59,7 +79,22 @@ pub fn scene_of(loaded: LoadedScene) -> anyhow::Result<(Scene, Vec<String>, Vec<
             .insert(o.object)
             .map_err(|(e, _)| anyhow!("cannot add an object: {e}"))?;
     }
-    Ok((scene, names, motions))
+    Ok(((scene, names, motions), editor))
+}
+
+/// Starts the deformer of `plan` on the wall clock, publishing each version it sends to
+/// the page through `model`, and says so.
+fn start_deformer(plan: Plan, model: Model) -> anyhow::Result<(Deformer, Model)> {
+    let (publisher, feed) = haphe_view::vertex_channel();
+    let id = plan.id().0;
+    println!("{}", plan.describe(Clock::Wall));
+    let deformer = plan.spawn(
+        Clock::Wall,
+        Some(Box::new(move |version, vertices| {
+            publisher.publish(id, version, vertices);
+        })),
+    )?;
+    Ok((deformer, model.with_deforming(feed)))
 }
 
 /// Serves a live view of `loaded` (its objects and effects) touched by `device` with a
@@ -70,12 +105,21 @@ pub fn live(
     rate_hz: f64,
     tool: &ToolRadius,
     what: &str,
-    serve_options: &Serve,
+    (serve_options, deform): (&Serve, Option<Deform>),
 ) -> anyhow::Result<ExitCode> {
     let options = ServoOptions::new(rate_hz).map_err(|e| anyhow!("{}", e.named("--rate")))?;
-    let (scene, names, motions) = scene_of(loaded)?;
+    let ((scene, names, motions), editor) = editable_scene_of(loaded, deform.is_some())?;
     let options = options.with_proxy(tool.apply(*options.proxy(), &scene)?);
     let model = Model::from_scene(&scene, &names);
+    let plan = match (deform, editor) {
+        (Some(d), Some(e)) => Some(Plan::new(
+            &scene,
+            e,
+            names.first().map_or("", String::as_str),
+            d,
+        )?),
+        _ => None,
+    };
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
     let mut mapping = DeviceMapping::IDENTITY;
     let mut clutch_button = None;
@@ -139,6 +183,13 @@ pub fn live(
         clock,
         others,
     };
+    let (deformer, model) = match plan {
+        Some(plan) => {
+            let (deformer, model) = start_deformer(plan, model)?;
+            (Some(deformer), model)
+        }
+        None => (None, model),
+    };
     let code = serve(
         model,
         Source::Live {
@@ -150,6 +201,9 @@ pub fn live(
     )?;
     for line in reports.iter().filter_map(|r| r()) {
         println!("device: {line}");
+    }
+    if let Some(deformer) = deformer {
+        deform::print(&mut std::io::stdout(), &deformer.finish()?, None, None)?;
     }
     Ok(code)
 }
