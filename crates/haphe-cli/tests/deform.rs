@@ -76,7 +76,10 @@ fn every_kind_deforms_the_sphere_in_lockstep_and_reports_it() {
     }
     // Another rate: 40 refreshes a second are 25 ticks each.
     let text = run(&press(&["--deform", "twist", "--deform-rate", "40"]));
-    assert!(line(&text, "refreshes").contains("32 made, 32 sent"), "{text}");
+    assert!(
+        line(&text, "refreshes").contains("32 made, 32 sent"),
+        "{text}"
+    );
     assert!(
         line(&text, "versions").contains("versions 1 to 32, each in force for 25 ticks"),
         "{text}"
@@ -126,7 +129,10 @@ fn a_breathing_sphere_is_felt_where_each_version_has_it_and_runs_repeat() {
     // Guards against a check that holds without a deformation: enough contact, and the
     // proxy away from the sphere at rest on many of those ticks.
     assert!(contact > 50, "{contact} ticks in contact");
-    assert!(off_rest > 20, "{off_rest} of {contact} ticks off the rest sphere");
+    assert!(
+        off_rest > 20,
+        "{off_rest} of {contact} ticks off the rest sphere"
+    );
 }
 
 #[test]
@@ -194,7 +200,11 @@ fn verify_deform_passes_on_the_in_tree_models() {
                     .any(|k| l.starts_with(k))
             })
             .collect();
-        assert_eq!(rows.len(), if model == "sphere.ply" { 3 } else { 1 }, "{text}");
+        assert_eq!(
+            rows.len(),
+            if model == "sphere.ply" { 3 } else { 1 },
+            "{text}"
+        );
         for row in rows {
             let cells: Vec<&str> = row.split('|').map(str::trim).collect();
             assert_eq!(cells[2], "150", "{row}");
@@ -209,7 +219,11 @@ fn bad_deformations_are_refused_naming_the_flag() {
     let sphere = ["--shape", "sphere", "--triangles", "100"];
     let mut commands = vec![
         [&["simulate", "--seconds", "0.1"][..], &sphere].concat(),
-        [&["run", "--device", "hand", "--seconds", "0.1"][..], &sphere].concat(),
+        [
+            &["run", "--device", "hand", "--seconds", "0.1"][..],
+            &sphere,
+        ]
+        .concat(),
     ];
     if cfg!(feature = "view") {
         commands.push([&["view", "--no-open", "--port", "0"][..], &sphere].concat());
@@ -226,7 +240,10 @@ fn bad_deformations_are_refused_naming_the_flag() {
             ),
             (&["--deform", "dent", "--deform-rate", "-5"], "not -5"),
             (&["--deform", "dent", "--deform-rate", "nan"], "not NaN"),
-            (&["--deform", "dent", "--deform-rate", "1e9"], "not 1000000000"),
+            (
+                &["--deform", "dent", "--deform-rate", "1e9"],
+                "not 1000000000",
+            ),
             (
                 &["--deform", "dent", "--deform-rate", "500", "--rate", "200"],
                 "from 0.1 to 200 Hz (the servo rate, --rate 200), not 500",
@@ -238,7 +255,10 @@ fn bad_deformations_are_refused_naming_the_flag() {
             assert_error(&haphe(&args), &[says]);
         }
     }
-    let sphere = concat!(env!("CARGO_MANIFEST_DIR"), "/../../meshes/models/sphere.ply");
+    let sphere = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../meshes/models/sphere.ply"
+    );
     assert_error(
         &haphe(&["verify", sphere, "--deform", "wobble"]),
         &["--deform", "unknown deformation `wobble`", "or all"],

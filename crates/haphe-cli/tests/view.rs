@@ -78,6 +78,11 @@ impl Drop for Running {
 /// Starts `haphe view ARGS --no-open --port 0`, reads its address, fetches `/info`,
 /// interrupts it and returns the info and everything it printed.
 fn serve_and_interrupt(args: &[&str]) -> (String, String) {
+    serve_then_interrupt(args, |_| {})
+}
+
+/// [`serve_and_interrupt`], running `during` with the view's address before the Ctrl-C.
+fn serve_then_interrupt(args: &[&str], during: impl FnOnce(&str)) -> (String, String) {
     let mut child = Running(
         Command::new(env!("CARGO_BIN_EXE_haphe"))
             .arg("view")
@@ -115,6 +120,7 @@ fn serve_and_interrupt(args: &[&str]) -> (String, String) {
         .split_once("\r\n\r\n")
         .map(|(_, b)| b.to_string())
         .unwrap_or_default();
+    during(&addr);
     // Ctrl-C: the view stops the servo and prints how it ran.
     let status = Command::new("kill")
         .args(["-INT", &child.0.id().to_string()])
@@ -302,4 +308,72 @@ fn the_view_tells_the_page_where_the_effects_act() {
         serde_json::json!({"kind": "object", "id": 4})
     );
     let _ = std::fs::remove_file(&scene);
+}
+
+/// A deforming object's vertices reach the page: binary messages `HPD1` of the object's
+/// every vertex, their version rising, each the breathing sphere's at some scale; the
+/// deformer's report after Ctrl-C.
+#[test]
+fn a_deforming_view_sends_the_pages_the_current_vertices() {
+    let (_, printed) = serve_then_interrupt(
+        &[
+            "--shape",
+            "sphere",
+            "--triangles",
+            "320",
+            "--device",
+            "hand",
+            "--deform",
+            "breathe",
+        ],
+        |addr| {
+            let (mut socket, _) =
+                tungstenite::connect(format!("ws://{addr}/ws")).expect("the stream");
+            if let tungstenite::stream::MaybeTlsStream::Plain(tcp) = socket.get_ref() {
+                tcp.set_read_timeout(Some(Duration::from_secs(10)))
+                    .expect("timeout");
+            }
+            let mut versions = Vec::new();
+            let mut radii = Vec::new();
+            let started = Instant::now();
+            while versions.len() < 3 {
+                assert!(started.elapsed() < Duration::from_secs(30), "{versions:?}");
+                let tungstenite::Message::Binary(bytes) = socket.read().expect("a message") else {
+                    continue;
+                };
+                assert_eq!(&bytes[..4], b"HPD1");
+                let u32_at = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().expect("4"));
+                let f32_at = |i: usize| f32::from_le_bytes(bytes[i..i + 4].try_into().expect("4"));
+                let version = u64::from_le_bytes(bytes[8..16].try_into().expect("8"));
+                let n = u32_at(16) as usize;
+                assert_eq!((u32_at(4), bytes.len()), (0, 20 + 12 * n));
+                // Every vertex of the geodesic sphere at the same distance from its centre.
+                let r: Vec<f64> = (0..n)
+                    .map(|v| {
+                        let p = [0, 1, 2].map(|k| f64::from(f32_at(20 + 12 * v + 4 * k)));
+                        (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt()
+                    })
+                    .collect();
+                let (lo, hi) = r
+                    .iter()
+                    .fold((f64::MAX, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
+                assert!(
+                    hi - lo < 1e-6 && (0.085 - 1e-6..0.115 + 1e-6).contains(&lo),
+                    "{lo} {hi}"
+                );
+                versions.push(version);
+                radii.push(lo);
+            }
+            assert!(versions.windows(2).all(|w| w[0] < w[1]), "{versions:?}");
+            assert!(
+                radii.windows(2).any(|w| (w[0] - w[1]).abs() > 1e-5),
+                "{radii:?}"
+            );
+        },
+    );
+    assert!(
+        printed.contains("deformation: breathe of sphere (id 0, 320 triangles) at 100 Hz, each version made by a deformer thread on the wall clock"),
+        "{printed}"
+    );
+    assert!(printed.contains("  refreshes         "), "{printed}");
 }

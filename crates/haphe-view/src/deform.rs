@@ -38,7 +38,8 @@ impl VertexPublisher {
     /// yet sent. The message, little-endian: `HPD1`, id (u32), version (u64), vertex count
     /// (u32), positions (3 f32 per vertex).
     pub fn publish(&self, id: u32, version: u64, positions: &[DVec3]) {
-        self.tx.send_replace(Some(encode_vertices(id, version, positions)));
+        self.tx
+            .send_replace(Some(encode_vertices(id, version, positions)));
     }
 }
 
@@ -73,6 +74,9 @@ mod tests {
         assert_eq!(u32::from_le_bytes(bytes[4..8].try_into().expect("4")), 3);
         assert_eq!(u64::from_le_bytes(bytes[8..16].try_into().expect("8")), 2);
         assert_eq!(u32::from_le_bytes(bytes[16..20].try_into().expect("4")), 1);
-        assert_eq!(f32::from_le_bytes(bytes[24..28].try_into().expect("4")), -1.0);
+        assert_eq!(
+            f32::from_le_bytes(bytes[24..28].try_into().expect("4")),
+            -1.0
+        );
     }
 }

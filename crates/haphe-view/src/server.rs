@@ -130,8 +130,7 @@ async fn stream(mut socket: WebSocket, s: Arc<Shared>) {
             rx
         })
         .collect();
-    let mut every_vertices =
-        tokio::time::interval(Duration::from_secs_f64(1.0 / VERTEX_RATE_HZ));
+    let mut every_vertices = tokio::time::interval(Duration::from_secs_f64(1.0 / VERTEX_RATE_HZ));
     every_vertices.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     // The pump drops its sender when the servo loop ends, right after publishing the last
     // frame: that frame is still sent, once.

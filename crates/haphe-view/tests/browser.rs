@@ -620,3 +620,75 @@ fn effect_zones_are_drawn_where_they_act() {
     let errors = std::mem::take(&mut browser.errors);
     assert!(errors.is_empty(), "console errors: {errors:#?}");
 }
+
+/// A deforming object is redrawn from the vertices its deformer publishes: the page draws
+/// the version it received last, each vertex where that version has it.
+#[test]
+fn a_deforming_object_is_redrawn_from_its_current_vertices() {
+    let scene = sphere_scene();
+    let (_, hi, centre, radius) = sphere_bounds(&scene);
+    let rest: Vec<DVec3> = scene.objects()[0].shape.surface().vertices().to_vec();
+    let (publisher, feed) = haphe_view::vertex_channel();
+    let model = Model::from_scene(&scene, &["sphere".to_string()]).with_deforming(feed);
+    let start = DVec3::new(centre.x, centre.y, hi.z + 1.5 * radius);
+    let view = live_view(
+        model,
+        scene,
+        start,
+        (Vec::new(), None),
+        false,
+        "a breathing sphere",
+        ServoOptions::default(),
+    );
+    // Version k: the sphere scaled about its centre by 1 + 0.01 k, published at 100 Hz
+    // (the page gets at most 30 a second) until the test is done.
+    let scale = |k: u64| 1.0 + 0.01 * k as f64;
+    let done = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let deformer = {
+        let (done, rest) = (std::sync::Arc::clone(&done), rest.clone());
+        std::thread::spawn(move || {
+            let mut k = 1;
+            while !done.load(std::sync::atomic::Ordering::Relaxed) && k < 3000 {
+                let vertices: Vec<DVec3> = rest
+                    .iter()
+                    .map(|&p| centre + scale(k) * (p - centre))
+                    .collect();
+                publisher.publish(0, k, &vertices);
+                k += 1;
+                std::thread::sleep(Duration::from_millis(10));
+            }
+        })
+    };
+    let mut browser = Browser::start(WIDTH, HEIGHT);
+    browser.navigate(&view.url());
+    browser.wait_for(
+        "!!(window.haphe && window.haphe.ready && window.haphe.deformed[0] && window.haphe.deformed[0].updates >= 3)",
+        Duration::from_secs(40),
+        "the page to redraw the sphere three times",
+    );
+    // Read at once: the version drawn and where three vertices are drawn.
+    let seen = browser.eval(
+        "JSON.stringify({ d: window.haphe.deformed[0], v: [0, 7, 100].map((i) => window.haphe.vertex(0, i)) })",
+    );
+    let seen: Value = serde_json::from_str(seen.as_str().expect("text")).expect("json");
+    done.store(true, std::sync::atomic::Ordering::Relaxed);
+    deformer.join().expect("the deformer");
+    let version = seen["d"]["version"].as_u64().expect("a version");
+    assert!(version >= 3, "{seen}");
+    for (j, i) in [0usize, 7, 100].into_iter().enumerate() {
+        let drawn = DVec3::from_array([0, 1, 2].map(|k| seen["v"][j][k].as_f64().expect("xyz")));
+        let expected = centre + scale(version) * (rest[i] - centre);
+        // The page draws in f32.
+        assert!(
+            (drawn - expected).length() < 1e-6,
+            "vertex {i}: drawn at {drawn}, version {version} has it at {expected}"
+        );
+        assert!(
+            (drawn - rest[i]).length() > 0.02 * radius,
+            "vertex {i} did not move"
+        );
+    }
+    view.stop().expect("stops");
+    let errors = std::mem::take(&mut browser.errors);
+    assert!(errors.is_empty(), "console errors: {errors:#?}");
+}

@@ -29,7 +29,12 @@ pub struct DeformArgs {
     /// With --deform: refreshes of the shape a second, Hz (default 100; from 0.1 to 1000,
     /// and at most the servo rate).
     // Negative numbers are values, so that `-5` is refused naming the flag.
-    #[arg(long, value_name = "HZ", allow_negative_numbers = true, requires = "deform")]
+    #[arg(
+        long,
+        value_name = "HZ",
+        allow_negative_numbers = true,
+        requires = "deform"
+    )]
     pub deform_rate: Option<f64>,
 }
 

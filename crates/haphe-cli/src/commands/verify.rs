@@ -185,9 +185,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .then(|| proxy::strikes(surface, options, args.strikes, args.seed))
         .transpose()?;
     let deforming = match &args.deform {
-        Some(kinds) if ticks > 0 => Some(deform::check(
-            surface, &kinds.0, options, ticks, args.seed,
-        )?),
+        Some(kinds) if ticks > 0 => {
+            Some(deform::check(surface, &kinds.0, options, ticks, args.seed)?)
+        }
         _ => None,
     };
 

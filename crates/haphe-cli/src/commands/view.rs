@@ -122,7 +122,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let tool = args.tool.radius(loaded.tool_radius.clone())?;
     if let Some(file) = &args.replay {
         if deform.is_some() {
-            bail!("--deform deforms the object of a live view; a replay (--replay) shows its trace's objects as they were");
+            bail!(
+                "--deform deforms the object of a live view; a replay (--replay) shows its trace's objects as they were"
+            );
         }
         let name = file.display().to_string();
         // Through the input module, like every command: a size limit, devices refused.
@@ -160,5 +162,12 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         .map(|p| p.display().to_string())
         .or(args.shape.clone())
         .unwrap_or_default();
-    live(loaded, device, args.rate, &tool, &what, (&args.serve, deform))
+    live(
+        loaded,
+        device,
+        args.rate,
+        &tool,
+        &what,
+        (&args.serve, deform),
+    )
 }

@@ -85,9 +85,14 @@ impl Refresher {
         let vertices = self.report.kind.vertices_at(&self.rest, t);
         let shape = Arc::new(self.latest.deformed(&vertices)?);
         let ns = began.elapsed().as_nanos();
-        self.report.times.record(u64::try_from(ns).unwrap_or(u64::MAX));
+        self.report
+            .times
+            .record(u64::try_from(ns).unwrap_or(u64::MAX));
         self.report.made += 1;
-        match self.editor.send(Edit::SetShape(self.id, Arc::clone(&shape))) {
+        match self
+            .editor
+            .send(Edit::SetShape(self.id, Arc::clone(&shape)))
+        {
             Ok(()) => {
                 self.report.sent += 1;
                 self.report.last_sent = shape.version();
@@ -417,7 +422,10 @@ pub fn print(
         refreshes += &format!(", {} dropped (the edit ring was full)", r.busy);
     }
     if r.skipped > 0 {
-        refreshes += &format!(", {} skipped (the one before overran its period)", r.skipped);
+        refreshes += &format!(
+            ", {} skipped (the one before overran its period)",
+            r.skipped
+        );
     }
     writeln!(out, "  refreshes         {refreshes}")?;
     let t = &r.times;

@@ -250,7 +250,11 @@ impl Session {
         print_scene(out, &names, triangles, self.build_seconds, (tool, &effects))?;
         devices::print(out, &servo, &vendors, stiffness)?;
         let realtime = self.realtime || vendors.iter().any(Option::is_some);
-        let clock = if realtime { Clock::Wall } else { Clock::Simulated };
+        let clock = if realtime {
+            Clock::Wall
+        } else {
+            Clock::Simulated
+        };
         if let Some(plan) = &deforming {
             writeln!(out, "{}", plan.describe(clock))?;
         }

@@ -23,11 +23,7 @@ const SPEEDS_M_S: (f64, f64) = (0.02, 0.3);
 const DEPTHS_M: (f64, f64) = (-2e-3, 10e-3);
 
 /// The deformations `--deform all` checks.
-pub const ALL: [Deformation; 3] = [
-    Deformation::Breathe,
-    Deformation::Dent,
-    Deformation::Twist,
-];
+pub const ALL: [Deformation; 3] = [Deformation::Breathe, Deformation::Dent, Deformation::Twist];
 
 /// The deformations named by `--deform`.
 #[derive(Debug, Clone)]
