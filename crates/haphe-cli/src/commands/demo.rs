@@ -61,14 +61,11 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     if args.view {
         return Err(super::missing::missing("view", "demo --view"));
     }
-    let (triangles, seconds) = if args.fast {
-        (2_000, args.seconds.unwrap_or(3.0))
-    } else {
-        (
-            args.triangles,
-            args.seconds.unwrap_or(default_seconds(args)),
-        )
-    };
+    let triangles = if args.fast { 2_000 } else { args.triangles };
+    let seconds = (args.seconds).unwrap_or_else(|| match args.fast {
+        true => 3.0,
+        false => default_seconds(args),
+    });
     Catalog::check_triangles(triangles).map_err(|e| anyhow::anyhow!("--triangles: {e}"))?;
     let tool = args.tool.radius(None)?;
     let outputs: Vec<&std::path::Path> = std::iter::once(args.plot.as_path())

@@ -123,26 +123,7 @@ struct Verification {
 /// Runs the command; exit 0 when every check passes, 1 otherwise.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let n = args.samples;
-    let checked = [
-        args.random,
-        args.adversarial,
-        args.points,
-        args.walks,
-        args.ticks,
-    ]
-    .into_iter()
-    .map(|count| count.unwrap_or(n))
-    .sum::<usize>();
-    if checked + args.strikes == 0 {
-        bail!(
-            "nothing to check: --samples 0 (and no --random, --adversarial, --points, --walks, --ticks or --strikes above 0) would pass having checked nothing"
-        );
-    }
-    if args.deform.is_some() && args.ticks.unwrap_or(n) == 0 {
-        bail!(
-            "nothing to check: --deform runs --ticks ticks (default --samples) of each deformation, and they are 0"
-        );
-    }
+    let checked = checked(args)?;
     let start = Instant::now();
     let read = ReadOptions {
         units: args.units,
@@ -229,6 +210,36 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+/// How many samples the checks take (but the strikes), after refusing a run that would
+/// check nothing.
+///
+/// # Errors
+/// Nothing to check: every count 0, or `--deform` with no ticks.
+fn checked(args: &Args) -> anyhow::Result<usize> {
+    let n = args.samples;
+    let checked = [
+        args.random,
+        args.adversarial,
+        args.points,
+        args.walks,
+        args.ticks,
+    ]
+    .into_iter()
+    .map(|count| count.unwrap_or(n))
+    .sum::<usize>();
+    if checked + args.strikes == 0 {
+        bail!(
+            "nothing to check: --samples 0 (and no --random, --adversarial, --points, --walks, --ticks or --strikes above 0) would pass having checked nothing"
+        );
+    }
+    if args.deform.is_some() && args.ticks.unwrap_or(n) == 0 {
+        bail!(
+            "nothing to check: --deform runs --ticks ticks (default --samples) of each deformation, and they are 0"
+        );
+    }
+    Ok(checked)
 }
 
 fn print_tables(out: &mut impl Write, r: &Verification) -> std::io::Result<()> {

@@ -37,6 +37,17 @@ pub enum Clock {
     Wall,
 }
 
+impl Clock {
+    /// The wall clock for a real-time run, else the simulated clock.
+    pub fn of(realtime: bool) -> Clock {
+        if realtime {
+            Clock::Wall
+        } else {
+            Clock::Simulated
+        }
+    }
+}
+
 /// Called on the deformer thread with each version sent and its vertices (object frame):
 /// how the view's page learns the surface it draws.
 pub type Publish = Box<dyn FnMut(u64, &[DVec3]) + Send>;

@@ -82,9 +82,12 @@ fn editable_scene_of(
     Ok(((scene, names, motions), editor))
 }
 
-/// Starts the deformer of `plan` on the wall clock, publishing each version it sends to
-/// the page through `model`, and says so.
-fn start_deformer(plan: Plan, model: Model) -> anyhow::Result<(Deformer, Model)> {
+/// Starts the deformer of `plan`, if any, on the wall clock, publishing each version it
+/// sends to the page through `model`, and says so.
+fn start_deformer(plan: Option<Plan>, model: Model) -> anyhow::Result<(Option<Deformer>, Model)> {
+    let Some(plan) = plan else {
+        return Ok((None, model));
+    };
     let (publisher, feed) = haphe_view::vertex_channel();
     let id = plan.id().0;
     println!("{}", plan.describe(Clock::Wall));
@@ -94,7 +97,7 @@ fn start_deformer(plan: Plan, model: Model) -> anyhow::Result<(Deformer, Model)>
             publisher.publish(id, version, vertices);
         })),
     )?;
-    Ok((deformer, model.with_deforming(feed)))
+    Ok((Some(deformer), model.with_deforming(feed)))
 }
 
 /// Serves a live view of `loaded` (its objects and effects) touched by `device` with a
@@ -111,13 +114,9 @@ pub fn live(
     let ((scene, names, motions), editor) = editable_scene_of(loaded, deform.is_some())?;
     let options = options.with_proxy(tool.apply(*options.proxy(), &scene)?);
     let model = Model::from_scene(&scene, &names);
+    let first = names.first().map_or("", String::as_str);
     let plan = match (deform, editor) {
-        (Some(d), Some(e)) => Some(Plan::new(
-            &scene,
-            e,
-            names.first().map_or("", String::as_str),
-            d,
-        )?),
+        (Some(d), Some(e)) => Some(Plan::new(&scene, e, first, d)?),
         _ => None,
     };
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
@@ -183,13 +182,7 @@ pub fn live(
         clock,
         others,
     };
-    let (deformer, model) = match plan {
-        Some(plan) => {
-            let (deformer, model) = start_deformer(plan, model)?;
-            (Some(deformer), model)
-        }
-        None => (None, model),
-    };
+    let (deformer, model) = start_deformer(plan, model)?;
     let code = serve(
         model,
         Source::Live {

@@ -2,6 +2,7 @@
 //! servo loop on a virtual clock or a real-time thread, the summary, the CSV trace and
 //! the plot. `haphe simulate`, `run` and `demo` each describe one and run it.
 
+mod clock;
 pub mod deform;
 pub mod device;
 pub mod devices;
@@ -16,16 +17,16 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail};
-use haphe::DVec3;
 use haphe::scene::{Scene, SceneEditor};
 use haphe::servo::scene_file::FileEffect;
 use haphe::servo::{
-    Device, HandOptions, HipTrace, Interference, ObjectMotion, PathKind, RealtimeOptions,
-    RealtimeSetup, ReplayDevice, ScriptedDevice, Servo, ServoLoop, ServoOptions, SimulatedHand,
-    StandbyReport, StopReason, TickRecord, TickStats, TrajectoryError, scripted_path,
+    Device, HandOptions, HipTrace, ObjectMotion, PathKind, RealtimeOptions, ReplayDevice,
+    ScriptedDevice, ServoOptions, SimulatedHand, StopReason, TickRecord, TrajectoryError,
+    scripted_path,
 };
 
-use self::deform::{Clock, Plan, Refreshes, Versions};
+use self::clock::{DeviceRan, How, Ran};
+use self::deform::{Clock, Plan};
 use self::device::VendorChoice;
 use self::devices::{Opened, Vendor};
 use self::summary::{RunInfo, Summary};
@@ -105,46 +106,6 @@ struct Built {
     triangles: usize,
     /// The deformation of the first object, with the scene's editor.
     deforming: Option<Plan>,
-}
-
-/// How the servo ran, whatever the clock.
-struct Ran {
-    stats: TickStats,
-    stop: StopReason,
-    setup: Option<RealtimeSetup>,
-    interference: Option<Interference>,
-    standby: Option<StandbyReport>,
-    dropped: u64,
-    /// What each device did, in order.
-    devices: Vec<DeviceRan>,
-    /// The device whose fault stopped the run.
-    faulted: Option<usize>,
-    /// The version of the first object's shape when the run ended.
-    last_version: Option<u64>,
-}
-
-/// What a device of the run was and did, for its summary.
-struct DeviceRan {
-    /// How far the clutch moved the device's origin in the world, metres.
-    moved: DVec3,
-    /// World metres per device metre.
-    scale: f64,
-    /// The largest force rendered, N (lowered to the device's maximum).
-    max_force: f64,
-}
-
-/// What each device of `servo` was and did.
-fn devices_ran<D: Device>(servo: &Servo<D>) -> Vec<DeviceRan> {
-    (0..servo.devices())
-        .filter_map(|i| {
-            let (mapping, options) = (servo.mapping_of(i)?, servo.options_of(i)?);
-            Some(DeviceRan {
-                moved: mapping.offset() - options.mapping().offset(),
-                scale: mapping.scale(),
-                max_force: options.proxy().max_force(),
-            })
-        })
-        .collect()
 }
 
 /// Adds `effects` to `scene`, each named as it was given in an error.
@@ -250,13 +211,8 @@ impl Session {
         print_scene(out, &names, triangles, self.build_seconds, (tool, &effects))?;
         devices::print(out, &servo, &vendors, stiffness)?;
         let realtime = self.realtime || vendors.iter().any(Option::is_some);
-        let clock = if realtime {
-            Clock::Wall
-        } else {
-            Clock::Simulated
-        };
         if let Some(plan) = &deforming {
-            writeln!(out, "{}", plan.describe(clock))?;
+            writeln!(out, "{}", plan.describe(Clock::of(realtime)))?;
         }
         let limit = (!until_stopped).then_some(seconds);
         let ticks = (seconds * self.rate_hz).round().max(1.0) as u64;
@@ -274,43 +230,18 @@ impl Session {
                 t.add(r);
             }
         };
-        let mut deformed: Option<(Refreshes, Option<Versions>)> = None;
-        let ran = if realtime {
-            let options = RealtimeOptions::default()
-                .with_spin_seconds(self.spin_seconds)?
-                .with_realtime_priority(self.fifo)
-                .with_standby_core(self.standby_core);
-            // The deformer starts refreshing now, beside the servo thread about to start.
-            let deformer = deforming.map(|p| p.spawn(clock, None)).transpose()?;
-            let ran = run_realtime(out, servo, &mut vendors, limit, options, &mut on_tick)?;
-            if let Some(d) = deformer {
-                deformed = Some((d.finish()?, None));
+        let how = if realtime {
+            How::Realtime {
+                limit,
+                options: RealtimeOptions::default()
+                    .with_spin_seconds(self.spin_seconds)?
+                    .with_realtime_priority(self.fifo)
+                    .with_standby_core(self.standby_core),
             }
-            ran
         } else {
-            let stop = match deforming {
-                Some(plan) => {
-                    let mut deformer = plan.spawn(clock, None)?;
-                    let (stop, versions) =
-                        deform::run_lockstep(&mut servo, &mut deformer, ticks, &mut on_tick)?;
-                    deformed = Some((deformer.finish()?, Some(versions)));
-                    stop
-                }
-                None => servo.run_simulated(ticks, &mut on_tick),
-            };
-            servo.close();
-            Ran {
-                stats: servo.stats().clone(),
-                stop,
-                setup: None,
-                interference: None,
-                standby: None,
-                dropped: 0,
-                devices: devices_ran(&servo),
-                faulted: servo.faulted_device(),
-                last_version: first_version(servo.scene()),
-            }
+            How::Simulated { ticks }
         };
+        let (ran, deformed) = clock::run(out, servo, &mut vendors, deforming, how, &mut on_tick)?;
         writeln!(out, "\nrun:")?;
         let info = |d: &DeviceRan| RunInfo {
             rate_hz: self.rate_hz,
@@ -449,11 +380,6 @@ fn write_files(
     Ok(())
 }
 
-/// The version of the shape of `scene`'s first object (the one `--deform` deforms).
-fn first_version(scene: &Scene) -> Option<u64> {
-    scene.objects().first().map(|o| o.shape.version())
-}
-
 /// The largest stiffness of the scene's objects, N/m (0 for none).
 pub fn stiffest(scene: &Scene) -> f64 {
     scene
@@ -491,51 +417,6 @@ fn print_scene(
         writeln!(out, "effects: {}", effects.join(", "))?;
     }
     Ok(())
-}
-
-/// Runs `servo` on a real-time thread (driven by a vendor device's clock when one has
-/// it, within the overrun budget) until the run ends or Ctrl-C, handing each record to
-/// `on_tick`.
-fn run_realtime(
-    out: &mut impl Write,
-    servo: Servo<Box<dyn Device>>,
-    vendors: &mut [Option<Vendor>],
-    limit: Option<f64>,
-    mut options: RealtimeOptions,
-    on_tick: &mut impl FnMut(&TickRecord),
-) -> anyhow::Result<Ran> {
-    // One device's clock drives the ticks of all (OpenHaptics' scheduler).
-    let clock = vendors.iter_mut().flatten().find_map(|v| v.clock.take());
-    if let Some(v) = vendors.iter().flatten().next() {
-        options = options.with_overrun_budget(v.choice.overrun_budget);
-        if limit.is_none() {
-            // A network peer can also end the run (the stop flag of its datagram).
-            let peer = vendors
-                .iter()
-                .flatten()
-                .any(|v| v.choice.spec.starts_with("udp"));
-            let or_peer = if peer { " or the peer sends stop" } else { "" };
-            writeln!(out, "running until Ctrl-C{or_peer}")?;
-        }
-    }
-    out.flush()?;
-    wait::servo_starting();
-    let running = match clock {
-        Some(clock) => ServoLoop::spawn_clocked(servo, clock, limit, options)?,
-        None => ServoLoop::spawn(servo, limit, options)?,
-    };
-    let run = wait::wait(running, on_tick)?;
-    Ok(Ran {
-        stats: run.servo.stats().clone(),
-        stop: run.stop,
-        setup: Some(run.setup),
-        interference: Some(run.interference),
-        standby: run.standby,
-        dropped: run.dropped_records,
-        devices: devices_ran(&run.servo),
-        faulted: run.servo.faulted_device(),
-        last_version: first_version(run.servo.scene()),
-    })
 }
 
 /// Whether the device touched an object during a run, for the warning after it.
