@@ -169,7 +169,8 @@ impl Plan {
         })
     }
 
-    /// The object it deforms.
+    /// The object it deforms (the view's live vertices name it).
+    #[cfg(feature = "view")]
     pub fn id(&self) -> ObjectId {
         self.id
     }
