@@ -78,16 +78,10 @@ impl ClearZone {
     /// Reads at most [`MAX_ZONE_CELLS`] cells and every triangle listed there (a few
     /// microseconds for a triangle about a cell wide). No allocation.
     pub fn of(surface: &Surface, map: &VoxelMap, t: TriId) -> ClearZone {
-        if t.index() >= surface.triangle_count() {
+        let Some((reach, height)) = Reach::of_triangle(surface, map, t) else {
             return ClearZone::NONE;
-        }
-        let frame = surface.frame(t);
+        };
         let grid = map.grid();
-        let height = grid.cell_size() * ZONE_HEIGHT_OF_CELL;
-        if frame.is_degenerate() || !(height > 0.0 && height.is_finite()) {
-            return ClearZone::NONE;
-        }
-        let reach = Reach::of(frame, surface.corners(t), height);
         let Some(cells) = map.clip_cells(CellBox::around(grid, reach.lo, reach.hi)) else {
             // The zone lies beyond the grid, where there is no triangle at all.
             return ClearZone {
@@ -115,15 +109,7 @@ impl ClearZone {
     /// triangle `t`: a triangle with no point in it leaves the zone unchanged. `None` for
     /// `t` out of range or a degenerate triangle (its zone is [`ClearZone::NONE`]).
     pub(crate) fn reach_box(surface: &Surface, map: &VoxelMap, t: TriId) -> Option<(DVec3, DVec3)> {
-        if t.index() >= surface.triangle_count() {
-            return None;
-        }
-        let frame = surface.frame(t);
-        let height = map.grid().cell_size() * ZONE_HEIGHT_OF_CELL;
-        if frame.is_degenerate() || !(height > 0.0 && height.is_finite()) {
-            return None;
-        }
-        let reach = Reach::of(frame, surface.corners(t), height);
+        let (reach, _) = Reach::of_triangle(surface, map, t)?;
         // The cells `of` reads reach a cell beyond the box.
         let h = map.grid().cell_size();
         Some((reach.lo - DVec3::splat(h), reach.hi + DVec3::splat(h)))
@@ -203,6 +189,21 @@ struct Reach {
 }
 
 impl Reach {
+    /// The reach of triangle `t`'s zone on `map`, and the zone's height; `None` for `t`
+    /// out of range, a degenerate triangle or a grid without a usable height (the zone is
+    /// then [`ClearZone::NONE`]).
+    fn of_triangle(surface: &Surface, map: &VoxelMap, t: TriId) -> Option<(Reach, f64)> {
+        if t.index() >= surface.triangle_count() {
+            return None;
+        }
+        let frame = surface.frame(t);
+        let height = map.grid().cell_size() * ZONE_HEIGHT_OF_CELL;
+        if frame.is_degenerate() || !(height > 0.0 && height.is_finite()) {
+            return None;
+        }
+        Some((Reach::of(frame, surface.corners(t), height), height))
+    }
+
     /// The reach of the zone of height `height` over the triangle of `frame` with `corners`:
     /// the triangle spread by [`ZONE_SPREAD`], lifted by `±height` along its normal.
     fn of(frame: &TriFrame, corners: [DVec3; 3], height: f64) -> Reach {
