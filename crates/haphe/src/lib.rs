@@ -79,6 +79,8 @@
 //! 6. [`servo`] — the fixed-rate loop: a [`servo::Device`] read and written every tick,
 //!    simulated devices (a hand, scripted paths, replayed traces), safe start, traces and
 //!    tick statistics.
+//! 7. [`volume`] — grids of values (NIfTI scans, voxelised meshes) whose iso-surface is
+//!    extracted in chunks into a [`scene::Shape`], and material the tool removes.
 //!
 //! Stages up to the proxy touch no files, threads, clocks or globals: readers take bytes,
 //! so they can be fuzzed, and only the command-line tool opens paths. The servo stage owns
@@ -112,6 +114,7 @@ pub mod scene;
 pub mod servo;
 #[cfg(any(test, feature = "testing"))]
 pub mod verify;
+pub mod volume;
 
 #[cfg(test)]
 mod stage_order;

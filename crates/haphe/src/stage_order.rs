@@ -6,7 +6,7 @@
 use std::path::Path;
 
 /// The stages in the order they depend on each other (the numbers of the crate docs).
-const STAGES: [&str; 6] = ["mesh", "map", "query", "scene", "proxy", "servo"];
+const STAGES: [&str; 7] = ["mesh", "map", "query", "scene", "proxy", "servo", "volume"];
 
 /// Modules every stage may use.
 const SUPPORT: [&str; 4] = ["array", "names", "par", "rng"];
