@@ -256,6 +256,59 @@ fn a_deformation_sent_from_another_thread_comes_in_at_a_tick() {
     );
 }
 
+/// Material cut away: a box replaced by a lower box with other triangles
+/// ([`Shape::replacing`]). The proxy pressing on the top forgets the triangle it rested on
+/// and follows the face down; a shape with other triangles not made to replace the
+/// object's is refused.
+#[test]
+fn a_proxy_pressing_on_material_cut_away_follows_the_new_surface() {
+    let cuboid = |height: f64, divisions: u32| {
+        let mut mesh =
+            haphe::mesh::shapes::cuboid(DVec3::new(0.02, 0.02, height / 2.0), [divisions; 3]);
+        for v in &mut mesh.vertices {
+            v.z += height / 2.0;
+        }
+        let surface = Surface::new(mesh, &SurfaceOptions::default()).expect("a usable surface");
+        Shape::build(surface, &MapOptions::default()).expect("a map")
+    };
+    let first = Arc::new(cuboid(0.02, 4));
+    let mut scene = one_object_scene(first.clone(), Material::DEFAULT, 2).expect("room");
+    let id = scene.objects()[0].id;
+    let mut proxy =
+        haphe::proxy::Proxy::new(DVec3::new(0.003, 0.002, 0.03), ProxyOptions::default());
+    let hip = DVec3::new(0.003, 0.002, 0.012);
+    let mut current = first.clone();
+    for tick in 0..300u64 {
+        if tick > 0 && tick % 30 == 0 {
+            let height = 0.02 - 7e-4 * (tick / 30) as f64;
+            let next = Arc::new(cuboid(height, 3 + (tick / 30) as u32 % 3).replacing(&current));
+            scene
+                .replace(id, next.clone())
+                .expect("a version replacing the object's");
+            current = next;
+        }
+        scene.begin_tick();
+        let out = proxy.tick(&scene, hip, DVec3::ZERO);
+        let top = 0.02 - 7e-4 * (tick / 30) as f64;
+        if tick % 30 > 10 {
+            let contact = out.contact.expect("in contact");
+            assert!(
+                (out.proxy.z - top).abs() < 1e-5,
+                "tick {tick}: proxy at z {} on a top at {top}",
+                out.proxy.z
+            );
+            assert_eq!(contact.version, tick / 30);
+        }
+        assert!(out.proxy.z >= top - 1e-5, "tick {tick}: below the top");
+    }
+    let unrelated = Arc::new(cuboid(0.01, 5));
+    assert_eq!(
+        scene.replace(id, unrelated).err(),
+        Some(EditError::NotADeformation)
+    );
+    assert_eq!(scene.objects()[0].shape.version(), current.version());
+}
+
 /// A deformation that leaves the map's grid grows it; the grown map still answers
 /// inside exactly.
 #[test]

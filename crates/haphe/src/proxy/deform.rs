@@ -4,6 +4,9 @@
 //! The rule, applied at the start of a tick to the objects deformed since the proxy's
 //! previous tick, after the carry of moving objects and before the constraint steps:
 //!
+//! 0. **Forget.** An object whose shape was replaced by one with other triangles
+//!    ([`Shape::replacing`]: material cut away) has none of the triangles the proxy
+//!    touched: the proxy forgets them (it does not ride) and stays where it is.
 //! 1. **Ride.** A proxy that touched a deformed object at the end of its previous tick
 //!    keeps its barycentric point on the surface: the point of the surface before the
 //!    deformation nearest to the proxy (the lowest triangle among equally near ones) goes
@@ -46,6 +49,7 @@ impl Proxy {
     #[cold]
     pub(super) fn follow_deformations(&mut self, scene: &Scene, p: DVec3) -> DVec3 {
         let seen = std::mem::replace(&mut self.deformations_seen, scene.deformations());
+        self.forget_remeshed(scene, seen);
         let mut p = p;
         if let Some(under) = self.under
             && let Some(o) = scene.objects().get(under.object)
@@ -75,6 +79,27 @@ impl Proxy {
             }
         }
         p
+    }
+
+    /// Forgets the triangles of objects whose shape was replaced by one with other
+    /// triangles since the tick that saw `seen` deformations: the one under the proxy, the
+    /// one it rested on and a hold on it.
+    fn forget_remeshed(&mut self, scene: &Scene, seen: u64) {
+        let remeshed = |s: &SurfaceRef| {
+            scene
+                .objects()
+                .get(s.object)
+                .is_some_and(|o| o.remeshed_at > seen)
+        };
+        if self.under.as_ref().is_some_and(remeshed) {
+            self.under = None;
+        }
+        if self.rest.as_ref().is_some_and(remeshed) {
+            self.rest = None;
+        }
+        if self.hold.as_ref().is_some_and(|h| remeshed(&h.on)) {
+            self.hold = None;
+        }
     }
 }
 

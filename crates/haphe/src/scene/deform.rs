@@ -150,6 +150,7 @@ impl Shape {
         let mut shape = Shape::new(surface, map);
         shape.texture_coords = self.texture_coords.clone();
         shape.version = self.version + 1;
+        shape.lineage = self.lineage;
         if shape.map.grid() == self.map.grid() {
             // Keep the zones no moved triangle can change; the others are computed below.
             let stale = stale_zones(&shape, &moved);
@@ -190,7 +191,7 @@ impl Scene {
     pub fn deform(&mut self, id: ObjectId, vertices: &[DVec3]) -> Result<(), DeformError> {
         let i = self.index_of(id).ok_or(DeformError::UnknownObject(id.0))?;
         let shape = self.objects[i].shape.deformed(vertices)?;
-        self.set_shape(i, Arc::new(shape));
+        self.set_shape(i, Arc::new(shape), false);
         Ok(())
     }
 
@@ -208,7 +209,7 @@ impl Scene {
     ) -> Result<(), DeformError> {
         let i = self.index_of(id).ok_or(DeformError::UnknownObject(id.0))?;
         let shape = self.objects[i].shape.deformed_at(indices, positions)?;
-        self.set_shape(i, Arc::new(shape));
+        self.set_shape(i, Arc::new(shape), false);
         Ok(())
     }
 
@@ -224,16 +225,36 @@ impl Scene {
         let Some(i) = self.index_of(id) else {
             return Some(Returned::RefusedShape(id, shape, EditError::UnknownObject));
         };
-        let (old, new) = (self.objects[i].shape.surface(), shape.surface());
-        if old.vertex_count() != new.vertex_count() || old.triangle_count() != new.triangle_count()
-        {
-            return Some(Returned::RefusedShape(
+        match version_kind(&self.objects[i].shape, &shape) {
+            Some(remeshed) => self
+                .set_shape(i, shape, remeshed)
+                .map(|s| Returned::Replaced(id, s)),
+            None => Some(Returned::RefusedShape(
                 id,
                 shape,
                 EditError::NotADeformation,
-            ));
+            )),
         }
-        self.set_shape(i, shape).map(|s| Returned::Replaced(id, s))
+    }
+
+    /// Gives object `id` `shape`, a new version of its shape made on this thread: deformed
+    /// ([`Shape::deformed`]) or with other triangles ([`Shape::replacing`]), in force from
+    /// the next tick, as [`Edit::SetShape`](super::Edit::SetShape) does from another
+    /// thread. Returns the shape replaced, if no proxy needs it any more.
+    ///
+    /// # Errors
+    /// [`EditError::UnknownObject`]; [`EditError::NotADeformation`] for a shape that is
+    /// neither a deformation of the object's nor a version replacing it. The scene is
+    /// then unchanged.
+    pub fn replace(
+        &mut self,
+        id: ObjectId,
+        shape: Arc<Shape>,
+    ) -> Result<Option<Arc<Shape>>, EditError> {
+        let i = self.index_of(id).ok_or(EditError::UnknownObject)?;
+        let remeshed =
+            version_kind(&self.objects[i].shape, &shape).ok_or(EditError::NotADeformation)?;
+        Ok(self.set_shape(i, shape, remeshed))
     }
 
     /// Gives object `i` `shape`, keeping the one the last tick saw as its previous shape
@@ -241,7 +262,7 @@ impl Scene {
     ///
     /// # Real-time
     /// No allocation; a relink in the broad phase.
-    fn set_shape(&mut self, i: usize, shape: Arc<Shape>) -> Option<Arc<Shape>> {
+    fn set_shape(&mut self, i: usize, shape: Arc<Shape>, remeshed: bool) -> Option<Arc<Shape>> {
         self.deformations += 1;
         let ticks = self.ticks;
         let o = &mut self.objects[i];
@@ -254,12 +275,31 @@ impl Scene {
             o.previous_shape.replace(current)
         };
         o.deformed_at = self.deformations;
+        if remeshed {
+            o.remeshed_at = self.deformations;
+        }
         let (centre, radius) = sphere_of(o);
         self.broad.reshape(i, centre, radius);
         // The bounding sphere changed: sets of nearby objects kept from earlier ticks are
         // found again.
         self.epoch += 1;
         unused
+    }
+}
+
+/// Whether `new` may follow `current` as an object's shape: `Some(false)` for a
+/// deformation (the same counts of vertices and triangles), `Some(true)` for a version
+/// made by [`Shape::replacing`] from the same first build, `None` otherwise.
+fn version_kind(current: &Shape, new: &Shape) -> Option<bool> {
+    let (old, now) = (current.surface(), new.surface());
+    if new.remeshed && new.lineage == current.lineage {
+        Some(true)
+    } else if old.vertex_count() == now.vertex_count()
+        && old.triangle_count() == now.triangle_count()
+    {
+        Some(false)
+    } else {
+        None
     }
 }
 

@@ -23,11 +23,12 @@ pub enum Edit {
     SetPose(ObjectId, Pose),
     /// Change how an object feels.
     SetMaterial(ObjectId, Material),
-    /// Give an object a deformed version of its shape, made on the editor's thread with
-    /// [`Shape::deformed`] (the refresh is done before the edit is sent). In force from
-    /// the first tick that applies it; the version it replaces comes back
-    /// ([`Returned::Replaced`]). Refused, and handed back, for an unknown object or a
-    /// shape with other counts of vertices and triangles.
+    /// Give an object a new version of its shape, made on the editor's thread: deformed
+    /// ([`Shape::deformed`]) or with other triangles ([`Shape::replacing`]); the refresh
+    /// is done before the edit is sent. In force from the first tick that applies it;
+    /// the version it replaces comes back ([`Returned::Replaced`]). Refused, and handed
+    /// back, for an unknown object, or a shape that is neither a deformation (same counts
+    /// of vertices and triangles) nor a version replacing the object's.
     SetShape(ObjectId, Arc<Shape>),
 }
 
@@ -46,10 +47,11 @@ pub enum EditError {
     /// No object has that id.
     #[error("no object with that id is in the scene")]
     UnknownObject,
-    /// A shape sent as a deformation has other counts of vertices or triangles than the
-    /// object's.
+    /// A shape sent as a new version has other counts of vertices or triangles than the
+    /// object's, and was not made by [`Shape::replacing`] from a version of it.
     #[error(
-        "the shape is not a deformation of the object's: other counts of vertices or triangles"
+        "the shape is not a new version of the object's: other counts of vertices or \
+         triangles, and not made to replace it"
     )]
     NotADeformation,
 }

@@ -40,6 +40,9 @@ pub struct SceneObject {
     pub(crate) previous_shape: Option<Arc<Shape>>,
     /// The scene's tick count when `previous_shape` was kept.
     pub(crate) previous_since: u64,
+    /// The scene's count of deformations when this object's shape was last replaced by
+    /// one with other triangles ([`Shape::replacing`]; 0: never).
+    pub(crate) remeshed_at: u64,
 }
 
 /// Which sides of an object's surface the proxy touches.
@@ -72,6 +75,7 @@ impl SceneObject {
             deformed_at: 0,
             previous_shape: None,
             previous_since: 0,
+            remeshed_at: 0,
         }
     }
 

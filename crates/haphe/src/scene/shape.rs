@@ -77,8 +77,13 @@ pub struct Shape {
     pub(super) zone_height: f32,
     /// `[u, v]` at each corner of each surface triangle, in the surface's order.
     pub(super) texture_coords: Option<Arc<[[DVec2; 3]]>>,
-    /// How many deformations made this shape from the one first built.
+    /// How many deformations or re-meshes made this shape from the one first built.
     pub(super) version: u64,
+    /// The first build's surface uid, kept by every later version (see
+    /// [`Shape::replacing`]).
+    pub(super) lineage: u64,
+    /// Made by [`Shape::replacing`]: other triangles than the version before.
+    pub(super) remeshed: bool,
 }
 
 impl Shape {
@@ -98,14 +103,16 @@ impl Shape {
             .collect();
         let zone_height = zone_height(&map);
         Shape {
-            surface,
             map,
             bound_centre,
             bound_radius,
             zones,
             zone_height,
+            lineage: surface.uid(),
+            surface,
             texture_coords: None,
             version: 0,
+            remeshed: false,
         }
     }
 
@@ -251,6 +258,25 @@ impl Shape {
     pub fn with_clear_zones(self) -> Shape {
         self.prepare_clear_zones();
         self
+    }
+
+    /// This shape as the next version of `previous`, with other triangles: the surface of
+    /// a volume the tool cut into, extracted again. [`Edit::SetShape`](super::Edit::SetShape)
+    /// and [`Scene::replace`](super::Scene::replace) accept it for an object whose shape
+    /// is `previous` (or another version of the same first build); a proxy resting on the
+    /// object then forgets the triangle it rested on (it does not ride, as it does on a
+    /// deformation) and is pushed out if the new surface lies over it.
+    pub fn replacing(mut self, previous: &Shape) -> Shape {
+        self.lineage = previous.lineage;
+        self.version = previous.version + 1;
+        self.remeshed = true;
+        self
+    }
+
+    /// Whether this shape was made by [`Shape::replacing`] (other triangles than the
+    /// version before it).
+    pub(crate) fn is_remesh(&self) -> bool {
+        self.remeshed
     }
 
     /// The surface (object frame, metres).

@@ -175,15 +175,31 @@ impl BruteProxy {
     /// objects in the same order (call it after moving objects, before
     /// [`BruteProxy::tick`]).
     pub fn sync(&mut self, scene: &Scene) {
-        for (o, s) in self.objects.iter_mut().zip(scene.objects()) {
+        // Objects given other triangles: the proxy forgets what it touched there.
+        let mut forget = Vec::new();
+        for (i, (o, s)) in self.objects.iter_mut().zip(scene.objects()).enumerate() {
             if !Arc::ptr_eq(&o.shape, &s.shape) {
                 o.before = Some(std::mem::replace(&mut o.shape, s.shape.clone()));
                 o.boxes = TriangleBounds::new(o.shape.surface());
+                if s.shape.is_remesh() {
+                    forget.push(i);
+                }
             }
             o.pose = s.pose;
             o.previous_pose = s.previous_pose;
             o.material = s.material;
             o.one_sided = s.sides == Sides::Front;
+        }
+        for i in forget {
+            if self.touched == Some(i) {
+                self.touched = None;
+            }
+            if self.rest.is_some_and(|r| r.object == i) {
+                self.rest = None;
+            }
+            if self.hold.as_ref().is_some_and(|h| h.object == i) {
+                self.hold = None;
+            }
         }
     }
 
