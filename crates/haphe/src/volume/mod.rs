@@ -75,10 +75,8 @@ impl Volume {
             });
         }
         let det = to_world.matrix3.determinant();
-        if !(to_world.matrix3.is_finite() && to_world.translation.is_finite())
-            || !det.is_finite()
-            || det == 0.0
-        {
+        let finite = to_world.matrix3.is_finite() && to_world.translation.is_finite();
+        if !finite || !det.is_finite() || det == 0.0 {
             return Err(VolumeError::Affine);
         }
         if !iso.is_finite() {
