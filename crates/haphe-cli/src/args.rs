@@ -16,6 +16,7 @@ use haphe::servo::RealtimeOptions;
 
 use crate::input::model::Model;
 
+pub mod cut;
 pub mod deform;
 pub mod feel;
 
@@ -175,7 +176,7 @@ pub fn map_options(cell_size: Option<f64>, budget_mib: Option<usize>) -> MapOpti
 /// Where the objects come from (exactly one of `--mesh`, `--scene`, `--shape`), and the
 /// material of a `--mesh` or `--shape` object.
 #[derive(clap::Args, Debug)]
-#[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape"])))]
+#[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape", "volume"])))]
 pub struct ModelArgs {
     /// A mesh file (OBJ, STL, PLY, OFF) placed with the centre of its bounding box at the
     /// origin.
@@ -188,6 +189,18 @@ pub struct ModelArgs {
     /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
     #[arg(long, value_name = "NAME")]
     pub shape: Option<String>,
+    /// A volume (NIfTI-1, `.nii` or `.nii.gz`): the material where a value is at least
+    /// --iso, its surface extracted, placed with the centre of its grid at the origin.
+    #[arg(long, value_name = "FILE.nii")]
+    pub volume: Option<PathBuf>,
+    /// With --volume: material is where a value is at least this (default: the middle of
+    /// the values' range).
+    #[arg(long, value_name = "V", allow_negative_numbers = true, requires = "volume")]
+    pub iso: Option<f32>,
+    /// With --mesh: voxelise the (closed) mesh on a grid of this spacing, metres, and
+    /// render it as a volume the tool can cut (--cut).
+    #[arg(long, value_name = "SIZE", allow_negative_numbers = true, requires = "mesh")]
+    pub voxel: Option<f64>,
     /// Triangles of the built-in shape.
     #[arg(long, default_value_t = 20_000)]
     pub triangles: usize,
@@ -217,6 +230,8 @@ impl ModelArgs {
             shape: self.shape.as_deref(),
             triangles: self.triangles,
             units: self.units,
+            volume: self.volume.as_deref().map(|v| (v, self.iso)),
+            voxel: self.voxel,
         }
     }
 

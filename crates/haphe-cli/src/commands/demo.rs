@@ -141,6 +141,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         clutch_button: None,
         presses: Vec::new(),
         deform: None,
+        cut: None,
         seed: 3,
         max_force: haphe::scene::DEFAULT_MAX_FORCE_N,
         tool_radius: tool,

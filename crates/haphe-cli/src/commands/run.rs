@@ -9,6 +9,7 @@ use anyhow::bail;
 use haphe::DVec3;
 use haphe_devices::UdpOptions;
 
+use crate::args::cut::CutArgs;
 use crate::args::deform::DeformArgs;
 use crate::args::feel::FeelArgs;
 use crate::args::{
@@ -35,6 +36,8 @@ pub struct Args {
     feel: FeelArgs,
     #[command(flatten)]
     deform: DeformArgs,
+    #[command(flatten)]
+    cut: CutArgs,
     /// Length of the run, seconds (default: until Ctrl-C; 5 s for the simulated hand).
     #[arg(long)]
     seconds: Option<f64>,
@@ -92,6 +95,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let started = Instant::now();
     let (mut loaded, what) = load_model(args.model.model(), material)?;
     feel.apply(&mut loaded, args.rate)?;
+    let cut = args
+        .cut
+        .setup(loaded.cutter.take(), args.rate, deform.is_some())?;
     let build_seconds = started.elapsed().as_secs_f64();
     let h = args.udp_workspace;
     let udp = UdpOptions {
@@ -132,6 +138,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         clutch_button: args.clutch.clutch_button,
         presses: Vec::new(),
         deform,
+        cut,
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)
@@ -147,6 +154,9 @@ fn check(args: &Args) -> anyhow::Result<()> {
             "--udp-workspace must be positive, not {}",
             args.udp_workspace
         );
+    }
+    if args.device.len() > 1 && args.cut.cut {
+        bail!("--cut cuts with one device's tool; give one --device");
     }
     if args.device.len() > 1 && args.output.plot.is_some() {
         bail!(

@@ -10,6 +10,7 @@ use std::time::Instant;
 use anyhow::anyhow;
 use haphe::servo::{HandOptions, HipTrace, PathKind, ServoOptions};
 
+use crate::args::cut::CutArgs;
 use crate::args::deform::DeformArgs;
 use crate::args::feel::FeelArgs;
 use crate::args::{ClutchArgs, ModelArgs, OutputArgs, ToolArgs, proxy_options, spin};
@@ -28,6 +29,8 @@ pub struct Args {
     feel: FeelArgs,
     #[command(flatten)]
     deform: DeformArgs,
+    #[command(flatten)]
+    cut: CutArgs,
     /// The motion: press, slide, circle, explore or strike (over the top of the objects).
     #[arg(long, default_value = "explore")]
     path: PathKind,
@@ -106,12 +109,17 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     ServoOptions::new(args.rate).map_err(|e| anyhow!("{}", e.named("--rate")))?;
     let feel = args.feel.check(args.rate)?;
     let deform = args.deform.check(args.rate)?;
-    let outputs: Vec<&Path> = [&args.output.out, &args.output.plot]
+    let outputs: Vec<&Path> = [&args.output.out, &args.output.plot, &args.cut.save_volume]
         .into_iter()
         .flatten()
         .map(PathBuf::as_path)
         .collect();
-    let inputs: Vec<&Path> = [&args.model.mesh, &args.model.scene, &args.replay]
+    let inputs: Vec<&Path> = [
+        &args.model.mesh,
+        &args.model.scene,
+        &args.model.volume,
+        &args.replay,
+    ]
         .into_iter()
         .flatten()
         .map(PathBuf::as_path)
@@ -129,6 +137,9 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     args.tool.radius(None)?;
     let (mut loaded, what) = load_model(args.model.model(), material)?;
     feel.apply(&mut loaded, args.rate)?;
+    let cut = args
+        .cut
+        .setup(loaded.cutter.take(), args.rate, deform.is_some())?;
     let build_seconds = started.elapsed().as_secs_f64();
     let device = if let Some(file) = &args.replay {
         let name = file.display().to_string();
@@ -159,6 +170,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         clutch_button: args.clutch.clutch_button,
         presses: args.press.clone(),
         deform,
+        cut,
     };
     session.run(&mut std::io::stdout().lock())?;
     Ok(ExitCode::SUCCESS)

@@ -9,8 +9,10 @@ use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Catalog;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
+use haphe::volume::{Cutter, Volume};
 
 use crate::input::mesh::UnitsGiven;
+use crate::input::volume::read_volume;
 use crate::input::scene::{LoadedObject, LoadedScene, load_scene, mesh_shape, shape_of};
 
 /// Where the objects of a run come from: one of a scene file, a mesh file, a built-in shape.
@@ -20,12 +22,29 @@ pub struct Model<'a> {
     pub shape: Option<&'a str>,
     pub triangles: usize,
     pub units: Units,
+    /// A volume file (NIfTI-1), with its iso value.
+    pub volume: Option<(&'a Path, Option<f32>)>,
+    /// With a mesh: voxelise it on a grid of this spacing, metres, and make it a volume.
+    pub voxel: Option<f64>,
 }
 
 /// Loads the objects of a run (a --mesh or --shape object gets `material`), with a scene
 /// file's tool radius, and says what they are.
 pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(LoadedScene, String)> {
     let map = MapOptions::default();
+    if let Some((file, iso)) = model.volume {
+        let (volume, info) = read_volume(file, iso)?;
+        for note in &info.notes {
+            eprintln!("haphe: {}: {note}", file.display());
+        }
+        return volume_object(&file.display().to_string(), volume, material);
+    }
+    if let (Some(file), Some(voxel)) = (model.mesh, model.voxel) {
+        let shape = mesh_shape(file, model.units, &map, UnitsGiven::Flag)?;
+        let volume = Volume::from_shape(&shape, voxel)
+            .map_err(|e| anyhow!("{}: voxelising it: {}", file.display(), e))?;
+        return volume_object(&file.display().to_string(), volume, material);
+    }
     Ok(if let Some(file) = model.scene {
         (load_scene(file, &map)?, file.display().to_string())
     } else if let Some(file) = model.mesh {
@@ -72,4 +91,33 @@ pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(Loade
             format!("the built-in {name}"),
         )
     })
+}
+
+/// The object of `volume` (named `name`): the surface of its material extracted, placed
+/// with the centre of its grid at the origin, and the cutter that owns it.
+fn volume_object(
+    name: &str,
+    volume: Volume,
+    material: Material,
+) -> anyhow::Result<(LoadedScene, String)> {
+    let [nx, ny, nz] = volume.dims();
+    let centre = volume.centre();
+    let cutter = Cutter::new(name, volume, MapOptions::default())?;
+    let shape = Arc::clone(cutter.shape());
+    eprintln!(
+        "haphe: {name}: a volume of {nx} × {ny} × {nz} voxels, its surface {} triangles, placed with the centre of its grid at the origin (moved by {:.6?} m)",
+        shape.surface().triangle_count(),
+        (-centre).to_array()
+    );
+    let pose = Pose::from_translation(-centre)
+        .map_err(|e| anyhow!("{name}: placing it at the origin: {e}"))?;
+    let object = SceneObject::new(ObjectId(0), shape, pose, material);
+    let mut loaded: LoadedScene = vec![LoadedObject {
+        name: name.to_owned(),
+        object,
+        motion: None,
+    }]
+    .into();
+    loaded.cutter = Some(cutter);
+    Ok((loaded, format!("the volume {name}")))
 }

@@ -12,6 +12,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{ReadOptions, Units, Weld};
 use haphe::scene::{Material, SceneObject, Shape};
 use haphe::servo::ObjectMotion;
+use haphe::volume::Cutter;
 use haphe::servo::scene_file::{FileEffect, ObjectSource, parse_scene_spec};
 
 use crate::input::mesh::{SideCars, UnitsGiven, warn_units};
@@ -36,6 +37,9 @@ pub struct LoadedScene {
     /// The file's `effects` (and, once [`Feel::apply`](crate::args::feel::Feel::apply)
     /// added them, the flags'), each with its place.
     pub effects: Vec<FileEffect>,
+    /// The volume of the first object, when it is one (`--volume`, `--mesh` with
+    /// `--voxel`): the cutter that owns it and made the object's shape.
+    pub cutter: Option<Cutter>,
 }
 
 impl From<Vec<LoadedObject>> for LoadedScene {
@@ -45,6 +49,7 @@ impl From<Vec<LoadedObject>> for LoadedScene {
             objects,
             tool_radius: None,
             effects: Vec::new(),
+            cutter: None,
         }
     }
 }
@@ -88,6 +93,7 @@ pub fn load_scene(path: &Path, map: &MapOptions) -> anyhow::Result<LoadedScene> 
         objects: out,
         tool_radius: spec.tool_radius,
         effects: spec.effects,
+        cutter: None,
     })
 }
 

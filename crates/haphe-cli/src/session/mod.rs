@@ -3,6 +3,7 @@
 //! the plot. `haphe simulate`, `run` and `demo` each describe one and run it.
 
 mod clock;
+pub mod cut;
 pub mod deform;
 pub mod device;
 pub mod devices;
@@ -26,6 +27,7 @@ use haphe::servo::{
 };
 
 use self::clock::{DeviceRan, How, Ran};
+use self::cut::{CutSetup, Cutting};
 use self::deform::{Clock, Plan};
 use self::device::VendorChoice;
 use self::devices::{Opened, Vendor};
@@ -92,6 +94,8 @@ pub struct Session {
     pub presses: Vec<(u32, f64, f64)>,
     /// The deformation of the first object (`--deform`, `--deform-rate`).
     pub deform: Option<Deform>,
+    /// The first object's volume, cut or not (`--volume`, `--voxel`, `--cut`).
+    pub cut: Option<CutSetup>,
 }
 
 /// Objects listed by name in the summary.
@@ -106,6 +110,8 @@ struct Built {
     triangles: usize,
     /// The deformation of the first object, with the scene's editor.
     deforming: Option<Plan>,
+    /// The scene's editor when the first object is cut.
+    cut_editor: Option<SceneEditor>,
 }
 
 /// Adds `effects` to `scene`, each named as it was given in an error.
@@ -119,20 +125,21 @@ pub fn add_effects(scene: &mut Scene, effects: &[FileEffect]) -> anyhow::Result<
 }
 
 /// Inserts `objects` into a new scene with `effects`; with `deform`, a scene with an
-/// editor, and the first object's deformation.
+/// editor, and the first object's deformation; with `cut`, a scene with an editor for
+/// the cutting.
 fn build_scene(
     objects: Vec<LoadedObject>,
     effects: &[FileEffect],
-    deform: Option<Deform>,
+    (deform, cut): (Option<Deform>, bool),
 ) -> anyhow::Result<Built> {
     let capacity = objects.len() + 4;
-    let (mut scene, editor): (Scene, Option<SceneEditor>) = match deform {
-        Some(_) => {
-            let (scene, editor) = Scene::new(capacity);
-            (scene, Some(editor))
-        }
-        None => (Scene::local(capacity), None),
+    let (mut scene, mut editor): (Scene, Option<SceneEditor>) = if deform.is_some() || cut {
+        let (scene, editor) = Scene::new(capacity);
+        (scene, Some(editor))
+    } else {
+        (Scene::local(capacity), None)
     };
+    let cut_editor = if cut { editor.take() } else { None };
     let first = objects.first().map(|o| o.name.clone()).unwrap_or_default();
     let mut motions: Vec<ObjectMotion> = Vec::new();
     let mut names = Vec::new();
@@ -167,6 +174,7 @@ fn build_scene(
         names,
         triangles,
         deforming,
+        cut_editor,
     })
 }
 
@@ -180,7 +188,8 @@ impl Session {
             names,
             triangles,
             deforming,
-        } = build_scene(self.objects, &self.effects, self.deform)?;
+            cut_editor,
+        } = build_scene(self.objects, &self.effects, (self.deform, cut_of(&self.cut)))?;
         let proxy = ToolRadius::apply(&self.tool_radius, proxy_options(self.max_force)?, &scene)?;
         // A real device runs until Ctrl-C unless told otherwise.
         let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.iter().any(|c| !c.is_hand()))
@@ -222,12 +231,20 @@ impl Session {
             Some(p) => Some(TraceOut::create(p, n)?),
             None => None,
         };
+        let first = servo.scene().objects().first().map(|o| (o.id, o.pose));
+        let mut cutting = cut::start(self.cut, cut_editor, first, (tool, self.rate_hz))?;
+        if let Some(line) = cutting.as_ref().and_then(Cutting::describe) {
+            writeln!(out, "{line}")?;
+        }
         let mut on_tick = |r: &TickRecord| {
             if let Some(s) = summaries.get_mut(r.device as usize) {
                 s.add(r);
             }
             if let Some(t) = trace.as_mut() {
                 t.add(r);
+            }
+            if let Some(c) = cutting.as_mut() {
+                c.on_record(r);
             }
         };
         let how = if realtime {
@@ -265,11 +282,19 @@ impl Session {
         if let Some((refreshes, versions)) = &deformed {
             deform::print(out, refreshes, versions.as_ref(), ran.last_version)?;
         }
+        if let Some(c) = &cutting {
+            c.finish(out)?;
+        }
         let plot = self.plot.as_deref().map(|p| (p, placed.as_slice()));
         write_files(out, trace, plot, &self.title, &summaries[0])?;
         let touched: Vec<Touch> = summaries.iter().map(|s| touch_of(replay, s)).collect();
         outcome(out, &ran, &vendors, &touched)
     }
+}
+
+/// Whether `setup` cuts (`--cut`).
+fn cut_of(setup: &Option<CutSetup>) -> bool {
+    setup.as_ref().is_some_and(|s| s.cut.is_some())
 }
 
 /// Whether the device touched an object, from the run's summary (a replay's trace is
@@ -417,6 +442,11 @@ fn print_scene(
         writeln!(out, "effects: {}", effects.join(", "))?;
     }
     Ok(())
+}
+
+/// Whether `setup` cuts (`--cut`).
+fn cut_of(setup: &Option<CutSetup>) -> bool {
+    setup.as_ref().is_some_and(|s| s.cut.is_some())
 }
 
 /// Whether the device touched an object during a run, for the warning after it.

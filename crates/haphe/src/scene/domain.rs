@@ -63,7 +63,7 @@ pub const ABSURD_DISTANCE_M: f64 = 1e9;
 pub(crate) const ABSURD_TOOL_RADIUS_M: f64 = 0.5;
 
 /// Every parameter's domain, in the order of [`Param`].
-static TABLE: [Domain; 27] = [
+static TABLE: [Domain; 31] = [
     number(Param::Stiffness, "N/m", 0.0, true, ABSURD_STIFFNESS_N_PER_M),
     number(Param::Damping, "N·s/m", 0.0, false, 1e3),
     number(Param::StaticFriction, "", 0.0, false, 10.0),
@@ -97,6 +97,10 @@ static TABLE: [Domain; 27] = [
         ABSURD_STIFFNESS_N_PER_M,
     ),
     number(Param::MagnetDistance, "m", 0.0, true, 1.0),
+    number(Param::CutForce, "N", 0.0, false, ABSURD_FORCE_N),
+    number(Param::CutRate, "m/s", 0.0, true, 10.0),
+    number(Param::VoxelSize, "m", 0.0, true, 1.0),
+    number(Param::LayerValue, "", -f64::MAX, false, f64::MAX),
 ];
 
 const fn number(param: Param, unit: &'static str, low: f64, low_open: bool, high: f64) -> Domain {

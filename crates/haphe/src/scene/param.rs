@@ -62,11 +62,20 @@ pub enum Param {
     EffectStiffness,
     /// How far a magnet effect reaches from the surface, m.
     MagnetDistance,
+    /// The contact force from which a cutting tool removes material, N.
+    CutForce,
+    /// How fast a volume's material is removed under the cut force: the depth the tool
+    /// sinks in a second, m/s.
+    CutRate,
+    /// The spacing of a grid a mesh is voxelised on, m.
+    VoxelSize,
+    /// The lowest value of a volume's material layer (a label, a Hounsfield unit).
+    LayerValue,
 }
 
 impl Param {
     /// Every parameter, in table order.
-    pub const ALL: [Param; 27] = [
+    pub const ALL: [Param; 31] = [
         Param::Stiffness,
         Param::Damping,
         Param::StaticFriction,
@@ -94,6 +103,10 @@ impl Param {
         Param::Viscosity,
         Param::EffectStiffness,
         Param::MagnetDistance,
+        Param::CutForce,
+        Param::CutRate,
+        Param::VoxelSize,
+        Param::LayerValue,
     ];
 
     /// The name the front ends spell it with.
@@ -126,6 +139,10 @@ impl Param {
             Param::Viscosity => "viscosity",
             Param::EffectStiffness => "effect stiffness",
             Param::MagnetDistance => "magnet distance",
+            Param::CutForce => "cut_force",
+            Param::CutRate => "cut rate",
+            Param::VoxelSize => "voxel",
+            Param::LayerValue => "layer value",
         }
     }
 }

@@ -10,6 +10,7 @@
 //! With the `testing` feature (the command line, the tests, benches and fuzz targets turn
 //! it on); an application that only renders does not compile it.
 
+mod cut;
 mod deform;
 mod fixtures;
 mod friction;
@@ -21,6 +22,7 @@ mod proxy;
 mod samples;
 mod strikes;
 
+pub use cut::{CutCheck, check_cutting};
 pub use deform::Deformation;
 // The deforming suite's runner, for `haphe verify` and the tests.
 #[doc(hidden)]

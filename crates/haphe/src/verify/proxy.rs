@@ -22,7 +22,7 @@ use super::oracle::TriangleBounds;
 use super::oracle::{WindingOracle, distance_to_surface};
 use crate::mesh::TriId;
 use crate::proxy::{
-    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Ride, advance_to_plane,
+    Constraints, MAX_PROXY_STEPS, Plane, Proxy, ProxyOptions, Ride, TickOutput, advance_to_plane,
     clamp_to_radius, pushed_from, rests_on, ride_on,
 };
 use crate::query::{Probe, Side, classify_point, nearest_within_brute_force};
@@ -697,7 +697,13 @@ impl ProxyPair {
 
     /// One tick of both toward `hip` (tick number `tick`), counted in `check`: a
     /// mismatch resets the oracle to the fast proxy's state.
-    pub(crate) fn tick(&mut self, scene: &Scene, tick: usize, hip: DVec3, check: &mut ProxyCheck) {
+    pub(crate) fn tick(
+        &mut self,
+        scene: &Scene,
+        tick: usize,
+        hip: DVec3,
+        check: &mut ProxyCheck,
+    ) -> TickOutput {
         let options = *self.fast.options();
         let velocity = (hip - self.previous) * 1e3;
         self.previous = hip;
@@ -720,6 +726,7 @@ impl ProxyPair {
             check.bad_forces += 1;
         }
         check.inside += breaks_in(scene, out.proxy, &options);
+        out
     }
 
     /// The oracle, to read the scene's objects again ([`BruteProxy::sync`]).

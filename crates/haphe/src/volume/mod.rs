@@ -3,13 +3,19 @@
 //! (`Volume::read_nifti`) or from a closed mesh voxelised with the non-zero rule
 //! (`Volume::from_shape`); its iso-surface is extracted in chunks into one closed
 //! triangle surface that the map and the proxy render like any mesh (`Chunks`), and a
-//! tool that cuts removes material from it (`Cutter`).
+//! tool that cuts removes material from it ([`Cutter`]).
 //!
 //! Conventions: the voxel `(i, j, k)` is the grid point at `to_world * (i, j, k)`; values
 //! are stored with `i` fastest (`i + nx * (j + ny * k)`). Outside the grid is air: a
 //! surface that reaches the grid's border is closed there.
 
 use glam::{DAffine3, DVec3};
+
+mod cut;
+mod layers;
+
+pub use cut::{CutError, CutOptions, Cutter};
+pub use layers::{DEFAULT_CUT_RATE, Layer, Layers};
 
 /// The most voxels a volume may have (2^31: 8 GiB of `f32`).
 pub const MAX_VOXELS: usize = 1 << 31;

@@ -6,6 +6,7 @@ use haphe::DVec3;
 use haphe::glam::DQuat;
 use haphe::proxy::ProxyOptions;
 use haphe::scene::{DomainKind, Effect, Material, Param, ParamError, Pose, Texture, Zone};
+use haphe::volume::{CutOptions, Layer};
 use haphe::servo::{
     DeviceMapping, MAX_MOTION_AMPLITUDE, Motion, RealtimeOptions, ServoOptions, simulated_spec,
 };
@@ -21,7 +22,7 @@ struct Expected {
     absurd: Option<f64>,
 }
 
-const EXPECTED: [Expected; 27] = [
+const EXPECTED: [Expected; 31] = [
     // A material with no stiffness renders nothing; damping and friction may be absent.
     expect(Param::Stiffness, 800.0, false, false, Some(1e7)),
     expect(Param::Damping, 1.0, true, false, Some(1e5)),
@@ -57,6 +58,12 @@ const EXPECTED: [Expected; 27] = [
     expect(Param::Viscosity, 2.0, true, false, Some(1e5)),
     expect(Param::EffectStiffness, 100.0, true, false, Some(1e7)),
     expect(Param::MagnetDistance, 0.01, false, false, Some(100.0)),
+    // A cut force of 0 cuts on any contact; a rate of 0 would never cut.
+    expect(Param::CutForce, 0.5, true, false, Some(1e4)),
+    expect(Param::CutRate, 0.01, false, false, Some(1e3)),
+    expect(Param::VoxelSize, 5e-4, false, false, Some(100.0)),
+    // A layer starts at any value of a scan: labels, Hounsfield units.
+    expect(Param::LayerValue, 1200.0, true, true, None),
 ];
 
 const fn expect(
@@ -136,6 +143,10 @@ fn build(param: Param, v: f64) -> Result<(), ParamError> {
         Param::Viscosity => Effect::viscosity(v, Zone::Everywhere).map(drop),
         Param::EffectStiffness => Effect::spring(v, DVec3::ZERO).map(drop),
         Param::MagnetDistance => Effect::magnet(v, 1.0).map(drop),
+        Param::CutForce => CutOptions::new(1e-3, v).map(drop),
+        Param::CutRate => Layer::new("dentin", 1.0, Material::DEFAULT, v).map(drop),
+        Param::VoxelSize => voxelised(v),
+        Param::LayerValue => Layer::new("dentin", v as f32, Material::DEFAULT, 0.01).map(drop),
         other => panic!("no constructor in this test for {other}"),
     }
 }

@@ -1,0 +1,344 @@
+//! Cutting: the tool removes the material it presses on. A [`Cutter`] owns the volume
+//! off the servo thread: it is told where the tool pressed and how hard
+//! ([`Cutter::press`], from each tick's output), lowers the values inside the tool's
+//! reach, re-extracts only the chunks it changed and makes the next version of the
+//! object's shape ([`Cutter::refresh`]), which the servo takes wait-free
+//! ([`Edit::SetShape`](crate::scene::Edit::SetShape)).
+//!
+//! The rule of a press, for a tool of radius `r` centred at `c` pressing with a force of
+//! at least the cut force for `dt` seconds: every material voxel within `r + margin` of
+//! `c` (the cutting ball; the margin is one voxel) gains `dt · rate / voxel` of progress
+//! (its layer's rate); once at 1 it is removed, its value lowered to where a sphere of
+//! the cutting ball's radius would put it: `iso + (d − r − margin) · slope` (below iso:
+//! air), and the voxels within one more voxel are lowered to the same sphere's values
+//! where those are lower (they stay material), so the cut surface follows the sphere,
+//! not the voxels' stairs. Values only go down: the material after a cut is inside the
+//! material before it, so a tool outside the old surface is outside the new one.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use glam::{DAffine3, DVec3};
+
+use super::Volume;
+use super::extract::Chunks;
+use super::layers::Layers;
+use crate::map::{MapError, MapOptions};
+use crate::mesh::{Surface, SurfaceError, SurfaceOptions};
+use crate::par::on_this_thread;
+use crate::scene::{Param, ParamError, Shape};
+
+/// How a [`Cutter`] cuts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CutOptions {
+    tool_radius: f64,
+    cut_force: f64,
+    layers: Layers,
+}
+
+impl CutOptions {
+    /// The contact force from which the tool cuts unless told otherwise, N.
+    pub const DEFAULT_CUT_FORCE: f64 = 0.5;
+
+    /// A tool of `tool_radius` metres cutting from a contact force of `cut_force` N, in
+    /// one material ([`Layers::default`]).
+    ///
+    /// # Errors
+    /// [`ParamError`] naming [`Param::ToolRadius`] or [`Param::CutForce`].
+    pub fn new(tool_radius: f64, cut_force: f64) -> Result<CutOptions, ParamError> {
+        Ok(CutOptions {
+            tool_radius: Param::ToolRadius.check(tool_radius)?,
+            cut_force: Param::CutForce.check(cut_force)?,
+            layers: Layers::default(),
+        })
+    }
+
+    /// The same with the materials of `layers`.
+    pub fn with_layers(mut self, layers: Layers) -> CutOptions {
+        self.layers = layers;
+        self
+    }
+
+    /// The tool's radius, metres.
+    pub fn tool_radius(&self) -> f64 {
+        self.tool_radius
+    }
+
+    /// The force from which it cuts, N.
+    pub fn cut_force(&self) -> f64 {
+        self.cut_force
+    }
+
+    /// The materials.
+    pub fn layers(&self) -> &Layers {
+        &self.layers
+    }
+}
+
+impl Default for CutOptions {
+    /// A point tool (radius 0) cutting from [`CutOptions::DEFAULT_CUT_FORCE`], one
+    /// material.
+    fn default() -> CutOptions {
+        CutOptions {
+            tool_radius: 0.0,
+            cut_force: CutOptions::DEFAULT_CUT_FORCE,
+            layers: Layers::default(),
+        }
+    }
+}
+
+/// Why a cut volume's shape could not be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CutError {
+    /// The volume has no material left (or had none): no surface to render.
+    #[error("{0}: no material is left")]
+    Empty(String),
+    /// The extracted surface was refused (not expected of a closed extraction).
+    #[error("{0}: {1}")]
+    Surface(String, SurfaceError),
+    /// Its map could not be built.
+    #[error("{0}: {1}")]
+    Map(String, MapError),
+}
+
+/// An inclusive box of voxel indices.
+type VoxelBox = ([i64; 3], [i64; 3]);
+
+/// The volume of an object the tool cuts into, and the shape of its surface, owned by the
+/// thread that refreshes it (never the servo's).
+#[derive(Debug)]
+pub struct Cutter {
+    name: String,
+    volume: Volume,
+    chunks: Chunks,
+    shape: Arc<Shape>,
+    options: CutOptions,
+    map_options: MapOptions,
+    from_world: DAffine3,
+    /// One voxel: the largest spacing of the grid, metres.
+    voxel: f64,
+    /// The value a removed voxel goes down to at most (below iso).
+    air: f32,
+    /// Value per metre of the cutting sphere's field.
+    slope: f64,
+    /// Progress of the voxels pressed on but not removed yet (flat index → 0..1).
+    progress: HashMap<usize, f32>,
+    /// The voxels changed since the last refresh.
+    dirty: Option<VoxelBox>,
+    removed: u64,
+}
+
+impl Cutter {
+    /// The cutter of `volume` (named `name` in errors), its surface extracted and its
+    /// shape built; it cuts as [`CutOptions::default`] says until told otherwise
+    /// ([`Cutter::set_options`]).
+    ///
+    /// # Errors
+    /// [`CutError`] when the volume has no material, or its surface cannot be mapped.
+    pub fn new(name: &str, volume: Volume, map_options: MapOptions) -> Result<Cutter, CutError> {
+        let chunks = Chunks::extract(&volume);
+        let m = volume.to_world().matrix3;
+        let voxel = [m.x_axis, m.y_axis, m.z_axis]
+            .iter()
+            .map(|a| a.length())
+            .fold(0.0, f64::max);
+        let (lowest, highest) = volume
+            .values()
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold((f32::MAX, f32::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        let iso = volume.iso();
+        let air = if lowest < iso {
+            lowest
+        } else {
+            iso - (highest - iso).abs().max(iso.abs()).max(1.0)
+        };
+        let shape = Arc::new(build(name, &chunks, &map_options)?);
+        Ok(Cutter {
+            name: name.to_owned(),
+            from_world: volume.to_world().inverse(),
+            slope: f64::from(iso - air) / voxel,
+            air,
+            voxel,
+            shape,
+            volume,
+            chunks,
+            options: CutOptions::default(),
+            map_options,
+            progress: HashMap::new(),
+            dirty: None,
+            removed: 0,
+        })
+    }
+
+    /// The latest shape made (the object's shape once the servo takes it).
+    pub fn shape(&self) -> &Arc<Shape> {
+        &self.shape
+    }
+
+    /// The volume as cut so far.
+    pub fn volume(&self) -> &Volume {
+        &self.volume
+    }
+
+    /// The volume, given back (to save it).
+    pub fn into_volume(self) -> Volume {
+        self.volume
+    }
+
+    /// How it cuts.
+    pub fn options(&self) -> &CutOptions {
+        &self.options
+    }
+
+    /// Cuts as `options` says from now on.
+    pub fn set_options(&mut self, options: CutOptions) {
+        self.options = options;
+    }
+
+    /// How many voxels it removed.
+    pub fn removed(&self) -> u64 {
+        self.removed
+    }
+
+    /// One tick of the tool centred at `centre` (the volume's frame, metres) pressing
+    /// with a contact force of `force` N for `dt` seconds: below the cut force nothing
+    /// happens; at or above it the voxels in reach make progress and those done are
+    /// removed (see the module's rule). Returns how many voxels it removed.
+    pub fn press(&mut self, centre: DVec3, force: f64, dt: f64) -> usize {
+        if !(force >= self.options.cut_force && dt > 0.0 && centre.is_finite()) {
+            return 0;
+        }
+        let reach = self.options.tool_radius + self.voxel;
+        let (lo, hi) = self.voxels_within(centre, reach);
+        let mut done = Vec::new();
+        for k in lo[2]..=hi[2] {
+            for j in lo[1]..=hi[1] {
+                for i in lo[0]..=hi[0] {
+                    let d = self.volume.point(i as f64, j as f64, k as f64).distance(centre);
+                    if d > reach || !self.volume.is_material(i, j, k) {
+                        continue;
+                    }
+                    let at = self.flat(i, j, k);
+                    let value = self.volume.values()[at];
+                    let step = dt * self.options.layers.of(value).rate / self.voxel;
+                    let progress = self.progress.entry(at).or_insert(0.0);
+                    *progress += step as f32;
+                    if *progress >= 1.0 {
+                        self.progress.remove(&at);
+                        done.push(at);
+                    }
+                }
+            }
+        }
+        if done.is_empty() {
+            return 0;
+        }
+        self.carve(centre, reach, &done);
+        done.len()
+    }
+
+    /// Lowers the `done` voxels, and those within a voxel more of the cutting sphere
+    /// (centre, radius `reach`), to the sphere's field.
+    fn carve(&mut self, centre: DVec3, reach: f64, done: &[usize]) {
+        let field = |d: f64| {
+            let v = f64::from(self.volume.iso()) + (d - reach) * self.slope;
+            (v as f32).max(self.air)
+        };
+        let mut changed: Option<VoxelBox> = None;
+        for &at in done {
+            let [i, j, k] = super::index_of(self.volume.dims(), at).map(|x| x as i64);
+            let d = self.volume.point(i as f64, j as f64, k as f64).distance(centre);
+            let v = &mut self.volume.values_mut()[at];
+            *v = v.min(field(d).min(self.volume.iso().next_down()));
+            grow(&mut changed, [i, j, k]);
+            self.removed += 1;
+        }
+        let band = reach + self.voxel;
+        let (lo, hi) = self.voxels_within(centre, band);
+        for k in lo[2]..=hi[2] {
+            for j in lo[1]..=hi[1] {
+                for i in lo[0]..=hi[0] {
+                    let d = self.volume.point(i as f64, j as f64, k as f64).distance(centre);
+                    if d <= reach || d > band || !self.volume.is_material(i, j, k) {
+                        continue;
+                    }
+                    let at = self.flat(i, j, k);
+                    let target = field(d).max(self.volume.iso());
+                    let v = &mut self.volume.values_mut()[at];
+                    if target < *v {
+                        *v = target;
+                        grow(&mut changed, [i, j, k]);
+                    }
+                }
+            }
+        }
+        if let Some((lo, hi)) = changed {
+            for v in [lo, hi] {
+                grow(&mut self.dirty, v);
+            }
+        }
+    }
+
+    /// The chunks changed since the last call re-extracted, and the next version of the
+    /// shape made ([`Shape::replacing`] the latest); `None` when nothing changed. The
+    /// work runs on the calling thread alone, never on rayon's pool.
+    ///
+    /// # Errors
+    /// [`CutError::Empty`] once no material is left; the others as [`Cutter::new`].
+    pub fn refresh(&mut self) -> Result<Option<Arc<Shape>>, CutError> {
+        let Some((lo, hi)) = self.dirty.take() else {
+            return Ok(None);
+        };
+        on_this_thread(|| {
+            self.chunks.refresh(&self.volume, lo, hi);
+            let shape = build(&self.name, &self.chunks, &self.map_options)?.replacing(&self.shape);
+            self.shape = Arc::new(shape);
+            Ok(Some(Arc::clone(&self.shape)))
+        })
+    }
+
+    /// The inclusive box of voxels (clamped to the grid) holding the ball of `radius`
+    /// around `centre`.
+    fn voxels_within(&self, centre: DVec3, radius: f64) -> VoxelBox {
+        let q = self.from_world.transform_point3(centre);
+        let m = self.from_world.matrix3.transpose();
+        // The half-extent of the ball's image along index axis a: radius × |row a|.
+        let half = DVec3::new(m.x_axis.length(), m.y_axis.length(), m.z_axis.length()) * radius;
+        let dims = self.volume.dims().map(|d| d as i64 - 1);
+        let lo = (q - half).ceil();
+        let hi = (q + half).floor();
+        let clamp = |x: f64, a: usize| (x.clamp(-1.0, dims[a] as f64 + 1.0) as i64).clamp(0, dims[a]);
+        (
+            [clamp(lo.x, 0), clamp(lo.y, 1), clamp(lo.z, 2)],
+            [clamp(hi.x, 0), clamp(hi.y, 1), clamp(hi.z, 2)],
+        )
+    }
+
+    fn flat(&self, i: i64, j: i64, k: i64) -> usize {
+        let [nx, ny, _] = self.volume.dims();
+        i as usize + nx * (j as usize + ny * k as usize)
+    }
+}
+
+/// The shape of the surface of `chunks` (named `name`).
+fn build(name: &str, chunks: &Chunks, map_options: &MapOptions) -> Result<Shape, CutError> {
+    if chunks.triangle_count() == 0 {
+        return Err(CutError::Empty(name.to_owned()));
+    }
+    let surface = Surface::new(chunks.mesh(name), &SurfaceOptions::default())
+        .map_err(|e| CutError::Surface(name.to_owned(), e))?;
+    Shape::build(surface, map_options).map_err(|e| CutError::Map(name.to_owned(), e))
+}
+
+/// Grows `b` to hold voxel `v`.
+fn grow(b: &mut Option<VoxelBox>, v: [i64; 3]) {
+    *b = Some(match *b {
+        None => (v, v),
+        Some((lo, hi)) => (
+            [lo[0].min(v[0]), lo[1].min(v[1]), lo[2].min(v[2])],
+            [hi[0].max(v[0]), hi[1].max(v[1]), hi[2].max(v[2])],
+        ),
+    });
+}

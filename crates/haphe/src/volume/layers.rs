@@ -1,0 +1,118 @@
+//! What a volume's material is made of: a table from values to how each material feels
+//! and how fast the tool cuts it (enamel harder than dentin, cortical bone harder than
+//! cancellous bone).
+
+use crate::scene::{Material, Param, ParamError};
+
+/// The rate a material is cut at unless told otherwise: the tool sinks 20 mm a second
+/// into it at the cut force.
+pub const DEFAULT_CUT_RATE: f64 = 0.02;
+
+/// One material of a volume: the values from `from` up to the next layer's `from`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layer {
+    /// What the material is called (in summaries).
+    pub name: String,
+    /// The lowest value of the material (a label, or the start of a range).
+    pub from: f32,
+    /// How the material feels.
+    pub material: Material,
+    /// How fast the tool removes it, m/s: the depth it sinks in a second under the cut
+    /// force (a voxel goes after `voxel / rate` seconds of pressing).
+    pub rate: f64,
+}
+
+impl Layer {
+    /// The material `name` for values from `from` up, feeling like `material`, cut at
+    /// `rate` m/s.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming [`Param::CutRate`] or [`Param::LayerValue`] (not finite)
+    /// outside its domain.
+    pub fn new(name: &str, from: f32, material: Material, rate: f64) -> Result<Layer, ParamError> {
+        Param::LayerValue.check(f64::from(from))?;
+        Ok(Layer {
+            name: name.to_owned(),
+            from,
+            material,
+            rate: Param::CutRate.check(rate)?,
+        })
+    }
+}
+
+/// The layers of a volume sorted by `from`; values below the first are the first's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layers {
+    layers: Vec<Layer>,
+}
+
+impl Layers {
+    /// One material for every value.
+    ///
+    /// # Errors
+    /// [`ParamError`] naming [`Param::CutRate`] outside its domain.
+    pub fn uniform(material: Material, rate: f64) -> Result<Layers, ParamError> {
+        Ok(Layers {
+            layers: vec![Layer::new("material", f32::MIN, material, rate)?],
+        })
+    }
+
+    /// The table of `layers` (sorted here by `from`); one material of the default when
+    /// empty.
+    pub fn new(mut layers: Vec<Layer>) -> Layers {
+        if layers.is_empty() {
+            return Layers::default();
+        }
+        layers.sort_by(|a, b| a.from.total_cmp(&b.from));
+        Layers { layers }
+    }
+
+    /// The layer of `value`: the last whose `from` is at most the value (the first for a
+    /// value below every `from`).
+    pub fn of(&self, value: f32) -> &Layer {
+        let at = self.layers.partition_point(|l| l.from <= value);
+        &self.layers[at.saturating_sub(1)]
+    }
+
+    /// The layers, sorted by `from`.
+    pub fn layers(&self) -> &[Layer] {
+        &self.layers
+    }
+}
+
+impl Default for Layers {
+    /// One material: [`Material::DEFAULT`], cut at [`DEFAULT_CUT_RATE`].
+    fn default() -> Layers {
+        Layers {
+            layers: vec![Layer {
+                name: "material".to_owned(),
+                from: f32::MIN,
+                material: Material::DEFAULT,
+                rate: DEFAULT_CUT_RATE,
+            }],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_value_takes_the_last_layer_starting_at_or_below_it() {
+        let soft = Material::new(300.0).unwrap();
+        let hard = Material::new(900.0).unwrap();
+        let layers = Layers::new(vec![
+            Layer::new("enamel", 2.0, hard, 0.002).unwrap(),
+            Layer::new("dentin", 1.0, soft, 0.01).unwrap(),
+        ]);
+        assert_eq!(layers.of(0.5).name, "dentin");
+        assert_eq!(layers.of(1.0).name, "dentin");
+        assert_eq!(layers.of(1.9).name, "dentin");
+        assert_eq!(layers.of(2.0).name, "enamel");
+        assert_eq!(layers.of(f32::INFINITY).name, "enamel");
+        assert!(Layer::new("x", 1.0, soft, 0.0).is_err());
+        assert!(Layer::new("x", f32::NAN, soft, 0.01).is_err());
+        assert_eq!(Layers::new(Vec::new()), Layers::default());
+    }
+}
