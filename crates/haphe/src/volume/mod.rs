@@ -9,7 +9,15 @@
 //! are stored with `i` fastest (`i + nx * (j + ny * k)`). Outside the grid is air: a
 //! surface that reaches the grid's border is closed there.
 
+mod extract;
+mod voxelise;
+
 use glam::{DAffine3, DVec3};
+
+use crate::map::MapOptions;
+use crate::scene::{Shape, ShapeError};
+
+pub use extract::Chunks;
 
 /// The most voxels a volume may have (2^31: 8 GiB of `f32`).
 pub const MAX_VOXELS: usize = 1 << 31;
@@ -75,10 +83,9 @@ impl Volume {
             });
         }
         let det = to_world.matrix3.determinant();
-        if !(to_world.matrix3.is_finite() && to_world.translation.is_finite())
-            || !det.is_finite()
-            || det == 0.0
-        {
+        let finite =
+            to_world.matrix3.is_finite() && to_world.translation.is_finite() && det.is_finite();
+        if !finite || det == 0.0 {
             return Err(VolumeError::Affine);
         }
         if !iso.is_finite() {
@@ -140,6 +147,17 @@ impl Volume {
     #[inline]
     pub fn point(&self, i: f64, j: f64, k: f64) -> DVec3 {
         self.to_world.transform_point3(DVec3::new(i, j, k))
+    }
+
+    /// The shape of the iso-surface, as a servo loop renders it: every chunk extracted
+    /// ([`Chunks::extract`]), welded into one mesh and made a shape as
+    /// [`Shape::from_mesh`] makes one (surface, map, clear zones). `name` is in the errors.
+    ///
+    /// # Errors
+    /// Those of [`Shape::from_mesh`]: [`ShapeError::Surface`] when no voxel is material
+    /// (no triangle), [`ShapeError::Map`] when the map cannot be built.
+    pub fn shape(&self, name: &str, options: &MapOptions) -> Result<Shape, ShapeError> {
+        Shape::from_mesh(name, Chunks::extract(self).mesh(), options)
     }
 
     /// The centre of the grid's bounding box in metres: where the front ends place the
