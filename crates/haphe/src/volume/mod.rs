@@ -9,12 +9,19 @@
 //! are stored with `i` fastest (`i + nx * (j + ny * k)`). Outside the grid is air: a
 //! surface that reaches the grid's border is closed there.
 
+mod extract;
+mod voxelise;
+
 use glam::{DAffine3, DVec3};
 
 mod cut;
 mod layers;
 
+use crate::map::MapOptions;
+use crate::scene::{Shape, ShapeError};
+
 pub use cut::{CutError, CutOptions, Cutter};
+pub use extract::Chunks;
 pub use layers::{DEFAULT_CUT_RATE, Layer, Layers};
 
 /// The most voxels a volume may have (2^31: 8 GiB of `f32`).
@@ -144,6 +151,17 @@ impl Volume {
     #[inline]
     pub fn point(&self, i: f64, j: f64, k: f64) -> DVec3 {
         self.to_world.transform_point3(DVec3::new(i, j, k))
+    }
+
+    /// The shape of the iso-surface, as a servo loop renders it: every chunk extracted
+    /// ([`Chunks::extract`]), welded into one mesh and made a shape as
+    /// [`Shape::from_mesh`] makes one (surface, map, clear zones). `name` is in the errors.
+    ///
+    /// # Errors
+    /// Those of [`Shape::from_mesh`]: [`ShapeError::Surface`] when no voxel is material
+    /// (no triangle), [`ShapeError::Map`] when the map cannot be built.
+    pub fn shape(&self, name: &str, options: &MapOptions) -> Result<Shape, ShapeError> {
+        Shape::from_mesh(name, Chunks::extract(self).mesh(), options)
     }
 
     /// The centre of the grid's bounding box in metres: where the front ends place the
