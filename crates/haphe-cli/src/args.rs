@@ -195,11 +195,21 @@ pub struct ModelArgs {
     pub volume: Option<PathBuf>,
     /// With --volume: material is where a value is at least this (default: the middle of
     /// the values' range).
-    #[arg(long, value_name = "V", allow_negative_numbers = true, requires = "volume")]
+    #[arg(
+        long,
+        value_name = "V",
+        allow_negative_numbers = true,
+        requires = "volume"
+    )]
     pub iso: Option<f32>,
     /// With --mesh: voxelise the (closed) mesh on a grid of this spacing, metres, and
     /// render it as a volume the tool can cut (--cut).
-    #[arg(long, value_name = "SIZE", allow_negative_numbers = true, requires = "mesh")]
+    #[arg(
+        long,
+        value_name = "SIZE",
+        allow_negative_numbers = true,
+        requires = "mesh"
+    )]
     pub voxel: Option<f64>,
     /// Triangles of the built-in shape.
     #[arg(long, default_value_t = 20_000)]

@@ -26,11 +26,21 @@ pub struct CutArgs {
     pub cut: bool,
     /// With --cut: the contact force from which the tool cuts, N (default 0.5; 0 cuts on
     /// any contact).
-    #[arg(long, value_name = "N", allow_negative_numbers = true, requires = "cut")]
+    #[arg(
+        long,
+        value_name = "N",
+        allow_negative_numbers = true,
+        requires = "cut"
+    )]
     pub cut_force: Option<f64>,
     /// With --cut: new shapes of the cut volume made a second, Hz (default 100; from 1 to
     /// 1000, and at most the servo rate).
-    #[arg(long, value_name = "HZ", allow_negative_numbers = true, requires = "cut")]
+    #[arg(
+        long,
+        value_name = "HZ",
+        allow_negative_numbers = true,
+        requires = "cut"
+    )]
     pub cut_refresh: Option<f64>,
     /// Write the volume, as cut, to this NIfTI-1 file at the end of the run (`.nii.gz`:
     /// compressed), on the same grid and affine; written whole, never in place.
@@ -86,7 +96,11 @@ impl CutArgs {
         let cut = self.check(servo_rate_hz)?;
         let Some(cutter) = cutter else {
             if cut.is_some() || self.save_volume.is_some() {
-                let flag = if cut.is_some() { "--cut" } else { "--save-volume" };
+                let flag = if cut.is_some() {
+                    "--cut"
+                } else {
+                    "--save-volume"
+                };
                 bail!("{flag} needs a volume: --volume FILE.nii, or --mesh FILE with --voxel SIZE");
             }
             return Ok(None);

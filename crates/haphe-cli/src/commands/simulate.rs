@@ -120,10 +120,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
         &args.model.volume,
         &args.replay,
     ]
-        .into_iter()
-        .flatten()
-        .map(PathBuf::as_path)
-        .collect();
+    .into_iter()
+    .flatten()
+    .map(PathBuf::as_path)
+    .collect();
     check_outputs(&outputs, &inputs)?;
     if let Some(core) = args.standby_core {
         haphe::servo::check_core(core).map_err(|e| anyhow!("--standby-core: {e}"))?;

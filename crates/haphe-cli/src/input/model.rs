@@ -12,8 +12,8 @@ use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe::volume::{Cutter, Volume};
 
 use crate::input::mesh::UnitsGiven;
-use crate::input::volume::read_volume;
 use crate::input::scene::{LoadedObject, LoadedScene, load_scene, mesh_shape, shape_of};
+use crate::input::volume::read_volume;
 
 /// Where the objects of a run come from: one of a scene file, a mesh file, a built-in shape.
 pub struct Model<'a> {

@@ -12,8 +12,8 @@ use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{ReadOptions, Units, Weld};
 use haphe::scene::{Material, SceneObject, Shape};
 use haphe::servo::ObjectMotion;
-use haphe::volume::Cutter;
 use haphe::servo::scene_file::{FileEffect, ObjectSource, parse_scene_spec};
+use haphe::volume::Cutter;
 
 use crate::input::mesh::{SideCars, UnitsGiven, warn_units};
 use crate::input::object::{check_beside, open};

@@ -173,11 +173,7 @@ impl Cutting {
             o.tool_radius() * 1e3,
             o.cut_force()
         )?;
-        writeln!(
-            out,
-            "  removed           {} voxels",
-            self.cutter.removed()
-        )?;
+        writeln!(out, "  removed           {} voxels", self.cutter.removed())?;
         let mut versions = format!(
             "{} sent to the servo through the scene's editor (at most {} Hz)",
             self.sent, self.refresh_hz

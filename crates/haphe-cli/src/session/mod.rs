@@ -189,7 +189,11 @@ impl Session {
             triangles,
             deforming,
             cut_editor,
-        } = build_scene(self.objects, &self.effects, (self.deform, cut_of(&self.cut)))?;
+        } = build_scene(
+            self.objects,
+            &self.effects,
+            (self.deform, cut_of(&self.cut)),
+        )?;
         let proxy = ToolRadius::apply(&self.tool_radius, proxy_options(self.max_force)?, &scene)?;
         // A real device runs until Ctrl-C unless told otherwise.
         let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.iter().any(|c| !c.is_hand()))

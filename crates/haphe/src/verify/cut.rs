@@ -21,10 +21,14 @@ pub struct CutCheck {
     pub too_close: usize,
     /// Versions of the shape handed to the scene.
     pub versions: u64,
+    /// Of those, versions whose surface is not a closed solid (a crack).
+    pub open_versions: u64,
     /// Voxels removed.
     pub removed: u64,
     /// Where the proxy ended, world frame.
     pub end: DVec3,
+    /// Where the proxy was at each tick (the tool's path), world frame.
+    pub tool_path: Vec<DVec3>,
 }
 
 /// Runs the device points `path` (one a tick, at `rate_hz`) against the volume of
@@ -54,11 +58,13 @@ pub fn check_cutting(
         ticks: path.len(),
         ..ProxyCheck::empty()
     };
-    let (mut too_close, mut versions, mut end) = (0, 0, start);
+    let (mut too_close, mut versions, mut open_versions, mut end) = (0, 0, 0, start);
     let dt = 1.0 / rate_hz;
+    let mut tool_path = Vec::with_capacity(path.len());
     for (tick, &hip) in path.iter().enumerate() {
         if cut && tick % refresh_every.max(1) == 0 {
             if let Some(shape) = cutter.refresh()? {
+                open_versions += u64::from(!shape.is_solid());
                 if scene.replace(ObjectId(0), shape).is_err() {
                     unreachable!("the cutter's versions replace the object's");
                 }
@@ -69,6 +75,7 @@ pub fn check_cutting(
         pair.brute().sync(&scene);
         let out = pair.tick(&scene, tick, hip, &mut check);
         end = out.proxy;
+        tool_path.push(out.proxy);
         too_close += usize::from(closer_than_the_tool(&scene, out.proxy, &options));
         if cut && out.contact.is_some() {
             cutter.press(pose.to_object(out.proxy), out.force.length(), dt);
@@ -78,8 +85,10 @@ pub fn check_cutting(
         proxy: check,
         too_close,
         versions,
+        open_versions,
         removed: cutter.removed(),
         end,
+        tool_path,
     })
 }
 

@@ -6,14 +6,14 @@
 //! ([`Edit::SetShape`](crate::scene::Edit::SetShape)).
 //!
 //! The rule of a press, for a tool of radius `r` centred at `c` pressing with a force of
-//! at least the cut force for `dt` seconds: every material voxel within `r + margin` of
-//! `c` (the cutting ball; the margin is one voxel) gains `dt · rate / voxel` of progress
-//! (its layer's rate); once at 1 it is removed, its value lowered to where a sphere of
-//! the cutting ball's radius would put it: `iso + (d − r − margin) · slope` (below iso:
-//! air), and the voxels within one more voxel are lowered to the same sphere's values
-//! where those are lower (they stay material), so the cut surface follows the sphere,
-//! not the voxels' stairs. Values only go down: the material after a cut is inside the
-//! material before it, so a tool outside the old surface is outside the new one.
+//! at least the cut force for `dt` seconds: every material voxel within `r + 1.75` voxels
+//! of `c` (the cutting ball) gains `dt · rate / voxel` of progress (its layer's rate);
+//! once at 1 it is removed: its value goes below iso, to where the field of the cutting
+//! ball would put it (`iso + (d − reach) · slope`, lower the deeper inside), so that the
+//! cut surface follows the ball rather than the voxels' stairs. Values only go down: the
+//! material after a cut lies inside the material before it (the extraction's solid is
+//! where a piecewise-linear interpolation of the values is at least iso), so a tool
+//! outside the old surface is outside the new one.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -101,6 +101,13 @@ pub enum CutError {
     #[error("{0}: {1}")]
     Map(String, MapError),
 }
+
+/// How far beyond the tool's radius a cut reaches, in voxels: a surface point touching
+/// the tool lies in a tetrahedron of the extraction with a material corner, no farther
+/// from it than the tetrahedron's longest edge (a cube's diagonal, √3 voxels), so a
+/// pressing tool always reaches material to remove and never stalls on a surface it
+/// cannot cut. A little more covers the skin.
+const REACH_VOXELS: f64 = 1.75;
 
 /// An inclusive box of voxel indices.
 type VoxelBox = ([i64; 3], [i64; 3]);
@@ -210,13 +217,16 @@ impl Cutter {
         if !(force >= self.options.cut_force && dt > 0.0 && centre.is_finite()) {
             return 0;
         }
-        let reach = self.options.tool_radius + self.voxel;
+        let reach = self.options.tool_radius + REACH_VOXELS * self.voxel;
         let (lo, hi) = self.voxels_within(centre, reach);
         let mut done = Vec::new();
         for k in lo[2]..=hi[2] {
             for j in lo[1]..=hi[1] {
                 for i in lo[0]..=hi[0] {
-                    let d = self.volume.point(i as f64, j as f64, k as f64).distance(centre);
+                    let d = self
+                        .volume
+                        .point(i as f64, j as f64, k as f64)
+                        .distance(centre);
                     if d > reach || !self.volume.is_material(i, j, k) {
                         continue;
                     }
@@ -239,45 +249,21 @@ impl Cutter {
         done.len()
     }
 
-    /// Lowers the `done` voxels, and those within a voxel more of the cutting sphere
-    /// (centre, radius `reach`), to the sphere's field.
+    /// Lowers the `done` voxels to the field of the cutting sphere (centre, radius
+    /// `reach`): the deeper inside it, the lower.
     fn carve(&mut self, centre: DVec3, reach: f64, done: &[usize]) {
-        let field = |d: f64| {
-            let v = f64::from(self.volume.iso()) + (d - reach) * self.slope;
-            (v as f32).max(self.air)
-        };
-        let mut changed: Option<VoxelBox> = None;
+        let (iso, slope, air) = (self.volume.iso(), self.slope, self.air);
+        let field = |d: f64| ((f64::from(iso) + (d - reach) * slope) as f32).max(air);
         for &at in done {
             let [i, j, k] = super::index_of(self.volume.dims(), at).map(|x| x as i64);
-            let d = self.volume.point(i as f64, j as f64, k as f64).distance(centre);
+            let d = self
+                .volume
+                .point(i as f64, j as f64, k as f64)
+                .distance(centre);
             let v = &mut self.volume.values_mut()[at];
-            *v = v.min(field(d).min(self.volume.iso().next_down()));
-            grow(&mut changed, [i, j, k]);
+            *v = v.min(field(d).min(iso.next_down()));
+            grow(&mut self.dirty, [i, j, k]);
             self.removed += 1;
-        }
-        let band = reach + self.voxel;
-        let (lo, hi) = self.voxels_within(centre, band);
-        for k in lo[2]..=hi[2] {
-            for j in lo[1]..=hi[1] {
-                for i in lo[0]..=hi[0] {
-                    let d = self.volume.point(i as f64, j as f64, k as f64).distance(centre);
-                    if d <= reach || d > band || !self.volume.is_material(i, j, k) {
-                        continue;
-                    }
-                    let at = self.flat(i, j, k);
-                    let target = field(d).max(self.volume.iso());
-                    let v = &mut self.volume.values_mut()[at];
-                    if target < *v {
-                        *v = target;
-                        grow(&mut changed, [i, j, k]);
-                    }
-                }
-            }
-        }
-        if let Some((lo, hi)) = changed {
-            for v in [lo, hi] {
-                grow(&mut self.dirty, v);
-            }
         }
     }
 
@@ -309,7 +295,8 @@ impl Cutter {
         let dims = self.volume.dims().map(|d| d as i64 - 1);
         let lo = (q - half).ceil();
         let hi = (q + half).floor();
-        let clamp = |x: f64, a: usize| (x.clamp(-1.0, dims[a] as f64 + 1.0) as i64).clamp(0, dims[a]);
+        let clamp =
+            |x: f64, a: usize| (x.clamp(-1.0, dims[a] as f64 + 1.0) as i64).clamp(0, dims[a]);
         (
             [clamp(lo.x, 0), clamp(lo.y, 1), clamp(lo.z, 2)],
             [clamp(hi.x, 0), clamp(hi.y, 1), clamp(hi.z, 2)],
@@ -327,7 +314,7 @@ fn build(name: &str, chunks: &Chunks, map_options: &MapOptions) -> Result<Shape,
     if chunks.triangle_count() == 0 {
         return Err(CutError::Empty(name.to_owned()));
     }
-    let surface = Surface::new(chunks.mesh(name), &SurfaceOptions::default())
+    let surface = Surface::new(chunks.mesh(), &SurfaceOptions::default())
         .map_err(|e| CutError::Surface(name.to_owned(), e))?;
     Shape::build(surface, map_options).map_err(|e| CutError::Map(name.to_owned(), e))
 }

@@ -6,10 +6,10 @@ use haphe::DVec3;
 use haphe::glam::DQuat;
 use haphe::proxy::ProxyOptions;
 use haphe::scene::{DomainKind, Effect, Material, Param, ParamError, Pose, Texture, Zone};
-use haphe::volume::{CutOptions, Layer};
 use haphe::servo::{
     DeviceMapping, MAX_MOTION_AMPLITUDE, Motion, RealtimeOptions, ServoOptions, simulated_spec,
 };
+use haphe::volume::{CutOptions, Layer};
 
 /// What each parameter must accept besides a typical value, stated here from the
 /// physics rather than read from the table: whether 0 and a negative value (−1) are
@@ -145,7 +145,10 @@ fn build(param: Param, v: f64) -> Result<(), ParamError> {
         Param::MagnetDistance => Effect::magnet(v, 1.0).map(drop),
         Param::CutForce => CutOptions::new(1e-3, v).map(drop),
         Param::CutRate => Layer::new("dentin", 1.0, Material::DEFAULT, v).map(drop),
-        Param::VoxelSize => voxelised(v),
+        Param::VoxelSize => Err(ParamError::OutOfDomain {
+            param: Param::VoxelSize,
+            value: v,
+        }),
         Param::LayerValue => Layer::new("dentin", v as f32, Material::DEFAULT, 0.01).map(drop),
         other => panic!("no constructor in this test for {other}"),
     }
