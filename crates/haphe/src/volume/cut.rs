@@ -17,6 +17,7 @@
 
 use std::collections::HashMap;
 use std::sync::Arc;
+use std::time::Instant;
 
 use glam::{DAffine3, DVec3};
 
@@ -134,6 +135,8 @@ pub struct Cutter {
     /// The voxels changed since the last refresh.
     dirty: Option<VoxelBox>,
     removed: u64,
+    /// The last refresh's two steps, seconds: the chunks extracted, the shape built.
+    last_refresh: (f64, f64),
 }
 
 impl Cutter {
@@ -176,6 +179,7 @@ impl Cutter {
             progress: HashMap::new(),
             dirty: None,
             removed: 0,
+            last_refresh: (0.0, 0.0),
         })
     }
 
@@ -202,6 +206,12 @@ impl Cutter {
     /// Cuts as `options` says from now on.
     pub fn set_options(&mut self, options: CutOptions) {
         self.options = options;
+    }
+
+    /// The last refresh's two steps, seconds: the changed chunks extracted again, then
+    /// the shape of the new surface built.
+    pub fn last_refresh_seconds(&self) -> (f64, f64) {
+        self.last_refresh
     }
 
     /// How many voxels it removed.
@@ -278,8 +288,11 @@ impl Cutter {
             return Ok(None);
         };
         on_this_thread(|| {
+            let began = Instant::now();
             self.chunks.refresh(&self.volume, lo, hi);
+            let extracted = began.elapsed().as_secs_f64();
             let shape = build(&self.name, &self.chunks, &self.map_options)?.replacing(&self.shape);
+            self.last_refresh = (extracted, began.elapsed().as_secs_f64() - extracted);
             self.shape = Arc::new(shape);
             Ok(Some(Arc::clone(&self.shape)))
         })
