@@ -4,6 +4,7 @@
 use glam::{DAffine3, DVec3};
 
 use super::{MAX_VOXELS, Volume, VolumeError};
+use crate::mesh::TriId;
 use crate::par::*;
 use crate::query::{Side, classify_point, nearest_within};
 use crate::scene::Shape;
@@ -33,7 +34,8 @@ impl Volume {
     ///
     /// # Performance
     /// One inside test per voxel (mostly a cell lookup of the shape's map), and a nearest
-    /// triangle search within two voxels for each.
+    /// triangle search within the band for each voxel in a triangle's box grown by the
+    /// band (marked first, on one thread).
     pub fn from_shape(shape: &Shape, voxel: f64) -> Result<Volume, VolumeError> {
         if !(voxel.is_finite() && voxel > 0.0) {
             return Err(VolumeError::VoxelSize(voxel));
@@ -54,28 +56,75 @@ impl Volume {
         let dims = across.to_array().map(|n| n as usize);
         let to_world =
             DAffine3::from_translation(origin) * DAffine3::from_scale(DVec3::splat(voxel));
+        let grid = Grid {
+            to_world,
+            dims,
+            voxel,
+        };
+        let near = grid.near_triangles(shape);
         let slabs: Vec<Vec<f32>> = (0..dims[2])
             .into_par_iter()
-            .map(|k| slab(shape, to_world, dims, k, voxel))
+            .map(|k| grid.slab(shape, &near, k))
             .collect();
         Volume::new(dims, slabs.concat(), to_world, 0.0)
     }
 }
 
-/// The values of the slab `z = k` of the grid (`i` fastest).
-fn slab(shape: &Shape, to_world: DAffine3, dims: [usize; 3], k: usize, voxel: f64) -> Vec<f32> {
-    let (surface, map) = (shape.surface(), shape.map());
-    let band = VOXELISE_BAND_VOXELS * voxel;
-    let mut values = Vec::with_capacity(dims[0] * dims[1]);
-    for j in 0..dims[1] {
-        for i in 0..dims[0] {
-            let p = to_world.transform_point3(DVec3::new(i as f64, j as f64, k as f64));
-            let distance = nearest_within(surface, map, p, band).map_or(band, |n| n.distance);
-            let inside = classify_point(surface, map, p).0 == Side::Inside;
-            values.push(if inside { distance } else { -distance } as f32);
+/// The grid being filled.
+struct Grid {
+    to_world: DAffine3,
+    dims: [usize; 3],
+    voxel: f64,
+}
+
+impl Grid {
+    /// Whether each voxel (`i` fastest) lies in the bounding box, grown by the band, of
+    /// some triangle: only those can have a triangle within the band.
+    fn near_triangles(&self, shape: &Shape) -> Vec<bool> {
+        let surface = shape.surface();
+        let band = DVec3::splat(VOXELISE_BAND_VOXELS * self.voxel);
+        let origin = self.to_world.translation;
+        let [nx, ny, _] = self.dims;
+        let mut near = vec![false; self.dims.iter().product()];
+        for t in 0..surface.triangle_count() {
+            let [a, b, c] = surface.corners(TriId(t as u32));
+            let lo = ((a.min(b).min(c) - band - origin) / self.voxel).floor();
+            let hi = ((a.max(b).max(c) + band - origin) / self.voxel).ceil();
+            let lo = lo.to_array().map(|x| x.max(0.0) as usize);
+            let hi = [0, 1, 2].map(|k| (hi[k].max(0.0) as usize).min(self.dims[k] - 1));
+            for k in lo[2]..=hi[2] {
+                for j in lo[1]..=hi[1] {
+                    let row = nx * (j + ny * k);
+                    near[row + lo[0]..=row + hi[0]].fill(true);
+                }
+            }
         }
+        near
     }
-    values
+
+    /// The values of the slab `z = k` (`i` fastest): the distance to the nearest triangle
+    /// within the band (the band where none is), positive inside.
+    fn slab(&self, shape: &Shape, near: &[bool], k: usize) -> Vec<f32> {
+        let (surface, map) = (shape.surface(), shape.map());
+        let band = VOXELISE_BAND_VOXELS * self.voxel;
+        let [nx, ny, _] = self.dims;
+        let mut values = Vec::with_capacity(nx * ny);
+        for j in 0..ny {
+            for i in 0..nx {
+                let p = self
+                    .to_world
+                    .transform_point3(DVec3::new(i as f64, j as f64, k as f64));
+                let distance = if near[i + nx * (j + ny * k)] {
+                    nearest_within(surface, map, p, band).map_or(band, |n| n.distance)
+                } else {
+                    band
+                };
+                let inside = classify_point(surface, map, p).0 == Side::Inside;
+                values.push(if inside { distance } else { -distance } as f32);
+            }
+        }
+        values
+    }
 }
 
 #[cfg(test)]
