@@ -20,8 +20,8 @@ impl Volume {
     /// every side; each value is the distance to the surface (metres, `f32`), positive
     /// inside (the non-zero rule of [`classify_point`]) and negative outside, clamped to
     /// ± two voxels; iso 0. The iso-surface ([`Volume::shape`]) is the shape's surface
-    /// within about a hundredth of a voxel where it is smooth at the voxel's scale; edges
-    /// and details smaller than a voxel are rounded off.
+    /// within a voxel where it is smooth at the voxel's scale; edges and details smaller
+    /// than a voxel are rounded off.
     ///
     /// In parallel over `z` slabs with the feature `parallel`, with the same result
     /// without it.
