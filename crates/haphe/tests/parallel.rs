@@ -1,6 +1,7 @@
 //! The `parallel` feature changes where the work before a servo loop runs, never what it
 //! gives. `results` lists everything that work produces on a few meshes (the reader's weld,
-//! the mesh report, the surface and map as saved, the self-intersections, the clear zones):
+//! the mesh report, the surface and map as saved, the self-intersections, the clear zones,
+//! a volume voxelised from a mesh and its iso-surface):
 //!
 //! - with the feature, one thread and four give the same, byte for byte;
 //! - `HAPHE_PARALLEL_DIGEST=FILE` writes a digest of it to FILE. CI runs this test with and
@@ -14,6 +15,7 @@ use haphe::mesh::shapes::Catalog;
 use haphe::mesh::{Mesh, MeshReport, ReadOptions, Surface, SurfaceOptions, read_mesh};
 use haphe::query::self_intersections;
 use haphe::scene::Shape;
+use haphe::volume::{Chunks, Volume};
 
 /// The meshes: procedural (the blob's noise is evaluated in parallel) and one read from a
 /// file with duplicate vertices to weld.
@@ -44,6 +46,13 @@ fn results() -> Vec<u8> {
         out.extend(format!("{:?}\n", self_intersections(&surface, &map)).bytes());
         let shape = Shape::new(surface, map);
         out.extend(format!("clear zones {}\n", shape.prepare_clear_zones()).bytes());
+        if name == "blob" {
+            // Voxelised at 40 voxels across, and its iso-surface extracted in chunks.
+            let volume = Volume::from_shape(&shape, shape.bound_radius() / 20.0)
+                .expect("the blob voxelises");
+            let mesh = Chunks::extract(&volume).mesh();
+            out.extend(format!("{:?}\n{mesh:?}\n", volume.values()).bytes());
+        }
     }
     out
 }

@@ -23,6 +23,7 @@ use crate::scene::{Shape, ShapeError};
 pub use cut::{CutError, CutOptions, Cutter};
 pub use extract::Chunks;
 pub use layers::{DEFAULT_CUT_RATE, Layer, Layers};
+pub use voxelise::VOXELISE_BAND_VOXELS;
 
 /// The most voxels a volume may have (2^31: 8 GiB of `f32`).
 pub const MAX_VOXELS: usize = 1 << 31;
@@ -51,6 +52,24 @@ pub enum VolumeError {
     /// The iso value is not finite.
     #[error("the iso value {0} is not finite")]
     Iso(f32),
+    /// The voxel size asked of [`Volume::from_shape`] is not a finite positive length.
+    #[error("the voxel size {0} m is not a finite positive length")]
+    VoxelSize(f64),
+    /// The voxel size asked of [`Volume::from_shape`] makes a grid of more than
+    /// [`MAX_VOXELS`].
+    #[error("the voxel size {voxel} m makes a grid of {voxels:.3e} voxels, more than {MAX_VOXELS}")]
+    VoxelCount {
+        /// The voxel size, metres.
+        voxel: f64,
+        /// How many voxels the grid would have.
+        voxels: f64,
+    },
+    /// The shape given to [`Volume::from_shape`] has no inside: it is not a closed,
+    /// manifold, consistently oriented solid ([`Shape::is_solid`]).
+    #[error(
+        "the shape is not a closed solid (open, non-manifold or inconsistently oriented): it has no inside to voxelise"
+    )]
+    NotSolid,
 }
 
 /// A regular grid of values and the affine that places it; material where the value is

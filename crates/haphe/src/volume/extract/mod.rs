@@ -126,15 +126,14 @@ impl Chunks {
         let size = Chunks::SIZE as i64;
         let mut range = [(0usize, 0usize); 3];
         for axis in 0..3 {
-            // The voxels of the grid in the box, then the cells they are corners of
-            // (from −1 to n − 1); chunk `(cell + 1) / SIZE`.
-            let last = hi[axis].min(self.dims[axis] as i64 - 1);
+            // The grid's voxels in the box, `first..=last`, are corners of the cells
+            // `first − 1 ..= last`; cell `c` is in chunk `(c + 1) / SIZE`.
             let first = lo[axis].max(0);
+            let last = hi[axis].min(self.dims[axis] as i64 - 1);
             if first > last {
                 return Vec::new();
             }
-            let first = first - 1;
-            range[axis] = (((first + 1) / size) as usize, ((last + 1) / size) as usize);
+            range[axis] = ((first / size) as usize, ((last + 1) / size) as usize);
         }
         let [(x0, x1), (y0, y1), (z0, z1)] = range;
         let [cx, cy, _] = self.counts;

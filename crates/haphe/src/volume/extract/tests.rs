@@ -247,3 +247,14 @@ fn no_material_no_triangles() {
     assert_eq!(chunks.triangle_count(), 0);
     assert!(chunks.mesh().vertices.is_empty());
 }
+
+#[test]
+fn a_volume_becomes_a_solid_shape() {
+    let volume = volume_of([30, 30, 30], 0.001, ball([14.0, 15.0, 14.5], 9.6));
+    let options = crate::map::MapOptions::default();
+    let shape = volume.shape("ball", &options).expect("a shape");
+    assert!(shape.is_solid());
+    let empty = volume_from_draws([4, 4, 4], || -1.0);
+    let error = empty.shape("air", &options).expect_err("no triangle");
+    assert!(error.to_string().starts_with("air: "), "{error}");
+}
