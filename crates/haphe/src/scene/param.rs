@@ -141,7 +141,7 @@ impl Param {
             Param::MagnetDistance => "magnet distance",
             Param::CutForce => "cut_force",
             Param::CutRate => "cut rate",
-            Param::VoxelSize => "voxel",
+            Param::VoxelSize => "voxel size",
             Param::LayerValue => "layer value",
         }
     }

@@ -18,7 +18,7 @@ mod cut;
 mod layers;
 
 use crate::map::MapOptions;
-use crate::scene::{Shape, ShapeError};
+use crate::scene::{ParamError, Shape, ShapeError};
 
 pub use cut::{CutError, CutOptions, Cutter};
 pub use extract::Chunks;
@@ -52,9 +52,10 @@ pub enum VolumeError {
     /// The iso value is not finite.
     #[error("the iso value {0} is not finite")]
     Iso(f32),
-    /// The voxel size asked of [`Volume::from_shape`] is not a finite positive length.
-    #[error("the voxel size {0} m is not a finite positive length")]
-    VoxelSize(f64),
+    /// The voxel size asked of [`Volume::from_shape`] is out of its domain
+    /// ([`Param::VoxelSize`](crate::scene::Param::VoxelSize)).
+    #[error(transparent)]
+    VoxelSize(#[from] ParamError),
     /// The voxel size asked of [`Volume::from_shape`] makes a grid of more than
     /// [`MAX_VOXELS`].
     #[error("the voxel size {voxel} m makes a grid of {voxels:.3e} voxels, more than {MAX_VOXELS}")]

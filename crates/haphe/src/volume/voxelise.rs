@@ -7,7 +7,7 @@ use super::{MAX_VOXELS, Volume, VolumeError};
 use crate::mesh::TriId;
 use crate::par::*;
 use crate::query::{Side, classify_point, nearest_within};
-use crate::scene::Shape;
+use crate::scene::{Param, Shape};
 
 /// Voxels of margin beyond the shape's bounds on every side, and the half-width of the band
 /// of exact distances: the values are clamped to this many voxels, so that the iso-surface
@@ -27,7 +27,8 @@ impl Volume {
     /// without it.
     ///
     /// # Errors
-    /// [`VolumeError::VoxelSize`] for a voxel size that is not finite and positive,
+    /// [`VolumeError::VoxelSize`] for a voxel size that is not finite, above 0 and at
+    /// most 1 m,
     /// [`VolumeError::VoxelCount`] when the grid would have more than [`MAX_VOXELS`], and
     /// [`VolumeError::NotSolid`] for a shape without an inside ([`Shape::is_solid`]: open,
     /// non-manifold or inconsistently oriented).
@@ -37,9 +38,7 @@ impl Volume {
     /// triangle search within the band for each voxel in a triangle's box grown by the
     /// band (marked first, on one thread).
     pub fn from_shape(shape: &Shape, voxel: f64) -> Result<Volume, VolumeError> {
-        if !(voxel.is_finite() && voxel > 0.0) {
-            return Err(VolumeError::VoxelSize(voxel));
-        }
+        let voxel = Param::VoxelSize.check(voxel)?;
         if !shape.is_solid() {
             return Err(VolumeError::NotSolid);
         }

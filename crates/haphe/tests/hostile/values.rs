@@ -9,7 +9,7 @@ use haphe::scene::{DomainKind, Effect, Material, Param, ParamError, Pose, Textur
 use haphe::servo::{
     DeviceMapping, MAX_MOTION_AMPLITUDE, Motion, RealtimeOptions, ServoOptions, simulated_spec,
 };
-use haphe::volume::{CutOptions, Layer};
+use haphe::volume::{CutOptions, Layer, Volume, VolumeError};
 
 /// What each parameter must accept besides a typical value, stated here from the
 /// physics rather than read from the table: whether 0 and a negative value (−1) are
@@ -82,6 +82,18 @@ const fn expect(
     }
 }
 
+/// A small cube voxelised at `voxel` metres: the voxel size's refusal.
+fn voxelised(voxel: f64) -> Result<(), ParamError> {
+    let cube = haphe::mesh::shapes::cuboid(DVec3::splat(0.01), [1; 3]);
+    let shape = haphe::scene::Shape::from_mesh("cube", cube, &Default::default()).expect("a cube");
+    match Volume::from_shape(&shape, voxel) {
+        Err(VolumeError::VoxelSize(e)) => Err(e),
+        // A voxel above the cube's size still makes a grid (of a few voxels).
+        Ok(_) | Err(VolumeError::VoxelCount { .. }) => Ok(()),
+        Err(other) => panic!("voxel {voxel}: {other}"),
+    }
+}
+
 /// Gives `v` to the public constructor that takes `param`, every other value typical.
 fn build(param: Param, v: f64) -> Result<(), ParamError> {
     let x = DVec3::new(v, 0.0, 0.0);
@@ -145,10 +157,7 @@ fn build(param: Param, v: f64) -> Result<(), ParamError> {
         Param::MagnetDistance => Effect::magnet(v, 1.0).map(drop),
         Param::CutForce => CutOptions::new(1e-3, v).map(drop),
         Param::CutRate => Layer::new("dentin", 1.0, Material::DEFAULT, v).map(drop),
-        Param::VoxelSize => Err(ParamError::OutOfDomain {
-            param: Param::VoxelSize,
-            value: v,
-        }),
+        Param::VoxelSize => voxelised(v),
         Param::LayerValue => Layer::new("dentin", v as f32, Material::DEFAULT, 0.01).map(drop),
         other => panic!("no constructor in this test for {other}"),
     }
