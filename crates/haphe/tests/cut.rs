@@ -243,3 +243,93 @@ fn strikes_at_chunk_borders_never_pass_through() {
         }
     }
 }
+
+/// The in-tree model `spot.obj` scaled to 60 mm and voxelised at 1.5 mm.
+fn voxelised_spot() -> Volume {
+    use haphe::mesh::{ReadOptions, read_mesh};
+    let file =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes/models/spot.obj");
+    let bytes = std::fs::read(&file).expect("the in-tree mesh meshes/models/spot.obj");
+    let mut mesh = read_mesh("spot.obj", &bytes, &ReadOptions::default()).expect("spot.obj reads");
+    let (lo, hi) = mesh.bounds().expect("vertices");
+    let scale = 0.06 / (hi - lo).max_element();
+    for v in &mut mesh.vertices {
+        *v = (*v - lo) * scale;
+    }
+    let shape =
+        haphe::scene::Shape::from_mesh("spot.obj", mesh, &MapOptions::default()).expect("a shape");
+    Volume::from_shape(&shape, 1.5e-3).expect("a volume")
+}
+
+/// Acceptance 2: drilling at 0.5 to 20 mm/s and strikes, on a voxelised model, with a
+/// tool: at no tick is the tool inside the material left, or closer to its surface than
+/// its radius less the skin; the proxy equals its oracle at every tick.
+#[test]
+fn drilling_a_voxelised_model_never_puts_the_tool_inside() {
+    let volume = voxelised_spot();
+    let pose = centred(&volume);
+    let radius = 1.5e-3;
+    let run = |path: &[DVec3]| {
+        let mut cutter =
+            Cutter::new("spot", volume.clone(), MapOptions::default()).expect("a cutter");
+        cutter
+            .set_options(CutOptions::new(radius, CutOptions::DEFAULT_CUT_FORCE).expect("options"));
+        let proxy = ProxyOptions::default()
+            .with_tool_radius(radius)
+            .expect("a radius");
+        check_cutting(
+            &mut cutter,
+            (pose, Material::DEFAULT),
+            path,
+            (proxy, 1e3),
+            (true, 20),
+        )
+        .expect("material left")
+    };
+    let top = 0.04;
+    for (speed, seconds) in [(5e-4, 1.0), (2e-3, 1.0), (2e-2, 0.5)] {
+        let from = DVec3::new(2e-3, 1e-3, top);
+        let path = straight(
+            from,
+            from - DVec3::Z * (speed * seconds + 0.03),
+            speed.max(0.03),
+            0,
+        );
+        // Down fast to above the back, then drilling at `speed`.
+        let mut path: Vec<DVec3> = path.into_iter().take(1000).collect();
+        let start = *path.last().expect("a point");
+        path.extend(straight(
+            start,
+            start - DVec3::Z * speed * seconds,
+            speed,
+            100,
+        ));
+        let check = run(&path);
+        eprintln!(
+            "drilling at {} mm/s: {} contact ticks, {} versions, {} voxels removed",
+            speed * 1e3,
+            check.proxy.contact_ticks,
+            check.versions,
+            check.removed
+        );
+        assert!(
+            check.proxy.contact_ticks > 100 && check.removed > 0,
+            "it drilled"
+        );
+        assert_clean(&check);
+    }
+    // Strikes at 0.2 m/s from six sides toward the centre, 10 mm past the surface.
+    for dir in [
+        DVec3::X,
+        -DVec3::X,
+        DVec3::Y,
+        -DVec3::Y,
+        DVec3::Z,
+        -DVec3::Z,
+    ] {
+        let dir = (dir + 0.2 * dir.any_orthonormal_vector()).normalize();
+        let path = straight(-dir * 0.045, -dir * 0.005, 0.2, 300);
+        let check = run(&path);
+        assert_clean(&check);
+    }
+}
