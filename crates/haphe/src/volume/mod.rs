@@ -11,10 +11,15 @@
 
 use glam::{DAffine3, DVec3};
 
+mod nifti;
+
+pub use nifti::{ByteOrder, Compression, NiftiInfo, ReadVolumeError, ReadVolumeErrorKind};
+
 /// The most voxels a volume may have (2^31: 8 GiB of `f32`).
 pub const MAX_VOXELS: usize = 1 << 31;
 
-/// Why a volume could not be made. File readers add the file's name and the place.
+/// Why a volume could not be made (or written: [`Volume::to_nifti`]). File readers add the
+/// file's name and the place.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum VolumeError {
@@ -38,6 +43,9 @@ pub enum VolumeError {
     /// The iso value is not finite.
     #[error("the iso value {0} is not finite")]
     Iso(f32),
+    /// A side of the grid is beyond what a NIfTI-1 header holds (32767 voxels).
+    #[error("the grid {0:?} has a side of more than 32767 voxels, beyond NIfTI-1")]
+    NiftiDims([usize; 3]),
 }
 
 /// A regular grid of values and the affine that places it; material where the value is
@@ -75,10 +83,8 @@ impl Volume {
             });
         }
         let det = to_world.matrix3.determinant();
-        if !(to_world.matrix3.is_finite() && to_world.translation.is_finite())
-            || !det.is_finite()
-            || det == 0.0
-        {
+        let finite = to_world.matrix3.is_finite() && to_world.translation.is_finite();
+        if !finite || !det.is_finite() || det == 0.0 {
             return Err(VolumeError::Affine);
         }
         if !iso.is_finite() {
@@ -118,6 +124,18 @@ impl Volume {
     /// Material is where a value is at least this.
     pub fn iso(&self) -> f32 {
         self.iso
+    }
+
+    /// Sets the iso value: material is then where a value is at least `iso`.
+    ///
+    /// # Errors
+    /// [`VolumeError::Iso`]: `iso` is not finite (the volume is left as it was).
+    pub fn set_iso(&mut self, iso: f32) -> Result<(), VolumeError> {
+        if !iso.is_finite() {
+            return Err(VolumeError::Iso(iso));
+        }
+        self.iso = iso;
+        Ok(())
     }
 
     /// The value at voxel `(i, j, k)`; outside the grid, air (`-inf`).
