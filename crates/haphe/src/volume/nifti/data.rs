@@ -32,7 +32,16 @@ pub(super) fn inflate(bytes: &[u8]) -> Result<(Layout, Vec<u8>), Kind> {
     let mut stream = MultiGzDecoder::new(bytes);
     let mut file = Vec::with_capacity(HEADER_BYTES);
     read_up_to(&mut stream, &mut file, HEADER_BYTES as u64)?;
-    let layout = layout(&file)?;
+    let layout = layout(&file).map_err(|e| match e {
+        Kind::Truncated {
+            needed, available, ..
+        } => Kind::Truncated {
+            what: "decompressed stream",
+            needed,
+            available,
+        },
+        other => other,
+    })?;
     let end = layout.end();
     let most = (bytes.len() as u64).saturating_mul(DEFLATE_MAX_RATIO);
     if end > most {

@@ -35,13 +35,12 @@ pub enum ReadVolumeErrorKind {
         message: String,
     },
     /// The file (or its decompressed stream) ends before the data the header announces.
-    #[error(
-        "the {what} ends early: {needed} bytes needed (the header's data end there), {available} there"
-    )]
+    #[error("the {what} ends early: {available} bytes of the {needed} its header announces")]
     Truncated {
         /// `"file"`, or `"decompressed stream"` for a gzip file.
         what: &'static str,
-        /// The bytes the header announces (header, `vox_offset`, the first volume's data).
+        /// The bytes the header announces: `sizeof_hdr`, or up to the end of the first
+        /// volume's data (`vox_offset` plus its voxels' bytes).
         needed: u64,
         /// The bytes there are.
         available: u64,

@@ -131,7 +131,7 @@ pub(super) fn layout(head: &[u8]) -> Result<Layout, Kind> {
     let order = byte_order(head)?;
     if head.len() < HEADER_BYTES {
         return Err(Kind::Truncated {
-            what: "header",
+            what: "file",
             needed: HEADER_BYTES as u64,
             available: head.len() as u64,
         });
