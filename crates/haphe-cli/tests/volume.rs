@@ -5,7 +5,7 @@ mod common;
 
 use common::{haphe, scratch, stdout, write};
 use haphe::glam::{DAffine3, DMat3, DVec3};
-use haphe::volume::{Compression, Volume};
+use haphe::volume::Volume;
 
 /// 4 × 3 × 2 voxels of 1 mm valued 0 to 23 (`i` fastest), the grid starting at x = 1 cm.
 fn volume() -> Volume {
@@ -26,16 +26,8 @@ fn volume() -> Volume {
 fn a_written_volume_validates_with_its_grid_affine_and_material() {
     let dir = scratch("volume");
     let v = volume();
-    let plain = write(
-        &dir,
-        "grid.nii",
-        v.to_nifti(Compression::None).expect("written"),
-    );
-    let gz = write(
-        &dir,
-        "grid.nii.gz",
-        v.to_nifti(Compression::Gzip).expect("written"),
-    );
+    let plain = write(&dir, "grid.nii", v.to_nifti().expect("written"));
+    let gz = write(&dir, "grid.nii.gz", v.to_nifti_gz().expect("written"));
 
     let out = haphe(&["validate", &plain, "--iso", "12"]);
     assert_eq!(out.status.code(), Some(0), "{}", stdout(&out));
@@ -74,7 +66,7 @@ fn a_written_volume_validates_with_its_grid_affine_and_material() {
     let j: serde_json::Value = serde_json::from_str(stdout(&out).trim()).expect("one JSON object");
     assert_eq!(j["dims"], serde_json::json!([4, 3, 2]));
     assert_eq!(j["gzip"], true);
-    assert_eq!(j["byte_order"], "little");
+    assert_eq!(j["byte_order"], "little-endian");
     assert_eq!(j["datatype"], "float32");
     assert_eq!(j["iso_default"], false);
     assert_eq!(j["material_voxels"], 4);
@@ -91,10 +83,10 @@ fn a_written_volume_validates_with_its_grid_affine_and_material() {
 fn malformed_volume_files_exit_2_naming_the_file() {
     let dir = scratch("volume-bad");
     let junk = write(&dir, "junk.nii", vec![7u8; 400]);
-    let mut nifti2 = volume().to_nifti(Compression::None).expect("written");
+    let mut nifti2 = volume().to_nifti().expect("written");
     nifti2[..4].copy_from_slice(&540i32.to_le_bytes());
     let nifti2 = write(&dir, "two.nii", nifti2);
-    let mut short = volume().to_nifti(Compression::None).expect("written");
+    let mut short = volume().to_nifti().expect("written");
     short.truncate(short.len() - 10);
     let short = write(&dir, "short.nii", short);
     let missing = dir.join("missing.nii").display().to_string();

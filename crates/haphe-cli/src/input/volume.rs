@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use anyhow::{Context, anyhow};
-use haphe::volume::{Compression, NiftiInfo, Volume};
+use haphe::volume::{NiftiInfo, Volume};
 
 use crate::input::files::{self, read_input};
 
@@ -56,14 +56,12 @@ pub fn default_iso(values: &[f32]) -> f32 {
 )]
 pub fn write_volume(path: &Path, volume: &Volume) -> anyhow::Result<()> {
     let gzip = path.to_string_lossy().to_ascii_lowercase().ends_with(".gz");
-    let compression = if gzip {
-        Compression::Gzip
+    let bytes = if gzip {
+        volume.to_nifti_gz()
     } else {
-        Compression::None
-    };
-    let bytes = volume
-        .to_nifti(compression)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+        volume.to_nifti()
+    }
+    .with_context(|| format!("cannot write {}", path.display()))?;
     haphe_files::write_replacing(path, &bytes).map_err(|e| anyhow!(e.message()))
 }
 
@@ -91,7 +89,7 @@ mod tests {
             let (back, info) = read_volume(&path, None).expect("read back");
             assert_eq!(back.values(), volume.values());
             assert_eq!(back.iso(), 3.5, "the midpoint of 0 .. 7");
-            assert_eq!(info.compression == Compression::Gzip, name.ends_with(".gz"));
+            assert_eq!(info.gzip, name.ends_with(".gz"));
             assert_eq!(std::fs::read_dir(&dir).expect("listed").count(), 1);
             std::fs::remove_file(&path).expect("removed");
         }

@@ -13,7 +13,10 @@ use glam::{DAffine3, DVec3};
 
 mod nifti;
 
-pub use nifti::{ByteOrder, Compression, NiftiInfo, ReadVolumeError, ReadVolumeErrorKind};
+pub use nifti::ReadVolumeError;
+// What `haphe validate` reports of a volume file: the command's plumbing.
+#[doc(hidden)]
+pub use nifti::NiftiInfo;
 
 /// The most voxels a volume may have (2^31: 8 GiB of `f32`).
 pub const MAX_VOXELS: usize = 1 << 31;

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use haphe::DVec3;
-use haphe::volume::{ByteOrder, Compression, NiftiInfo, Volume};
+use haphe::volume::{NiftiInfo, Volume};
 
 use crate::input::volume::read_volume;
 
@@ -101,14 +101,6 @@ pub fn report(
     Ok(if extent.is_some() { 0 } else { 2 })
 }
 
-/// How reports name a byte order.
-fn order_name(order: ByteOrder) -> &'static str {
-    match order {
-        ByteOrder::Little => "little-endian",
-        ByteOrder::Big => "big-endian",
-    }
-}
-
 /// The voxel sizes in millimetres: the lengths of the affine's columns.
 fn voxel_size_mm(volume: &Volume) -> [f64; 3] {
     let m = volume.to_world().matrix3;
@@ -139,17 +131,13 @@ fn text(
     extent: Option<&Extent>,
     seconds: f64,
 ) -> anyhow::Result<()> {
-    let gzip = if info.compression == Compression::Gzip {
-        ", gzip"
-    } else {
-        ""
-    };
+    let gzip = if info.gzip { ", gzip" } else { "" };
     writeln!(
         out,
         "{}  (NIfTI-1, {}, {}{gzip}; read in {:.1} ms)",
         path.display(),
         info.datatype,
-        order_name(info.byte_order),
+        info.byte_order,
         seconds * 1e3
     )?;
     let iso = volume.iso();
@@ -245,11 +233,8 @@ fn record(
         format: "NIfTI-1",
         seconds,
         datatype: info.datatype,
-        byte_order: match info.byte_order {
-            ByteOrder::Little => "little",
-            ByteOrder::Big => "big",
-        },
-        gzip: info.compression == Compression::Gzip,
+        byte_order: info.byte_order,
+        gzip: info.gzip,
         dims: volume.dims(),
         voxel_size_mm: voxel_size_mm(volume),
         affine: affine_rows(volume),

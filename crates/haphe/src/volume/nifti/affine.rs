@@ -7,8 +7,7 @@
 use glam::{DAffine3, DMat3, DVec3};
 use nifti::NiftiHeader;
 
-use super::error::ReadVolumeErrorKind as Kind;
-use super::header::header_error;
+use super::error::{ReadVolumeError as Kind, header_error};
 
 /// Which transform of the header placed the grid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -7,8 +7,8 @@ use std::io::Read;
 use flate2::read::MultiGzDecoder;
 
 use super::ByteOrder;
-use super::error::ReadVolumeErrorKind as Kind;
-use super::header::{Datatype, HEADER_BYTES, Layout, header_error, layout};
+use super::error::{ReadVolumeError as Kind, header_error, truncated};
+use super::header::{Datatype, HEADER_BYTES, Layout, layout};
 
 /// The most bytes deflate makes of one compressed byte (its longest run, 258 bytes, costs
 /// at least two bits: 1032 per byte). A header announcing more data than the compressed
@@ -35,11 +35,7 @@ pub(super) fn inflate(bytes: &[u8]) -> Result<(Layout, Vec<u8>), Kind> {
     let layout = layout(&file).map_err(|e| match e {
         Kind::Truncated {
             needed, available, ..
-        } => Kind::Truncated {
-            what: "decompressed stream",
-            needed,
-            available,
-        },
+        } => truncated("decompressed stream", needed, available),
         other => other,
     })?;
     let end = layout.end();
@@ -56,11 +52,7 @@ pub(super) fn inflate(bytes: &[u8]) -> Result<(Layout, Vec<u8>), Kind> {
     }
     read_up_to(&mut stream, &mut file, end)?;
     if (file.len() as u64) < end {
-        return Err(Kind::Truncated {
-            what: "decompressed stream",
-            needed: end,
-            available: file.len() as u64,
-        });
+        return Err(truncated("decompressed stream", end, file.len() as u64));
     }
     Ok((layout, file))
 }
@@ -77,6 +69,7 @@ fn read_up_to(stream: &mut impl Read, out: &mut Vec<u8>, end: u64) -> Result<(),
             .take(step)
             .read_to_end(out)
             .map_err(|e| Kind::Gzip {
+                file: String::new(),
                 message: e.to_string(),
             })?;
         if (read as u64) < step {

@@ -6,7 +6,7 @@
 use nifti::{Endianness, NiftiHeader};
 
 use super::ByteOrder;
-use super::error::ReadVolumeErrorKind as Kind;
+use super::error::{ReadVolumeError as Kind, header_error, not_nifti, truncated};
 use crate::volume::MAX_VOXELS;
 
 /// The bytes of a NIfTI-1 header.
@@ -117,7 +117,8 @@ impl Layout {
 
     /// The byte after the first volume's data: how much of the file is needed.
     pub fn end(&self) -> u64 {
-        self.offset + self.volume_bytes()
+        // A huge vox_offset saturates: no file is that long, so it is refused as truncated.
+        self.offset.saturating_add(self.volume_bytes())
     }
 }
 
@@ -130,11 +131,7 @@ impl Layout {
 pub(super) fn layout(head: &[u8]) -> Result<Layout, Kind> {
     let order = byte_order(head)?;
     if head.len() < HEADER_BYTES {
-        return Err(Kind::Truncated {
-            what: "file",
-            needed: HEADER_BYTES as u64,
-            available: head.len() as u64,
-        });
+        return Err(truncated("file", HEADER_BYTES as u64, head.len() as u64));
     }
     check_magic(&head[344..HEADER_BYTES])?;
     let dim0 = i16_at(head, 40, order);
@@ -144,17 +141,16 @@ pub(super) fn layout(head: &[u8]) -> Result<Layout, Kind> {
             format!("{dim0}: the number of dimensions must be 1 to 7"),
         ));
     }
-    let header = NiftiHeader::from_reader(&head[..HEADER_BYTES]).map_err(|e| Kind::NotNifti {
-        reason: e.to_string(),
-    })?;
+    let header =
+        NiftiHeader::from_reader(&head[..HEADER_BYTES]).map_err(|e| not_nifti(e.to_string()))?;
     let parsed = match header.endianness {
         Endianness::Little => ByteOrder::Little,
         Endianness::Big => ByteOrder::Big,
     };
     if parsed != order {
-        return Err(Kind::NotNifti {
-            reason: "the byte orders of sizeof_hdr and dim[0] differ".to_owned(),
-        });
+        return Err(not_nifti(
+            "the byte orders of sizeof_hdr and dim[0] differ".to_owned(),
+        ));
     }
     let (dims, volumes) = dims(&header)?;
     Ok(Layout {
@@ -170,9 +166,10 @@ pub(super) fn layout(head: &[u8]) -> Result<Layout, Kind> {
 /// The byte order whose `sizeof_hdr` is 348.
 fn byte_order(head: &[u8]) -> Result<ByteOrder, Kind> {
     let Some(first) = head.first_chunk::<4>() else {
-        return Err(Kind::NotNifti {
-            reason: format!("{} bytes, too short for a header", head.len()),
-        });
+        return Err(not_nifti(format!(
+            "{} bytes, too short for a header",
+            head.len()
+        )));
     };
     let (little, big) = (i32::from_le_bytes(*first), i32::from_be_bytes(*first));
     if little == HEADER_BYTES as i32 {
@@ -180,13 +177,13 @@ fn byte_order(head: &[u8]) -> Result<ByteOrder, Kind> {
     } else if big == HEADER_BYTES as i32 {
         Ok(ByteOrder::Big)
     } else if little == NIFTI2_HEADER_BYTES || big == NIFTI2_HEADER_BYTES {
-        Err(Kind::Nifti2)
-    } else {
-        Err(Kind::NotNifti {
-            reason: format!(
-                "sizeof_hdr is {little} (little-endian) or {big} (big-endian), not 348"
-            ),
+        Err(Kind::Nifti2 {
+            file: String::new(),
         })
+    } else {
+        Err(not_nifti(format!(
+            "sizeof_hdr is {little} (little-endian) or {big} (big-endian), not 348"
+        )))
     }
 }
 
@@ -194,17 +191,15 @@ fn byte_order(head: &[u8]) -> Result<ByteOrder, Kind> {
 fn check_magic(magic: &[u8]) -> Result<(), Kind> {
     match magic {
         b"n+1\0" => Ok(()),
-        b"ni1\0" => Err(Kind::NotNifti {
-            reason: "magic \"ni1\": the header of a .hdr/.img pair; only single-file .nii is \
+        b"ni1\0" => Err(not_nifti(
+            "magic \"ni1\": the header of a .hdr/.img pair; only single-file .nii is \
                      read (convert the pair to .nii)"
                 .to_owned(),
-        }),
-        _ => Err(Kind::NotNifti {
-            reason: format!(
-                "magic is {:?}, not \"n+1\"",
-                String::from_utf8_lossy(magic).trim_end_matches('\0')
-            ),
-        }),
+        )),
+        _ => Err(not_nifti(format!(
+            "magic is {:?}, not \"n+1\"",
+            String::from_utf8_lossy(magic).trim_end_matches('\0')
+        ))),
     }
 }
 
@@ -279,9 +274,4 @@ pub(super) fn i16_at(head: &[u8], at: usize, order: ByteOrder) -> i16 {
         ByteOrder::Little => i16::from_le_bytes(b),
         ByteOrder::Big => i16::from_be_bytes(b),
     }
-}
-
-/// A [`Kind::Header`] error.
-pub(super) fn header_error(field: &'static str, message: String) -> Kind {
-    Kind::Header { field, message }
 }

@@ -11,7 +11,6 @@ use std::io::Write;
 use flate2::write::GzEncoder;
 use glam::{DMat3, DQuat};
 
-use super::Compression;
 use super::header::{FIRST_DATA_BYTE, HEADER_BYTES};
 use crate::volume::{Volume, VolumeError};
 
@@ -24,17 +23,16 @@ const ROTATION_TOLERANCE: f64 = 1e-6;
 const MM_PER_M: f64 = 1e3;
 
 impl Volume {
-    /// The volume as a single-file NIfTI-1 (`.nii`, or `.nii.gz` with
-    /// [`Compression::Gzip`]): float32 values, little-endian; `sform_code` 1 (scanner)
-    /// holding the affine in millimetres (`xyzt_units` 2), and `qform_code` 1 with the same
-    /// affine as a quaternion when its matrix is a rotation times voxel sizes (else
-    /// `qform_code` 0). The header's fields are float32: the affine keeps about seven
-    /// digits (exactly, when its entries in millimetres are float32 numbers). The iso value
-    /// is not stored.
+    /// The volume as a single-file NIfTI-1 (`.nii`): float32 values, little-endian;
+    /// `sform_code` 1 (scanner) holding the affine in millimetres (`xyzt_units` 2), and
+    /// `qform_code` 1 with the same affine as a quaternion when its matrix is a rotation
+    /// times voxel sizes (else `qform_code` 0). The header's fields are float32: the affine
+    /// keeps about seven digits (exactly, when its entries in millimetres are float32
+    /// numbers). The iso value is not stored.
     ///
     /// # Errors
     /// [`VolumeError::NiftiDims`]: a side of more than 32767 voxels.
-    pub fn to_nifti(&self, compression: Compression) -> Result<Vec<u8>, VolumeError> {
+    pub fn to_nifti(&self) -> Result<Vec<u8>, VolumeError> {
         if self.dims.iter().any(|&d| d > MAX_SIDE) {
             return Err(VolumeError::NiftiDims(self.dims));
         }
@@ -44,10 +42,15 @@ impl Volume {
         for v in &self.values {
             out.extend_from_slice(&v.to_le_bytes());
         }
-        Ok(match compression {
-            Compression::None => out,
-            Compression::Gzip => gzip(&out),
-        })
+        Ok(out)
+    }
+
+    /// [`Volume::to_nifti`] as a gzip stream (`.nii.gz`).
+    ///
+    /// # Errors
+    /// As [`Volume::to_nifti`].
+    pub fn to_nifti_gz(&self) -> Result<Vec<u8>, VolumeError> {
+        Ok(gzip(&self.to_nifti()?))
     }
 
     /// The 348 bytes of the header (little-endian).
