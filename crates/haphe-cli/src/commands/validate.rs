@@ -67,7 +67,7 @@ pub struct Args {
     #[arg(long)]
     skip_self_intersections: bool,
     /// Volume files: material is where a value is at least this (the default: the midpoint
-    /// of the values' range, which the report states).
+    /// of the range of the finite values, which the report states).
     #[arg(long, value_name = "V", allow_negative_numbers = true)]
     iso: Option<f32>,
 }
