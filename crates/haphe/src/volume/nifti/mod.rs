@@ -86,6 +86,22 @@ impl Volume {
     /// # Performance
     /// Allocates the decompressed bytes of a gzip file (up to the first volume's end) and
     /// the `f32` values; nothing is allocated before the header has been checked.
+    ///
+    /// # Examples
+    /// ```
+    /// use haphe::DVec3;
+    /// use haphe::glam::DAffine3;
+    /// use haphe::volume::Volume;
+    ///
+    /// // 2 x 2 x 2 voxels of 1 mm, material where the value is at least 3.5.
+    /// let values = (0..8).map(|v| v as f32).collect();
+    /// let to_world = DAffine3::from_scale(DVec3::splat(1e-3));
+    /// let volume = Volume::new([2, 2, 2], values, to_world, 3.5)?;
+    /// let (back, info) = Volume::read_nifti("cube.nii.gz", &volume.to_nifti_gz()?, 3.5)?;
+    /// assert_eq!(back, volume);
+    /// assert_eq!((info.datatype, info.gzip), ("float32", true));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn read_nifti(
         name: &str,
         bytes: &[u8],
