@@ -17,6 +17,11 @@ mod write;
 #[cfg(test)]
 mod tests;
 
+pub use error::ReadVolumeError;
+
+use super::Volume;
+use error::{ReadVolumeError as Kind, truncated};
+
 /// The byte order of a file's numbers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum ByteOrder {
@@ -35,11 +40,6 @@ impl ByteOrder {
         }
     }
 }
-
-pub use error::ReadVolumeError;
-
-use super::Volume;
-use error::{ReadVolumeError as Kind, truncated};
 
 /// What a NIfTI-1 file held besides the volume: what `haphe validate` reports.
 // The command's plumbing, hidden like the mesh report's record (ARCHITECTURE.md, "A public
@@ -126,14 +126,9 @@ fn read(bytes: &[u8], iso: f32) -> Result<(Volume, NiftiInfo), Kind> {
     if (file.len() as u64) < end {
         return Err(truncated("file", end, file.len() as u64));
     }
+    // The header's remaining fields first, then the values.
     let h = &layout.header;
     let scale = data::scaling(h.scl_slope, h.scl_inter)?;
-    let values = data::decode(
-        &file[layout.offset as usize..end as usize],
-        layout.datatype,
-        layout.order,
-        scale,
-    );
     let mut notes = Vec::new();
     if layout.volumes > 1 {
         notes.push(format!(
@@ -144,6 +139,12 @@ fn read(bytes: &[u8], iso: f32) -> Result<(Volume, NiftiInfo), Kind> {
     let (to_file, source) = affine::file_affine(h, layout.dims, &mut notes)?;
     let metres_per_unit = affine::metres_per_unit(h.xyzt_units, &mut notes)?;
     let to_world = affine::in_metres(to_file, metres_per_unit);
+    let values = data::decode(
+        &file[layout.offset as usize..end as usize],
+        layout.datatype,
+        layout.order,
+        scale,
+    );
     let volume = Volume::new(layout.dims, values, to_world, iso)?;
     let info = NiftiInfo {
         datatype: layout.datatype.name,
