@@ -6,9 +6,8 @@ use std::io::Read;
 
 use flate2::read::MultiGzDecoder;
 
-use super::ByteOrder;
 use super::error::{ReadVolumeError as Kind, header_error, truncated};
-use super::header::{Datatype, HEADER_BYTES, Layout, layout};
+use super::header::{ByteOrder, Datatype, HEADER_BYTES, Layout, layout};
 
 /// The most bytes deflate makes of one compressed byte (its longest run, 258 bytes, costs
 /// at least two bits: 1032 per byte). A header announcing more data than the compressed

@@ -5,7 +5,6 @@
 
 use nifti::{Endianness, NiftiHeader};
 
-use super::ByteOrder;
 use super::error::{ReadVolumeError as Kind, header_error, not_nifti, truncated};
 use crate::volume::MAX_VOXELS;
 
@@ -20,6 +19,25 @@ pub(super) const FIRST_DATA_BYTE: u64 = 352;
 const DIM_FIELDS: [&str; 8] = [
     "dim[0]", "dim[1]", "dim[2]", "dim[3]", "dim[4]", "dim[5]", "dim[6]", "dim[7]",
 ];
+
+/// The byte order of a file's numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum ByteOrder {
+    /// Least significant byte first (x86, ARM: most files).
+    Little,
+    /// Most significant byte first.
+    Big,
+}
+
+impl ByteOrder {
+    /// How reports name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ByteOrder::Little => "little-endian",
+            ByteOrder::Big => "big-endian",
+        }
+    }
+}
 
 /// A voxel type: the NIfTI code, nibabel's name for it and its size in bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

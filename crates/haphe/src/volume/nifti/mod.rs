@@ -22,25 +22,6 @@ pub use error::ReadVolumeError;
 use super::Volume;
 use error::{ReadVolumeError as Kind, truncated};
 
-/// The byte order of a file's numbers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum ByteOrder {
-    /// Least significant byte first (x86, ARM: most files).
-    Little,
-    /// Most significant byte first.
-    Big,
-}
-
-impl ByteOrder {
-    /// How reports name it.
-    fn name(self) -> &'static str {
-        match self {
-            ByteOrder::Little => "little-endian",
-            ByteOrder::Big => "big-endian",
-        }
-    }
-}
-
 /// What a NIfTI-1 file held besides the volume: what `haphe validate` reports.
 // The command's plumbing, hidden like the mesh report's record (ARCHITECTURE.md, "A public
 // name"): the library's documented interface stays within its count of names.

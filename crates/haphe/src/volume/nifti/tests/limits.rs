@@ -1,7 +1,7 @@
 //! Files refused: NIfTI-2, bad dimensions, data beyond the file, damaged gzip streams;
 //! each before anything of the announced size is allocated.
 
-use super::super::ByteOrder;
+use super::super::header::ByteOrder;
 use super::{Kind, Spec, field_of, gzip, read_err, read_ok};
 
 /// The most bytes a refused read may allocate at once: far below what the headers announce.

@@ -9,7 +9,8 @@ use std::io::Write;
 
 use flate2::write::GzEncoder;
 
-use super::{ByteOrder, ReadVolumeError as Kind};
+use super::ReadVolumeError as Kind;
+use super::header::ByteOrder;
 use crate::volume::{Volume, VolumeError};
 
 /// The header fields the tests set; the rest are zero.
