@@ -29,7 +29,8 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Read mesh files and report every defect with where it is.
+    /// Read mesh files and report every defect with where it is; report what a NIfTI-1
+    /// volume file holds.
     #[command(after_help = validate::EXIT_CODES)]
     Validate(validate::Args),
     /// Repair a mesh into a closed solid (weld, drop degenerate and duplicate faces,

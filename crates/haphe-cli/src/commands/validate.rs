@@ -1,4 +1,7 @@
-//! `haphe validate`: the mesh stage's report for each file.
+//! `haphe validate`: the mesh stage's report for each mesh file, and what a volume file
+//! (`.nii`, `.nii.gz`) holds (`volume`).
+
+mod volume;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -10,6 +13,7 @@ use haphe::query::{SELF_INTERSECTION_BUDGET_PER_TRIANGLE, Validation, self_inter
 
 use crate::args::{parse_units, weld_mode};
 use crate::input::mesh::{UnitsGiven, load_reported, warn_units};
+use crate::input::volume::is_volume_path;
 
 /// Shown after `haphe validate --help`.
 pub const EXIT_CODES: &str = "\
@@ -17,7 +21,8 @@ Exit codes (the worst file decides):
   0  every file is a valid closed solid (closed, manifold, consistently oriented, not inside out)
   1  some file is usable only as an open, two-sided surface, or is closed but passes
      through itself (no inside where it does)
-  2  some file is unusable (no triangle with area) or unreadable
+  2  some file is unusable (no triangle with area; a volume without a value at least iso)
+     or unreadable
 
 JSON (--json) prints one object per file and line: file, format, seconds, weld, then the report:
   triangles, vertices, edges, components, closed (every edge shared by exactly two
@@ -34,12 +39,17 @@ JSON (--json) prints one object per file and line: file, format, seconds, weld, 
   budget of 256 candidate pairs per triangle: the counts are then lower bounds).
   A glTF file adds gltf: scene, nodes (node, name, mesh, triangles, closed, translation,
   rotation [x, y, z, w], scale, exact_trs) and skipped (mesh, primitive, mode).
+  A volume file (.nii, .nii.gz) gives: file, format, seconds, datatype, byte_order, gzip,
+  dims, voxel_size_mm, affine (4x4 rows, voxel indices to metres), affine_from,
+  metres_per_unit, value_range, iso, iso_default, material_voxels, material_voxels_min,
+  material_voxels_max, material_bounds_min, material_bounds_max (m), notes.
   An unreadable file gives {\"file\": ..., \"error\": ...}.";
 
 /// Arguments of `haphe validate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Mesh files (OBJ, STL, PLY, OFF, glTF; the format is detected from the content).
+    /// Mesh files (OBJ, STL, PLY, OFF, glTF; the format is detected from the content), or
+    /// volume files (NIfTI-1: names ending in .nii or .nii.gz).
     #[arg(required = true)]
     files: Vec<PathBuf>,
     /// Print one JSON object per file instead of the text report.
@@ -56,6 +66,10 @@ pub struct Args {
     /// then null.
     #[arg(long)]
     skip_self_intersections: bool,
+    /// Volume files: material is where a value is at least this (the default: the midpoint
+    /// of the range of the finite values, which the report states).
+    #[arg(long, value_name = "V", allow_negative_numbers = true)]
+    iso: Option<f32>,
 }
 
 /// One line of `--json`: the record's fields in their order, then a glTF file's `gltf`.
@@ -77,6 +91,10 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     };
     let mut worst = 0u8;
     for path in &args.files {
+        if is_volume_path(path) {
+            worst = worst.max(volume::report(&mut out, path, args.iso, args.json)?);
+            continue;
+        }
         let start = Instant::now();
         let code = match load_reported(path, &options) {
             Err(failure) => {

@@ -34,6 +34,12 @@ pub const OBJECT: Limit = Limit {
     what: "mesh or map file",
     bytes: 4 * GIB,
 };
+/// Volume files (NIfTI-1, `.nii` or `.nii.gz`): 8 GiB (2^31 float32 voxels, the library's
+/// `MAX_VOXELS`).
+pub const VOLUME: Limit = Limit {
+    what: "volume file",
+    bytes: 8 * GIB,
+};
 /// Query CSV files: 1 GiB.
 pub const CSV: Limit = Limit {
     what: "CSV file",
