@@ -448,11 +448,6 @@ fn print_scene(
     Ok(())
 }
 
-/// Whether `setup` cuts (`--cut`).
-fn cut_of(setup: &Option<CutSetup>) -> bool {
-    setup.as_ref().is_some_and(|s| s.cut.is_some())
-}
-
 /// Whether the device touched an object during a run, for the warning after it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Touch {

@@ -265,7 +265,7 @@ impl Cutter {
         let (iso, slope, air) = (self.volume.iso(), self.slope, self.air);
         let field = |d: f64| ((f64::from(iso) + (d - reach) * slope) as f32).max(air);
         for &at in done {
-            let [i, j, k] = super::index_of(self.volume.dims(), at).map(|x| x as i64);
+            let [i, j, k] = super::grid::index_of(self.volume.dims(), at).map(|x| x as i64);
             let d = self
                 .volume
                 .point(i as f64, j as f64, k as f64)
