@@ -11,7 +11,7 @@
     python3 tools/public_names.py [--doc DIR] [--src DIR] [--names] [--max N]
 
 `--names` lists the names as well. It exits 1 when rustdoc lists more than `--max` items
-(default 130, the bound ARCHITECTURE.md states), or when a documented page links to an
+(default 135, the bound ARCHITECTURE.md states), or when a documented page links to an
 item rustdoc does not list (a `#[doc(hidden)]` one: the link would lead nowhere); CI runs
 it after building the docs.
 """
@@ -28,7 +28,7 @@ from long_functions import blank_code, test_module_spans  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # The most items rustdoc may list for the crate (ARCHITECTURE.md, "A public name").
-MAX_ITEMS = 130
+MAX_ITEMS = 135
 
 
 def rustdoc_items(all_html):

@@ -23,7 +23,7 @@ use glam::{DAffine3, DVec3};
 
 use super::Volume;
 use super::extract::Chunks;
-use super::layers::Layers;
+use super::layers::{Layer, Layers};
 use crate::map::{MapError, MapOptions};
 use crate::mesh::{Surface, SurfaceError, SurfaceOptions};
 use crate::par::on_this_thread;
@@ -42,7 +42,7 @@ impl CutOptions {
     pub const DEFAULT_CUT_FORCE: f64 = 0.5;
 
     /// A tool of `tool_radius` metres cutting from a contact force of `cut_force` N, in
-    /// one material ([`Layers::default`]).
+    /// one material (stiffness and friction of the object, cut at [`Layer::DEFAULT_RATE`]).
     ///
     /// # Errors
     /// [`ParamError`] naming [`Param::ToolRadius`] or [`Param::CutForce`].
@@ -54,9 +54,11 @@ impl CutOptions {
         })
     }
 
-    /// The same with the materials of `layers`.
-    pub fn with_layers(mut self, layers: Layers) -> CutOptions {
-        self.layers = layers;
+    /// The same with the materials of `layers`: a value takes the layer with the highest
+    /// [`Layer::from`] at most the value (the lowest layer below every `from`); no layer,
+    /// one material cut at [`Layer::DEFAULT_RATE`].
+    pub fn with_layers(mut self, layers: Vec<Layer>) -> CutOptions {
+        self.layers = Layers::new(layers);
         self
     }
 
@@ -70,9 +72,9 @@ impl CutOptions {
         self.cut_force
     }
 
-    /// The materials.
-    pub fn layers(&self) -> &Layers {
-        &self.layers
+    /// The materials, sorted by [`Layer::from`].
+    pub fn layers(&self) -> &[Layer] {
+        self.layers.layers()
     }
 }
 

@@ -7,14 +7,14 @@ use crate::map::MapOptions;
 use crate::scene::{ParamError, Shape, ShapeError};
 
 /// The most voxels a volume may have (2^31: 8 GiB of `f32`).
-pub const MAX_VOXELS: usize = 1 << 31;
+pub(crate) const MAX_VOXELS: usize = 1 << 31;
 
 /// Why a volume could not be made (or written: [`Volume::to_nifti`]). File readers add the
 /// file's name and the place.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum VolumeError {
-    /// A dimension is 0, or the product is beyond [`MAX_VOXELS`].
+    /// A dimension is 0, or the product is beyond 2³¹ voxels.
     #[error("the grid {0:?} is empty or has more than {MAX_VOXELS} voxels")]
     Dims([usize; 3]),
     /// Not one value per voxel.
@@ -38,8 +38,8 @@ pub enum VolumeError {
     /// ([`Param::VoxelSize`](crate::scene::Param::VoxelSize)).
     #[error(transparent)]
     VoxelSize(#[from] ParamError),
-    /// The voxel size asked of [`Volume::from_shape`] makes a grid of more than
-    /// [`MAX_VOXELS`].
+    /// The voxel size asked of [`Volume::from_shape`] makes a grid of more than 2³¹
+    /// voxels.
     #[error("the voxel size {voxel} m makes a grid of {voxels:.3e} voxels, more than {MAX_VOXELS}")]
     VoxelCount {
         /// The voxel size, metres.

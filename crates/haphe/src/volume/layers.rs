@@ -4,10 +4,6 @@
 
 use crate::scene::{Material, Param, ParamError};
 
-/// The rate a material is cut at unless told otherwise: the tool sinks 20 mm a second
-/// into it at the cut force.
-pub const DEFAULT_CUT_RATE: f64 = 0.02;
-
 /// One material of a volume: the values from `from` up to the next layer's `from`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Layer {
@@ -23,6 +19,10 @@ pub struct Layer {
 }
 
 impl Layer {
+    /// The rate a material is cut at unless told otherwise, m/s: the tool sinks 20 mm a
+    /// second into it at the cut force.
+    pub const DEFAULT_RATE: f64 = 0.02;
+
     /// The material `name` for values from `from` up, feeling like `material`, cut at
     /// `rate` m/s.
     ///
@@ -42,24 +42,14 @@ impl Layer {
 
 /// The layers of a volume sorted by `from`; values below the first are the first's.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Layers {
+pub(crate) struct Layers {
     layers: Vec<Layer>,
 }
 
 impl Layers {
-    /// One material for every value.
-    ///
-    /// # Errors
-    /// [`ParamError`] naming [`Param::CutRate`] outside its domain.
-    pub fn uniform(material: Material, rate: f64) -> Result<Layers, ParamError> {
-        Ok(Layers {
-            layers: vec![Layer::new("material", f32::MIN, material, rate)?],
-        })
-    }
-
     /// The table of `layers` (sorted here by `from`); one material of the default when
     /// empty.
-    pub fn new(mut layers: Vec<Layer>) -> Layers {
+    pub(crate) fn new(mut layers: Vec<Layer>) -> Layers {
         if layers.is_empty() {
             return Layers::default();
         }
@@ -69,26 +59,26 @@ impl Layers {
 
     /// The layer of `value`: the last whose `from` is at most the value (the first for a
     /// value below every `from`).
-    pub fn of(&self, value: f32) -> &Layer {
+    pub(crate) fn of(&self, value: f32) -> &Layer {
         let at = self.layers.partition_point(|l| l.from <= value);
         &self.layers[at.saturating_sub(1)]
     }
 
     /// The layers, sorted by `from`.
-    pub fn layers(&self) -> &[Layer] {
+    pub(crate) fn layers(&self) -> &[Layer] {
         &self.layers
     }
 }
 
 impl Default for Layers {
-    /// One material: [`Material::DEFAULT`], cut at [`DEFAULT_CUT_RATE`].
+    /// One material: [`Material::DEFAULT`], cut at [`Layer::DEFAULT_RATE`].
     fn default() -> Layers {
         Layers {
             layers: vec![Layer {
                 name: "material".to_owned(),
                 from: f32::MIN,
                 material: Material::DEFAULT,
-                rate: DEFAULT_CUT_RATE,
+                rate: Layer::DEFAULT_RATE,
             }],
         }
     }

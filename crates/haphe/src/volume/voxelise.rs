@@ -12,11 +12,11 @@ use crate::scene::{Param, Shape};
 /// Voxels of margin beyond the shape's bounds on every side, and the half-width of the band
 /// of exact distances: the values are clamped to this many voxels, so that the iso-surface
 /// has the whole band to be interpolated from on both sides, and the border voxels are air.
-pub const VOXELISE_BAND_VOXELS: f64 = 2.0;
+pub(crate) const VOXELISE_BAND_VOXELS: f64 = 2.0;
 
 impl Volume {
     /// The volume of a closed shape: a grid of `voxel`-metre voxels (axis-aligned, in the
-    /// shape's frame) covering its bounds and [`VOXELISE_BAND_VOXELS`] voxels more on
+    /// shape's frame) covering its bounds and two voxels more on
     /// every side; each value is the distance to the surface (metres, `f32`), positive
     /// inside (the non-zero rule of [`classify_point`]) and negative outside, clamped to
     /// ± two voxels; iso 0. The iso-surface ([`Volume::shape`]) is the shape's surface
@@ -29,7 +29,7 @@ impl Volume {
     /// # Errors
     /// [`VolumeError::VoxelSize`] for a voxel size that is not finite, above 0 and at
     /// most 1 m,
-    /// [`VolumeError::VoxelCount`] when the grid would have more than [`MAX_VOXELS`], and
+    /// [`VolumeError::VoxelCount`] when the grid would have more than 2³¹ voxels, and
     /// [`VolumeError::NotSolid`] for a shape without an inside ([`Shape::is_solid`]: open,
     /// non-manifold or inconsistently oriented).
     ///

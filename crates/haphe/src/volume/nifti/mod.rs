@@ -61,7 +61,7 @@ impl Volume {
     /// # Errors
     /// [`ReadVolumeError`], naming `name` and the header field, the byte counts or the
     /// voxel: NIfTI-2 ("convert to NIfTI-1"), not NIfTI-1, `dim[0]` outside 1 to 7, a
-    /// spatial dimension below 1, more than [`super::MAX_VOXELS`] voxels, a datatype not
+    /// spatial dimension below 1, more than 2³¹ voxels, a datatype not
     /// read, data beyond the end of the file, a corrupt gzip stream, a NaN value.
     ///
     /// # Performance
