@@ -62,14 +62,15 @@ pub fn check_cutting(
     let dt = 1.0 / rate_hz;
     let mut tool_path = Vec::with_capacity(path.len());
     for (tick, &hip) in path.iter().enumerate() {
-        if cut && tick % refresh_every.max(1) == 0 {
-            if let Some(shape) = cutter.refresh()? {
-                open_versions += u64::from(!shape.is_solid());
-                if scene.replace(ObjectId(0), shape).is_err() {
-                    unreachable!("the cutter's versions replace the object's");
-                }
-                versions += 1;
+        if cut
+            && tick % refresh_every.max(1) == 0
+            && let Some(shape) = cutter.refresh()?
+        {
+            open_versions += u64::from(!shape.is_solid());
+            if scene.replace(ObjectId(0), shape).is_err() {
+                unreachable!("the cutter's versions replace the object's");
             }
+            versions += 1;
         }
         scene.begin_tick();
         pair.brute().sync(&scene);

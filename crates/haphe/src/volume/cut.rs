@@ -150,11 +150,8 @@ impl Cutter {
     /// [`CutError`] when the volume has no material, or its surface cannot be mapped.
     pub fn new(name: &str, volume: Volume, map_options: MapOptions) -> Result<Cutter, CutError> {
         let chunks = Chunks::extract(&volume);
-        let m = volume.to_world().matrix3;
-        let voxel = [m.x_axis, m.y_axis, m.z_axis]
-            .iter()
-            .map(|a| a.length())
-            .fold(0.0, f64::max);
+        let voxel = volume.voxel_size();
+        let map_options = volume.map_options(&map_options);
         let (lowest, highest) = volume
             .values()
             .iter()

@@ -173,13 +173,37 @@ impl Volume {
 
     /// The shape of the iso-surface, as a servo loop renders it: every chunk extracted
     /// ([`Chunks::extract`]), welded into one mesh and made a shape as
-    /// [`Shape::from_mesh`] makes one (surface, map, clear zones). `name` is in the errors.
+    /// [`Shape::from_mesh`] makes one (surface, map, clear zones), its map's cells one
+    /// voxel wide unless `options` set their size. `name` is in the errors.
     ///
     /// # Errors
     /// Those of [`Shape::from_mesh`]: [`ShapeError::Surface`] when no voxel is material
     /// (no triangle), [`ShapeError::Map`] when the map cannot be built.
     pub fn shape(&self, name: &str, options: &MapOptions) -> Result<Shape, ShapeError> {
-        Shape::from_mesh(name, Chunks::extract(self).mesh(), options)
+        Shape::from_mesh(
+            name,
+            Chunks::extract(self).mesh(),
+            &self.map_options(options),
+        )
+    }
+
+    /// The largest spacing of the grid, metres: one voxel.
+    pub(crate) fn voxel_size(&self) -> f64 {
+        let m = self.to_world.matrix3;
+        [m.x_axis, m.y_axis, m.z_axis]
+            .iter()
+            .map(|a| a.length())
+            .fold(0.0, f64::max)
+    }
+
+    /// `options` with cells of one voxel unless they set a size: the extraction's
+    /// triangles are many and small (several a voxel), and cells sized from them would be
+    /// so small that a tool's sweep steps through too many.
+    pub(crate) fn map_options(&self, options: &MapOptions) -> MapOptions {
+        MapOptions {
+            cell_size_m: options.cell_size_m.or(Some(self.voxel_size())),
+            ..*options
+        }
     }
 
     /// The centre of the grid's bounding box in metres: where the front ends place the
