@@ -328,7 +328,10 @@ fn build(name: &str, chunks: &Chunks, map_options: &MapOptions) -> Result<Shape,
     }
     let surface = Surface::new(chunks.mesh(), &SurfaceOptions::default())
         .map_err(|e| CutError::Surface(name.to_owned(), e))?;
-    Shape::build(surface, map_options).map_err(|e| CutError::Map(name.to_owned(), e))
+    let shape =
+        Shape::build(surface, map_options).map_err(|e| CutError::Map(name.to_owned(), e))?;
+    // Every clear zone now, so that no tick computes one.
+    Ok(shape.with_clear_zones())
 }
 
 /// Grows `b` to hold voxel `v`.
