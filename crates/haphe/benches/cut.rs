@@ -75,7 +75,7 @@ fn main() {
 fn one_edit() {
     let mut cutter = cutter();
     let triangles = cutter.shape().surface().triangle_count();
-    let edits = if benchmarking() { 200 } else { 3 };
+    let edits = if benchmarking() { 100 } else { 3 };
     let (mut press, mut extract, mut build) = (Vec::new(), Vec::new(), Vec::new());
     let mut rng = haphe::rng::SplitMix64::new(3);
     for _ in 0..edits {
