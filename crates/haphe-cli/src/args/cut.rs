@@ -8,8 +8,6 @@ use std::path::PathBuf;
 use anyhow::{anyhow, bail};
 use haphe::volume::{CutOptions, Cutter};
 
-use crate::session::cut::CutSetup;
-
 /// Shapes remade a second when `--cut-refresh` is not given.
 pub const DEFAULT_CUT_REFRESH_HZ: f64 = 100.0;
 
@@ -46,6 +44,13 @@ pub struct CutArgs {
     /// compressed), on the same grid and affine; written whole, never in place.
     #[arg(long, value_name = "OUT.nii")]
     pub save_volume: Option<PathBuf>,
+}
+
+/// A volume to cut, before the run: the cutter, the flags, where to save it.
+pub struct CutSetup {
+    pub cutter: Cutter,
+    pub cut: Option<Cut>,
+    pub save: Option<PathBuf>,
 }
 
 /// A checked cutting: the force and the refresh rate (the tool's radius comes from

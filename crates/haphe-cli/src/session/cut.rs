@@ -17,15 +17,8 @@ use haphe::servo::{Histogram, TickRecord};
 use haphe::volume::{CutOptions, Cutter};
 
 use super::summary::us as time;
-use crate::args::cut::Cut;
+use crate::args::cut::CutSetup;
 use crate::input::volume::write_volume;
-
-/// A volume to cut, before the run: the cutter, the flags, where to save it.
-pub struct CutSetup {
-    pub cutter: Cutter,
-    pub cut: Option<Cut>,
-    pub save: Option<PathBuf>,
-}
 
 /// The volume of a run and its cutting: the cutter, the object it cuts, the scene's
 /// editor (when it cuts), where to save the volume, and what it did.
@@ -51,11 +44,25 @@ pub struct Cutting {
 
 /// The volume of `setup` as the first object of the run, `first` (its id and pose), cut
 /// through `editor` when `setup` says so, by a tool of `tool_radius` on a servo of
-/// `rate_hz`.
+/// `rate_hz`; says so on `out` (the line under the scene's) when it cuts.
 ///
 /// # Errors
-/// The tool's radius or the cut force out of their domains.
+/// The tool's radius or the cut force out of their domains; the output failed.
 pub fn start(
+    out: &mut impl Write,
+    setup: Option<CutSetup>,
+    (editor, first): (Option<SceneEditor>, Option<(ObjectId, Pose)>),
+    (tool_radius, rate_hz): (f64, f64),
+) -> anyhow::Result<Option<Cutting>> {
+    let cutting = make(setup, editor, first, (tool_radius, rate_hz))?;
+    if let Some(line) = cutting.as_ref().and_then(Cutting::describe) {
+        writeln!(out, "{line}")?;
+    }
+    Ok(cutting)
+}
+
+/// [`start`] before the line is written.
+fn make(
     setup: Option<CutSetup>,
     editor: Option<SceneEditor>,
     first: Option<(ObjectId, Pose)>,
@@ -94,7 +101,7 @@ pub fn start(
 
 impl Cutting {
     /// The line under the scene's, when it cuts.
-    pub fn describe(&self) -> Option<String> {
+    fn describe(&self) -> Option<String> {
         self.editor.as_ref()?;
         let o = self.cutter.options();
         Some(format!(

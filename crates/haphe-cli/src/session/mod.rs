@@ -27,12 +27,12 @@ use haphe::servo::{
 };
 
 use self::clock::{DeviceRan, How, Ran};
-use self::cut::{CutSetup, Cutting};
 use self::deform::{Clock, Plan};
 use self::device::VendorChoice;
 use self::devices::{Opened, Vendor};
 use self::summary::{RunInfo, Summary};
 use self::trace::TraceOut;
+use crate::args::cut::CutSetup;
 use crate::args::deform::Deform;
 use crate::args::{DEFAULT_SECONDS, MAX_SECONDS, PLOT_SECONDS, ToolRadius, proxy_options};
 use crate::input::scene::LoadedObject;
@@ -182,6 +182,7 @@ impl Session {
     /// Builds the scene and devices, runs, prints the summary (one block per device),
     /// writes trace and plot.
     pub fn run(self, out: &mut impl Write) -> anyhow::Result<()> {
+        let cut = cut_of(&self.cut);
         let Built {
             scene,
             motions,
@@ -189,11 +190,7 @@ impl Session {
             triangles,
             deforming,
             cut_editor,
-        } = build_scene(
-            self.objects,
-            &self.effects,
-            (self.deform, cut_of(&self.cut)),
-        )?;
+        } = build_scene(self.objects, &self.effects, (self.deform, cut))?;
         let proxy = ToolRadius::apply(&self.tool_radius, proxy_options(self.max_force)?, &scene)?;
         // A real device runs until Ctrl-C unless told otherwise.
         let until_stopped = matches!(&self.device, DeviceChoice::Vendor(v) if v.iter().any(|c| !c.is_hand()))
@@ -207,10 +204,10 @@ impl Session {
             .with_clutch_button(self.clutch_button);
         let stiffness = stiffest(&scene);
         // The objects as placed at the start, for the plot's section (shapes shared).
-        let placed: Vec<haphe::scene::SceneObject> = match &self.plot {
-            Some(_) => scene.objects().to_vec(),
-            None => Vec::new(),
-        };
+        let placed = self
+            .plot
+            .as_ref()
+            .map_or(Vec::new(), |_| scene.objects().to_vec());
         let (mut servo, mut vendors) = devices::servo_of(opened, scene, options, stiffness)?;
         servo.set_motions(motions);
 
@@ -231,15 +228,15 @@ impl Session {
         let ticks = (seconds * self.rate_hz).round().max(1.0) as u64;
         let n = servo.devices();
         let mut summaries: Vec<Summary> = (0..n).map(|_| Summary::new(ticks)).collect();
-        let mut trace = match &self.out {
-            Some(p) => Some(TraceOut::create(p, n)?),
-            None => None,
-        };
+        let mut trace = self
+            .out
+            .as_ref()
+            .map(|p| TraceOut::create(p, n))
+            .transpose()?;
+        let thread = (self.spin_seconds, self.fifo, self.standby_core);
+        let how = how(realtime, limit, ticks, thread)?;
         let first = servo.scene().objects().first().map(|o| (o.id, o.pose));
-        let mut cutting = cut::start(self.cut, cut_editor, first, (tool, self.rate_hz))?;
-        if let Some(line) = cutting.as_ref().and_then(Cutting::describe) {
-            writeln!(out, "{line}")?;
-        }
+        let mut cutting = cut::start(out, self.cut, (cut_editor, first), (tool, self.rate_hz))?;
         let mut on_tick = |r: &TickRecord| {
             if let Some(s) = summaries.get_mut(r.device as usize) {
                 s.add(r);
@@ -250,17 +247,6 @@ impl Session {
             if let Some(c) = cutting.as_mut() {
                 c.on_record(r);
             }
-        };
-        let how = if realtime {
-            How::Realtime {
-                limit,
-                options: RealtimeOptions::default()
-                    .with_spin_seconds(self.spin_seconds)?
-                    .with_realtime_priority(self.fifo)
-                    .with_standby_core(self.standby_core),
-            }
-        } else {
-            How::Simulated { ticks }
         };
         let (ran, deformed) = clock::run(out, servo, &mut vendors, deforming, how, &mut on_tick)?;
         writeln!(out, "\nrun:")?;
@@ -294,6 +280,31 @@ impl Session {
         let touched: Vec<Touch> = summaries.iter().map(|s| touch_of(replay, s)).collect();
         outcome(out, &ran, &vendors, &touched)
     }
+}
+
+/// Which clock the run is on: a real-time thread (`realtime`, for `limit` seconds or until
+/// stopped, with the thread's spin, FIFO priority and standby core) or `ticks` on the
+/// simulated clock.
+///
+/// # Errors
+/// A spin out of its domain.
+fn how(
+    realtime: bool,
+    limit: Option<f64>,
+    ticks: u64,
+    (spin_seconds, fifo, standby_core): (Option<f64>, bool, Option<usize>),
+) -> anyhow::Result<How> {
+    Ok(if realtime {
+        How::Realtime {
+            limit,
+            options: RealtimeOptions::default()
+                .with_spin_seconds(spin_seconds)?
+                .with_realtime_priority(fifo)
+                .with_standby_core(standby_core),
+        }
+    } else {
+        How::Simulated { ticks }
+    })
 }
 
 /// Whether `setup` cuts (`--cut`).

@@ -2,9 +2,10 @@
 
 use glam::{DAffine3, DVec3};
 
-use super::extract::Chunks;
 use crate::map::MapOptions;
-use crate::scene::{ParamError, Shape, ShapeError};
+use crate::scene::ParamError;
+#[cfg(doc)]
+use crate::scene::Shape;
 
 /// The most voxels a volume may have (2^31: 8 GiB of `f32`).
 pub(crate) const MAX_VOXELS: usize = 1 << 31;
@@ -169,22 +170,6 @@ impl Volume {
     #[inline]
     pub fn point(&self, i: f64, j: f64, k: f64) -> DVec3 {
         self.to_world.transform_point3(DVec3::new(i, j, k))
-    }
-
-    /// The shape of the iso-surface, as a servo loop renders it: every chunk extracted
-    /// ([`Chunks::extract`]), welded into one mesh and made a shape as
-    /// [`Shape::from_mesh`] makes one (surface, map, clear zones), its map's cells one
-    /// voxel wide unless `options` set their size. `name` is in the errors.
-    ///
-    /// # Errors
-    /// Those of [`Shape::from_mesh`]: [`ShapeError::Surface`] when no voxel is material
-    /// (no triangle), [`ShapeError::Map`] when the map cannot be built.
-    pub fn shape(&self, name: &str, options: &MapOptions) -> Result<Shape, ShapeError> {
-        Shape::from_mesh(
-            name,
-            Chunks::extract(self).mesh(),
-            &self.map_options(options),
-        )
     }
 
     /// The largest spacing of the grid, metres: one voxel.

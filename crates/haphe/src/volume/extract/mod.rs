@@ -7,6 +7,24 @@
 //! closed there. Chunk `c` along an axis holds the cells `32c − 1 .. 32c + 31` (fewer in
 //! the last).
 
+impl Volume {
+    /// The shape of the iso-surface, as a servo loop renders it: every chunk extracted
+    /// ([`Chunks::extract`]), welded into one mesh and made a shape as
+    /// [`Shape::from_mesh`] makes one (surface, map, clear zones), its map's cells one
+    /// voxel wide unless `options` set their size. `name` is in the errors.
+    ///
+    /// # Errors
+    /// Those of [`Shape::from_mesh`]: [`ShapeError::Surface`] when no voxel is material
+    /// (no triangle), [`ShapeError::Map`] when the map cannot be built.
+    pub fn shape(&self, name: &str, options: &MapOptions) -> Result<Shape, ShapeError> {
+        Shape::from_mesh(
+            name,
+            Chunks::extract(self).mesh(),
+            &self.map_options(options),
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests;
 mod tetra;
@@ -15,8 +33,10 @@ use glam::DVec3;
 use rustc_hash::FxHashMap;
 
 use super::Volume;
+use crate::map::MapOptions;
 use crate::mesh::Mesh;
 use crate::par::*;
+use crate::scene::{Shape, ShapeError};
 use tetra::{CASES, TETRAHEDRA, crossing};
 
 /// The iso-surface of a [`Volume`] in chunks of [`Chunks::SIZE`]³ cells: each chunk's
