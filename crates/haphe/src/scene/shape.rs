@@ -274,7 +274,8 @@ impl Shape {
     }
 
     /// Whether this shape was made by [`Shape::replacing`] (other triangles than the
-    /// version before it).
+    /// version before it; for the oracles).
+    #[cfg(any(test, feature = "testing"))]
     pub(crate) fn is_remesh(&self) -> bool {
         self.remeshed
     }
