@@ -333,3 +333,53 @@ fn drilling_a_voxelised_model_never_puts_the_tool_inside() {
         assert_clean(&check);
     }
 }
+
+/// Acceptance 2, on a NIfTI-1 volume the test writes (gzip, its grid turned 30° about z
+/// and tilted, so no face lies along an axis) and reads back: drilling and a strike never
+/// put the tool inside, the proxy equals its oracle.
+#[test]
+fn drilling_a_nifti_volume_never_puts_the_tool_inside() {
+    let square = block(30, 4);
+    let turned = DAffine3::from_rotation_z(0.52)
+        * DAffine3::from_rotation_x(0.2)
+        * DAffine3::from_scale(DVec3::splat(VOXEL));
+    let written = Volume::new(square.dims(), square.values().to_vec(), turned, 0.5)
+        .expect("a volume")
+        .to_nifti_gz()
+        .expect("written");
+    let (volume, _) = Volume::read_nifti("block.nii.gz", &written, 0.5).expect("it reads");
+    let pose = centred(&volume);
+    let radius = 1.5e-3;
+    let top = 0.012;
+    for path in [
+        straight(
+            DVec3::new(1e-3, 0.0, top),
+            DVec3::new(1e-3, 0.0, -2e-3),
+            0.005,
+            200,
+        ),
+        straight(
+            DVec3::new(-2e-3, 1e-3, top),
+            DVec3::new(-2e-3, 1e-3, 0.0),
+            0.3,
+            300,
+        ),
+    ] {
+        let mut cutter =
+            Cutter::new("block.nii.gz", volume.clone(), MapOptions::default()).expect("a cutter");
+        cutter.set_options(CutOptions::new(radius, 0.5).expect("options"));
+        let proxy = ProxyOptions::default()
+            .with_tool_radius(radius)
+            .expect("a radius");
+        let check = check_cutting(
+            &mut cutter,
+            (pose, Material::DEFAULT),
+            &path,
+            (proxy, 1e3),
+            (true, 10),
+        )
+        .expect("material left");
+        assert!(check.removed > 0, "it cut: {check:?}");
+        assert_clean(&check);
+    }
+}
