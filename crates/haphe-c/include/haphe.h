@@ -39,6 +39,11 @@ typedef enum HapheStatus {
   HAPHE_STATUS_PANIC = 6,
 } HapheStatus;
 
+// A tool cutting into a volume (its own copy). Opaque; made by `haphe_cutter_new`, freed
+// by `haphe_cutter_free`. Used by one thread at a time, never a servo tick's (a refresh
+// allocates and takes milliseconds).
+typedef struct HapheCutter HapheCutter;
+
 // The god-object proxy of one device, the centre of its tool. Opaque; made by `haphe_proxy_new`, freed by
 // `haphe_proxy_free`.
 typedef struct HapheProxy HapheProxy;
@@ -51,6 +56,11 @@ typedef struct HapheScene HapheScene;
 // `haphe_shape_from_file`, `haphe_shape_from_arrays` or `haphe_shape_load`, freed by
 // `haphe_shape_free`. A scene holding the shape keeps it alive after it is freed.
 typedef struct HapheShape HapheShape;
+
+// A volume: a regular grid of values placed by an affine (voxel indices to metres), with
+// material where a value is at least its iso value. Opaque; made by `haphe_volume_new`,
+// `haphe_volume_read_nifti` or `haphe_volume_from_shape`, freed by `haphe_volume_free`.
+typedef struct HapheVolume HapheVolume;
 
 // How a surface feels.
 typedef struct HapheMaterial {
@@ -149,6 +159,72 @@ extern "C" {
 // the `count-allocations` feature, for tests: `HAPHE_COUNT_ALLOCATIONS`).
 uint64_t haphe_allocations(void);
 #endif
+
+// A cutter of a copy of `volume`: a tool of `tool_radius` metres cutting from a contact
+// force of `cut_force` N (0.5 is the library's default), its surface extracted and its
+// first shape built. On success `*out` is a new cutter owned by the caller (free it with
+// `haphe_cutter_free`); the volume stays the caller's.
+//
+// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` naming `tool_radius` or `cut_force` outside its
+// domain, or a null pointer; `HAPHE_STATUS_FORMAT` when the volume has no material (no
+// surface to render).
+enum HapheStatus haphe_cutter_new(const struct HapheVolume *volume,
+                                  double tool_radius,
+                                  double cut_force,
+                                  struct HapheCutter **out);
+
+// Frees a cutter made by this library (null is ignored); the handle must not be used
+// again. Shapes it made stay valid.
+void haphe_cutter_free(struct HapheCutter *cutter);
+
+// A new handle to the latest shape the cutter made (the first, or the last refresh's),
+// in the volume's frame: place it in a scene with `haphe_scene_add`. `*out` is owned by
+// the caller: free it with `haphe_shape_free`. Errors: `HAPHE_STATUS_INVALID_ARGUMENT`
+// for a null pointer.
+enum HapheStatus haphe_cutter_shape(struct HapheCutter *cutter, struct HapheShape **out);
+
+// One tick of the tool centred at `centre` (3 doubles, metres, the volume's frame)
+// pressing with a contact force of `force` N for `dt` seconds: below the cut force
+// nothing happens, else the voxels in its reach progress and those done are removed.
+// Writes how many were removed to `removed` (null: skipped). Allocates little (the
+// voxels in progress); call it from the thread that refreshes, with each tick's output.
+//
+// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` naming `centre`, `force` or `dt` when not
+// finite, or a null pointer.
+enum HapheStatus haphe_cutter_press(struct HapheCutter *cutter,
+                                    const double *centre,
+                                    double force,
+                                    double dt,
+                                    uintptr_t *removed);
+
+// The next version of the shape, from the chunks changed since the last refresh:
+// `*out` is a new shape handle owned by the caller (free it with `haphe_shape_free`;
+// give it to the object with `haphe_scene_replace`), or null when nothing changed.
+// Runs on the calling thread (milliseconds; it allocates).
+//
+// Errors: `HAPHE_STATUS_FORMAT` once no material is left (no surface), or when the new
+// surface cannot be mapped; `HAPHE_STATUS_INVALID_ARGUMENT` for a null pointer.
+enum HapheStatus haphe_cutter_refresh(struct HapheCutter *cutter, struct HapheShape **out);
+
+// How many voxels the cutter removed (0 for a null handle).
+uint64_t haphe_cutter_removed(struct HapheCutter *cutter);
+
+// A new handle to a copy of the volume as cut so far (to save it): `*out` is owned by
+// the caller (free it with `haphe_volume_free`). Errors: `HAPHE_STATUS_INVALID_ARGUMENT`
+// for a null pointer.
+enum HapheStatus haphe_cutter_volume(struct HapheCutter *cutter, struct HapheVolume **out);
+
+// Gives object `id` a new version of its shape: one `haphe_cutter_refresh` made from the
+// object's, or a shape with the same counts of vertices and triangles. In force from the
+// next tick (a proxy resting on the surface rides it). The scene keeps its own reference:
+// the caller still frees `shape`. Allocates nothing.
+//
+// Errors, the scene then unchanged: `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id
+// (`no object 7 in the scene`), a shape that is not a version of the object's (`shape:
+// the shape is not a new version …`) or a null pointer.
+enum HapheStatus haphe_scene_replace(struct HapheScene *scene,
+                                     uint32_t id,
+                                     const struct HapheShape *shape);
 
 // Number of vertices of the shape's surface (after welding; 0 for a null handle): the
 // rows of `haphe_shape_arrays` and of `haphe_scene_deform`.
@@ -445,6 +521,78 @@ enum HapheStatus haphe_shape_first_crossing(const struct HapheShape *shape,
                                             uintptr_t n,
                                             uint32_t flags,
                                             struct HapheCrossing *out);
+
+// A volume of `dims[0] × dims[1] × dims[2]` voxels with the `count` values at `values`
+// (`i` fastest: voxel `(i, j, k)` at `i + nx * (j + ny * k)`), placed by `affine` (16
+// doubles, a 4×4 matrix row by row from voxel indices to metres, last row `0 0 0 1`),
+// with material where a value is at least `iso`. The arrays are borrowed for the call
+// (the values are copied). On success `*out` is a new volume owned by the caller (free it
+// with `haphe_volume_free`).
+//
+// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` naming the argument: a null pointer, an empty
+// grid or one of more than 2^31 voxels (`dims`), a `count` other than the voxel count
+// or a NaN value, naming its voxel (`values`), an affine whose last row is not `0 0 0 1`
+// or that is not finite and invertible (`affine`), a non-finite `iso`.
+enum HapheStatus haphe_volume_new(const uintptr_t *dims,
+                                  const float *values,
+                                  uintptr_t count,
+                                  const double *affine,
+                                  float iso,
+                                  struct HapheVolume **out);
+
+// Reads a single-file NIfTI-1 volume (`.nii`, or gzip `.nii.gz` told by content; either
+// byte order; integer or float voxels, scaled by `scl_slope`/`scl_inter`), its affine
+// chosen as nibabel's (sform, else qform, else the voxel sizes) and converted to metres
+// from the header's unit. Material is where a value is at least `iso` when `use_iso` is
+// not 0, else at least the midpoint of the finite values' range.
+//
+// `path`: NUL-terminated UTF-8, borrowed for the call. On success `*out` is a new volume
+// owned by the caller (free it with `haphe_volume_free`); on failure it is untouched.
+// Errors: `HAPHE_STATUS_IO` (cannot read), `HAPHE_STATUS_FORMAT` naming the file and the
+// header field or voxel (NIfTI-2, not NIfTI-1, bad dimensions or datatype, truncated
+// data, a NaN value), `HAPHE_STATUS_INVALID_ARGUMENT` (a null pointer, a non-finite
+// `iso` with `use_iso`).
+enum HapheStatus haphe_volume_read_nifti(const char *path,
+                                         float iso,
+                                         int32_t use_iso,
+                                         struct HapheVolume **out);
+
+// The volume of a closed solid `shape` voxelised with voxels of `voxel` metres (values
+// signed-distance-like, material inside, iso 0). On success `*out` is a new volume owned
+// by the caller (free it with `haphe_volume_free`).
+//
+// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` naming `voxel` (outside its domain, above 0
+// and at most 1 m, or making more than 2^31 voxels), a null pointer, or a shape that is
+// not a closed solid.
+enum HapheStatus haphe_volume_from_shape(const struct HapheShape *shape,
+                                         double voxel,
+                                         struct HapheVolume **out);
+
+// Frees a volume made by this library (null is ignored); the handle must not be used
+// again.
+void haphe_volume_free(struct HapheVolume *volume);
+
+// Writes the number of voxels along each axis, `nx, ny, nz`, to `out` (3 size_t).
+// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` for a null pointer.
+enum HapheStatus haphe_volume_dims(const struct HapheVolume *volume, uintptr_t *out);
+
+// Writes the affine from voxel indices to metres to `out` (16 doubles: a 4×4 matrix row
+// by row, last row `0 0 0 1`) and the iso value to `iso` (either may be null: skipped).
+// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` for a null volume.
+enum HapheStatus haphe_volume_affine(const struct HapheVolume *volume, double *out, float *iso);
+
+// Lends the values: `*out` points to `*count` floats, `i` fastest (voxel `(i, j, k)` at
+// `i + nx * (j + ny * k)`), owned by the volume and valid until it is freed.
+// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` for a null pointer.
+enum HapheStatus haphe_volume_values(const struct HapheVolume *volume,
+                                     const float **out,
+                                     uintptr_t *count);
+
+// Writes the volume to `path` as NIfTI-1 float32 in millimetres (gzip when the name ends
+// in `.gz`), whole: a new file renamed over `path` once written. `path` is borrowed for
+// the call. Errors: `HAPHE_STATUS_IO` (cannot write, naming the path),
+// `HAPHE_STATUS_INVALID_ARGUMENT` (a null pointer, a side of more than 32767 voxels).
+enum HapheStatus haphe_volume_save(const struct HapheVolume *volume, const char *path);
 
 #ifdef __cplusplus
 }  // extern "C"

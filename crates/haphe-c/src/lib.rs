@@ -12,16 +12,22 @@
 //! `unsafe fn` would change nothing for a C caller.
 #![allow(clippy::not_unsafe_ptr_arg_deref)]
 
+mod cut;
 mod deform;
 mod effects;
 mod error;
 mod scene;
 mod servo;
 mod shape;
+mod volume;
 
 #[cfg(feature = "count-allocations")]
 mod alloc;
 
+pub use cut::{
+    HapheCutter, haphe_cutter_free, haphe_cutter_new, haphe_cutter_press, haphe_cutter_refresh,
+    haphe_cutter_removed, haphe_cutter_shape, haphe_cutter_volume, haphe_scene_replace,
+};
 pub use deform::{
     haphe_scene_deform, haphe_scene_deform_at, haphe_scene_shape, haphe_shape_arrays,
     haphe_shape_version, haphe_shape_vertex_count,
@@ -40,6 +46,11 @@ pub use shape::{
     HAPHE_SKIP_NONFINITE, HapheCrossing, HapheShape, haphe_shape_first_crossing, haphe_shape_free,
     haphe_shape_from_arrays, haphe_shape_from_file, haphe_shape_inside, haphe_shape_load,
     haphe_shape_save, haphe_shape_triangle_count,
+};
+pub use volume::{
+    HapheVolume, haphe_volume_affine, haphe_volume_dims, haphe_volume_free,
+    haphe_volume_from_shape, haphe_volume_new, haphe_volume_read_nifti, haphe_volume_save,
+    haphe_volume_values,
 };
 
 /// Allocation calls the library has made since it was loaded (only in a library built with

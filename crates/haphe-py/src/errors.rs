@@ -29,6 +29,7 @@ pub fn haphe_error(context: &str, e: impl std::fmt::Display) -> PyErr {
 pub fn param_error(e: ParamError) -> PyErr {
     let name = match e.param() {
         Param::StaticFriction => "friction",
+        Param::VoxelSize => "voxel",
         other => other.name(),
     };
     HapheError::new_err(e.named(name).to_string())

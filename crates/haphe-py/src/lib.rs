@@ -14,6 +14,7 @@ mod run;
 mod scene;
 mod shape;
 mod spec;
+mod volume;
 
 #[cfg(feature = "count-allocations")]
 mod alloc;
@@ -34,6 +35,8 @@ fn haphe_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Scene>()?;
     m.add_class::<scene::Proxy>()?;
     m.add_class::<scene::Contact>()?;
+    m.add_class::<volume::Volume>()?;
+    m.add_class::<volume::Cutter>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("DEFAULT_MAX_FORCE", haphe::scene::DEFAULT_MAX_FORCE_N)?;
     Ok(())

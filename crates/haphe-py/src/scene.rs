@@ -311,6 +311,19 @@ impl Scene {
         })
     }
 
+    /// replace(id, shape)
+    /// --
+    ///
+    /// Gives object ``id`` a new version of its shape (``Cutter.refresh``'s, or the same
+    /// counts of vertices and triangles), in force from the next tick. Raises ``KeyError``
+    /// for an unknown id, ``HapheError`` when ``shape`` is not a version of the object's.
+    fn replace(&mut self, id: u32, shape: &Shape) -> PyResult<()> {
+        match self.scene().replace(ObjectId(id), shape.inner.clone()) {
+            Err(hs::EditError::UnknownObject) => Err(pyo3::exceptions::PyKeyError::new_err(id)),
+            r => r.map(|_| ()).map_err(|e| haphe_error("shape", e)),
+        }
+    }
+
     /// check_tool_radius(tool_radius)
     /// --
     ///

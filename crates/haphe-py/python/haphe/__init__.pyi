@@ -181,10 +181,64 @@ class Scene:
     def effects(self) -> List[str]:
         """The effects' specifications, in the order added."""
     def clear_effects(self) -> None: ...
+    def replace(self, id: int, shape: Shape) -> None:
+        """Gives object id a new version of its shape (Cutter.refresh's); KeyError for
+        an unknown id, HapheError when shape is not a version of the object's."""
     def check_tool_radius(self, tool_radius: float) -> float:
         """tool_radius (m) if a tool of that radius fits the scene (0 to 0.5 m, at most
         the diagonal of the box bounding its objects); else raises HapheError."""
     def __len__(self) -> int: ...
+
+class Volume:
+    """A grid of values placed by an affine (voxel indices to metres); material where a
+    value is at least iso."""
+
+    def __init__(
+        self, values: npt.ArrayLike, affine: npt.ArrayLike, iso: Optional[float] = None
+    ) -> None:
+        """values (nx, ny, nz) indexed [i, j, k]; affine 4×4 in metres; iso None: the
+        midpoint of the finite values' range."""
+    @staticmethod
+    def from_nifti(path: _Path, iso: Optional[float] = None) -> Volume:
+        """A NIfTI-1 file (.nii or .nii.gz), its affine as nibabel's, in metres."""
+    @staticmethod
+    def from_mesh(shape: Shape, voxel: float) -> Volume:
+        """A closed solid voxelised with voxels of ``voxel`` metres (iso 0)."""
+    def save(self, path: _Path) -> None:
+        """NIfTI-1 float32 in metres (gzip for a name ending in .gz), written whole."""
+    def shape(self, name: str = "volume") -> Shape:
+        """The shape of the iso-surface, in the volume's frame."""
+    def values(self) -> npt.NDArray[np.float32]:
+        """A copy, (nx, ny, nz): values()[i, j, k] is voxel (i, j, k)."""
+    @property
+    def dims(self) -> Tuple[int, int, int]: ...
+    @property
+    def affine(self) -> npt.NDArray[np.float64]:
+        """4×4, voxel indices to metres."""
+    @property
+    def iso(self) -> float: ...
+    @property
+    def centre(self) -> Tuple[float, float, float]: ...
+
+class Cutter:
+    """A tool cutting into a copy of a volume, each refresh a new version of its shape."""
+
+    def __init__(self, volume: Volume, tool_radius: float, cut_force: float = 0.5) -> None: ...
+    def press(self, centre: _Vec3, force: float, dt: float) -> int:
+        """One tick of the tool at centre (m, volume frame) pressing with force N for dt
+        s; the number of voxels removed."""
+    def refresh(self) -> Optional[Shape]:
+        """The next version of the shape, or None when nothing changed."""
+    @property
+    def shape(self) -> Shape: ...
+    @property
+    def volume(self) -> Volume: ...
+    @property
+    def removed(self) -> int: ...
+    @property
+    def tool_radius(self) -> float: ...
+    @property
+    def cut_force(self) -> float: ...
 
 class Contact:
     """Where the proxy touches an object (world frame, metres)."""

@@ -1,0 +1,221 @@
+//! Cutting: a tool that removes the material of a volume it presses on, each refresh a
+//! new version of the volume's shape, given to a scene's object by `haphe_scene_replace`.
+
+use haphe_lib::DVec3;
+use haphe_lib::map::MapOptions;
+use haphe_lib::scene::{EditError, ObjectId};
+use haphe_lib::volume::{CutOptions, Cutter};
+
+use crate::error::{Failure, HapheStatus, guard};
+use crate::scene::{HapheScene, scene_mut};
+use crate::shape::{HapheShape, shape};
+use crate::volume::{HapheVolume, volume};
+
+/// A tool cutting into a volume (its own copy). Opaque; made by `haphe_cutter_new`, freed
+/// by `haphe_cutter_free`. Used by one thread at a time, never a servo tick's (a refresh
+/// allocates and takes milliseconds).
+pub struct HapheCutter {
+    inner: Cutter,
+}
+
+/// The cutter behind a handle.
+fn cutter<'a>(c: *mut HapheCutter) -> Result<&'a mut HapheCutter, Failure> {
+    // SAFETY: a non-null handle comes from this library, is not freed yet and is not used
+    // by another thread during the call (documented).
+    unsafe { c.as_mut() }.ok_or_else(|| Failure::argument("cutter is null"))
+}
+
+/// Hands a new shape handle to the caller through `out` (checked non-null).
+fn give_shape(out: *mut *mut HapheShape, shape: Option<HapheShape>) {
+    let handle = shape.map_or(std::ptr::null_mut(), |s| Box::into_raw(Box::new(s)));
+    // SAFETY: `out` is non-null and points to writable storage for a pointer (documented).
+    unsafe { *out = handle };
+}
+
+/// A cutter of a copy of `volume`: a tool of `tool_radius` metres cutting from a contact
+/// force of `cut_force` N (0.5 is the library's default), its surface extracted and its
+/// first shape built. On success `*out` is a new cutter owned by the caller (free it with
+/// `haphe_cutter_free`); the volume stays the caller's.
+///
+/// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` naming `tool_radius` or `cut_force` outside its
+/// domain, or a null pointer; `HAPHE_STATUS_FORMAT` when the volume has no material (no
+/// surface to render).
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_cutter_new(
+    volume: *const HapheVolume,
+    tool_radius: f64,
+    cut_force: f64,
+    out: *mut *mut HapheCutter,
+) -> HapheStatus {
+    guard(|| {
+        let v = self::volume(volume)?;
+        if out.is_null() {
+            return Err(Failure::argument("out is null"));
+        }
+        let options = CutOptions::new(tool_radius, cut_force)?;
+        let mut inner = Cutter::new("volume", v.inner.clone(), MapOptions::default())
+            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
+        inner.set_options(options);
+        let handle = Box::into_raw(Box::new(HapheCutter { inner }));
+        // SAFETY: `out` is non-null and points to writable storage for a pointer
+        // (documented).
+        unsafe { *out = handle };
+        Ok(())
+    })
+}
+
+/// Frees a cutter made by this library (null is ignored); the handle must not be used
+/// again. Shapes it made stay valid.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_cutter_free(cutter: *mut HapheCutter) {
+    let _ = guard(|| {
+        if !cutter.is_null() {
+            // SAFETY: a non-null handle was made by `Box::into_raw` in this library and is
+            // freed once (documented).
+            drop(unsafe { Box::from_raw(cutter) });
+        }
+        Ok(())
+    });
+}
+
+/// A new handle to the latest shape the cutter made (the first, or the last refresh's),
+/// in the volume's frame: place it in a scene with `haphe_scene_add`. `*out` is owned by
+/// the caller: free it with `haphe_shape_free`. Errors: `HAPHE_STATUS_INVALID_ARGUMENT`
+/// for a null pointer.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_cutter_shape(
+    cutter: *mut HapheCutter,
+    out: *mut *mut HapheShape,
+) -> HapheStatus {
+    guard(|| {
+        let c = self::cutter(cutter)?;
+        if out.is_null() {
+            return Err(Failure::argument("out is null"));
+        }
+        let inner = c.inner.shape().clone();
+        give_shape(out, Some(HapheShape { inner }));
+        Ok(())
+    })
+}
+
+/// One tick of the tool centred at `centre` (3 doubles, metres, the volume's frame)
+/// pressing with a contact force of `force` N for `dt` seconds: below the cut force
+/// nothing happens, else the voxels in its reach progress and those done are removed.
+/// Writes how many were removed to `removed` (null: skipped). Allocates little (the
+/// voxels in progress); call it from the thread that refreshes, with each tick's output.
+///
+/// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` naming `centre`, `force` or `dt` when not
+/// finite, or a null pointer.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_cutter_press(
+    cutter: *mut HapheCutter,
+    centre: *const f64,
+    force: f64,
+    dt: f64,
+    removed: *mut usize,
+) -> HapheStatus {
+    guard(|| {
+        let c = self::cutter(cutter)?;
+        if centre.is_null() {
+            return Err(Failure::argument("centre is null"));
+        }
+        // SAFETY: non-null `centre` points to 3 readable doubles (documented).
+        let centre = DVec3::from_array(unsafe { *centre.cast::<[f64; 3]>() });
+        if !centre.is_finite() {
+            return Err(Failure::argument(format!("centre: {centre} is not finite")));
+        }
+        for (what, x) in [("force", force), ("dt", dt)] {
+            if !x.is_finite() {
+                return Err(Failure::argument(format!("{what}: {x} is not finite")));
+            }
+        }
+        let n = c.inner.press(centre, force, dt);
+        if !removed.is_null() {
+            // SAFETY: non-null `removed` points to a writable size_t (documented).
+            unsafe { *removed = n };
+        }
+        Ok(())
+    })
+}
+
+/// The next version of the shape, from the chunks changed since the last refresh:
+/// `*out` is a new shape handle owned by the caller (free it with `haphe_shape_free`;
+/// give it to the object with `haphe_scene_replace`), or null when nothing changed.
+/// Runs on the calling thread (milliseconds; it allocates).
+///
+/// Errors: `HAPHE_STATUS_FORMAT` once no material is left (no surface), or when the new
+/// surface cannot be mapped; `HAPHE_STATUS_INVALID_ARGUMENT` for a null pointer.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_cutter_refresh(
+    cutter: *mut HapheCutter,
+    out: *mut *mut HapheShape,
+) -> HapheStatus {
+    guard(|| {
+        let c = self::cutter(cutter)?;
+        if out.is_null() {
+            return Err(Failure::argument("out is null"));
+        }
+        let shape = c
+            .inner
+            .refresh()
+            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
+        give_shape(out, shape.map(|inner| HapheShape { inner }));
+        Ok(())
+    })
+}
+
+/// How many voxels the cutter removed (0 for a null handle).
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_cutter_removed(cutter: *mut HapheCutter) -> u64 {
+    self::cutter(cutter).map_or(0, |c| c.inner.removed())
+}
+
+/// A new handle to a copy of the volume as cut so far (to save it): `*out` is owned by
+/// the caller (free it with `haphe_volume_free`). Errors: `HAPHE_STATUS_INVALID_ARGUMENT`
+/// for a null pointer.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_cutter_volume(
+    cutter: *mut HapheCutter,
+    out: *mut *mut HapheVolume,
+) -> HapheStatus {
+    guard(|| {
+        let c = self::cutter(cutter)?;
+        if out.is_null() {
+            return Err(Failure::argument("out is null"));
+        }
+        let handle = Box::into_raw(Box::new(HapheVolume {
+            inner: c.inner.volume().clone(),
+        }));
+        // SAFETY: `out` is non-null and points to writable storage for a pointer
+        // (documented).
+        unsafe { *out = handle };
+        Ok(())
+    })
+}
+
+/// Gives object `id` a new version of its shape: one `haphe_cutter_refresh` made from the
+/// object's, or a shape with the same counts of vertices and triangles. In force from the
+/// next tick (a proxy resting on the surface rides it). The scene keeps its own reference:
+/// the caller still frees `shape`. Allocates nothing.
+///
+/// Errors, the scene then unchanged: `HAPHE_STATUS_INVALID_ARGUMENT` for an unknown id
+/// (`no object 7 in the scene`), a shape that is not a version of the object's (`shape:
+/// the shape is not a new version …`) or a null pointer.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_scene_replace(
+    scene: *mut HapheScene,
+    id: u32,
+    shape: *const HapheShape,
+) -> HapheStatus {
+    guard(|| {
+        let sc = scene_mut(scene)?;
+        let s = self::shape(shape)?;
+        match sc.inner.replace(ObjectId(id), s.inner.clone()) {
+            Ok(_) => Ok(()),
+            Err(EditError::UnknownObject) => {
+                Err(Failure::argument(format!("no object {id} in the scene")))
+            }
+            Err(e) => Err(Failure::argument(format!("shape: {e}"))),
+        }
+    })
+}
