@@ -58,21 +58,6 @@ fn refused(e: VolumeError) -> Failure {
     Failure::argument(format!("{what}: {e}"))
 }
 
-/// The iso value used when none is given: the midpoint of the finite values' range (0
-/// when no value is finite), as the command line takes it.
-fn default_iso(values: &[f32]) -> f32 {
-    let (lo, hi) = values
-        .iter()
-        .filter(|v| v.is_finite())
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    if lo > hi {
-        return 0.0;
-    }
-    (0.5 * (f64::from(lo) + f64::from(hi))) as f32
-}
-
 /// A volume of `dims[0] × dims[1] × dims[2]` voxels with the `count` values at `values`
 /// (`i` fastest: voxel `(i, j, k)` at `i + nx * (j + ny * k)`), placed by `affine` (16
 /// doubles, a 4×4 matrix row by row from voxel indices to metres, last row `0 0 0 1`),
@@ -172,7 +157,7 @@ pub extern "C" fn haphe_volume_read_nifti(
             .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
         if use_iso == 0 {
             inner
-                .set_iso(default_iso(inner.values()))
+                .set_iso(Volume::midpoint_iso(inner.values()))
                 .map_err(refused)?;
         }
         give(out, inner)

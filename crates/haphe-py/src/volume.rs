@@ -55,23 +55,8 @@ fn iso_or_default(iso: Option<f32>, values: &[f32]) -> PyResult<f32> {
             "iso",
             format!("must be a finite number, not {iso}"),
         )),
-        None => Ok(default_iso(values)),
+        None => Ok(Grid::midpoint_iso(values)),
     }
-}
-
-/// The iso value used when none is given: the midpoint of the finite values' range (0
-/// when no value is finite), as the command line takes it.
-fn default_iso(values: &[f32]) -> f32 {
-    let (lo, hi) = values
-        .iter()
-        .filter(|v| v.is_finite())
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    if lo > hi {
-        return 0.0;
-    }
-    (0.5 * (f64::from(lo) + f64::from(hi))) as f32
 }
 
 /// The argument `what` through `numpy.asarray(x, dtype)`, `HapheError` naming it when
@@ -181,7 +166,7 @@ impl Volume {
             .map_err(|e| haphe_error("", e))?;
         if iso.is_none() {
             inner
-                .set_iso(default_iso(inner.values()))
+                .set_iso(Grid::midpoint_iso(inner.values()))
                 .map_err(volume_error)?;
         }
         Ok(Volume { inner })

@@ -54,13 +54,21 @@ fn straight(from: DVec3, to: DVec3, speed: f64, hold: usize) -> Vec<DVec3> {
         .collect()
 }
 
-fn drill(volume: Volume, path: &[DVec3], cut: bool, refresh_every: usize) -> (CutCheck, Volume) {
-    let pose = centred(&volume);
-    let options = CutOptions::new(RADIUS, CutOptions::DEFAULT_CUT_FORCE).expect("options");
-    let mut cutter = Cutter::new("block", volume, MapOptions::default()).expect("a cutter");
+/// Runs `path` against `volume` (centred) with a tool of `radius` cutting when `cut`,
+/// refreshing every `refresh_every` ticks: the checks, and the volume as cut.
+fn drill(
+    volume: &Volume,
+    radius: f64,
+    path: &[DVec3],
+    (cut, refresh_every): (bool, usize),
+) -> (CutCheck, Volume) {
+    let pose = centred(volume);
+    let options = CutOptions::new(radius, CutOptions::DEFAULT_CUT_FORCE).expect("options");
+    let mut cutter =
+        Cutter::new("volume", volume.clone(), MapOptions::default()).expect("a cutter");
     cutter.set_options(options);
     let proxy = ProxyOptions::default()
-        .with_tool_radius(RADIUS)
+        .with_tool_radius(radius)
         .expect("a radius");
     let check = check_cutting(
         &mut cutter,
@@ -109,7 +117,7 @@ fn a_block_drilled_along_a_straight_path() {
     );
     let path = straight(from, to, 0.01, 500);
 
-    let (rests, _) = drill(before.clone(), &path, false, 10);
+    let (rests, _) = drill(&before, RADIUS, &path, (false, 10));
     assert_clean(&rests);
     assert!(
         (rests.end.z - (top + RADIUS)).abs() < 1e-5,
@@ -117,7 +125,7 @@ fn a_block_drilled_along_a_straight_path() {
         rests.end
     );
 
-    let (drilled, after) = drill(before.clone(), &path, true, 10);
+    let (drilled, after) = drill(&before, RADIUS, &path, (true, 10));
     assert_clean(&drilled);
     eprintln!(
         "drilled: {} versions, {} voxels removed, end {:?}",
@@ -217,22 +225,7 @@ fn strikes_at_chunk_borders_never_pass_through() {
                 let dir = (inward + tilt).normalize();
                 let from = aim - dir * (radius + 4e-3);
                 let path = straight(from, aim + dir * 3e-3, 0.05, 100);
-                let options =
-                    CutOptions::new(radius, CutOptions::DEFAULT_CUT_FORCE).expect("options");
-                let mut cutter =
-                    Cutter::new("block", volume.clone(), MapOptions::default()).expect("a cutter");
-                cutter.set_options(options);
-                let proxy = ProxyOptions::default()
-                    .with_tool_radius(radius)
-                    .expect("a radius");
-                let check = check_cutting(
-                    &mut cutter,
-                    (pose, Material::DEFAULT),
-                    &path,
-                    (proxy, 1e3),
-                    (cut, 5),
-                )
-                .expect("material left");
+                let (check, _) = drill(&volume, radius, &path, (cut, 5));
                 eprintln!(
                     "radius {radius} cut {cut} aim {n}: {} contact ticks, {} versions, {} removed",
                     check.proxy.contact_ticks, check.versions, check.removed
@@ -267,25 +260,8 @@ fn voxelised_spot() -> Volume {
 #[test]
 fn drilling_a_voxelised_model_never_puts_the_tool_inside() {
     let volume = voxelised_spot();
-    let pose = centred(&volume);
     let radius = 1.5e-3;
-    let run = |path: &[DVec3]| {
-        let mut cutter =
-            Cutter::new("spot", volume.clone(), MapOptions::default()).expect("a cutter");
-        cutter
-            .set_options(CutOptions::new(radius, CutOptions::DEFAULT_CUT_FORCE).expect("options"));
-        let proxy = ProxyOptions::default()
-            .with_tool_radius(radius)
-            .expect("a radius");
-        check_cutting(
-            &mut cutter,
-            (pose, Material::DEFAULT),
-            path,
-            (proxy, 1e3),
-            (true, 20),
-        )
-        .expect("material left")
-    };
+    let run = |path: &[DVec3]| drill(&volume, radius, path, (true, 25)).0;
     let top = 0.04;
     for (speed, seconds) in [(5e-4, 1.0), (2e-3, 1.0), (2e-2, 0.5)] {
         let from = DVec3::new(2e-3, 1e-3, top);
@@ -348,7 +324,6 @@ fn drilling_a_nifti_volume_never_puts_the_tool_inside() {
         .to_nifti_gz()
         .expect("written");
     let (volume, _) = Volume::read_nifti("block.nii.gz", &written, 0.5).expect("it reads");
-    let pose = centred(&volume);
     let radius = 1.5e-3;
     let top = 0.012;
     for path in [
@@ -365,20 +340,7 @@ fn drilling_a_nifti_volume_never_puts_the_tool_inside() {
             300,
         ),
     ] {
-        let mut cutter =
-            Cutter::new("block.nii.gz", volume.clone(), MapOptions::default()).expect("a cutter");
-        cutter.set_options(CutOptions::new(radius, 0.5).expect("options"));
-        let proxy = ProxyOptions::default()
-            .with_tool_radius(radius)
-            .expect("a radius");
-        let check = check_cutting(
-            &mut cutter,
-            (pose, Material::DEFAULT),
-            &path,
-            (proxy, 1e3),
-            (true, 10),
-        )
-        .expect("material left");
+        let (check, _) = drill(&volume, radius, &path, (true, 10));
         assert!(check.removed > 0, "it cut: {check:?}");
         assert_clean(&check);
     }

@@ -15,7 +15,8 @@ pub fn is_volume_path(path: &Path) -> bool {
 }
 
 /// Reads the NIfTI-1 file at `path` (opened once, within [`files::VOLUME`]) with material
-/// where a value is at least `iso`, or, without one, at least [`default_iso`] of its values.
+/// where a value is at least `iso`, or, without one, at least [`Volume::midpoint_iso`] of
+/// its values.
 ///
 /// # Errors
 /// The file cannot be read, or is not a NIfTI-1 volume haphe reads: the message names the
@@ -25,24 +26,9 @@ pub fn read_volume(path: &Path, iso: Option<f32>) -> anyhow::Result<(Volume, Nif
     let name = path.display().to_string();
     let (mut volume, info) = Volume::read_nifti(&name, &bytes, iso.unwrap_or(0.0))?;
     if iso.is_none() {
-        volume.set_iso(default_iso(volume.values()))?;
+        volume.set_iso(Volume::midpoint_iso(volume.values()))?;
     }
     Ok((volume, info))
-}
-
-/// The iso value used when none is given: the midpoint of the finite values' range (0
-/// when no value is finite).
-pub fn default_iso(values: &[f32]) -> f32 {
-    let (lo, hi) = values
-        .iter()
-        .filter(|v| v.is_finite())
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    if lo > hi {
-        return 0.0;
-    }
-    (0.5 * (f64::from(lo) + f64::from(hi))) as f32
 }
 
 /// Writes `volume` to `path` as NIfTI-1 (gzip when the name ends in `.gz`), whole: a
@@ -99,10 +85,10 @@ mod tests {
     #[test]
     fn the_default_iso_is_the_midpoint_of_the_finite_values() {
         assert_eq!(
-            default_iso(&[f32::NEG_INFINITY, -2.0, 6.0, f32::INFINITY]),
+            Volume::midpoint_iso(&[f32::NEG_INFINITY, -2.0, 6.0, f32::INFINITY]),
             2.0
         );
-        assert_eq!(default_iso(&[f32::INFINITY]), 0.0);
+        assert_eq!(Volume::midpoint_iso(&[f32::INFINITY]), 0.0);
         assert!(is_volume_path(Path::new("a/B.NII.GZ")) && !is_volume_path(Path::new("b.obj")));
     }
 }

@@ -172,6 +172,21 @@ impl Volume {
         self.to_world.transform_point3(DVec3::new(i, j, k))
     }
 
+    /// The iso value the front ends take when none is given: the midpoint of the range of
+    /// the finite values among `values` (0 when none is finite).
+    pub fn midpoint_iso(values: &[f32]) -> f32 {
+        let (lo, hi) = values
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        if lo > hi {
+            return 0.0;
+        }
+        (0.5 * (f64::from(lo) + f64::from(hi))) as f32
+    }
+
     /// The largest spacing of the grid, metres: one voxel.
     pub(crate) fn voxel_size(&self) -> f64 {
         let m = self.to_world.matrix3;
