@@ -122,7 +122,12 @@ mod stage_order;
 pub use glam;
 pub use glam::DVec3;
 
-/// The README's example, compiled and run with the doctests (`cargo test --doc -p haphe`).
+/// The README's code, compiled with the doctests (`cargo test --doc -p haphe`).
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// The library guide's program, compiled and run with the doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/library.md")]
+pub struct LibraryDoctests;
