@@ -152,16 +152,13 @@ impl Cutter {
         let chunks = Chunks::extract(&volume);
         let voxel = volume.voxel_size();
         let map_options = volume.map_options(&map_options);
-        let (lowest, highest) = volume
-            .values()
-            .iter()
-            .filter(|v| v.is_finite())
-            .fold((f32::MAX, f32::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
         let iso = volume.iso();
-        let air = if lowest < iso {
-            lowest
-        } else {
-            iso - (highest - iso).abs().max(iso.abs()).max(1.0)
+        // The lowest value, if it is air; else a value as far below iso as the values go
+        // above it.
+        let air = match super::grid::finite_range(volume.values()) {
+            Some((lowest, _)) if lowest < iso => lowest,
+            Some((_, highest)) => iso - (highest - iso).abs().max(iso.abs()).max(1.0),
+            None => iso - iso.abs().max(1.0),
         };
         let shape = Arc::new(build(name, &chunks, &map_options)?);
         Ok(Cutter {

@@ -175,16 +175,9 @@ impl Volume {
     /// The iso value the front ends take when none is given: the midpoint of the range of
     /// the finite values among `values` (0 when none is finite).
     pub fn midpoint_iso(values: &[f32]) -> f32 {
-        let (lo, hi) = values
-            .iter()
-            .filter(|v| v.is_finite())
-            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
-                (lo.min(v), hi.max(v))
-            });
-        if lo > hi {
-            return 0.0;
-        }
-        (0.5 * (f64::from(lo) + f64::from(hi))) as f32
+        finite_range(values).map_or(0.0, |(lo, hi)| {
+            (0.5 * (f64::from(lo) + f64::from(hi))) as f32
+        })
     }
 
     /// The largest spacing of the grid, metres: one voxel.
@@ -212,6 +205,17 @@ impl Volume {
         let [nx, ny, nz] = self.dims.map(|d| (d - 1) as f64);
         self.point(0.5 * nx, 0.5 * ny, 0.5 * nz)
     }
+}
+
+/// The smallest and largest finite values among `values`, if any.
+pub(crate) fn finite_range(values: &[f32]) -> Option<(f32, f32)> {
+    values
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold(None, |range, &v| match range {
+            None => Some((v, v)),
+            Some((lo, hi)) => Some((v.min(lo), v.max(hi))),
+        })
 }
 
 /// The voxel `(i, j, k)` of the flat index `at`.
