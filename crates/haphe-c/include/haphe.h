@@ -173,6 +173,23 @@ enum HapheStatus haphe_cutter_new(const struct HapheVolume *volume,
                                   double cut_force,
                                   struct HapheCutter **out);
 
+// Gives the cutter the `count` layers of `layers` (NUL-terminated strings, each
+// `NAME:FROM:RATE:STIFFNESS[:FRICTION[:DYNAMIC]]`: the material's lowest value, the rate
+// it is cut at in m/s, its stiffness in N/m and friction coefficients, e.g.
+// `"enamel:2:0.004:900:0.4"`), replacing those it had: a value takes the layer with the
+// highest FROM at most the value, each is cut at its rate, and each triangle of the
+// surface feels like the material beside it, over the object's material. No layer
+// (`count` 0) gives one material back: the object's, cut at 20 mm/s. The cutter's shape
+// is made again now (get it with `haphe_cutter_shape`): call this before adding it to a
+// scene.
+//
+// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` naming `layers` and the first refused
+// specification (its form, a value that is not a number or outside its domain), or a
+// null pointer; the cutter keeps its layers.
+enum HapheStatus haphe_cutter_set_layers(struct HapheCutter *cutter,
+                                         const char *const *layers,
+                                         uintptr_t count);
+
 // Frees a cutter made by this library (null is ignored); the handle must not be used
 // again. Shapes it made stay valid.
 void haphe_cutter_free(struct HapheCutter *cutter);

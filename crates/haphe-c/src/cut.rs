@@ -4,11 +4,13 @@
 use haphe_lib::DVec3;
 use haphe_lib::map::MapOptions;
 use haphe_lib::scene::{EditError, ObjectId};
-use haphe_lib::volume::{CutOptions, Cutter};
+use std::ffi::c_char;
+
+use haphe_lib::volume::{CutOptions, Cutter, Layer};
 
 use crate::error::{Failure, HapheStatus, guard};
 use crate::scene::{HapheScene, scene_mut};
-use crate::shape::{HapheShape, shape};
+use crate::shape::{HapheShape, shape, text};
 use crate::volume::{HapheVolume, volume};
 
 /// A tool cutting into a volume (its own copy). Opaque; made by `haphe_cutter_new`, freed
@@ -55,12 +57,60 @@ pub extern "C" fn haphe_cutter_new(
         let options = CutOptions::new(tool_radius, cut_force)?;
         let mut inner = Cutter::new("volume", v.inner.clone(), MapOptions::default())
             .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
-        inner.set_options(options);
+        inner
+            .set_options(options)
+            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
         let handle = Box::into_raw(Box::new(HapheCutter { inner }));
         // SAFETY: `out` is non-null and points to writable storage for a pointer
         // (documented).
         unsafe { *out = handle };
         Ok(())
+    })
+}
+
+/// Gives the cutter the `count` layers of `layers` (NUL-terminated strings, each
+/// `NAME:FROM:RATE:STIFFNESS[:FRICTION[:DYNAMIC]]`: the material's lowest value, the rate
+/// it is cut at in m/s, its stiffness in N/m and friction coefficients, e.g.
+/// `"enamel:2:0.004:900:0.4"`), replacing those it had: a value takes the layer with the
+/// highest FROM at most the value, each is cut at its rate, and each triangle of the
+/// surface feels like the material beside it, over the object's material. No layer
+/// (`count` 0) gives one material back: the object's, cut at 20 mm/s. The cutter's shape
+/// is made again now (get it with `haphe_cutter_shape`): call this before adding it to a
+/// scene.
+///
+/// Errors: `HAPHE_STATUS_INVALID_ARGUMENT` naming `layers` and the first refused
+/// specification (its form, a value that is not a number or outside its domain), or a
+/// null pointer; the cutter keeps its layers.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_cutter_set_layers(
+    cutter: *mut HapheCutter,
+    layers: *const *const c_char,
+    count: usize,
+) -> HapheStatus {
+    guard(|| {
+        let c = self::cutter(cutter)?;
+        if layers.is_null() && count > 0 {
+            return Err(Failure::argument("layers is null"));
+        }
+        let specs: &[*const c_char] = if count == 0 {
+            &[]
+        } else {
+            // SAFETY: `layers` is non-null and points to `count` string pointers
+            // (documented).
+            unsafe { std::slice::from_raw_parts(layers, count) }
+        };
+        let parsed = specs
+            .iter()
+            .map(|&p| {
+                let spec = text("layers", p)?;
+                spec.parse::<Layer>()
+                    .map_err(|e| Failure::argument(format!("layers: {e}")))
+            })
+            .collect::<Result<Vec<Layer>, Failure>>()?;
+        let options = c.inner.options().clone().with_layers(parsed);
+        c.inner
+            .set_options(options)
+            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))
     })
 }
 

@@ -211,6 +211,15 @@ pub struct ModelArgs {
         requires = "mesh"
     )]
     pub voxel: Option<f64>,
+    /// With a volume: a material of its values, repeatable, e.g. `enamel:2:0.002:900:0.4`
+    /// (its lowest value, the rate it is cut at in m/s, stiffness N/m, static and dynamic
+    /// friction). A value takes the layer with the highest FROM at most the value; each
+    /// triangle feels like the material beside it.
+    #[arg(
+        long = "layer",
+        value_name = "NAME:FROM:RATE:STIFFNESS[:FRICTION[:DYNAMIC]]"
+    )]
+    pub layers: Vec<String>,
     /// Triangles of the built-in shape.
     #[arg(long, default_value_t = 20_000)]
     pub triangles: usize,
@@ -242,6 +251,7 @@ impl ModelArgs {
             units: self.units,
             volume: self.volume.as_deref().map(|v| (v, self.iso)),
             voxel: self.voxel,
+            layers: &self.layers,
         }
     }
 

@@ -150,6 +150,54 @@ fn a_mesh_is_voxelised_and_without_cut_rests_on_the_surface() {
     );
 }
 
+/// Two layers, each felt and cut at its rate: the run says what they are and cuts.
+#[test]
+fn layers_are_felt_and_cut() {
+    let dir = scratch("cut-layers");
+    let mut volume = block();
+    // Enamel (2) over the upper half of the block.
+    let [n, _, _] = volume.dims();
+    for (at, v) in volume.values_mut().iter_mut().enumerate() {
+        if *v > 0.5 && at / (n * n) >= n / 2 {
+            *v = 2.0;
+        }
+    }
+    let file = write(&dir, "tooth.nii", volume.to_nifti().expect("written"));
+    let out = haphe(&[
+        "simulate",
+        "--volume",
+        &file,
+        "--iso",
+        "0.5",
+        "--layer",
+        "dentin:1:0.02:300",
+        "--layer",
+        "enamel:2:0.004:900:0.4",
+        "--path",
+        "press",
+        "--seconds",
+        "1",
+        "--tool-radius",
+        "0.002",
+        "--cut",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}{}",
+        stdout(&out),
+        stderr(&out)
+    );
+    let err = stderr(&out);
+    for part in [
+        "dentin from 1: 300 N/m, friction 0/0, cut at 20 mm/s",
+        "enamel from 2: 900 N/m, friction 0.4/0.4, cut at 4 mm/s",
+    ] {
+        assert!(err.contains(part), "{part:?} missing from:\n{err}");
+    }
+    assert!(stdout(&out).contains("\ncutting:\n"), "{}", stdout(&out));
+}
+
 #[test]
 fn bad_cutting_flags_are_refused() {
     let dir = scratch("cut-refusals");
@@ -196,6 +244,28 @@ fn bad_cutting_flags_are_refused() {
         (
             vec!["simulate", "--volume", "/nonexistent.nii"],
             "/nonexistent.nii",
+        ),
+        (
+            vec![
+                "simulate",
+                "--shape",
+                "sphere",
+                "--layer",
+                "bone:1:0.01:900",
+            ],
+            "--layer needs a volume",
+        ),
+        (
+            vec!["simulate", "--volume", &file, "--layer", "bone:1:0.01"],
+            "--layer: `bone:1:0.01`: expected `NAME:FROM:RATE:STIFFNESS",
+        ),
+        (
+            vec!["simulate", "--volume", &file, "--layer", "bone:1:0:900"],
+            "--layer: `bone:1:0:900`: cut rate",
+        ),
+        (
+            vec!["simulate", "--volume", &file, "--layer", "bone:x:0.01:900"],
+            "`x` is not a number",
         ),
     ] {
         let out = haphe(&args);

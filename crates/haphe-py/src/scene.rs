@@ -224,6 +224,49 @@ impl Scene {
         Ok(id.0)
     }
 
+    /// add_volume(volume, position=(0, 0, 0), rotation=None, stiffness=500.0, damping=0.0, friction=0.0, dynamic_friction=None, texture=None)
+    /// --
+    ///
+    /// Adds the surface of a volume as an object: a ``Cutter``'s latest shape (its
+    /// triangles feel like its layers, if it has any) or a ``Volume``'s iso-surface,
+    /// placed with the centre of its grid at ``position`` (as the command line places a
+    /// volume at the origin), turned by ``rotation`` about that centre. The rest as
+    /// ``add``. Returns the object's id; give it the cutter's new shapes with
+    /// ``replace``. Raises ``TypeError`` for anything but a ``Cutter`` or a ``Volume``.
+    #[pyo3(signature = (volume, position = [0.0; 3], rotation = None, stiffness = Material::DEFAULT.stiffness(), damping = Material::DEFAULT.damping(), friction = Material::DEFAULT.static_friction(), dynamic_friction = None, texture = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_volume(
+        &mut self,
+        py: Python<'_>,
+        volume: &Bound<'_, PyAny>,
+        position: [f64; 3],
+        rotation: Option<&Bound<'_, PyAny>>,
+        stiffness: f64,
+        damping: f64,
+        friction: f64,
+        dynamic_friction: Option<f64>,
+        texture: Option<&str>,
+    ) -> PyResult<u32> {
+        let (inner, centre) = crate::volume::surface_of(py, volume)?;
+        let turn = self::rotation(rotation)?;
+        let at = DVec3::from_array(position) - turn * centre;
+        let shape = Shape {
+            inner,
+            name: "volume".to_owned(),
+        };
+        self.add(
+            &shape,
+            at.to_array(),
+            rotation,
+            stiffness,
+            damping,
+            friction,
+            dynamic_friction,
+            None,
+            texture,
+        )
+    }
+
     /// move(id, position, rotation=None)
     /// --
     ///

@@ -8,7 +8,9 @@ use std::path::{Path, PathBuf};
 use haphe::DVec3;
 use haphe::glam::{DAffine3, DMat3};
 use haphe::map::MapOptions;
-use haphe::volume::{CutOptions, Volume as Grid, VolumeError};
+use std::sync::Arc;
+
+use haphe::volume::{CutOptions, Layer, Volume as Grid, VolumeError};
 use numpy::ndarray::{Array2, Array3, ShapeBuilder};
 use numpy::{IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
@@ -284,11 +286,16 @@ impl Volume {
 /// A tool that cuts into a volume: told where it pressed and how hard, it removes the
 /// material in its reach and makes the next version of the volume's shape.
 ///
-/// ``Cutter(volume, tool_radius, cut_force=0.5)``: a copy of ``volume`` cut by a tool of
-/// ``tool_radius`` metres from a contact force of ``cut_force`` N. Raises ``HapheError``
-/// naming the parameter out of its domain, or when the volume has no material.
+/// ``Cutter(volume, tool_radius, cut_force=0.5, layers=None)``: a copy of ``volume`` cut
+/// by a tool of ``tool_radius`` metres from a contact force of ``cut_force`` N.
+/// ``layers`` are its materials, each spelled ``"NAME:FROM:RATE:STIFFNESS[:FRICTION[:DYNAMIC]]"``
+/// (its lowest value, the rate it is cut at in m/s, N/m, friction coefficients), e.g.
+/// ``["dentin:1:0.01:600", "enamel:2:0.002:900:0.4"]``: a value takes the layer with the
+/// highest ``FROM`` at most the value, and each triangle of the surface feels like the
+/// material beside it. Raises ``HapheError`` naming the parameter out of its domain (or
+/// ``layers`` and the specification), or when the volume has no material.
 ///
-/// Place ``cutter.shape`` in a scene; each tick, ``press`` with the proxy's position in
+/// Place ``cutter.shape`` in a scene (or ``Scene.add_volume(cutter)``); each tick, ``press`` with the proxy's position in
 /// the volume's frame and the contact force; now and then ``refresh`` and give the new
 /// shape to the object (``Scene.replace``).
 #[pyclass(module = "haphe")]
@@ -299,15 +306,56 @@ pub struct Cutter {
 #[pymethods]
 impl Cutter {
     #[new]
-    #[pyo3(signature = (volume, tool_radius, cut_force = CutOptions::DEFAULT_CUT_FORCE))]
-    fn new(py: Python<'_>, volume: &Volume, tool_radius: f64, cut_force: f64) -> PyResult<Cutter> {
-        let options = CutOptions::new(tool_radius, cut_force).map_err(param_error)?;
+    #[pyo3(signature = (volume, tool_radius, cut_force = CutOptions::DEFAULT_CUT_FORCE, layers = None))]
+    fn new(
+        py: Python<'_>,
+        volume: &Volume,
+        tool_radius: f64,
+        cut_force: f64,
+        layers: Option<Vec<String>>,
+    ) -> PyResult<Cutter> {
+        let layers = layers
+            .unwrap_or_default()
+            .iter()
+            .map(|spec| spec.parse::<Layer>().map_err(|e| haphe_error("layers", e)))
+            .collect::<PyResult<Vec<Layer>>>()?;
+        let options = CutOptions::new(tool_radius, cut_force)
+            .map_err(param_error)?
+            .with_layers(layers);
         let grid = volume.inner.clone();
-        let mut inner = py
-            .detach(|| haphe::volume::Cutter::new("volume", grid, MapOptions::default()))
+        let inner = py
+            .detach(|| {
+                let mut inner = haphe::volume::Cutter::new("volume", grid, MapOptions::default())?;
+                inner.set_options(options)?;
+                Ok::<_, haphe::volume::CutError>(inner)
+            })
             .map_err(|e| haphe_error("", e))?;
-        inner.set_options(options);
         Ok(Cutter { inner })
+    }
+
+    /// layers()
+    /// --
+    ///
+    /// The layers, sorted by their lowest value, as ``(name, from, rate, stiffness,
+    /// static_friction, dynamic_friction)``; one default layer when none was given.
+    fn layers(&self) -> Vec<(String, f32, f64, f64, f64, f64)> {
+        self.inner
+            .options()
+            .layers()
+            .iter()
+            .map(|l| {
+                let m = &l.material;
+                let friction = (m.static_friction(), m.dynamic_friction());
+                (
+                    l.name.clone(),
+                    l.from,
+                    l.rate,
+                    m.stiffness(),
+                    friction.0,
+                    friction.1,
+                )
+            })
+            .collect()
     }
 
     /// press(centre, force, dt)
@@ -381,4 +429,30 @@ impl Cutter {
     fn cut_force(&self) -> f64 {
         self.inner.options().cut_force()
     }
+}
+
+/// The shape of `volume` (a `Cutter`: its latest shape; a `Volume`: its iso-surface) and
+/// the centre of its grid, in the volume's frame.
+///
+/// # Errors
+/// `TypeError` for anything else; `HapheError` when a volume has no material.
+pub(crate) fn surface_of(
+    py: Python<'_>,
+    volume: &Bound<'_, PyAny>,
+) -> PyResult<(Arc<haphe::scene::Shape>, DVec3)> {
+    if let Ok(cutter) = volume.cast::<Cutter>() {
+        let cutter = cutter.borrow();
+        let inner = &cutter.inner;
+        return Ok((Arc::clone(inner.shape()), inner.volume().centre()));
+    }
+    if let Ok(v) = volume.cast::<Volume>() {
+        let v = v.get();
+        let shape = py
+            .detach(|| v.inner.shape("volume", &MapOptions::default()))
+            .map_err(|e| haphe_error("volume", e))?;
+        return Ok((Arc::new(shape), v.inner.centre()));
+    }
+    Err(pyo3::exceptions::PyTypeError::new_err(
+        "add_volume takes a haphe.Cutter or a haphe.Volume",
+    ))
 }

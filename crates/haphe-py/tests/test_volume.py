@@ -173,6 +173,50 @@ def test_a_tool_drills_into_a_block_as_the_hand_goes_down():
     assert (volume.values() >= 0.5).sum() == 16**3, "the volume given was copied"
 
 
+def felt_stiffness(scene, on, normal):
+    """The stiffness a point proxy feels pressing at `on` along `-normal`: the change of
+    force over a change of depth (the face may lie a fraction of a voxel off `on`)."""
+
+    def force(depth):
+        above = on + 2e-3 * normal
+        proxy = haphe.Proxy(position=above)
+        for t in range(101):
+            hip = above + (on - depth * normal - above) * t / 100
+            f, _, _ = proxy.tick(scene, hip)
+        return float(np.dot(f, normal))
+
+    return (force(4e-4) - force(2e-4)) / 2e-4
+
+
+def test_layers_are_felt_where_the_surface_shows_them():
+    """Enamel (2) over dentin (1): the top feels like enamel, the side below it like
+    dentin, whatever the object's stiffness; the cutter reports its layers."""
+    volume, top = block()
+    values = volume.values()
+    values[:, :, 12:][values[:, :, 12:] > 0.5] = 2.0
+    tooth = haphe.Volume(values, volume.affine, iso=0.5)
+    cutter = haphe.Cutter(tooth, 0.0, layers=["enamel:2:0.004:900:0.4", "dentin:1:0.02:300"])
+    assert cutter.layers() == [
+        ("dentin", 1.0, 0.02, 300.0, 0.0, 0.0),
+        ("enamel", 2.0, 0.004, 900.0, 0.4, 0.4),
+    ]
+    scene = haphe.Scene()
+    scene.add_volume(cutter, stiffness=5000.0)
+    side = top  # the block is a cube centred on the origin
+    enamel = felt_stiffness(scene, np.array([0.0, 0.0, top]), np.array([0.0, 0.0, 1.0]))
+    dentin = felt_stiffness(scene, np.array([side, 0.0, -6e-3]), np.array([1.0, 0.0, 0.0]))
+    assert abs(enamel - 900.0) < 1.0 and abs(dentin - 300.0) < 1.0, (enamel, dentin)
+    # A volume added as it is: its iso-surface, the object's stiffness everywhere.
+    plain = haphe.Scene()
+    plain.add_volume(volume, position=[0.0, 0.0, 0.0], stiffness=5000.0)
+    felt = felt_stiffness(plain, np.array([0.0, 0.0, top]), np.array([0.0, 0.0, 1.0]))
+    assert abs(felt - 5000.0) < 5.0, felt
+    with pytest.raises(haphe.HapheError, match="layers.*expected `NAME:FROM:RATE:STIFFNESS"):
+        haphe.Cutter(tooth, 0.0, layers=["enamel:2"])
+    with pytest.raises(TypeError, match="Cutter or a haphe.Volume"):
+        scene.add_volume(cutter.shape)
+
+
 def test_a_shape_that_is_not_a_version_of_the_object_is_refused():
     volume, _ = block()
     cutter = haphe.Cutter(volume, TOOL_RADIUS)

@@ -53,7 +53,9 @@ fn sphere() -> Volume {
 
 fn cutter() -> Cutter {
     let mut cutter = Cutter::new("sphere", sphere(), MapOptions::default()).expect("a cutter");
-    cutter.set_options(CutOptions::new(TOOL, 0.5).expect("options"));
+    cutter
+        .set_options(CutOptions::new(TOOL, 0.5).expect("options"))
+        .expect("set");
     cutter
 }
 

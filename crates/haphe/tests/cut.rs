@@ -66,7 +66,7 @@ fn drill(
     let options = CutOptions::new(radius, CutOptions::DEFAULT_CUT_FORCE).expect("options");
     let mut cutter =
         Cutter::new("volume", volume.clone(), MapOptions::default()).expect("a cutter");
-    cutter.set_options(options);
+    cutter.set_options(options).expect("options set");
     let proxy = ProxyOptions::default()
         .with_tool_radius(radius)
         .expect("a radius");

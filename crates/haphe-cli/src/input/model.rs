@@ -4,12 +4,12 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use anyhow::anyhow;
+use anyhow::{anyhow, bail};
 use haphe::map::MapOptions;
 use haphe::mesh::Units;
 use haphe::mesh::shapes::Catalog;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
-use haphe::volume::{Cutter, Volume};
+use haphe::volume::{CutOptions, Cutter, Layer, Volume};
 
 use crate::input::mesh::UnitsGiven;
 use crate::input::scene::{LoadedObject, LoadedScene, load_scene, mesh_shape, shape_of};
@@ -26,24 +26,35 @@ pub struct Model<'a> {
     pub volume: Option<(&'a Path, Option<f32>)>,
     /// With a mesh: voxelise it on a grid of this spacing, metres, and make it a volume.
     pub voxel: Option<f64>,
+    /// The volume's layers, as `--layer` spells them.
+    pub layers: &'a [String],
 }
 
 /// Loads the objects of a run (a --mesh or --shape object gets `material`), with a scene
 /// file's tool radius, and says what they are.
 pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(LoadedScene, String)> {
     let map = MapOptions::default();
+    let layers = model
+        .layers
+        .iter()
+        .map(|spec| spec.parse::<Layer>().map_err(|e| anyhow!("--layer: {e}")))
+        .collect::<anyhow::Result<Vec<Layer>>>()?;
+    let is_volume = model.volume.is_some() || (model.mesh.is_some() && model.voxel.is_some());
+    if !layers.is_empty() && !is_volume {
+        bail!("--layer needs a volume: --volume FILE.nii, or --mesh FILE with --voxel SIZE");
+    }
     if let Some((file, iso)) = model.volume {
         let (volume, info) = read_volume(file, iso)?;
         for note in &info.notes {
             eprintln!("haphe: {}: {note}", file.display());
         }
-        return volume_object(&file.display().to_string(), volume, material);
+        return volume_object(&file.display().to_string(), volume, (material, layers));
     }
     if let (Some(file), Some(voxel)) = (model.mesh, model.voxel) {
         let shape = mesh_shape(file, model.units, &map, UnitsGiven::Flag)?;
         let volume = Volume::from_shape(&shape, voxel)
             .map_err(|e| anyhow!("{}: voxelising it: {}", file.display(), e))?;
-        return volume_object(&file.display().to_string(), volume, material);
+        return volume_object(&file.display().to_string(), volume, (material, layers));
     }
     Ok(if let Some(file) = model.scene {
         (load_scene(file, &map)?, file.display().to_string())
@@ -94,15 +105,30 @@ pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(Loade
 }
 
 /// The object of `volume` (named `name`): the surface of its material extracted, placed
-/// with the centre of its grid at the origin, and the cutter that owns it.
+/// with the centre of its grid at the origin, and the cutter that owns it; its triangles
+/// feel like their `layers` when there are any.
 fn volume_object(
     name: &str,
     volume: Volume,
-    material: Material,
+    (material, layers): (Material, Vec<Layer>),
 ) -> anyhow::Result<(LoadedScene, String)> {
     let [nx, ny, nz] = volume.dims();
     let centre = volume.centre();
-    let cutter = Cutter::new(name, volume, MapOptions::default())?;
+    let mut cutter = Cutter::new(name, volume, MapOptions::default())?;
+    if !layers.is_empty() {
+        cutter.set_options(CutOptions::default().with_layers(layers))?;
+        for l in cutter.options().layers() {
+            eprintln!(
+                "haphe: {name}: {} from {}: {} N/m, friction {}/{}, cut at {} mm/s",
+                l.name,
+                l.from,
+                l.material.stiffness(),
+                l.material.static_friction(),
+                l.material.dynamic_friction(),
+                l.rate * 1e3
+            );
+        }
+    }
     let shape = Arc::clone(cutter.shape());
     eprintln!(
         "haphe: {name}: a volume of {nx} × {ny} × {nz} voxels, its surface {} triangles, placed with the centre of its grid at the origin (moved by {:.6?} m)",

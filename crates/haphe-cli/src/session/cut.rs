@@ -77,9 +77,12 @@ fn make(
         save,
     } = setup;
     let cut_force = cut.map_or(CutOptions::DEFAULT_CUT_FORCE, |c| c.cut_force);
-    cutter.set_options(
-        CutOptions::new(tool_radius, cut_force).map_err(|e| anyhow!("--cut-force: {e}"))?,
-    );
+    // The layers the volume was loaded with stay.
+    let layers = cutter.options().layers().to_vec();
+    let options = CutOptions::new(tool_radius, cut_force)
+        .map_err(|e| anyhow!("--cut-force: {e}"))?
+        .with_layers(layers);
+    cutter.set_options(options)?;
     let refresh_hz = cut.map_or(1.0, |c| c.refresh_hz);
     Ok(Some(Cutting {
         cutter,

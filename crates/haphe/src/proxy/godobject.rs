@@ -198,7 +198,7 @@ impl Proxy {
             return self.output(sweep.position, DVec3::ZERO, None, status);
         };
         let object = &scene.objects()[hit.object];
-        let material = object.material;
+        let material = object.material_on(hit.triangle);
         // 3. Friction.
         let p = self.friction(
             scene,
@@ -212,12 +212,13 @@ impl Proxy {
         let (contact, force) = self.contact_and_force(scene, on, p, &hand, object, &mut status);
         // 5. Deep penetration: the hold begins. Tested before the output is built, so that
         // the common case builds it once, in place.
-        let depth = saturation_depth(&material, self.options.max_force);
+        let held = object.hold_material();
+        let depth = saturation_depth(&held, self.options.max_force);
         if !is_deep(p, hand.hip, plane.normal, depth) {
             return self.output(p, force, contact, status);
         }
         let out = self.output(p, force, contact, status);
-        self.hold_if_deep(scene, &sweep, (&hit, plane.normal, &material), &hand, out)
+        self.hold_if_deep(scene, &sweep, (&hit, plane.normal, &held), &hand, out)
     }
 
     /// The device point pulled into the workspace, with the tick's velocity and the
@@ -327,7 +328,7 @@ impl Proxy {
             hand.hip,
             hand.velocity,
             contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
-            (&object.material, &relief),
+            (&object.material_on(surface.triangle), &relief),
             self.options.max_force,
         );
         status.force_clamped = force_clamped;

@@ -149,6 +149,7 @@ impl Shape {
         let map = self.map.refreshed(&self.surface, &surface, &moved)?;
         let mut shape = Shape::new(surface, map);
         shape.texture_coords = self.texture_coords.clone();
+        shape.materials = self.materials.clone();
         shape.version = self.version + 1;
         shape.lineage = self.lineage;
         if shape.map.grid() == self.map.grid() {

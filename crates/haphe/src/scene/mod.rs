@@ -74,6 +74,7 @@ pub use param::Param;
 pub use pose::Pose;
 pub use shape::{Shape, ShapeError};
 pub use spec::SpecError;
+pub(crate) use spec::{Spec, number};
 pub(crate) use texture::Relief;
 pub use texture::{HeightImage, Texture};
 pub use world::Scene;

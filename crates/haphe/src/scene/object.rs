@@ -26,7 +26,8 @@ pub struct SceneObject {
     pub pose: Pose,
     /// `world_from_object` at the previous tick (equal to `pose` for an object at rest).
     pub previous_pose: Pose,
-    /// How the surface feels.
+    /// How the surface feels (where its shape has no material of its own: a cut volume's
+    /// shape carries one per triangle, from the volume's layers).
     pub material: Material,
     /// Which sides of the surface can be touched.
     pub sides: Sides,
@@ -56,6 +57,28 @@ pub enum Sides {
 }
 
 impl SceneObject {
+    /// How triangle `t` feels: the shape's material there if it has its own, else the
+    /// object's.
+    ///
+    /// # Real-time
+    /// No allocation, no lock, no panic.
+    #[inline]
+    pub(crate) fn material_on(&self, t: TriId) -> Material {
+        self.shape.material_of(t).copied().unwrap_or(self.material)
+    }
+
+    /// The material whose saturation depth starts and keeps a hold on the object (see
+    /// [`Proxy`](crate::proxy::Proxy)): the object's, or the softest of its shape's own
+    /// materials when it has them, so that a hold begins only where the force saturates
+    /// on every triangle.
+    #[inline]
+    pub(crate) fn hold_material(&self) -> Material {
+        self.shape
+            .softest_material()
+            .copied()
+            .unwrap_or(self.material)
+    }
+
     /// An object at rest at `pose`: one-sided ([`Sides::Front`]) when its shape is a closed
     /// solid, two-sided otherwise.
     pub fn new(id: ObjectId, shape: Arc<Shape>, pose: Pose, material: Material) -> SceneObject {

@@ -12,6 +12,7 @@ use crate::mesh::{
 };
 use crate::query::{ClearZone, zone_from_bits, zone_height};
 
+use super::Material;
 use super::texture_coords::{self, UvPoint};
 
 /// Why a mesh could not become a [`Shape`]: its file is not a mesh, or the mesh has no
@@ -77,6 +78,9 @@ pub struct Shape {
     pub(super) zone_height: f32,
     /// `[u, v]` at each corner of each surface triangle, in the surface's order.
     pub(super) texture_coords: Option<Arc<[[DVec2; 3]]>>,
+    /// The material of each triangle where the shape's own material varies over it (a
+    /// cut volume's layers); else the object's material holds everywhere.
+    pub(super) materials: Option<Arc<TriangleMaterials>>,
     /// How many deformations or re-meshes made this shape from the one first built.
     pub(super) version: u64,
     /// The first build's surface uid, kept by every later version (see
@@ -111,6 +115,7 @@ impl Shape {
             lineage: surface.uid(),
             surface,
             texture_coords: None,
+            materials: None,
             version: 0,
             remeshed: false,
         }
@@ -273,6 +278,49 @@ impl Shape {
         self
     }
 
+    /// The shape with `palette[of[t]]` the material of the triangle `t` of the mesh it
+    /// was made from (in that mesh's order), over the material of any object using it. An
+    /// index beyond the palette, or a triangle beyond `of`, keeps the object's.
+    pub(crate) fn with_triangle_materials(self, palette: Vec<Material>, of: &[u16]) -> Shape {
+        let in_order = self
+            .surface
+            .source_triangles()
+            .iter()
+            .map(|&s| of.get(s as usize).copied().unwrap_or(u16::MAX))
+            .collect();
+        let softest = palette
+            .iter()
+            .copied()
+            .min_by(|a, b| a.stiffness.total_cmp(&b.stiffness))
+            .unwrap_or_default();
+        Shape {
+            materials: Some(Arc::new(TriangleMaterials {
+                palette: palette.into(),
+                of: in_order,
+                softest,
+            })),
+            ..self
+        }
+    }
+
+    /// The material of triangle `t` when the shape has its own
+    /// ([`Shape::with_triangle_materials`]), else `None` (the object's holds).
+    ///
+    /// # Real-time
+    /// Two bounds-checked reads.
+    #[inline]
+    pub(crate) fn material_of(&self, t: TriId) -> Option<&Material> {
+        let materials = self.materials.as_deref()?;
+        let at = *materials.of.get(t.index())?;
+        materials.palette.get(usize::from(at))
+    }
+
+    /// The softest of the shape's own materials (the least stiffness), if it has them.
+    #[inline]
+    pub(crate) fn softest_material(&self) -> Option<&Material> {
+        self.materials.as_deref().map(|m| &m.softest)
+    }
+
     /// Whether this shape was made by [`Shape::replacing`] (other triangles than the
     /// version before it; for the oracles).
     #[cfg(any(test, feature = "testing"))]
@@ -342,6 +390,15 @@ impl Shape {
             })
             .count()
     }
+}
+
+/// A material per triangle: an index into a palette, in the surface's order.
+#[derive(Debug)]
+pub(crate) struct TriangleMaterials {
+    palette: Box<[Material]>,
+    of: Box<[u16]>,
+    /// The palette's material of least stiffness.
+    softest: Material,
 }
 
 /// Texture coordinates as read (`f32`) in the shape's precision.

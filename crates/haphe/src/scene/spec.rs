@@ -65,14 +65,14 @@ pub enum SpecError {
 }
 
 /// A specification split at its colons: the kind and the rest.
-pub(super) struct Spec<'a> {
-    pub(super) text: &'a str,
-    pub(super) kind: &'a str,
-    pub(super) values: Vec<&'a str>,
+pub(crate) struct Spec<'a> {
+    pub(crate) text: &'a str,
+    pub(crate) kind: &'a str,
+    pub(crate) values: Vec<&'a str>,
 }
 
 impl<'a> Spec<'a> {
-    pub(super) fn split(text: &'a str) -> Spec<'a> {
+    pub(crate) fn split(text: &'a str) -> Spec<'a> {
         let mut parts = text.trim().split(':');
         let kind = parts.next().unwrap_or("").trim();
         Spec {
@@ -83,7 +83,7 @@ impl<'a> Spec<'a> {
     }
 
     /// An error of this specification.
-    pub(super) fn unknown(&self, known: &'static str) -> SpecError {
+    pub(crate) fn unknown(&self, known: &'static str) -> SpecError {
         SpecError::UnknownKind {
             spec: self.text.to_owned(),
             kind: self.kind.to_owned(),
@@ -91,14 +91,14 @@ impl<'a> Spec<'a> {
         }
     }
 
-    pub(super) fn form(&self, form: &'static str) -> SpecError {
+    pub(crate) fn form(&self, form: &'static str) -> SpecError {
         SpecError::Form {
             spec: self.text.to_owned(),
             form,
         }
     }
 
-    pub(super) fn param(&self, error: ParamError) -> SpecError {
+    pub(crate) fn param(&self, error: ParamError) -> SpecError {
         SpecError::Param {
             spec: self.text.to_owned(),
             error,
@@ -106,7 +106,7 @@ impl<'a> Spec<'a> {
     }
 
     /// The values as numbers, exactly `N` of them (else `form`).
-    pub(super) fn numbers<const N: usize>(
+    pub(crate) fn numbers<const N: usize>(
         &self,
         form: &'static str,
     ) -> Result<[f64; N], SpecError> {
@@ -122,7 +122,7 @@ impl<'a> Spec<'a> {
 }
 
 /// `v` as a number (`nan` and `inf` read as such, for the domain to refuse by name).
-pub(super) fn number(spec: &str, v: &str) -> Result<f64, SpecError> {
+pub(crate) fn number(spec: &str, v: &str) -> Result<f64, SpecError> {
     v.parse::<f64>().map_err(|_| SpecError::NotANumber {
         spec: spec.to_owned(),
         value: v.to_owned(),

@@ -44,6 +44,21 @@ struct BruteObject {
     before: Option<Arc<Shape>>,
 }
 
+impl BruteObject {
+    /// How triangle `t` feels (as [`SceneObject`](crate::scene::SceneObject)'s own rule).
+    fn material_on(&self, t: TriId) -> Material {
+        self.shape.material_of(t).copied().unwrap_or(self.material)
+    }
+
+    /// The material of the saturation depth of a hold (as [`SceneObject`](crate::scene::SceneObject)'s own rule).
+    fn hold_material(&self) -> Material {
+        self.shape
+            .softest_material()
+            .copied()
+            .unwrap_or(self.material)
+    }
+}
+
 /// The god-object by brute force: the oracle for [`Proxy`].
 pub struct BruteProxy {
     objects: Vec<BruteObject>,
@@ -191,8 +206,11 @@ impl BruteProxy {
             o.one_sided = s.sides == Sides::Front;
         }
         for i in forget {
+            // As the proxy forgets the triangle under it: friction starts again from
+            // where it touches down.
             if self.touched == Some(i) {
                 self.touched = None;
+                self.in_contact = false;
             }
             if self.rest.is_some_and(|r| r.object == i) {
                 self.rest = None;
@@ -391,7 +409,7 @@ impl BruteProxy {
     /// the held object; `None` (and no change) once it is back within that depth.
     fn hold_step(&mut self, mut p: DVec3, hip: DVec3, mut hold: HeldContact) -> Option<DVec3> {
         let o = self.objects.get(hold.object)?;
-        let depth = saturation_depth_of(&o.material, self.options.max_force)?;
+        let depth = saturation_depth_of(&o.hold_material(), self.options.max_force)?;
         if !hand_deeper_than(p, hip, hold.normal_at(&o.pose), Some(depth)) {
             return None;
         }
@@ -447,15 +465,21 @@ impl BruteProxy {
             self.sticking = false;
             return (p, false);
         };
-        // Friction, with the material of the object met last.
-        let material = self.objects[step.object].material;
+        // Friction, with the material of the surface met last; the hold's depth from the
+        // object's softest.
+        let o = &self.objects[step.object];
+        let material = step
+            .rest
+            .filter(|r| r.object == step.object)
+            .map_or(o.material, |r| o.material_on(r.triangle));
+        let softest = o.hold_material();
         p = self.with_friction(
             p,
             hip,
             &material,
             if self.in_contact { held } else { touch_down },
         );
-        if let Some(p) = self.hold_if_deep(p, hip, previous_hip, &step, &material) {
+        if let Some(p) = self.hold_if_deep(p, hip, previous_hip, &step, &softest) {
             return (p, true);
         }
         self.position = p;

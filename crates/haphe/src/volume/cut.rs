@@ -55,8 +55,13 @@ impl CutOptions {
     }
 
     /// The same with the materials of `layers`: a value takes the layer with the highest
-    /// [`Layer::from`] at most the value (the lowest layer below every `from`); no layer,
-    /// one material cut at [`Layer::DEFAULT_RATE`].
+    /// [`Layer::from`] at most the value (the lowest layer below every `from`). Each layer
+    /// is cut at its rate, and each triangle of the surface feels like its layer's
+    /// material, over the object's: the layer of the highest value at the corners of the
+    /// tetrahedron of the extraction it lies in (the material beside it). A hold (deep
+    /// penetration, see [`Proxy`](crate::proxy::Proxy)) begins at the saturation depth
+    /// of the softest layer. No layer: one material, the object's, cut at
+    /// [`Layer::DEFAULT_RATE`].
     pub fn with_layers(mut self, layers: Vec<Layer>) -> CutOptions {
         self.layers = Layers::new(layers);
         self
@@ -160,7 +165,7 @@ impl Cutter {
             Some((_, highest)) => iso - (highest - iso).abs().max(iso.abs()).max(1.0),
             None => iso - iso.abs().max(1.0),
         };
-        let shape = Arc::new(build(name, &chunks, &map_options)?);
+        let shape = Arc::new(build(name, &chunks, &map_options, &Layers::default())?);
         Ok(Cutter {
             name: name.to_owned(),
             from_world: volume.to_world().inverse(),
@@ -199,9 +204,26 @@ impl Cutter {
         &self.options
     }
 
-    /// Cuts as `options` says from now on.
-    pub fn set_options(&mut self, options: CutOptions) {
+    /// Cuts as `options` says from now on. When its layers feel otherwise than those
+    /// before, the shape is made again now with their materials (a new version, see
+    /// [`Cutter::shape`]): call it before handing the shape to a scene.
+    ///
+    /// # Errors
+    /// Those of [`Cutter::new`], when the shape is made again.
+    pub fn set_options(&mut self, options: CutOptions) -> Result<(), CutError> {
+        let felt = |o: &CutOptions| o.layers.are_felt().then(|| o.layers.clone());
+        let remake = felt(&options) != felt(&self.options);
         self.options = options;
+        if remake {
+            let shape = build(
+                &self.name,
+                &self.chunks,
+                &self.map_options,
+                &self.options.layers,
+            )?;
+            self.shape = Arc::new(shape.replacing(&self.shape));
+        }
+        Ok(())
     }
 
     /// The last refresh's two steps, seconds: the changed chunks extracted again, then
@@ -287,7 +309,9 @@ impl Cutter {
             let began = Instant::now();
             self.chunks.refresh(&self.volume, lo, hi);
             let extracted = began.elapsed().as_secs_f64();
-            let shape = build(&self.name, &self.chunks, &self.map_options)?.replacing(&self.shape);
+            let layers = &self.options.layers;
+            let shape =
+                build(&self.name, &self.chunks, &self.map_options, layers)?.replacing(&self.shape);
             self.last_refresh = (extracted, began.elapsed().as_secs_f64() - extracted);
             self.shape = Arc::new(shape);
             Ok(Some(Arc::clone(&self.shape)))
@@ -318,8 +342,14 @@ impl Cutter {
     }
 }
 
-/// The shape of the surface of `chunks` (named `name`).
-fn build(name: &str, chunks: &Chunks, map_options: &MapOptions) -> Result<Shape, CutError> {
+/// The shape of the surface of `chunks` (named `name`), each triangle feeling like its
+/// layer when the layers are felt.
+fn build(
+    name: &str,
+    chunks: &Chunks,
+    map_options: &MapOptions,
+    layers: &Layers,
+) -> Result<Shape, CutError> {
     if chunks.triangle_count() == 0 {
         return Err(CutError::Empty(name.to_owned()));
     }
@@ -327,6 +357,12 @@ fn build(name: &str, chunks: &Chunks, map_options: &MapOptions) -> Result<Shape,
         .map_err(|e| CutError::Surface(name.to_owned(), e))?;
     let shape =
         Shape::build(surface, map_options).map_err(|e| CutError::Map(name.to_owned(), e))?;
+    let shape = if layers.are_felt() {
+        let palette = layers.layers().iter().map(|l| l.material).collect();
+        shape.with_triangle_materials(palette, &layers.indices_of(&chunks.triangle_values()))
+    } else {
+        shape
+    };
     // Every clear zone now, so that no tick computes one.
     Ok(shape.with_clear_zones())
 }

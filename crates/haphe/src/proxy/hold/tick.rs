@@ -37,7 +37,7 @@ impl Proxy {
             (hand.previous, hand.hip),
         );
         // The same test as the hold's own, so that it goes ahead once begun.
-        let depth = saturation_depth(&object.material, self.options.max_force);
+        let depth = saturation_depth(&object.hold_material(), self.options.max_force);
         if !is_deep(entry, hand.hip, hold.normal(&object.pose), depth) {
             return None;
         }
@@ -66,8 +66,8 @@ impl Proxy {
     ) -> Option<TickOutput> {
         let hip = hand.hip;
         let object = scene.objects().get(hold.on.object)?;
-        let material = object.material;
-        let depth = saturation_depth(&material, self.options.max_force)?;
+        let material = object.material_on(hold.on.triangle);
+        let depth = saturation_depth(&object.hold_material(), self.options.max_force)?;
         if !is_deep(p, hip, hold.normal(&object.pose), Some(depth)) {
             return None;
         }

@@ -69,6 +69,9 @@ struct Chunk {
     vertices: Vec<DVec3>,
     /// Triangles as indices into `vertices`.
     triangles: Vec<[u32; 3]>,
+    /// Each triangle's material value: the highest value at the corners of the
+    /// tetrahedron it was made in (a material voxel's, as at least one corner is).
+    values: Vec<f32>,
 }
 
 /// The edge from voxel `lo` along the offset bits `dir` (1 to 7), as a number unique in
@@ -197,6 +200,17 @@ impl Chunks {
         mesh
     }
 
+    /// Each triangle's material value, in the order of [`Chunks::mesh`]'s triangles: the
+    /// highest value at the corners of the tetrahedron of the decomposition the triangle
+    /// cuts, so the value of the material beside it (the voxels a cut removed are below
+    /// iso).
+    pub fn triangle_values(&self) -> Vec<f32> {
+        self.chunks
+            .iter()
+            .flat_map(|c| c.values.iter().copied())
+            .collect()
+    }
+
     /// Triangles of every chunk.
     pub fn triangle_count(&self) -> usize {
         self.chunks.iter().map(|c| c.triangles.len()).sum()
@@ -303,6 +317,10 @@ impl ChunkBuilder<'_> {
             let case_mask =
                 (0..4).fold(0usize, |m, v| m | (usize::from((mask >> tet[v]) & 1) << v));
             let case = CASES[case_mask];
+            let value = tet
+                .iter()
+                .map(|&c| corners[usize::from(c)])
+                .fold(f32::NEG_INFINITY, f32::max);
             for tri in &case.triangles[..usize::from(case.count)] {
                 let mut ids = tri.map(|[a, b]| {
                     let (a, b) = (tet[usize::from(a)], tet[usize::from(b)]);
@@ -316,6 +334,7 @@ impl ChunkBuilder<'_> {
                     ids.swap(1, 2);
                 }
                 self.chunk.triangles.push(ids);
+                self.chunk.values.push(value);
             }
         }
     }
