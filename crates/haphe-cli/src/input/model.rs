@@ -31,20 +31,10 @@ pub struct Model<'a> {
 /// Loads the objects of a run (a --mesh or --shape object gets `material`), with a scene
 /// file's tool radius, and says what they are.
 pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(LoadedScene, String)> {
+    if let Some(loaded) = load_volume(&model, material)? {
+        return Ok(loaded);
+    }
     let map = MapOptions::default();
-    if let Some((file, iso)) = model.volume {
-        let (volume, info) = read_volume(file, iso)?;
-        for note in &info.notes {
-            eprintln!("haphe: {}: {note}", file.display());
-        }
-        return volume_object(&file.display().to_string(), volume, material);
-    }
-    if let (Some(file), Some(voxel)) = (model.mesh, model.voxel) {
-        let shape = mesh_shape(file, model.units, &map, UnitsGiven::Flag)?;
-        let volume = Volume::from_shape(&shape, voxel)
-            .map_err(|e| anyhow!("{}: voxelising it: {}", file.display(), e))?;
-        return volume_object(&file.display().to_string(), volume, material);
-    }
     Ok(if let Some(file) = model.scene {
         (load_scene(file, &map)?, file.display().to_string())
     } else if let Some(file) = model.mesh {
@@ -91,6 +81,32 @@ pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(Loade
             format!("the built-in {name}"),
         )
     })
+}
+
+/// The volume object of `model` (with its cutter) when it names one: a volume file, or a
+/// mesh voxelised (`voxel`); `None` for the other models.
+///
+/// # Errors
+/// The file cannot be read, or the mesh voxelised, naming the file.
+pub fn load_volume(
+    model: &Model<'_>,
+    material: Material,
+) -> anyhow::Result<Option<(LoadedScene, String)>> {
+    if let Some((file, iso)) = model.volume {
+        let (volume, info) = read_volume(file, iso)?;
+        for note in &info.notes {
+            eprintln!("haphe: {}: {note}", file.display());
+        }
+        return volume_object(&file.display().to_string(), volume, material).map(Some);
+    }
+    if let (Some(file), Some(voxel)) = (model.mesh, model.voxel) {
+        let map = MapOptions::default();
+        let shape = mesh_shape(file, model.units, &map, UnitsGiven::Flag)?;
+        let volume = Volume::from_shape(&shape, voxel)
+            .map_err(|e| anyhow!("{}: voxelising it: {}", file.display(), e))?;
+        return volume_object(&file.display().to_string(), volume, material).map(Some);
+    }
+    Ok(None)
 }
 
 /// The object of `volume` (named `name`): the surface of its material extracted, placed
