@@ -14,11 +14,13 @@ use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, Param, Scene};
 use haphe::servo::RealtimeOptions;
 
+use self::volume::VolumeArgs;
 use crate::input::model::Model;
 
 pub mod cut;
 pub mod deform;
 pub mod feel;
+pub mod volume;
 
 /// Default length of a run, seconds.
 pub const DEFAULT_SECONDS: f64 = 5.0;
@@ -173,8 +175,8 @@ pub fn map_options(cell_size: Option<f64>, budget_mib: Option<usize>) -> MapOpti
     }
 }
 
-/// Where the objects come from (exactly one of `--mesh`, `--scene`, `--shape`), and the
-/// material of a `--mesh` or `--shape` object.
+/// Where the objects come from (exactly one of `--mesh`, `--scene`, `--shape`,
+/// `--volume`), and the material of a `--mesh` or `--shape` object.
 #[derive(clap::Args, Debug)]
 #[command(group(clap::ArgGroup::new("model").required(true).args(["mesh", "scene", "shape", "volume"])))]
 pub struct ModelArgs {
@@ -189,37 +191,8 @@ pub struct ModelArgs {
     /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
     #[arg(long, value_name = "NAME")]
     pub shape: Option<String>,
-    /// A volume (NIfTI-1, `.nii` or `.nii.gz`): the material where a value is at least
-    /// --iso, its surface extracted, placed with the centre of its grid at the origin.
-    #[arg(long, value_name = "FILE.nii")]
-    pub volume: Option<PathBuf>,
-    /// With --volume: material is where a value is at least this (default: the middle of
-    /// the values' range).
-    #[arg(
-        long,
-        value_name = "V",
-        allow_negative_numbers = true,
-        requires = "volume"
-    )]
-    pub iso: Option<f32>,
-    /// With --mesh: voxelise the (closed) mesh on a grid of this spacing, metres, and
-    /// render it as a volume the tool can cut (--cut).
-    #[arg(
-        long,
-        value_name = "SIZE",
-        allow_negative_numbers = true,
-        requires = "mesh"
-    )]
-    pub voxel: Option<f64>,
-    /// With a volume: a material of its values, repeatable, e.g. `enamel:2:0.002:900:0.4`
-    /// (its lowest value, the rate it is cut at in m/s, stiffness N/m, static and dynamic
-    /// friction). A value takes the layer with the highest FROM at most the value; each
-    /// triangle feels like the material beside it.
-    #[arg(
-        long = "layer",
-        value_name = "NAME:FROM:RATE:STIFFNESS[:FRICTION[:DYNAMIC]]"
-    )]
-    pub layers: Vec<String>,
+    #[command(flatten)]
+    pub volume: VolumeArgs,
     /// Triangles of the built-in shape.
     #[arg(long, default_value_t = 20_000)]
     pub triangles: usize,
@@ -249,9 +222,9 @@ impl ModelArgs {
             shape: self.shape.as_deref(),
             triangles: self.triangles,
             units: self.units,
-            volume: self.volume.as_deref().map(|v| (v, self.iso)),
-            voxel: self.voxel,
-            layers: &self.layers,
+            volume: self.volume.file(),
+            voxel: self.volume.voxel,
+            layers: &self.volume.layers,
         }
     }
 

@@ -11,7 +11,7 @@ const $ = (id) => document.getElementById(id);
 // What the page shows now; tests read it.
 const state = {
   ready: false, info: null, frame: null, frames: 0, sent: 0, connected: false,
-  replay: null, drawn: {}, others: [], deformed: {},
+  replay: null, drawn: {}, others: [], shapes: {},
 };
 window.haphe = state;
 
@@ -52,13 +52,23 @@ scene.add(grid);
     cell >= 1 ? `1 cell = ${+cell.toPrecision(3)} m` : `1 cell = ${+(cell * 1e3).toPrecision(3)} mm`;
 }
 
-// The objects: flat-shaded, tinted by the force while touched.
+// The objects: flat-shaded, tinted by the force while touched. Each keeps its positions,
+// triangles and the triangle of each face index (what frames name) for the contact.
 const objects = new Map();
-for (const m of meshes) {
+function geometryOf(positions, triangles) {
   const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.BufferAttribute(m.positions, 3));
-  geometry.setIndex(new THREE.BufferAttribute(m.triangles, 1));
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.setIndex(new THREE.BufferAttribute(triangles, 1));
   geometry.computeVertexNormals();
+  return geometry;
+}
+function bySourceOf(source) {
+  const bySource = new Map();
+  source.forEach((s, i) => bySource.set(s, i));
+  return bySource;
+}
+for (const m of meshes) {
+  const geometry = geometryOf(m.positions, m.triangles);
   const material = new THREE.MeshStandardMaterial({
     color: 0x8fa3b8, flatShading: true, roughness: 0.7, metalness: 0.05,
     transparent: true, opacity: 0.92, side: THREE.DoubleSide,
@@ -67,10 +77,10 @@ for (const m of meshes) {
   mesh.quaternion.set(m.rotation[0], m.rotation[1], m.rotation[2], m.rotation[3]);
   mesh.position.set(m.translation[0], m.translation[1], m.translation[2]);
   mesh.updateMatrixWorld();
-  const bySource = new Map();
-  m.source.forEach((s, i) => bySource.set(s, i));
   scene.add(mesh);
-  objects.set(m.id, { mesh, material, positions: m.positions, triangles: m.triangles, bySource });
+  objects.set(m.id, {
+    mesh, material, positions: m.positions, triangles: m.triangles, bySource: bySourceOf(m.source),
+  });
 }
 
 // Device point, proxy, the line between them, force arrow, contact triangle and normal.
@@ -272,7 +282,7 @@ if (info.mode === 'live') {
   socket.onopen = () => { state.connected = true; };
   socket.onclose = () => { state.connected = false; $('status').textContent = 'disconnected'; };
   socket.onmessage = (event) => {
-    if (event.data instanceof ArrayBuffer) { deform(event.data); return; }
+    if (event.data instanceof ArrayBuffer) { reshape(event.data); return; }
     const f = JSON.parse(event.data);
     state.frame = f;
     state.frames += 1;
@@ -403,28 +413,57 @@ function stepReplay(dt) {
   chart.replace(points);
 }
 
-// A deforming object's new vertices (see `VertexPublisher::publish`): 'HPD1', id (u32),
-// version (u64), vertex count (u32), positions (3 f32 each), object frame. The mesh is
-// redrawn from them; state.deformed[id] says which version is drawn, how many arrived,
-// and state.vertex(id, i) where vertex i is drawn (object frame).
-function deform(buffer) {
+// A new version of an object whose shape changes, in one of two binary messages (see
+// haphe_view::encode_vertices and encode_mesh), little-endian, object frame:
+// - 'HPD1' (a deformation): id (u32), version (u64), vertex count (u32), positions (3 f32
+//   each); the triangles stay;
+// - 'HPM1' (a cut): id (u32), version (u64), vertex count (u32), triangle count (u32),
+//   positions (3 f32 each), triangles (3 u32 each), face indices (u32 each); the object's
+//   geometry is replaced (the old one disposed).
+// state.shapes[id] says which version is drawn, how many arrived, and the mesh's vertex
+// and triangle counts; state.drawnMesh(id) the counts of the geometry drawn, and
+// state.vertex(id, i) where vertex i is drawn (object frame).
+function reshape(buffer) {
   const view = new DataView(buffer);
-  if (view.byteLength < 20 || view.getUint32(0, true) !== 0x31445048) return;
+  if (view.byteLength < 20) return;
+  const magic = view.getUint32(0, true);
   const id = view.getUint32(4, true);
   const version = Number(view.getBigUint64(8, true));
   const n = view.getUint32(16, true);
   const o = objects.get(id);
-  const attribute = o?.mesh.geometry.attributes.position;
-  if (!o || attribute.count !== n || view.byteLength !== 20 + 12 * n) return;
-  const positions = new Float32Array(buffer, 20, 3 * n);
-  attribute.array.set(positions);
-  attribute.needsUpdate = true;
-  o.mesh.geometry.computeVertexNormals();
-  o.mesh.geometry.computeBoundingSphere();
-  o.positions = attribute.array;
-  const seen = state.deformed[id];
-  state.deformed[id] = { version, updates: (seen?.updates ?? 0) + 1 };
+  if (!o) return;
+  if (magic === 0x31445048) {
+    const attribute = o.mesh.geometry.attributes.position;
+    if (attribute.count !== n || view.byteLength !== 20 + 12 * n) return;
+    attribute.array.set(new Float32Array(buffer, 20, 3 * n));
+    attribute.needsUpdate = true;
+    o.mesh.geometry.computeVertexNormals();
+    o.mesh.geometry.computeBoundingSphere();
+    o.positions = attribute.array;
+  } else if (magic === 0x314d5048 && view.byteLength >= 24) {
+    const t = view.getUint32(20, true);
+    if (view.byteLength !== 24 + 12 * n + 16 * t) return;
+    const positions = new Float32Array(buffer, 24, 3 * n);
+    const triangles = new Uint32Array(buffer, 24 + 12 * n, 3 * t);
+    const source = new Uint32Array(buffer, 24 + 12 * n + 12 * t, t);
+    const old = o.mesh.geometry;
+    o.mesh.geometry = geometryOf(positions, triangles);
+    old.dispose();
+    Object.assign(o, { positions, triangles, bySource: bySourceOf(source) });
+  } else {
+    return;
+  }
+  const seen = state.shapes[id];
+  state.shapes[id] = {
+    version, updates: (seen?.updates ?? 0) + 1,
+    vertices: o.positions.length / 3, triangles: o.triangles.length / 3,
+  };
 }
+// The geometry drawn for an object now: its vertex and triangle counts.
+state.drawnMesh = (id) => {
+  const g = objects.get(id)?.mesh.geometry;
+  return g ? { vertices: g.attributes.position.count, triangles: g.index.count / 3 } : null;
+};
 state.vertex = (id, i) => {
   const a = objects.get(id)?.mesh.geometry.attributes.position;
   return a ? [a.getX(i), a.getY(i), a.getZ(i)] : null;

@@ -75,6 +75,7 @@ fn with_view(rate: f64, seconds: f64, browser: &mut cdp::Browser) -> TickStats {
         realtime: RealtimeOptions::default(),
         clock: None,
         others: Vec::new(),
+        on_record: None,
     };
     let view = ViewServer::start(
         model,

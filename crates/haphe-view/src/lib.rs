@@ -5,9 +5,9 @@
 //! a point), the line between them, the force arrow, the contact triangle and its normal,
 //! the contact and sticking state, the tick rate and compute-time percentiles, a
 //! force/penetration chart over the last seconds, and where the scene's force effects act
-//! (a viscosity's box or object, a spring's anchor: [`EffectMark`]), and objects that
-//! deform redrawn from their current vertices ([`VertexPublisher`]); orbit, pan and zoom
-//! with the mouse. The page and three.js are embedded in the binary: it works offline.
+//! (a viscosity's box or object, a spring's anchor: [`EffectMark`]), and objects whose
+//! shape changes (deformed, or cut) redrawn from their latest version
+//! ([`ShapePublisher`]); orbit, pan and zoom with the mouse. The page and three.js are embedded in the binary: it works offline.
 //!
 //! Two sources:
 //! - [`Source::Live`]: any [`Device`] (the [`MouseDevice`], whose
@@ -27,8 +27,8 @@
 //!
 //! SI units; everything the page draws is in the world frame, z up.
 
-mod deform;
 mod effects;
+mod feed;
 mod live;
 mod model;
 mod mouse;
@@ -37,11 +37,14 @@ mod replay;
 mod server;
 mod timing;
 
-pub use deform::{
-    VERTEX_RATE_HZ, VERTICES_MAGIC, VertexFeed, VertexPublisher, encode_vertices, vertex_channel,
-};
 pub use effects::{EffectMark, Place};
-pub use live::{FRAME_RATE_HZ, Frame, LiveRun, LiveSource, OtherTool, Published, STATS_WINDOW_S};
+pub use feed::{
+    MeshParts, REMESH_MAGIC, SHAPE_RATE_HZ, ShapeFeed, ShapeMessage, ShapePublisher,
+    VERTICES_MAGIC, decode_shape, encode_mesh, encode_vertices, shape_channel,
+};
+pub use live::{
+    FRAME_RATE_HZ, Frame, LiveRun, LiveSource, OtherTool, Published, RecordHook, STATS_WINDOW_S,
+};
 pub use model::{MESH_MAGIC, Model, ObjectInfo, ObjectMesh};
 pub use mouse::{MOUSE_MAX_FORCE_N, MOUSE_VELOCITY_TAU_S, MouseDevice, MouseHandle};
 pub use poses::{ObjectPose, POSE_VALUES, encode_poses, poses_at};
@@ -200,7 +203,7 @@ impl ViewServer {
             trace: trace.map(|t| encode_trace(&t)),
             frames: frames.clone(),
             mouse: mouse.map(Mutex::new),
-            deforming: model.deforming.clone(),
+            feeds: model.feeds.clone(),
             closing: closing_rx.clone(),
         });
         let runtime = tokio::runtime::Builder::new_current_thread()

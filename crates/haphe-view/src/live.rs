@@ -126,6 +126,12 @@ pub struct Published {
     pub json: Arc<str>,
 }
 
+/// Called on the pump thread with each record it takes from the servo (every device's,
+/// in tick order; records the ring dropped are missing): how a program follows the run
+/// beside the view, a cutter the tool's presses. The frames wait while it runs: keep it
+/// short, and hand long work to a thread of its own.
+pub type RecordHook = Box<dyn FnMut(&TickRecord) + Send>;
+
 /// What a live view runs: any device (the mouse, the simulated hand, a real device) on a
 /// scene.
 pub struct LiveSource {
@@ -148,6 +154,9 @@ pub struct LiveSource {
     /// Further devices on the same servo (two hands), each with its own options
     /// (mapping, tool): every frame carries their tools ([`Frame::others`]).
     pub others: Vec<(Box<dyn Device>, ServoOptions)>,
+    /// Called with each record, on the pump thread ([`RecordHook`]); dropped when the
+    /// servo loop has stopped and its last records were handed over.
+    pub on_record: Option<RecordHook>,
 }
 
 /// How a live view's servo ran: its device is the view's timed wrapper around the one
@@ -187,6 +196,7 @@ impl Live {
         // leaves the servo thread.
         let motions = source.motions.clone();
         servo.set_motions(source.motions);
+        let on_record = source.on_record;
         let mut running = match source.clock {
             Some(clock) => ServoLoop::spawn_clocked(servo, clock, source.seconds, source.realtime)?,
             None => ServoLoop::spawn(servo, source.seconds, source.realtime)?,
@@ -198,6 +208,7 @@ impl Live {
             .spawn(move || {
                 let mut timings = timings;
                 let mut pump = Pump::new(motions, radii);
+                pump.on_record = on_record;
                 let frame = Duration::from_secs_f64(1.0 / FRAME_RATE_HZ);
                 let mut next = Instant::now() + frame;
                 while !flag.load(Ordering::Relaxed) {
@@ -245,6 +256,7 @@ struct Pump {
     rate_hz: f64,
     compute_us: [f64; 4],
     motions: Vec<ObjectMotion>,
+    on_record: Option<RecordHook>,
 }
 
 impl Pump {
@@ -262,10 +274,14 @@ impl Pump {
             window_ticks: 0,
             rate_hz: 0.0,
             compute_us: [0.0; 4],
+            on_record: None,
         }
     }
 
     fn add(&mut self, r: &TickRecord) {
+        if let Some(hook) = self.on_record.as_mut() {
+            hook(r);
+        }
         if r.device > 0 {
             if let Some(o) = self.others.get_mut(r.device as usize - 1) {
                 *o = Some(*r);
@@ -353,6 +369,7 @@ mod tests {
             realtime: RealtimeOptions::default().with_realtime_priority(false),
             clock: None,
             others: vec![(Box::new(ScriptedDevice::new(Trajectory::still(b))), tool)],
+            on_record: None,
         };
         let (frames, mut seen) = watch::channel(None);
         let live = Live::start(source, frames).expect("a live view");

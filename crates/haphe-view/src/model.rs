@@ -7,8 +7,8 @@ use haphe::scene::Scene;
 use haphe::servo::ObjectMotion;
 use serde::Serialize;
 
-use crate::deform::VertexFeed;
 use crate::effects::EffectMark;
+use crate::feed::ShapeFeed;
 
 /// One object as the page draws it.
 #[derive(Debug, Clone)]
@@ -43,8 +43,9 @@ pub struct Model {
     pub tool_radius: f64,
     /// The scene's force effects, where they act.
     pub effects: Vec<EffectMark>,
-    /// The vertices of objects another thread deforms, as it publishes them.
-    pub deforming: Vec<VertexFeed>,
+    /// The versions of objects whose shape another thread changes (deforms or cuts), as
+    /// it publishes them.
+    pub feeds: Vec<ShapeFeed>,
 }
 
 /// What the page learns at connect besides the meshes (JSON).
@@ -94,14 +95,14 @@ impl Model {
             motions: Vec::new(),
             tool_radius: 0.0,
             effects: scene.effects().iter().map(EffectMark::of).collect(),
-            deforming: Vec::new(),
+            feeds: Vec::new(),
         }
     }
 
-    /// The model with an object that deforms: the page redraws it from the vertices
-    /// `feed` receives.
-    pub fn with_deforming(mut self, feed: VertexFeed) -> Model {
-        self.deforming.push(feed);
+    /// The model with an object whose shape changes (deformed or cut): the page redraws
+    /// it from each version `feed` receives.
+    pub fn with_shape_feed(mut self, feed: ShapeFeed) -> Model {
+        self.feeds.push(feed);
         self
     }
 

@@ -14,7 +14,7 @@ use axum::routing::get;
 use glam::DVec3;
 use tokio::sync::watch;
 
-use crate::deform::{VERTEX_RATE_HZ, VertexFeed};
+use crate::feed::{SHAPE_RATE_HZ, ShapeFeed};
 use crate::live::{FRAME_RATE_HZ, Published};
 use crate::mouse::MouseHandle;
 
@@ -28,8 +28,8 @@ pub(crate) struct Shared {
     pub(crate) frames: watch::Receiver<Option<Published>>,
     pub(crate) mouse: Option<Mutex<MouseHandle>>,
     pub(crate) closing: watch::Receiver<bool>,
-    /// The vertices of deforming objects.
-    pub(crate) deforming: Vec<VertexFeed>,
+    /// The versions of objects whose shape changes (deformed or cut).
+    pub(crate) feeds: Vec<ShapeFeed>,
 }
 
 macro_rules! asset {
@@ -114,15 +114,16 @@ async fn ws(State(s): State<Arc<Shared>>, upgrade: WebSocketUpgrade) -> Response
 }
 
 /// One connection: the latest frame at display rate (when there is a new one), the
-/// latest vertices of each deforming object at most at [`VERTEX_RATE_HZ`] (when its
-/// version changed; the first at once), and the pointer's points to the mouse device.
+/// latest version of each changing object (its vertices, or its whole mesh) at most at
+/// [`SHAPE_RATE_HZ`] (when its version changed; the first at once), and the pointer's
+/// points to the mouse device.
 async fn stream(mut socket: WebSocket, s: Arc<Shared>) {
     let mut frames = s.frames.clone();
     let mut closing = s.closing.clone();
     let mut every = tokio::time::interval(Duration::from_secs_f64(1.0 / FRAME_RATE_HZ));
     every.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
-    let mut vertices: Vec<watch::Receiver<_>> = s
-        .deforming
+    let mut shapes: Vec<watch::Receiver<_>> = s
+        .feeds
         .iter()
         .map(|f| {
             let mut rx = f.rx.clone();
@@ -130,8 +131,8 @@ async fn stream(mut socket: WebSocket, s: Arc<Shared>) {
             rx
         })
         .collect();
-    let mut every_vertices = tokio::time::interval(Duration::from_secs_f64(1.0 / VERTEX_RATE_HZ));
-    every_vertices.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
+    let mut every_shape = tokio::time::interval(Duration::from_secs_f64(1.0 / SHAPE_RATE_HZ));
+    every_shape.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     // The pump drops its sender when the servo loop ends, right after publishing the last
     // frame: that frame is still sent, once.
     let mut last_sent = false;
@@ -150,8 +151,8 @@ async fn stream(mut socket: WebSocket, s: Arc<Shared>) {
                     return;
                 }
             }
-            _ = every_vertices.tick(), if !vertices.is_empty() => {
-                for rx in &mut vertices {
+            _ = every_shape.tick(), if !shapes.is_empty() => {
+                for rx in &mut shapes {
                     if !rx.has_changed().unwrap_or(false) {
                         continue;
                     }

@@ -65,6 +65,7 @@ fn live_view(
         realtime: RealtimeOptions::default().with_realtime_priority(false),
         clock: None,
         others: Vec::new(),
+        on_record: None,
     };
     ViewServer::start(
         model,
@@ -469,6 +470,7 @@ fn every_devices_tool_is_drawn() {
         realtime: RealtimeOptions::default().with_realtime_priority(false),
         clock: None,
         others: vec![(Box::new(ScriptedDevice::new(Trajectory::still(b))), second)],
+        on_record: None,
     };
     let view = ViewServer::start(
         model,
@@ -628,8 +630,8 @@ fn a_deforming_object_is_redrawn_from_its_current_vertices() {
     let scene = sphere_scene();
     let (_, hi, centre, radius) = sphere_bounds(&scene);
     let rest: Vec<DVec3> = scene.objects()[0].shape.surface().vertices().to_vec();
-    let (publisher, feed) = haphe_view::vertex_channel();
-    let model = Model::from_scene(&scene, &["sphere".to_string()]).with_deforming(feed);
+    let (publisher, feed) = haphe_view::shape_channel();
+    let model = Model::from_scene(&scene, &["sphere".to_string()]).with_shape_feed(feed);
     let start = DVec3::new(centre.x, centre.y, hi.z + 1.5 * radius);
     let view = live_view(
         model,
@@ -653,7 +655,7 @@ fn a_deforming_object_is_redrawn_from_its_current_vertices() {
                     .iter()
                     .map(|&p| centre + scale(k) * (p - centre))
                     .collect();
-                publisher.publish(0, k, &vertices);
+                publisher.publish_vertices(0, k, &vertices);
                 k += 1;
                 std::thread::sleep(Duration::from_millis(10));
             }
@@ -662,13 +664,13 @@ fn a_deforming_object_is_redrawn_from_its_current_vertices() {
     let mut browser = Browser::start(WIDTH, HEIGHT);
     browser.navigate(&view.url());
     browser.wait_for(
-        "!!(window.haphe && window.haphe.ready && window.haphe.deformed[0] && window.haphe.deformed[0].updates >= 3)",
+        "!!(window.haphe && window.haphe.ready && window.haphe.shapes[0] && window.haphe.shapes[0].updates >= 3)",
         Duration::from_secs(40),
         "the page to redraw the sphere three times",
     );
     // Read at once: the version drawn and where three vertices are drawn.
     let seen = browser.eval(
-        "JSON.stringify({ d: window.haphe.deformed[0], v: [0, 7, 100].map((i) => window.haphe.vertex(0, i)) })",
+        "JSON.stringify({ d: window.haphe.shapes[0], v: [0, 7, 100].map((i) => window.haphe.vertex(0, i)) })",
     );
     let seen: Value = serde_json::from_str(seen.as_str().expect("text")).expect("json");
     done.store(true, std::sync::atomic::Ordering::Relaxed);

@@ -1,5 +1,5 @@
 //! Cutting in a session, `--cut`, `--cut-force`, `--cut-refresh` and `--save-volume`
-//! (shared by `simulate` and `run`): the tool removes the material of a volume object
+//! (shared by `simulate`, `run` and `view`): the tool removes the material of a volume object
 //! (`--volume`, or a `--mesh` voxelised with `--voxel`) it presses on; checked before
 //! anything is built.
 
@@ -86,6 +86,17 @@ impl CutArgs {
 }
 
 impl CutArgs {
+    /// Checks that a session that cuts has one device (`devices`, how many `--device`).
+    ///
+    /// # Errors
+    /// `--cut` with several devices.
+    pub fn one_device(&self, devices: usize) -> anyhow::Result<()> {
+        if self.cut && devices > 1 {
+            bail!("--cut cuts with one device's tool; give one --device");
+        }
+        Ok(())
+    }
+
     /// The volume of a session with its cutting: `cutter`, the loaded model's (a
     /// `--volume`, or a `--mesh` with `--voxel`), and what the flags ask of it.
     ///

@@ -114,7 +114,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             args.rate,
             &tool,
             "the demo (a blob and a 0.1 mm thin plate)",
-            (&args.serve, None),
+            (&args.serve, None, None),
         );
     }
     let build_seconds = started.elapsed().as_secs_f64();

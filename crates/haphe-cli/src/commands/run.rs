@@ -155,9 +155,7 @@ fn check(args: &Args) -> anyhow::Result<()> {
             args.udp_workspace
         );
     }
-    if args.device.len() > 1 && args.cut.cut {
-        bail!("--cut cuts with one device's tool; give one --device");
-    }
+    args.cut.one_device(args.device.len())?;
     if args.device.len() > 1 && args.output.plot.is_some() {
         bail!(
             "--plot draws one device's run; with several --device, write --out and plot each device's columns"

@@ -117,7 +117,7 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
     let inputs: Vec<&Path> = [
         &args.model.mesh,
         &args.model.scene,
-        &args.model.volume,
+        &args.model.volume.volume,
         &args.replay,
     ]
     .into_iter()

@@ -1,7 +1,8 @@
-//! `haphe view`: the live 3D view in the browser — a mesh, a built-in shape or a scene
-//! file touched with the mouse (or the simulated hand), or a recorded trace replayed.
+//! `haphe view`: the live 3D view in the browser — a mesh, a built-in shape, a scene file
+//! or a volume touched with the mouse (or the simulated hand), deformed or cut as the
+//! session's are, or a recorded trace replayed.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
 
@@ -13,18 +14,22 @@ use haphe::proxy::ProxyOptions;
 use haphe::scene::{Material, ObjectId, Pose, SceneObject};
 use haphe_view::{Model, Source, Trace};
 
+use crate::args::cut::CutArgs;
 use crate::args::deform::DeformArgs;
 use crate::args::feel::FeelArgs;
+use crate::args::volume::VolumeArgs;
 use crate::args::{ClutchArgs, MappingArgs, ToolArgs, parse_units};
 use crate::input::files::{self, read_input};
 use crate::input::mesh::UnitsGiven;
+use crate::input::model::{self, load_volume};
 use crate::input::scene::{LoadedObject, LoadedScene, load_scene, mesh_shape, shape_of};
+use crate::output::check_outputs;
 use crate::session::device::view_choice;
 use crate::session::live::{HAND_SECONDS, Serve, ViewDevice, live, scene_of, serve};
 
 /// Arguments of `haphe view`.
 #[derive(clap::Args, Debug)]
-#[command(group(clap::ArgGroup::new("model").args(["mesh", "scene", "shape"])))]
+#[command(group(clap::ArgGroup::new("model").args(["mesh", "scene", "shape", "volume"])))]
 pub struct Args {
     /// A mesh file (OBJ, STL, PLY, OFF) placed at the origin.
     #[arg(long, value_name = "FILE")]
@@ -35,6 +40,8 @@ pub struct Args {
     /// A built-in shape at the origin: sphere, torus, box, thin-plate, concave-corner, blob.
     #[arg(long, value_name = "NAME")]
     shape: Option<String>,
+    #[command(flatten)]
+    volume: VolumeArgs,
     /// Replay a trace written by `haphe simulate --out` (with --mesh, --shape or --scene
     /// the objects are drawn too).
     #[arg(long, value_name = "RUN.csv")]
@@ -79,46 +86,23 @@ pub struct Args {
     #[command(flatten)]
     deform: DeformArgs,
     #[command(flatten)]
+    cut: CutArgs,
+    #[command(flatten)]
     serve: Serve,
 }
 
 /// Runs `haphe view`.
 pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
-    let map = MapOptions::default();
-    let material = crate::args::material_of_flags(
-        args.stiffness,
-        Material::DEFAULT.damping(),
-        args.static_friction,
-        args.dynamic_friction,
-    )?;
-    let single = |name: String, shape| {
-        vec![LoadedObject {
-            name,
-            object: SceneObject::new(ObjectId(0), Arc::new(shape), Pose::IDENTITY, material),
-            motion: None,
-        }]
-    };
     // The flag's domain first; its fit to the scene once the scene is built.
     args.tool.radius(None)?;
     let feel = args.feel.check(args.rate)?;
     let deform = args.deform.check(args.rate)?;
-    let mut loaded = if let Some(file) = &args.scene {
-        load_scene(file, &map)?
-    } else if let Some(file) = &args.mesh {
-        single(
-            file.display().to_string(),
-            mesh_shape(file, args.units, &map, UnitsGiven::Flag)?,
-        )
-        .into()
-    } else if let Some(name) = &args.shape {
-        let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
-        single(name.clone(), shape_of(which, args.triangles, &map)?).into()
-    } else if args.replay.is_some() {
-        LoadedScene::from(Vec::new())
-    } else {
-        bail!("say what to show: --mesh FILE, --shape NAME, --scene FILE or --replay RUN.csv");
-    };
+    check_cut(args)?;
+    let (mut loaded, what) = load(args)?;
     feel.apply(&mut loaded, args.rate)?;
+    let cut = args
+        .cut
+        .setup(loaded.cutter.take(), args.rate, deform.is_some())?;
     let tool = args.tool.radius(loaded.tool_radius.clone())?;
     if let Some(file) = &args.replay {
         if deform.is_some() {
@@ -155,19 +139,91 @@ pub fn run(args: &Args) -> anyhow::Result<ExitCode> {
             ViewDevice::Vendor(choices, args.seconds, args.clutch.clutch_button)
         }
     };
-    let what = args
-        .scene
-        .as_ref()
-        .or(args.mesh.as_ref())
-        .map(|p| p.display().to_string())
-        .or(args.shape.clone())
-        .unwrap_or_default();
     live(
         loaded,
         device,
         args.rate,
         &tool,
         &what,
-        (&args.serve, deform),
+        (&args.serve, deform, cut),
     )
+}
+
+/// Checks the cutting's flags against the others before anything is loaded: `--cut` and
+/// `--save-volume` act on a live view (not a replay), with one device; the volume is
+/// written to a path that can take it, none of the inputs.
+fn check_cut(args: &Args) -> anyhow::Result<()> {
+    if args.replay.is_some() {
+        let flag = if args.cut.cut {
+            Some("--cut")
+        } else if args.cut.save_volume.is_some() {
+            Some("--save-volume")
+        } else {
+            None
+        };
+        if let Some(flag) = flag {
+            bail!(
+                "{flag} cuts or saves the volume of a live view; a replay (--replay) shows its trace's objects as they were"
+            );
+        }
+    }
+    args.cut.one_device(args.device.len())?;
+    if let Some(out) = &args.cut.save_volume {
+        let inputs: Vec<&Path> = [&args.mesh, &args.scene, &args.volume.volume, &args.replay]
+            .into_iter()
+            .flatten()
+            .map(PathBuf::as_path)
+            .collect();
+        check_outputs(&[out.as_path()], &inputs)?;
+    }
+    Ok(())
+}
+
+/// The objects to show and what they are called in the title: a volume (a file, or the
+/// mesh voxelised), a scene file, a mesh, a built-in shape, or none for a replay alone.
+fn load(args: &Args) -> anyhow::Result<(LoadedScene, String)> {
+    let map = MapOptions::default();
+    let material = crate::args::material_of_flags(
+        args.stiffness,
+        Material::DEFAULT.damping(),
+        args.static_friction,
+        args.dynamic_friction,
+    )?;
+    let volume = model::Model {
+        scene: None,
+        mesh: args.mesh.as_deref(),
+        shape: None,
+        triangles: args.triangles,
+        units: args.units,
+        volume: args.volume.file(),
+        voxel: args.volume.voxel,
+        layers: &args.volume.layers,
+    };
+    if let Some(loaded) = load_volume(&volume, material)? {
+        return Ok(loaded);
+    }
+    let single = |name: String, shape| {
+        vec![LoadedObject {
+            name,
+            object: SceneObject::new(ObjectId(0), Arc::new(shape), Pose::IDENTITY, material),
+            motion: None,
+        }]
+    };
+    Ok(if let Some(file) = &args.scene {
+        (load_scene(file, &map)?, file.display().to_string())
+    } else if let Some(file) = &args.mesh {
+        let shape = mesh_shape(file, args.units, &map, UnitsGiven::Flag)?;
+        let name = file.display().to_string();
+        (single(name.clone(), shape).into(), name)
+    } else if let Some(name) = &args.shape {
+        let which: Catalog = name.parse().map_err(|e| anyhow!("--shape {name:?}: {e}"))?;
+        let shape = shape_of(which, args.triangles, &map)?;
+        (single(name.clone(), shape).into(), name.clone())
+    } else if args.replay.is_some() {
+        (LoadedScene::from(Vec::new()), String::new())
+    } else {
+        bail!(
+            "say what to show: --mesh FILE, --shape NAME, --scene FILE, --volume FILE.nii or --replay RUN.csv"
+        );
+    })
 }

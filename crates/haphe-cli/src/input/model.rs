@@ -33,29 +33,10 @@ pub struct Model<'a> {
 /// Loads the objects of a run (a --mesh or --shape object gets `material`), with a scene
 /// file's tool radius, and says what they are.
 pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(LoadedScene, String)> {
+    if let Some(loaded) = load_volume(&model, material)? {
+        return Ok(loaded);
+    }
     let map = MapOptions::default();
-    let layers = model
-        .layers
-        .iter()
-        .map(|spec| spec.parse::<Layer>().map_err(|e| anyhow!("--layer: {e}")))
-        .collect::<anyhow::Result<Vec<Layer>>>()?;
-    let is_volume = model.volume.is_some() || (model.mesh.is_some() && model.voxel.is_some());
-    if !layers.is_empty() && !is_volume {
-        bail!("--layer needs a volume: --volume FILE.nii, or --mesh FILE with --voxel SIZE");
-    }
-    if let Some((file, iso)) = model.volume {
-        let (volume, info) = read_volume(file, iso)?;
-        for note in &info.notes {
-            eprintln!("haphe: {}: {note}", file.display());
-        }
-        return volume_object(&file.display().to_string(), volume, (material, layers));
-    }
-    if let (Some(file), Some(voxel)) = (model.mesh, model.voxel) {
-        let shape = mesh_shape(file, model.units, &map, UnitsGiven::Flag)?;
-        let volume = Volume::from_shape(&shape, voxel)
-            .map_err(|e| anyhow!("{}: voxelising it: {}", file.display(), e))?;
-        return volume_object(&file.display().to_string(), volume, (material, layers));
-    }
     Ok(if let Some(file) = model.scene {
         (load_scene(file, &map)?, file.display().to_string())
     } else if let Some(file) = model.mesh {
@@ -102,6 +83,42 @@ pub fn load_model(model: Model<'_>, material: Material) -> anyhow::Result<(Loade
             format!("the built-in {name}"),
         )
     })
+}
+
+/// The volume object of `model` (with its cutter) when it names one: a volume file, or a
+/// mesh voxelised (`voxel`); `None` for the other models.
+///
+/// # Errors
+/// The file cannot be read, or the mesh voxelised, naming the file; a `--layer` refused,
+/// or given without a volume.
+pub fn load_volume(
+    model: &Model<'_>,
+    material: Material,
+) -> anyhow::Result<Option<(LoadedScene, String)>> {
+    let layers = model
+        .layers
+        .iter()
+        .map(|spec| spec.parse::<Layer>().map_err(|e| anyhow!("--layer: {e}")))
+        .collect::<anyhow::Result<Vec<Layer>>>()?;
+    let is_volume = model.volume.is_some() || (model.mesh.is_some() && model.voxel.is_some());
+    if !layers.is_empty() && !is_volume {
+        bail!("--layer needs a volume: --volume FILE.nii, or --mesh FILE with --voxel SIZE");
+    }
+    if let Some((file, iso)) = model.volume {
+        let (volume, info) = read_volume(file, iso)?;
+        for note in &info.notes {
+            eprintln!("haphe: {}: {note}", file.display());
+        }
+        return volume_object(&file.display().to_string(), volume, (material, layers)).map(Some);
+    }
+    if let (Some(file), Some(voxel)) = (model.mesh, model.voxel) {
+        let map = MapOptions::default();
+        let shape = mesh_shape(file, model.units, &map, UnitsGiven::Flag)?;
+        let volume = Volume::from_shape(&shape, voxel)
+            .map_err(|e| anyhow!("{}: voxelising it: {}", file.display(), e))?;
+        return volume_object(&file.display().to_string(), volume, (material, layers)).map(Some);
+    }
+    Ok(None)
 }
 
 /// The object of `volume` (named `name`): the surface of its material extracted, placed

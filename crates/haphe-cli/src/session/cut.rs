@@ -4,7 +4,9 @@
 //! receives the records), and every refresh period makes the cut volume's next shape
 //! ([`Cutter::refresh`]) and hands it to the servo wait-free through the scene's editor
 //! ([`Edit::SetShape`]); the versions the servo no longer uses come back and are dropped
-//! here, never on the servo thread.
+//! here, never on the servo thread. In the live view the records reach it on a thread of
+//! its own ([`Cutting::follow_on_thread`]), and each version sent is published to the
+//! page.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -16,6 +18,7 @@ use haphe::scene::{Edit, ObjectId, Pose, Returned, SceneEditor};
 use haphe::servo::{Histogram, TickRecord};
 use haphe::volume::{CutOptions, Cutter};
 
+use super::publish::Publish;
 use super::summary::us as time;
 use crate::args::cut::CutSetup;
 use crate::input::volume::write_volume;
@@ -40,6 +43,8 @@ pub struct Cutting {
     busy: u64,
     handed_back: u64,
     error: Option<String>,
+    /// Called with each version sent (the view's page draws it).
+    publish: Option<Publish>,
 }
 
 /// The volume of `setup` as the first object of the run, `first` (its id and pose), cut
@@ -99,6 +104,7 @@ fn make(
         busy: 0,
         handed_back: 0,
         error: None,
+        publish: None,
     }))
 }
 
@@ -148,7 +154,12 @@ impl Cutting {
                 let ns = began.elapsed().as_nanos();
                 self.times.record(u64::try_from(ns).unwrap_or(u64::MAX));
                 match editor.send(Edit::SetShape(self.id, Arc::clone(&shape))) {
-                    Ok(()) => self.sent += 1,
+                    Ok(()) => {
+                        self.sent += 1;
+                        if let Some(publish) = &mut self.publish {
+                            publish(&shape);
+                        }
+                    }
                     Err(_) => self.busy += 1,
                 }
             }
@@ -211,5 +222,56 @@ impl Cutting {
             bail!("--cut: the cutter stopped: {e}");
         }
         Ok(())
+    }
+}
+
+/// Records the live view's pump hands the cutting thread; past them, a record is dropped
+/// rather than wait (the thread is remaking a shape), as records are on the wall clock.
+#[cfg(feature = "view")]
+const RECORD_QUEUE: usize = 8192;
+
+#[cfg(feature = "view")]
+impl Cutting {
+    /// Whether it cuts (`--cut`): otherwise it only saves the volume, if asked.
+    pub fn cuts(&self) -> bool {
+        self.editor.is_some()
+    }
+
+    /// The object it cuts.
+    pub fn object(&self) -> ObjectId {
+        self.id
+    }
+
+    /// The cutting with `publish` called with each version it sends.
+    pub fn publishing(mut self, publish: Publish) -> Cutting {
+        self.publish = Some(publish);
+        self
+    }
+
+    /// The cutting on a thread of its own, following the records handed to the function
+    /// returned, which never waits (a record that finds [`RECORD_QUEUE`] records queued is
+    /// dropped); the thread hands the cutting back once that function is dropped and the
+    /// records queued are followed.
+    ///
+    /// # Errors
+    /// The thread cannot start.
+    pub fn follow_on_thread(
+        self,
+    ) -> anyhow::Result<(haphe_view::RecordHook, std::thread::JoinHandle<Cutting>)> {
+        let (tx, rx) = std::sync::mpsc::sync_channel::<TickRecord>(RECORD_QUEUE);
+        let thread = std::thread::Builder::new()
+            .name("haphe-cut".into())
+            .spawn(move || {
+                let mut cutting = self;
+                for r in rx {
+                    cutting.on_record(&r);
+                }
+                cutting
+            })
+            .map_err(|e| anyhow!("cannot start the cutting thread: {e}"))?;
+        let hook = move |r: &TickRecord| {
+            let _ = tx.try_send(*r);
+        };
+        Ok((Box::new(hook), thread))
     }
 }

@@ -23,6 +23,7 @@ use haphe::scene::{Edit, ObjectId, Returned, Scene, SceneEditor, Shape};
 use haphe::servo::{Device, Histogram, Servo, StopReason, TickRecord};
 use haphe::verify::Deformation;
 
+use super::publish::Publish;
 use crate::args::deform::Deform;
 
 /// How long the wall-clock deformer sleeps at most before it looks at its stop flag.
@@ -47,10 +48,6 @@ impl Clock {
         }
     }
 }
-
-/// Called on the deformer thread with each version sent and its vertices (object frame):
-/// how the view's page learns the surface it draws.
-pub type Publish = Box<dyn FnMut(u64, &[DVec3]) + Send>;
 
 /// What the deformer did, for the summary.
 #[derive(Debug, Clone)]
@@ -108,7 +105,7 @@ impl Refresher {
                 self.report.sent += 1;
                 self.report.last_sent = shape.version();
                 if let Some(publish) = &mut self.publish {
-                    publish(shape.version(), shape.surface().vertices());
+                    publish(&shape);
                 }
                 self.latest = shape;
             }

@@ -1,6 +1,8 @@
 //! A live session in the browser view (`haphe view`, `haphe demo --view`): the scene
 //! served with its device (the mouse, the simulated hand or a real device) until Ctrl-C.
 
+mod changes;
+
 use anyhow::anyhow;
 use haphe::DVec3;
 use haphe::scene::{Scene, SceneEditor};
@@ -11,10 +13,11 @@ use haphe::servo::{
 use haphe_view::{LiveSource, Model, MouseDevice, Source, ViewOptions, ViewServer};
 use std::process::ExitCode;
 
-use super::deform::{self, Clock, Deformer, Plan};
+use self::changes::Changes;
 use super::device::{self, VendorChoice};
 use super::wait;
 use crate::args::ToolRadius;
+use crate::args::cut::CutSetup;
 use crate::args::deform::Deform;
 use crate::input::scene::LoadedScene;
 
@@ -57,7 +60,7 @@ pub fn scene_of(loaded: LoadedScene) -> anyhow::Result<ViewScene> {
 }
 
 /// [`scene_of`], with the scene's editor when `editor` (a scene that another thread
-/// changes: a deforming object's).
+/// changes: a deforming or cut object's).
 fn editable_scene_of(
     loaded: LoadedScene,
     editor: bool,
@@ -82,43 +85,25 @@ fn editable_scene_of(
     Ok(((scene, names, motions), editor))
 }
 
-/// Starts the deformer of `plan`, if any, on the wall clock, publishing each version it
-/// sends to the page through `model`, and says so.
-fn start_deformer(plan: Option<Plan>, model: Model) -> anyhow::Result<(Option<Deformer>, Model)> {
-    let Some(plan) = plan else {
-        return Ok((None, model));
-    };
-    let (publisher, feed) = haphe_view::vertex_channel();
-    let id = plan.id().0;
-    println!("{}", plan.describe(Clock::Wall));
-    let deformer = plan.spawn(
-        Clock::Wall,
-        Some(Box::new(move |version, vertices| {
-            publisher.publish(id, version, vertices);
-        })),
-    )?;
-    Ok((Some(deformer), model.with_deforming(feed)))
-}
-
 /// Serves a live view of `loaded` (its objects and effects) touched by `device` with a
-/// tool of radius `tool` until Ctrl-C.
+/// tool of radius `tool` until Ctrl-C; the first object deformed by `deform`, or the
+/// volume of `cut` cut (and saved at the end, as `simulate` does).
 pub fn live(
     loaded: LoadedScene,
     device: ViewDevice,
     rate_hz: f64,
     tool: &ToolRadius,
     what: &str,
-    (serve_options, deform): (&Serve, Option<Deform>),
+    (serve_options, deform, cut): (&Serve, Option<Deform>, Option<CutSetup>),
 ) -> anyhow::Result<ExitCode> {
     let options = ServoOptions::new(rate_hz).map_err(|e| anyhow!("{}", e.named("--rate")))?;
-    let ((scene, names, motions), editor) = editable_scene_of(loaded, deform.is_some())?;
+    let cuts = cut.as_ref().is_some_and(|c| c.cut.is_some());
+    let ((scene, names, motions), editor) = editable_scene_of(loaded, deform.is_some() || cuts)?;
     let options = options.with_proxy(tool.apply(*options.proxy(), &scene)?);
     let model = Model::from_scene(&scene, &names);
     let first = names.first().map_or("", String::as_str);
-    let plan = match (deform, editor) {
-        (Some(d), Some(e)) => Some(Plan::new(&scene, e, first, d)?),
-        _ => None,
-    };
+    let tool_radius = options.proxy().tool_radius();
+    let changes = Changes::plan(&scene, editor, first, (deform, cut), (tool_radius, rate_hz))?;
     let (lo, hi) = scene_bounds(&scene).ok_or_else(|| anyhow!("the scene has no objects"))?;
     let mut mapping = DeviceMapping::IDENTITY;
     let mut clutch_button = None;
@@ -181,8 +166,13 @@ pub fn live(
         realtime,
         clock,
         others,
+        on_record: None,
     };
-    let (deformer, model) = start_deformer(plan, model)?;
+    let (mut changing, model) = changes.start(model)?;
+    let source = LiveSource {
+        on_record: changing.on_record.take(),
+        ..source
+    };
     let code = serve(
         model,
         Source::Live {
@@ -195,9 +185,7 @@ pub fn live(
     for line in reports.iter().filter_map(|r| r()) {
         println!("device: {line}");
     }
-    if let Some(deformer) = deformer {
-        deform::print(&mut std::io::stdout(), &deformer.finish()?, None, None)?;
-    }
+    changing.finish()?;
     Ok(code)
 }
 

@@ -10,6 +10,7 @@ pub mod devices;
 #[cfg(feature = "view")]
 pub mod live;
 pub mod plot;
+pub mod publish;
 pub mod summary;
 pub mod trace;
 pub mod wait;
