@@ -345,3 +345,38 @@ fn drilling_a_nifti_volume_never_puts_the_tool_inside() {
         assert_clean(&check);
     }
 }
+
+/// After a cut, the clear zones kept from the version before (the triangles of chunks the
+/// cut did not touch, away from the new triangles) still hold: each is at most as clear
+/// as the zone computed afresh on the new surface. Most are kept.
+#[test]
+fn zones_kept_across_a_cut_still_hold() {
+    use haphe::mesh::TriId;
+    use haphe::query::ClearZone;
+    let volume = block(72, 4);
+    let mut cutter = Cutter::new("block", volume, MapOptions::default()).expect("a cutter");
+    let options = CutOptions::new(1e-3, CutOptions::DEFAULT_CUT_FORCE).expect("options");
+    cutter.set_options(options).expect("options set");
+    let top = cutter.volume().point(10.0, 10.0, 67.5);
+    let removed: usize = (0..200).map(|_| cutter.press(top, 1.0, 1e-3)).sum();
+    assert!(removed > 0);
+    let shape = cutter.refresh().expect("a shape").expect("a new version");
+    let (surface, map) = (shape.surface(), shape.map());
+    let mut equal = 0;
+    for t in 0..surface.triangle_count() {
+        let t = TriId(t as u32);
+        let (kept, fresh) = (shape.clear_zone(t), ClearZone::of(surface, map, t));
+        equal += usize::from(kept == fresh);
+        assert!(
+            kept.front >= fresh.front
+                && kept.back >= fresh.back
+                && kept.height <= fresh.height
+                && (!kept.below || fresh.below),
+            "triangle {t:?}: kept {kept:?}, fresh {fresh:?}"
+        );
+    }
+    eprintln!(
+        "{removed} voxels removed; {equal} of {} zones equal to fresh ones",
+        surface.triangle_count()
+    );
+}

@@ -3,9 +3,7 @@
 //! (frames, shading normals, map cells, clear zones), and the new shape shares the rest
 //! with the old one, which stays as it was.
 
-use std::collections::HashMap;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use glam::DVec3;
 
@@ -13,10 +11,9 @@ use super::handoff::{EditError, Returned};
 use super::object::{ObjectId, sphere_of};
 use super::shape::Shape;
 use super::world::Scene;
-use crate::map::{CellBox, MapError};
-use crate::mesh::{MAX_COORDINATE, TriId};
+use crate::map::MapError;
+use crate::mesh::MAX_COORDINATE;
 use crate::par::on_this_thread;
-use crate::query::ClearZone;
 
 /// Why a deformation was refused. The shape (or scene) is left unchanged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -152,23 +149,8 @@ impl Shape {
         shape.materials = self.materials.clone();
         shape.version = self.version + 1;
         shape.lineage = self.lineage;
-        if shape.map.grid() == self.map.grid() {
-            // Keep the zones no moved triangle can change; the others are computed below.
-            let stale = stale_zones(&shape, &moved);
-            shape.zones = self
-                .zones
-                .iter()
-                .zip(&stale)
-                .map(|(zone, &stale)| {
-                    AtomicU64::new(if stale {
-                        0
-                    } else {
-                        zone.load(Ordering::Relaxed)
-                    })
-                })
-                .collect();
-        }
-        shape.prepare_clear_zones();
+        // Keep the zones no moved triangle can change; the others are computed now.
+        let shape = shape.with_zones_kept(self, &moved, |t| Some(t));
         Ok(shape)
     }
 }
@@ -313,77 +295,4 @@ fn check_finite(positions: &[DVec3]) -> Result<(), DeformError> {
         Some(row) => Err(DeformError::NotFinite { row }),
         None => Ok(()),
     }
-}
-
-/// Which triangles' clear zones a deformation may have changed (on an unchanged grid):
-/// the moved triangles, and those whose zone's reach meets a moved triangle's box. A
-/// triangle that left a zone leaves it clearer, so the zone it had stays true.
-fn stale_zones(shape: &Shape, moved: &[u32]) -> Vec<bool> {
-    use crate::par::*;
-    let (surface, map) = (shape.surface(), shape.map());
-    let grid = map.grid();
-    // The moved triangles' boxes, by the bricks of cells they meet.
-    let brick = |p: DVec3| {
-        let c = CellBox::around(grid, p, p).lo;
-        c.map(|k| k.div_euclid(8))
-    };
-    let mut boxes: Vec<(DVec3, DVec3)> = Vec::with_capacity(moved.len());
-    let mut by_brick: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
-    for &t in moved {
-        let [a, b, c] = surface.corners(TriId(t));
-        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-        let (blo, bhi) = (brick(lo), brick(hi));
-        for x in blo[0]..=bhi[0] {
-            for y in blo[1]..=bhi[1] {
-                for z in blo[2]..=bhi[2] {
-                    by_brick
-                        .entry([x, y, z])
-                        .or_default()
-                        .push(boxes.len() as u32);
-                }
-            }
-        }
-        boxes.push((lo, hi));
-    }
-    let Some(all) = boxes
-        .iter()
-        .copied()
-        .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
-    else {
-        return vec![false; surface.triangle_count()];
-    };
-    let mut stale = vec![false; surface.triangle_count()];
-    for &t in moved {
-        stale[t as usize] = true;
-    }
-    stale
-        .par_iter_mut()
-        .enumerate()
-        .filter(|(_, s)| !**s)
-        .for_each(|(t, s)| {
-            let Some((lo, hi)) = ClearZone::reach_box(surface, map, TriId(t as u32)) else {
-                return;
-            };
-            if lo.cmpgt(all.1).any() || hi.cmplt(all.0).any() {
-                return;
-            }
-            let (blo, bhi) = (brick(lo), brick(hi));
-            'bricks: for x in blo[0]..=bhi[0] {
-                for y in blo[1]..=bhi[1] {
-                    for z in blo[2]..=bhi[2] {
-                        let Some(listed) = by_brick.get(&[x, y, z]) else {
-                            continue;
-                        };
-                        if listed.iter().any(|&i| {
-                            let (l, h) = boxes[i as usize];
-                            l.cmple(hi).all() && h.cmpge(lo).all()
-                        }) {
-                            *s = true;
-                            break 'bricks;
-                        }
-                    }
-                }
-            }
-        });
-    stale
 }

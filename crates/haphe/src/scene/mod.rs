@@ -48,6 +48,7 @@ mod texture;
 mod texture_coords;
 mod tool;
 mod world;
+mod zones_kept;
 
 #[doc(hidden)]
 pub use self::gltf::{GltfObject, GltfObjects, GltfSceneError, gltf_objects};

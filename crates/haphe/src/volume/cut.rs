@@ -165,7 +165,9 @@ impl Cutter {
             Some((_, highest)) => iso - (highest - iso).abs().max(iso.abs()).max(1.0),
             None => iso - iso.abs().max(1.0),
         };
-        let shape = Arc::new(build(name, &chunks, &map_options, &Layers::default())?);
+        let shape = build(name, &chunks, &map_options, &Layers::default())?;
+        // Every clear zone now, so that no tick computes one.
+        let shape = Arc::new(shape.with_clear_zones());
         Ok(Cutter {
             name: name.to_owned(),
             from_world: volume.to_world().inverse(),
@@ -221,6 +223,8 @@ impl Cutter {
                 &self.map_options,
                 &self.options.layers,
             )?;
+            // The same triangles as the shape before: every zone kept.
+            let shape = shape.with_zones_kept(&self.shape, &[], Some);
             self.shape = Arc::new(shape.replacing(&self.shape));
         }
         Ok(())
@@ -307,11 +311,13 @@ impl Cutter {
         };
         on_this_thread(|| {
             let began = Instant::now();
-            self.chunks.refresh(&self.volume, lo, hi);
+            let before = self.chunks.triangle_offsets();
+            let touched = self.chunks.refreshed_chunks(&self.volume, lo, hi);
             let extracted = began.elapsed().as_secs_f64();
             let layers = &self.options.layers;
-            let shape =
-                build(&self.name, &self.chunks, &self.map_options, layers)?.replacing(&self.shape);
+            let shape = build(&self.name, &self.chunks, &self.map_options, layers)?;
+            let shape = kept_zones(shape, &self.shape, (&before, &self.chunks), &touched)
+                .replacing(&self.shape);
             self.last_refresh = (extracted, began.elapsed().as_secs_f64() - extracted);
             self.shape = Arc::new(shape);
             Ok(Some(Arc::clone(&self.shape)))
@@ -343,7 +349,7 @@ impl Cutter {
 }
 
 /// The shape of the surface of `chunks` (named `name`), each triangle feeling like its
-/// layer when the layers are felt.
+/// layer when the layers are felt; no clear zone computed yet.
 fn build(
     name: &str,
     chunks: &Chunks,
@@ -363,8 +369,53 @@ fn build(
     } else {
         shape
     };
-    // Every clear zone now, so that no tick computes one.
-    Ok(shape.with_clear_zones())
+    Ok(shape)
+}
+
+/// `shape` (the surface of `chunks`, which were `before` (their triangle offsets) when
+/// `previous` was made, then `touched` re-extracted) with every clear zone computed now,
+/// so that no tick computes one: those of `previous` kept for the triangles of chunks not
+/// touched, where no new triangle comes within their reach.
+fn kept_zones(
+    shape: Shape,
+    previous: &Shape,
+    (before, chunks): (&[usize], &Chunks),
+    touched: &[usize],
+) -> Shape {
+    let after = chunks.triangle_offsets();
+    if before.len() != after.len() {
+        return shape.with_clear_zones();
+    }
+    // The surface triangle of `previous` made of each triangle of its mesh.
+    let mut old_of_mesh = vec![u32::MAX; before.last().copied().unwrap_or(0)];
+    for (t, &m) in previous.surface().source_triangles().iter().enumerate() {
+        if let Some(slot) = old_of_mesh.get_mut(m as usize) {
+            *slot = t as u32;
+        }
+    }
+    let mut changed = vec![false; after.len().saturating_sub(1)];
+    for &c in touched {
+        if let Some(slot) = changed.get_mut(c) {
+            *slot = true;
+        }
+    }
+    // A mesh triangle's chunk, and there the triangle it was in `previous`'s mesh.
+    let same = |m: usize| -> Option<u32> {
+        let c = after.partition_point(|&o| o <= m).checked_sub(1)?;
+        if *changed.get(c)? {
+            return None;
+        }
+        let old = m - after[c] + before[c];
+        old_of_mesh.get(old).copied().filter(|&t| t != u32::MAX)
+    };
+    let sources = shape.surface().source_triangles();
+    let same_of: Vec<Option<u32>> = sources.iter().map(|&m| same(m as usize)).collect();
+    let fresh: Vec<u32> = (0..same_of.len() as u32)
+        .filter(|&t| same_of[t as usize].is_none())
+        .collect();
+    shape.with_zones_kept(previous, &fresh, |t| {
+        same_of.get(t as usize).copied().flatten()
+    })
 }
 
 /// Grows `b` to hold voxel `v`.

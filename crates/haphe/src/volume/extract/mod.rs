@@ -128,9 +128,20 @@ impl Chunks {
     /// `volume` is the volume the chunks were extracted from, with some values changed;
     /// for a grid of other dimensions every chunk is extracted anew (and counted).
     pub fn refresh(&mut self, volume: &Volume, lo: [i64; 3], hi: [i64; 3]) -> usize {
+        self.refreshed_chunks(volume, lo, hi).len()
+    }
+
+    /// [`Chunks::refresh`], returning which chunks it re-extracted (flat indices,
+    /// increasing; every chunk for a grid of other dimensions).
+    pub(crate) fn refreshed_chunks(
+        &mut self,
+        volume: &Volume,
+        lo: [i64; 3],
+        hi: [i64; 3],
+    ) -> Vec<usize> {
         if volume.dims() != self.dims {
             *self = Chunks::extract(volume);
-            return self.chunk_count();
+            return (0..self.chunk_count()).collect();
         }
         let touched = self.touched(lo, hi);
         let (dims, counts) = (self.dims, self.counts);
@@ -141,7 +152,18 @@ impl Chunks {
         for (&c, chunk) in touched.iter().zip(fresh) {
             self.chunks[c] = chunk;
         }
-        touched.len()
+        touched
+    }
+
+    /// Where each chunk's triangles begin in [`Chunks::mesh`], and past the last one the
+    /// triangle count.
+    pub(crate) fn triangle_offsets(&self) -> Vec<usize> {
+        std::iter::once(0)
+            .chain(self.chunks.iter().scan(0, |at, c| {
+                *at += c.triangles.len();
+                Some(*at)
+            }))
+            .collect()
     }
 
     /// The chunks (flat indices, `x` fastest) whose cells meet `lo − 1 ..= hi`.
