@@ -19,6 +19,12 @@ use crate::errors::{haphe_error, io_error, param_error};
 use crate::files::write_replacing;
 use crate::shape::Shape;
 
+/// What `__reduce__` gives pickle: the class and its arguments.
+type Reduced<'py> = (
+    Bound<'py, PyAny>,
+    (Bound<'py, PyArray3<f32>>, Bound<'py, PyArray2<f64>>, f32),
+);
+
 /// The most bytes a volume file may have: 8 GiB, as the command line reads.
 const MAX_VOLUME_FILE_BYTES: u64 = 8 << 30;
 
@@ -227,6 +233,18 @@ impl Volume {
             inner: inner.into(),
             name: name.to_owned(),
         })
+    }
+
+    /// Pickling: ``Volume(values(), affine, iso)``, so that a volume reaches other
+    /// processes with its values, affine and iso bit for bit.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Reduced<'py>> {
+        let py = slf.py();
+        let volume = slf.get();
+        let class = py.get_type::<Volume>().into_any();
+        Ok((
+            class,
+            (volume.values(py)?, volume.affine(py), volume.inner.iso()),
+        ))
     }
 
     /// values()

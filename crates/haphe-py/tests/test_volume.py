@@ -217,6 +217,18 @@ def test_layers_are_felt_where_the_surface_shows_them():
         scene.add_volume(cutter.shape)
 
 
+def test_a_volume_pickles_bit_for_bit():
+    import pickle
+
+    volume, _ = block()
+    affine = affine_of(rotation([1, 2, 3], 0.4) * VOXEL, [1e-3, 0, 0])
+    tilted = haphe.Volume(volume.values(), affine, iso=0.25)
+    back = pickle.loads(pickle.dumps(tilted))
+    assert back.dims == tilted.dims and back.iso == tilted.iso
+    assert np.array_equal(back.values(), tilted.values())
+    assert np.array_equal(back.affine, tilted.affine)
+
+
 def test_a_shape_that_is_not_a_version_of_the_object_is_refused():
     volume, _ = block()
     cutter = haphe.Cutter(volume, TOOL_RADIUS)
