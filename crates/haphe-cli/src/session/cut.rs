@@ -45,6 +45,8 @@ pub struct Cutting {
     error: Option<String>,
     /// Called with each version sent (the view's page draws it).
     publish: Option<Publish>,
+    /// Records its thread never saw: the queue from the view's pump was full.
+    dropped_records: u64,
 }
 
 /// The volume of `setup` as the first object of the run, `first` (its id and pose), cut
@@ -105,6 +107,7 @@ fn make(
         handed_back: 0,
         error: None,
         publish: None,
+        dropped_records: 0,
     }))
 }
 
@@ -195,6 +198,13 @@ impl Cutting {
             o.cut_force()
         )?;
         writeln!(out, "  removed           {} voxels", self.cutter.removed())?;
+        if self.dropped_records > 0 {
+            writeln!(
+                out,
+                "  presses lost      {} ticks' records (the cutting thread fell behind)",
+                self.dropped_records
+            )?;
+        }
         let mut versions = format!(
             "{} sent to the servo through the scene's editor (at most {} Hz)",
             self.sent, self.refresh_hz
@@ -250,7 +260,7 @@ impl Cutting {
 
     /// The cutting on a thread of its own, following the records handed to the function
     /// returned, which never waits (a record that finds [`RECORD_QUEUE`] records queued is
-    /// dropped); the thread hands the cutting back once that function is dropped and the
+    /// dropped, and counted in the summary); the thread hands the cutting back once that function is dropped and the
     /// records queued are followed.
     ///
     /// # Errors
@@ -258,7 +268,10 @@ impl Cutting {
     pub fn follow_on_thread(
         self,
     ) -> anyhow::Result<(haphe_view::RecordHook, std::thread::JoinHandle<Cutting>)> {
+        use std::sync::atomic::{AtomicU64, Ordering};
         let (tx, rx) = std::sync::mpsc::sync_channel::<TickRecord>(RECORD_QUEUE);
+        let dropped = Arc::new(AtomicU64::new(0));
+        let counted = Arc::clone(&dropped);
         let thread = std::thread::Builder::new()
             .name("haphe-cut".into())
             .spawn(move || {
@@ -266,11 +279,14 @@ impl Cutting {
                 for r in rx {
                     cutting.on_record(&r);
                 }
+                cutting.dropped_records = counted.load(Ordering::Relaxed);
                 cutting
             })
             .map_err(|e| anyhow!("cannot start the cutting thread: {e}"))?;
         let hook = move |r: &TickRecord| {
-            let _ = tx.try_send(*r);
+            if tx.try_send(*r).is_err() {
+                dropped.fetch_add(1, Ordering::Relaxed);
+            }
         };
         Ok((Box::new(hook), thread))
     }
