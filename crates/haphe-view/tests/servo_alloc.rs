@@ -97,7 +97,9 @@ fn mouse_ticks_on_a_volume_being_cut_allocate_nothing() {
     let pose = Pose::from_translation(-volume.centre()).expect("a pose");
     let mut cutter = Cutter::new("block", volume, MapOptions::default()).expect("a cutter");
     let tool_radius = 0.002;
-    cutter.set_options(CutOptions::new(tool_radius, 0.5).expect("options"));
+    cutter
+        .set_options(CutOptions::new(tool_radius, 0.5).expect("options"))
+        .expect("options set");
     let first = cutter.shape().surface().triangle_count();
     let (mut scene, mut editor) = Scene::new(4);
     scene

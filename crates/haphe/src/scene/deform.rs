@@ -150,7 +150,7 @@ impl Shape {
         shape.version = self.version + 1;
         shape.lineage = self.lineage;
         // Keep the zones no moved triangle can change; the others are computed now.
-        let shape = shape.with_zones_kept(self, &moved, |t| Some(t));
+        let shape = shape.with_zones_kept(self, &moved, Some);
         Ok(shape)
     }
 }
