@@ -318,7 +318,7 @@ impl Proxy {
         let (surface, normal, planes) = on;
         let contact = contact_at(scene, surface, p, hand.hip, (normal, planes), status);
         // The texture under the contact, if the object has one.
-        let relief = match (&object.texture, contact) {
+        let relief = match (&object.texture, &contact) {
             (Some(_), Some(c)) => object.relief((c.triangle, c.weights), c.point, c.normal),
             _ => Relief::FLAT,
         };
@@ -375,7 +375,9 @@ impl Proxy {
 
 /// The contact of a proxy at `p` on `object`, found by walking its surface from
 /// `triangle`, with the contact plane's unit `normal` (toward the proxy) and the number of
-/// active planes; `None` where the walk finds no triangle.
+/// active planes; `None` where the walk finds no triangle. Always inlined, so that the
+/// contact is built in the tick's output rather than copied into it.
+#[inline(always)]
 pub(super) fn contact_at(
     scene: &Scene,
     on: SurfaceRef,
