@@ -428,7 +428,9 @@ pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
         0.0
     };
     let largest = p.abs().max_element();
-    if !largest.is_finite() || largest == 0.0 {
+    // Twice the largest component is more than the length computed below (at most √3
+    // times it, rounding included): well inside, no division and no square root.
+    if !largest.is_finite() || largest == 0.0 || 2.0 * largest <= radius {
         return (p, false);
     }
     // The direction from p scaled to a largest component of 1: no overflow, no underflow.
