@@ -134,7 +134,7 @@ impl Constraints {
     ///
     /// # Real-time
     /// At most 8 candidates, no allocation, no panic.
-    #[inline]
+    #[inline(always)]
     pub fn closest_feasible(&self, goal: DVec3, tolerance: f64) -> Option<DVec3> {
         // No plane, or one (the common cases, inlined into the caller): the goal, or its
         // projection, the only candidate.
@@ -151,7 +151,9 @@ impl Constraints {
         }
     }
 
-    /// [`Constraints::closest_feasible`] for two or three planes.
+    /// [`Constraints::closest_feasible`] for two or three planes (kept out of line, so that
+    /// the common cases stay small enough to inline).
+    #[inline(never)]
     fn closest_of_several(&self, goal: DVec3, tolerance: f64) -> Option<DVec3> {
         let planes = self.planes();
         let feasible = |x: DVec3| planes.iter().all(|p| p.height(x) >= -tolerance);

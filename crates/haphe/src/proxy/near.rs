@@ -71,10 +71,17 @@ impl NearCache {
     /// # Real-time
     /// No allocation: at most two broad-phase queries, none when the remembered box holds
     /// this one or the scene is small.
+    #[inline]
     pub(crate) fn get(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> &Near {
         if self.linear || scene.objects().len() <= SMALL_SCENE {
             return &Near::ALL;
         }
+        self.kept(scene, lo, hi)
+    }
+
+    /// [`NearCache::get`] for a scene that asks its broad phase: the remembered set, asked
+    /// again when the box is not inside the remembered one.
+    fn kept(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> &Near {
         let key = Some(scene.broad_epoch());
         let inside = self.key == key && lo.cmpge(self.lo).all() && hi.cmple(self.hi).all();
         if !inside {

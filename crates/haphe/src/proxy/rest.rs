@@ -45,8 +45,8 @@ pub(crate) fn rests_on(
 }
 
 /// [`rests_on`], with the triangle's constraint plane for the move `from → to` (the plane
-/// the tick then takes as its first, built once).
-#[inline]
+/// the tick then takes as its first, built once), inlined into the tick's first leg.
+#[inline(always)]
 fn rest_plane(
     surface: &Surface,
     pose: &Pose,
