@@ -176,10 +176,10 @@ fn leg(
         .as_ref()
         .map(|(h, _)| h.surface())
         .or(start.rest);
-    let others = others_box(p, target, reach);
+    let others = || others_box(p, target, reach);
     if point
         && let Some(on) = slid_on
-        && scene.clear_move(near.get(scene, others.0, others.1), on, p, target, reach)
+        && scene.clear_move(near.get(scene, others), on, p, target, reach)
     {
         return Leg::Free { cleared: true };
     }
@@ -187,7 +187,7 @@ fn leg(
     // meets that triangle first: shown without the search (the same hit).
     let shown = match start.under {
         Some(under) if first_leg && point => {
-            scene.first_hit_shown(near.get(scene, others.0, others.1), under, p, target, reach)
+            scene.first_hit_shown(near.get(scene, others), under, p, target, reach)
         }
         _ => None,
     };

@@ -283,8 +283,7 @@ impl Proxy {
             };
             let (target, sticking) = friction_target(anchor, p, hip, material, was_sticking);
             let reach = self.options.probe_reach();
-            let (lo, hi) = others_box(p, target, reach);
-            let near = self.near.get(scene, lo, hi);
+            let near = self.near.get(scene, || others_box(p, target, reach));
             let point = self.options.tool_radius == 0.0;
             p = if point && scene.clear_move(near, hit.surface(), p, target, reach) {
                 status.cleared = true;

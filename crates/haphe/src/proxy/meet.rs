@@ -23,7 +23,7 @@ pub(crate) fn first_hit_all(
     hint: Option<SurfaceRef>,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
-    let (lo, hi) = search_box(p0, p1, reach);
+    let search = || search_box(p0, p1, reach);
     let mut best: Option<Hit> = None;
     let mut keep = |h: Hit| {
         if best.is_none_or(|b| h.t < b.t) {
@@ -31,7 +31,10 @@ pub(crate) fn first_hit_all(
         }
     };
     if radius > 0.0 {
-        let (objects, kept) = near.parts(scene, lo - radius, hi + radius);
+        let (objects, kept) = near.parts(scene, || {
+            let (lo, hi) = search();
+            (lo - radius, hi + radius)
+        });
         for i in objects.indices(scene.objects().len()) {
             let hint = hint.filter(|h| h.object == i).map(|h| h.triangle);
             let tool = (radius, reach);
@@ -40,7 +43,7 @@ pub(crate) fn first_hit_all(
                 .map(&mut keep);
         }
     } else {
-        for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
+        for i in near.get(scene, search).indices(scene.objects().len()) {
             scene.first_hit(i, p0, p1, reach).map(&mut keep);
         }
     }
@@ -57,14 +60,17 @@ pub(crate) fn touching_any(
     options: &ProxyOptions,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
-    let (lo, hi) = search_box(p, p, reach);
+    let search = || search_box(p, p, reach);
     if radius > 0.0 {
-        let (objects, kept) = near.parts(scene, lo - radius, hi + radius);
+        let (objects, kept) = near.parts(scene, || {
+            let (lo, hi) = search();
+            (lo - radius, hi + radius)
+        });
         return objects
             .indices(scene.objects().len())
             .find_map(|i| scene.tool_touching(i, p, (radius, reach), kept));
     }
-    near.get(scene, lo, hi)
+    near.get(scene, search)
         .indices(scene.objects().len())
         .find_map(|i| scene.touching(i, p, reach))
 }

@@ -66,16 +66,18 @@ impl NearCache {
     }
 
     /// A superset of the objects of `scene` whose bounding sphere comes within the box
-    /// `lo..hi`.
+    /// `lo..hi` that `search` gives (called only when the broad phase is asked: a small
+    /// scene never computes the box).
     ///
     /// # Real-time
     /// No allocation: at most two broad-phase queries, none when the remembered box holds
     /// this one or the scene is small.
     #[inline]
-    pub(crate) fn get(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> &Near {
+    pub(crate) fn get(&mut self, scene: &Scene, search: impl FnOnce() -> (DVec3, DVec3)) -> &Near {
         if self.linear || scene.objects().len() <= SMALL_SCENE {
             return &Near::ALL;
         }
+        let (lo, hi) = search();
         self.kept(scene, lo, hi)
     }
 
@@ -100,8 +102,12 @@ impl NearCache {
 
     /// [`NearCache::get`], and the triangles kept near the tool.
     #[inline]
-    pub(crate) fn parts(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> (Near, &mut ToolNear) {
-        let near = *self.get(scene, lo, hi);
+    pub(crate) fn parts(
+        &mut self,
+        scene: &Scene,
+        search: impl FnOnce() -> (DVec3, DVec3),
+    ) -> (Near, &mut ToolNear) {
+        let near = *self.get(scene, search);
         (near, &mut self.tool)
     }
 }
