@@ -191,12 +191,12 @@ fn leg(
         }
         _ => None,
     };
-    if let Some(hit) =
-        shown.or_else(|| first_hit_all(scene, near, (p, target), options, slid_on.or(start.under)))
-    {
-        let plane = hit_plane(&hit, p, target, options);
-        let full = !sweep.met(hit, plane, advance_to_plane(p, target, &plane));
-        return Leg::Met { full };
+    if let Some(hit) = shown {
+        return stop_at(sweep, hit, target, options);
+    }
+    let hint = slid_on.or(start.under);
+    if let Some(hit) = first_hit_all(scene, near, (p, target), options, hint) {
+        return stop_at(sweep, hit, target, options);
     }
     // A free move that ends on a surface (or within a probe's reach of it, moving along
     // it) touches it: its plane becomes a constraint, so that the proxy never rests where
@@ -210,4 +210,13 @@ fn leg(
         }
         None => Leg::Free { cleared: false },
     }
+}
+
+/// The leg toward `target` met `hit` (a crossing): the proxy stops at its plane, which the
+/// sweep takes.
+fn stop_at(sweep: &mut Sweep, hit: Hit, target: DVec3, options: &ProxyOptions) -> Leg {
+    let p = sweep.position;
+    let plane = hit_plane(&hit, p, target, options);
+    let full = !sweep.met(hit, plane, advance_to_plane(p, target, &plane));
+    Leg::Met { full }
 }

@@ -428,8 +428,9 @@ pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
     };
     let largest = p.abs().max_element();
     // Twice the largest component is more than the length computed below (at most √3
-    // times it, rounding included): well inside, no division and no square root.
-    if !largest.is_finite() || largest == 0.0 || 2.0 * largest <= radius {
+    // times it, rounding included): well inside, no division and no square root. Tested
+    // first: false for a largest component that is not finite.
+    if 2.0 * largest <= radius || !largest.is_finite() || largest == 0.0 {
         return (p, false);
     }
     // The direction from p scaled to a largest component of 1: no overflow, no underflow.
