@@ -23,6 +23,10 @@ pub(crate) fn first_hit_all(
     hint: Option<SurfaceRef>,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
+    if radius == 0.0 && scene.objects().len() <= 1 {
+        // The only candidate's hit, as it comes (`None` in an empty scene).
+        return scene.first_hit(0, p0, p1, reach);
+    }
     let search = || search_box(p0, p1, reach);
     let mut best: Option<Hit> = None;
     let mut keep = |h: Hit| {
@@ -60,6 +64,10 @@ pub(crate) fn touching_any(
     options: &ProxyOptions,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
+    if radius == 0.0 && scene.objects().len() <= 1 {
+        // The only candidate's answer, as it comes (`None` in an empty scene).
+        return scene.touching(0, p, reach);
+    }
     let search = || search_box(p, p, reach);
     if radius > 0.0 {
         let (objects, kept) = near.parts(scene, || {
