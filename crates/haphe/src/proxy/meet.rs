@@ -22,11 +22,22 @@ pub(crate) fn first_hit_all(
     options: &ProxyOptions,
     hint: Option<SurfaceRef>,
 ) -> Option<Hit> {
-    let (reach, radius) = (options.probe_reach(), options.tool_radius);
-    if radius == 0.0 && scene.objects().len() <= 1 {
+    if options.tool_radius == 0.0 && scene.objects().len() <= 1 {
         // The only candidate's hit, as it comes (`None` in an empty scene).
-        return scene.first_hit(0, p0, p1, reach);
+        return scene.first_hit(0, p0, p1, options.probe_reach());
     }
+    first_hit_among(scene, near, (p0, p1), options, hint)
+}
+
+/// [`first_hit_all`] over the candidates of `near`, the first hit kept.
+fn first_hit_among(
+    scene: &Scene,
+    near: &mut NearCache,
+    (p0, p1): (DVec3, DVec3),
+    options: &ProxyOptions,
+    hint: Option<SurfaceRef>,
+) -> Option<Hit> {
+    let (reach, radius) = (options.probe_reach(), options.tool_radius);
     let search = || search_box(p0, p1, reach);
     let mut best: Option<Hit> = None;
     let mut keep = |h: Hit| {
