@@ -456,6 +456,10 @@ impl Proxy {
     pub(super) fn follow_removals(&mut self, scene: &Scene) {
         let log = scene.removals();
         let now = (scene.broad_epoch().0, log.count());
+        if self.removals_seen == Some(now) {
+            // No removal since the previous tick (the common case): nothing to write.
+            return;
+        }
         let Some(seen) = self.removals_seen.replace(now) else {
             return;
         };

@@ -123,6 +123,10 @@ pub(super) fn carry(
     mut p: DVec3,
     options: &ProxyOptions,
 ) -> DVec3 {
+    if !near.is_linear() && scene.moved_indices().is_empty() {
+        // Nothing moved (the common tick): no carry.
+        return p;
+    }
     let reach = options.probe_reach();
     let carry_one = |i: usize, p: &mut DVec3| {
         let o = &scene.objects()[i];
