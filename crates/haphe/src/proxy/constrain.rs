@@ -74,9 +74,9 @@ enum Leg {
         /// Shown by the clear zone of the surface last met, without the searches.
         cleared: bool,
     },
-    /// The move met (or ended touching) a surface: the proxy stopped at `position`, and the
-    /// plane becomes a constraint.
-    Met(Hit, Plane, DVec3),
+    /// The move met (or ended touching) a surface: the sweep took it ([`Sweep::met`]), the
+    /// proxy stopped where it met it. `full` when its plane was one too many.
+    Met { full: bool },
 }
 
 /// The god-object's steps of one tick over `scene` (the objects near the proxy kept in
@@ -114,12 +114,11 @@ pub(super) fn constrain(
                 sweep.position = target;
                 return;
             }
-            Leg::Met(hit, plane, position) => {
-                if !sweep.met(hit, plane, position) {
-                    status.step_cap_hit = true;
-                    return;
-                }
+            Leg::Met { full: true } => {
+                status.step_cap_hit = true;
+                return;
             }
+            Leg::Met { full: false } => {}
         }
     }
     status.step_cap_hit = true;
@@ -146,10 +145,10 @@ fn touch_where_placed(
 /// One leg from the sweep's position toward `target`, found by the first of these that
 /// answers: the surface the proxy rests on (first leg), the clear zone of the surface last
 /// met or rested on, the convex surface under the proxy (first leg), the crossing search,
-/// the touching search at `target`.
+/// the touching search at `target`. A surface met goes into the sweep in place.
 fn leg(
     (scene, near): (&Scene, &mut NearCache),
-    sweep: &Sweep,
+    sweep: &mut Sweep,
     target: DVec3,
     start: Start,
     options: &ProxyOptions,
@@ -160,42 +159,64 @@ fn leg(
     // zones and convex surfaces under it are the point's.
     let point = options.tool_radius == 0.0;
     // The first leg of a tick keeps the surface the proxy rests on when the device point
-    // is still behind it (no search along that leg: the proxy does not move).
-    let resting = match start.rest {
-        Some(r) if first_leg && point => rest_hit(scene, r, p, target, options.skin),
-        _ => None,
-    };
+    // is still behind it (no search along that leg: the proxy does not move), with the
+    // plane the test built.
+    if let Some(r) = start.rest
+        && first_leg
+        && point
+        && let Some((hit, plane)) = rest_hit(scene, r, p, target, options.skin)
+    {
+        let full = !sweep.met(hit, plane, advance_to_plane(p, target, &plane));
+        return Leg::Met { full };
+    }
     // A leg that stays in the clear zone of the surface last met (or rested on) meets
     // nothing and ends touching nothing: the searches would find nothing.
-    let slid_on = sweep.last_hit.map(|(h, _)| h.surface()).or(start.rest);
-    let others = others_box(p, target, reach);
-    if resting.is_none()
-        && point
+    let slid_on = sweep
+        .last_hit
+        .as_ref()
+        .map(|(h, _)| h.surface())
+        .or(start.rest);
+    let others = || others_box(p, target, reach);
+    if point
         && let Some(on) = slid_on
-        && scene.clear_move(near.get(scene, others.0, others.1), on, p, target, reach)
+        && scene.clear_move(near.get(scene, others), on, p, target, reach)
     {
         return Leg::Free { cleared: true };
     }
     // A first leg into the surface under the proxy, where its neighbourhood is convex,
     // meets that triangle first: shown without the search (the same hit).
     let shown = match start.under {
-        Some(under) if first_leg && point && resting.is_none() => {
-            scene.first_hit_shown(near.get(scene, others.0, others.1), under, p, target, reach)
+        Some(under) if first_leg && point => {
+            scene.first_hit_shown(near.get(scene, others), under, p, target, reach)
         }
         _ => None,
     };
-    if let Some(hit) = resting
-        .or(shown)
-        .or_else(|| first_hit_all(scene, near, (p, target), options, slid_on.or(start.under)))
-    {
-        let plane = hit_plane(&hit, p, target, options);
-        return Leg::Met(hit, plane, advance_to_plane(p, target, &plane));
+    if let Some(hit) = shown {
+        return stop_at(sweep, hit, target, options);
+    }
+    let hint = slid_on.or(start.under);
+    if let Some(hit) = first_hit_all(scene, near, (p, target), options, hint) {
+        return stop_at(sweep, hit, target, options);
     }
     // A free move that ends on a surface (or within a probe's reach of it, moving along
     // it) touches it: its plane becomes a constraint, so that the proxy never rests where
     // the next probe could start on the surface.
     match touching_any(scene, near, target, options) {
-        Some(hit) => Leg::Met(hit, hit_plane(&hit, p, target, options), target),
+        Some(hit) => {
+            let plane = hit_plane(&hit, p, target, options);
+            Leg::Met {
+                full: !sweep.met(hit, plane, target),
+            }
+        }
         None => Leg::Free { cleared: false },
     }
+}
+
+/// The leg toward `target` met `hit` (a crossing): the proxy stops at its plane, which the
+/// sweep takes.
+fn stop_at(sweep: &mut Sweep, hit: Hit, target: DVec3, options: &ProxyOptions) -> Leg {
+    let p = sweep.position;
+    let plane = hit_plane(&hit, p, target, options);
+    let full = !sweep.met(hit, plane, advance_to_plane(p, target, &plane));
+    Leg::Met { full }
 }

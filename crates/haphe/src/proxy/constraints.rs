@@ -134,16 +134,31 @@ impl Constraints {
     ///
     /// # Real-time
     /// At most 8 candidates, no allocation, no panic.
+    #[inline(always)]
     pub fn closest_feasible(&self, goal: DVec3, tolerance: f64) -> Option<DVec3> {
+        // No plane, or one (the common cases, inlined into the caller): the goal, or its
+        // projection, the only candidate.
+        match self.planes() {
+            [] => Some(goal),
+            [plane] => {
+                if plane.height(goal) >= -tolerance {
+                    return Some(goal);
+                }
+                let x = project_on_plane(goal, plane);
+                (x.is_finite() && plane.height(x) >= -tolerance).then_some(x)
+            }
+            _ => self.closest_of_several(goal, tolerance),
+        }
+    }
+
+    /// [`Constraints::closest_feasible`] for two or three planes (kept out of line, so that
+    /// the common cases stay small enough to inline).
+    #[inline(never)]
+    fn closest_of_several(&self, goal: DVec3, tolerance: f64) -> Option<DVec3> {
         let planes = self.planes();
         let feasible = |x: DVec3| planes.iter().all(|p| p.height(x) >= -tolerance);
         if feasible(goal) {
             return Some(goal);
-        }
-        // One plane: its projection is the only candidate (the common sliding case).
-        if let [plane] = planes {
-            let x = project_on_plane(goal, plane);
-            return (x.is_finite() && plane.height(x) >= -tolerance).then_some(x);
         }
         let mut best: Option<(DVec3, f64)> = None;
         let mut offer = |x: Option<DVec3>| {

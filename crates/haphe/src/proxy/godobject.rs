@@ -284,8 +284,7 @@ impl Proxy {
             };
             let (target, sticking) = friction_target(anchor, p, hip, material, was_sticking);
             let reach = self.options.probe_reach();
-            let (lo, hi) = others_box(p, target, reach);
-            let near = self.near.get(scene, lo, hi);
+            let near = self.near.get(scene, || others_box(p, target, reach));
             let point = self.options.tool_radius == 0.0;
             p = if point && scene.clear_move(near, hit.surface(), p, target, reach) {
                 status.cleared = true;
@@ -319,7 +318,7 @@ impl Proxy {
         let (surface, normal, planes) = on;
         let contact = contact_at(scene, surface, p, hand.hip, (normal, planes), status);
         // The texture under the contact, if the object has one.
-        let relief = match (&object.texture, contact) {
+        let relief = match (&object.texture, &contact) {
             (Some(_), Some(c)) => object.relief((c.triangle, c.weights), c.point, c.normal),
             _ => Relief::FLAT,
         };
@@ -376,7 +375,9 @@ impl Proxy {
 
 /// The contact of a proxy at `p` on `object`, found by walking its surface from
 /// `triangle`, with the contact plane's unit `normal` (toward the proxy) and the number of
-/// active planes; `None` where the walk finds no triangle.
+/// active planes; `None` where the walk finds no triangle. Always inlined, so that the
+/// contact is built in the tick's output rather than copied into it.
+#[inline(always)]
 pub(super) fn contact_at(
     scene: &Scene,
     on: SurfaceRef,
@@ -427,7 +428,10 @@ pub fn clamp_to_radius(p: DVec3, radius: f64) -> (DVec3, bool) {
         0.0
     };
     let largest = p.abs().max_element();
-    if !largest.is_finite() || largest == 0.0 {
+    // Twice the largest component is more than the length computed below (at most √3
+    // times it, rounding included): well inside, no division and no square root. Tested
+    // first: false for a largest component that is not finite.
+    if 2.0 * largest <= radius || !largest.is_finite() || largest == 0.0 {
         return (p, false);
     }
     // The direction from p scaled to a largest component of 1: no overflow, no underflow.
@@ -453,6 +457,10 @@ impl Proxy {
     pub(super) fn follow_removals(&mut self, scene: &Scene) {
         let log = scene.removals();
         let now = (scene.broad_epoch().0, log.count());
+        if self.removals_seen == Some(now) {
+            // No removal since the previous tick (the common case): nothing to write.
+            return;
+        }
         let Some(seen) = self.removals_seen.replace(now) else {
             return;
         };

@@ -22,8 +22,23 @@ pub(crate) fn first_hit_all(
     options: &ProxyOptions,
     hint: Option<SurfaceRef>,
 ) -> Option<Hit> {
+    if options.tool_radius == 0.0 && scene.objects().len() <= 1 {
+        // The only candidate's hit, as it comes (`None` in an empty scene).
+        return scene.first_hit(0, p0, p1, options.probe_reach());
+    }
+    first_hit_among(scene, near, (p0, p1), options, hint)
+}
+
+/// [`first_hit_all`] over the candidates of `near`, the first hit kept.
+fn first_hit_among(
+    scene: &Scene,
+    near: &mut NearCache,
+    (p0, p1): (DVec3, DVec3),
+    options: &ProxyOptions,
+    hint: Option<SurfaceRef>,
+) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
-    let (lo, hi) = search_box(p0, p1, reach);
+    let search = || search_box(p0, p1, reach);
     let mut best: Option<Hit> = None;
     let mut keep = |h: Hit| {
         if best.is_none_or(|b| h.t < b.t) {
@@ -31,7 +46,10 @@ pub(crate) fn first_hit_all(
         }
     };
     if radius > 0.0 {
-        let (objects, kept) = near.parts(scene, lo - radius, hi + radius);
+        let (objects, kept) = near.parts(scene, || {
+            let (lo, hi) = search();
+            (lo - radius, hi + radius)
+        });
         for i in objects.indices(scene.objects().len()) {
             let hint = hint.filter(|h| h.object == i).map(|h| h.triangle);
             let tool = (radius, reach);
@@ -40,7 +58,7 @@ pub(crate) fn first_hit_all(
                 .map(&mut keep);
         }
     } else {
-        for i in near.get(scene, lo, hi).indices(scene.objects().len()) {
+        for i in near.get(scene, search).indices(scene.objects().len()) {
             scene.first_hit(i, p0, p1, reach).map(&mut keep);
         }
     }
@@ -57,14 +75,21 @@ pub(crate) fn touching_any(
     options: &ProxyOptions,
 ) -> Option<Hit> {
     let (reach, radius) = (options.probe_reach(), options.tool_radius);
-    let (lo, hi) = search_box(p, p, reach);
+    if radius == 0.0 && scene.objects().len() <= 1 {
+        // The only candidate's answer, as it comes (`None` in an empty scene).
+        return scene.touching(0, p, reach);
+    }
+    let search = || search_box(p, p, reach);
     if radius > 0.0 {
-        let (objects, kept) = near.parts(scene, lo - radius, hi + radius);
+        let (objects, kept) = near.parts(scene, || {
+            let (lo, hi) = search();
+            (lo - radius, hi + radius)
+        });
         return objects
             .indices(scene.objects().len())
             .find_map(|i| scene.tool_touching(i, p, (radius, reach), kept));
     }
-    near.get(scene, lo, hi)
+    near.get(scene, search)
         .indices(scene.objects().len())
         .find_map(|i| scene.touching(i, p, reach))
 }
@@ -98,6 +123,10 @@ pub(super) fn carry(
     mut p: DVec3,
     options: &ProxyOptions,
 ) -> DVec3 {
+    if !near.is_linear() && scene.moved_indices().is_empty() {
+        // Nothing moved (the common tick): no carry.
+        return p;
+    }
     let reach = options.probe_reach();
     let carry_one = |i: usize, p: &mut DVec3| {
         let o = &scene.objects()[i];

@@ -66,15 +66,24 @@ impl NearCache {
     }
 
     /// A superset of the objects of `scene` whose bounding sphere comes within the box
-    /// `lo..hi`.
+    /// `lo..hi` that `search` gives (called only when the broad phase is asked: a small
+    /// scene never computes the box).
     ///
     /// # Real-time
     /// No allocation: at most two broad-phase queries, none when the remembered box holds
     /// this one or the scene is small.
-    pub(crate) fn get(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> &Near {
+    #[inline]
+    pub(crate) fn get(&mut self, scene: &Scene, search: impl FnOnce() -> (DVec3, DVec3)) -> &Near {
         if self.linear || scene.objects().len() <= SMALL_SCENE {
             return &Near::ALL;
         }
+        let (lo, hi) = search();
+        self.kept(scene, lo, hi)
+    }
+
+    /// [`NearCache::get`] for a scene that asks its broad phase: the remembered set, asked
+    /// again when the box is not inside the remembered one.
+    fn kept(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> &Near {
         let key = Some(scene.broad_epoch());
         let inside = self.key == key && lo.cmpge(self.lo).all() && hi.cmple(self.hi).all();
         if !inside {
@@ -93,8 +102,12 @@ impl NearCache {
 
     /// [`NearCache::get`], and the triangles kept near the tool.
     #[inline]
-    pub(crate) fn parts(&mut self, scene: &Scene, lo: DVec3, hi: DVec3) -> (Near, &mut ToolNear) {
-        let near = *self.get(scene, lo, hi);
+    pub(crate) fn parts(
+        &mut self,
+        scene: &Scene,
+        search: impl FnOnce() -> (DVec3, DVec3),
+    ) -> (Near, &mut ToolNear) {
+        let near = *self.get(scene, search);
         (near, &mut self.tool)
     }
 }

@@ -40,6 +40,22 @@ pub(crate) fn rests_on(
     to: DVec3,
     skin: f64,
 ) -> Option<(DVec3, DVec3)> {
+    rest_plane(surface, pose, one_sided, triangle, from, to, skin)
+        .map(|(point, normal, _)| (point, normal))
+}
+
+/// [`rests_on`], with the triangle's constraint plane for the move `from → to` (the plane
+/// the tick then takes as its first, built once), inlined into the tick's first leg.
+#[inline(always)]
+fn rest_plane(
+    surface: &Surface,
+    pose: &Pose,
+    one_sided: bool,
+    triangle: TriId,
+    from: DVec3,
+    to: DVec3,
+    skin: f64,
+) -> Option<(DVec3, DVec3, Plane)> {
     if triangle.index() >= surface.triangle_count() {
         return None;
     }
@@ -60,26 +76,28 @@ pub(crate) fn rests_on(
     }
     let (point, normal) = (pose.to_world(x), pose.vector_to_world(frame.normal));
     let plane = Plane::of_hit(normal, point, one_sided, from, to, skin);
-    (plane.height(from) <= skin * REST_TOLERANCE_OF_SKIN).then_some((point, normal))
+    (plane.height(from) <= skin * REST_TOLERANCE_OF_SKIN).then_some((point, normal, plane))
 }
 
 /// The triangle `rest` as the surface the proxy at `from` still rests on with the device
 /// point at `to` ([`rests_on`] in its object's frame), as a [`Hit`] at the start of the
-/// move (`t = 0`). `None` when it is not, or when its object is out of range.
+/// move (`t = 0`), with its constraint plane for that move (the plane
+/// [`hit_plane`](super::meet::hit_plane) gives a point). `None` when it is not, or when its
+/// object is out of range.
 pub(crate) fn rest_hit(
     scene: &Scene,
     rest: SurfaceRef,
     from: DVec3,
     to: DVec3,
     skin: f64,
-) -> Option<Hit> {
+) -> Option<(Hit, Plane)> {
     let SurfaceRef {
         object: i,
         triangle,
     } = rest;
     let o = scene.objects().get(i)?;
     let one_sided = o.sides == Sides::Front;
-    let (point, normal) = rests_on(
+    let (point, normal, plane) = rest_plane(
         o.shape.surface(),
         &o.pose,
         one_sided,
@@ -88,14 +106,15 @@ pub(crate) fn rest_hit(
         to,
         skin,
     )?;
-    Some(Hit {
+    let hit = Hit {
         t: 0.0,
         object: i,
         triangle,
         point,
         normal,
         one_sided,
-    })
+    };
+    Some((hit, plane))
 }
 
 #[cfg(test)]

@@ -118,6 +118,10 @@ impl Scene {
     /// the rounding of coordinates) from the move `from → to` (world frame); the others
     /// are taken from `near`, a superset of those near [`others_box`].
     fn others_beyond(&self, near: &Near, i: usize, from: DVec3, to: DVec3, reach: f64) -> bool {
+        // A scene of one object (`i`, in range in every caller): no other.
+        if self.objects.len() == 1 {
+            return true;
+        }
         near.indices(self.objects.len()).all(|j| {
             let other = &self.objects[j];
             j == i || {

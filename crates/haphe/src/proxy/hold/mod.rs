@@ -35,12 +35,10 @@ use crate::scene::{Material, Pose, SurfaceRef};
 pub fn saturation_depth(material: &Material, max_force: f64) -> Option<f64> {
     let k = material.stiffness;
     let depth = max_force / k;
-    (max_force.is_finite()
-        && max_force >= MIN_MAX_FORCE
-        && k.is_finite()
-        && k > 0.0
-        && depth.is_finite())
-    .then_some(depth)
+    // A maximum below the least or not a number, a stiffness not above 0 or not finite, or
+    // an infinite quotient (an infinite maximum among them): no depth.
+    (max_force >= MIN_MAX_FORCE && k > 0.0 && k < f64::INFINITY && depth.is_finite())
+        .then_some(depth)
 }
 
 /// Whether a proxy at `proxy` whose contact plane has the unit `normal` (world frame,
