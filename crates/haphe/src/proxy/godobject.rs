@@ -198,27 +198,27 @@ impl Proxy {
             return self.output(sweep.position, DVec3::ZERO, None, status);
         };
         let object = &scene.objects()[hit.object];
-        let material = object.material_on(hit.triangle);
+        let (material, held) = object.felt_on(hit.triangle);
         // 3. Friction.
         let p = self.friction(
             scene,
-            (&hit, &material),
+            (&hit, material),
             (carried, &sweep),
             hand.hip,
             &mut status,
         );
         // 4. Contact and force.
         let on = (hit.surface(), plane.normal, sweep.planes.len() as u8);
-        let (contact, force) = self.contact_and_force(scene, on, p, &hand, object, &mut status);
+        let felt = (object, material);
+        let (contact, force) = self.contact_and_force(scene, on, p, &hand, felt, &mut status);
         // 5. Deep penetration: the hold begins. Tested before the output is built, so that
         // the common case builds it once, in place.
-        let held = object.hold_material();
-        let depth = saturation_depth(&held, self.options.max_force);
+        let depth = saturation_depth(held, self.options.max_force);
         if !is_deep(p, hand.hip, plane.normal, depth) {
             return self.output(p, force, contact, status);
         }
         let out = self.output(p, force, contact, status);
-        self.hold_if_deep(scene, &sweep, (&hit, plane.normal, &held), &hand, out)
+        self.hold_if_deep(scene, &sweep, (&hit, plane.normal, held), &hand, out)
     }
 
     /// The device point pulled into the workspace, with the tick's velocity and the
@@ -304,7 +304,8 @@ impl Proxy {
 
     /// Step 4: the contact of the proxy at `p` on the surface `on` of `object` (with the
     /// contact plane's unit normal and the number of active planes), found by walking from
-    /// there, and the force toward the proxy, shaded, textured and clamped.
+    /// there, and the force toward the proxy of `material` (the surface's), shaded,
+    /// textured and clamped.
     #[inline]
     fn contact_and_force(
         &mut self,
@@ -312,7 +313,7 @@ impl Proxy {
         on: (SurfaceRef, DVec3, u8),
         p: DVec3,
         hand: &Hand,
-        object: &SceneObject,
+        (object, material): (&SceneObject, &Material),
         status: &mut TickStatus,
     ) -> (Option<Contact>, DVec3) {
         let (surface, normal, planes) = on;
@@ -327,7 +328,7 @@ impl Proxy {
             hand.hip,
             hand.velocity,
             contact.map(|c| (c.normal, c.shading_normal, c.constraints)),
-            (&object.material_on(surface.triangle), &relief),
+            (material, &relief),
             self.options.max_force,
         );
         status.force_clamped = force_clamped;

@@ -30,7 +30,9 @@ pub(crate) const REST_TOLERANCE_OF_SKIN: f64 = 1e-3;
 ///
 /// # Real-time
 /// Constant time: one triangle's frame, no allocation, no panic (a triangle out of range,
-/// a degenerate one or non-finite input gives `None`).
+/// a degenerate one or non-finite input gives `None`). The tick takes the plane too
+/// ([`rest_plane`]); the oracle (feature `testing`) and the tests call this.
+#[cfg(any(test, feature = "testing"))]
 pub(crate) fn rests_on(
     surface: &Surface,
     pose: &Pose,

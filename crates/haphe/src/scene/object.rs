@@ -67,6 +67,19 @@ impl SceneObject {
         self.shape.material_of(t).copied().unwrap_or(self.material)
     }
 
+    /// [`SceneObject::material_on`] and [`SceneObject::hold_material`] at once: how
+    /// triangle `t` feels, and the material of a hold's depth.
+    ///
+    /// # Real-time
+    /// No allocation, no lock, no panic.
+    #[inline]
+    pub(crate) fn felt_on(&self, t: TriId) -> (&Material, &Material) {
+        match self.shape.felt_materials(t) {
+            Some((on, softest)) => (on.unwrap_or(&self.material), softest),
+            None => (&self.material, &self.material),
+        }
+    }
+
     /// The material whose saturation depth starts and keeps a hold on the object (see
     /// [`Proxy`](crate::proxy::Proxy)): the object's, or the softest of its shape's own
     /// materials when it has them, so that a hold begins only where the force saturates

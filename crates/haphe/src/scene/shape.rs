@@ -315,6 +315,18 @@ impl Shape {
         materials.palette.get(usize::from(at))
     }
 
+    /// When the shape has its own materials: triangle `t`'s (`None` beyond them) and the
+    /// softest.
+    #[inline]
+    pub(crate) fn felt_materials(&self, t: TriId) -> Option<(Option<&Material>, &Material)> {
+        let materials = self.materials.as_deref()?;
+        let on = materials
+            .of
+            .get(t.index())
+            .and_then(|&at| materials.palette.get(usize::from(at)));
+        Some((on, &materials.softest))
+    }
+
     /// The softest of the shape's own materials (the least stiffness), if it has them.
     #[inline]
     pub(crate) fn softest_material(&self) -> Option<&Material> {
