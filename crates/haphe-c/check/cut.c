@@ -73,7 +73,8 @@ static double drill(HapheCutter *cutter, double top, size_t *versions) {
     uint32_t id = 0;
     OK(haphe_cutter_shape(cutter, &shape));
     OK(haphe_scene_new(4, &scene));
-    OK(haphe_scene_add(scene, shape, NULL, NULL, NULL, &id));
+    /* The grid's centre at the origin, where the block's affine already puts it. */
+    OK(haphe_scene_add_volume(scene, cutter, NULL, NULL, NULL, &id));
     haphe_shape_free(shape);
     const double max_force = haphe_default_max_force();
     double start[3] = {0.0, 0.0, top + TOOL + 3e-3}, deepest = INFINITY;
@@ -103,6 +104,30 @@ static double drill(HapheCutter *cutter, double top, size_t *versions) {
     haphe_proxy_free(proxy);
     haphe_scene_free(scene);
     return top - deepest;
+}
+
+/* The cutter's shape placed with its grid's centre at `at`: a point proxy coming down
+ * 5 mm beside the drilled hole rests on the top face there. */
+static void placed(HapheCutter *cutter, double top) {
+    const double at[3] = {0.05, -0.02, 0.1};
+    HapheScene *scene = NULL;
+    HapheProxy *proxy = NULL;
+    OK(haphe_scene_new(2, &scene));
+    OK(haphe_scene_add_volume(scene, cutter, at, NULL, NULL, NULL));
+    double hip[3] = {at[0], at[1] + 5e-3, at[2] + top + 5e-3};
+    OK(haphe_proxy_new(hip, haphe_default_max_force(), 0.0, &proxy));
+    HapheTick out;
+    for (int tick = 0; tick < 100; tick++) {
+        hip[2] -= 1e-4; /* down 10 mm: 5 mm into the block */
+        OK(haphe_proxy_tick(proxy, scene, hip, NULL, &out));
+    }
+    CHECK(out.in_contact && fabs(out.proxy[2] - (at[2] + top)) < 2e-4,
+          "placed at (%g, %g, %g): the proxy rests at z %g, the top face at %g", at[0], at[1],
+          at[2], out.proxy[2], at[2] + top);
+    refused(haphe_scene_add_volume(scene, NULL, at, NULL, NULL, NULL),
+            HAPHE_STATUS_INVALID_ARGUMENT, "cutter");
+    haphe_proxy_free(proxy);
+    haphe_scene_free(scene);
 }
 
 /* The volume saved at `path` reads back with the same dims, values and affine. */
@@ -207,6 +232,7 @@ int main(int argc, char **argv) {
     CHECK(removed > 0 && versions >= 3, "%llu voxels removed, %zu versions",
           (unsigned long long)removed, versions);
     CHECK(depth > 2e-3, "the tool's centre went %.2f mm below the top face only", depth * 1e3);
+    placed(cutter, top);
 
     /* A harder material, cut ten times slower: the same drilling goes less deep. */
     HapheCutter *hard = NULL;

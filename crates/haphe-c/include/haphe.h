@@ -190,6 +190,22 @@ enum HapheStatus haphe_cutter_set_layers(struct HapheCutter *cutter,
                                          const char *const *layers,
                                          uintptr_t count);
 
+// Places the cutter's latest shape in `scene` as `haphe_scene_add` does, with the centre
+// of the volume's grid at `position` (3 doubles, metres; null: the origin, where the
+// command line places a volume) and turned by `rotation` about it (x, y, z, w; null:
+// none), with `material` (null: the default; a layered volume's triangles feel like
+// their layers whatever it says). `*id` (may be null) receives the object's id; give it
+// the cutter's new shapes with `haphe_scene_replace`. Presses then take the tool's
+// centre in the volume's frame: the world point less the object's placement.
+//
+// Errors: those of `haphe_scene_add`, or a null pointer.
+enum HapheStatus haphe_scene_add_volume(struct HapheScene *scene,
+                                        struct HapheCutter *cutter,
+                                        const double *position,
+                                        const double *rotation,
+                                        const struct HapheMaterial *material,
+                                        uint32_t *id);
+
 // Frees a cutter made by this library (null is ignored); the handle must not be used
 // again. Shapes it made stay valid.
 void haphe_cutter_free(struct HapheCutter *cutter);

@@ -1,15 +1,16 @@
 //! Cutting: a tool that removes the material of a volume it presses on, each refresh a
 //! new version of the volume's shape, given to a scene's object by `haphe_scene_replace`.
 
+use std::ffi::c_char;
+use std::sync::Arc;
+
 use haphe_lib::DVec3;
 use haphe_lib::map::MapOptions;
-use haphe_lib::scene::{EditError, ObjectId};
-use std::ffi::c_char;
-
+use haphe_lib::scene::{EditError, ObjectId, Pose};
 use haphe_lib::volume::{CutOptions, Cutter, Layer};
 
 use crate::error::{Failure, HapheStatus, guard};
-use crate::scene::{HapheScene, scene_mut};
+use crate::scene::{HapheMaterial, HapheScene, scene_mut};
 use crate::shape::{HapheShape, shape, text};
 use crate::volume::{HapheVolume, volume};
 
@@ -111,6 +112,36 @@ pub extern "C" fn haphe_cutter_set_layers(
         c.inner
             .set_options(options)
             .map_err(|e| Failure(HapheStatus::Format, e.to_string()))
+    })
+}
+
+/// Places the cutter's latest shape in `scene` as `haphe_scene_add` does, with the centre
+/// of the volume's grid at `position` (3 doubles, metres; null: the origin, where the
+/// command line places a volume) and turned by `rotation` about it (x, y, z, w; null:
+/// none), with `material` (null: the default; a layered volume's triangles feel like
+/// their layers whatever it says). `*id` (may be null) receives the object's id; give it
+/// the cutter's new shapes with `haphe_scene_replace`. Presses then take the tool's
+/// centre in the volume's frame: the world point less the object's placement.
+///
+/// Errors: those of `haphe_scene_add`, or a null pointer.
+#[unsafe(no_mangle)]
+pub extern "C" fn haphe_scene_add_volume(
+    scene: *mut HapheScene,
+    cutter: *mut HapheCutter,
+    position: *const f64,
+    rotation: *const f64,
+    material: *const HapheMaterial,
+    id: *mut u32,
+) -> HapheStatus {
+    guard(|| {
+        let sc = scene_mut(scene)?;
+        let c = self::cutter(cutter)?;
+        let at = crate::scene::pose(position, rotation)?;
+        // The grid's centre at `position`: the object's origin goes to where -centre lands.
+        let centre = c.inner.volume().centre();
+        let pose = Pose::new(at.rotation(), at.to_world(-centre))?;
+        let shape = Arc::clone(c.inner.shape());
+        crate::scene::insert(sc, shape, pose, material, id)
     })
 }
 

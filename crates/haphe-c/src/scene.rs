@@ -1,9 +1,11 @@
 //! Scenes and the proxy tick.
 
+use std::sync::Arc;
+
 use haphe_lib::DVec3;
 use haphe_lib::glam::DQuat;
 use haphe_lib::proxy::{Proxy, ProxyOptions};
-use haphe_lib::scene::{Material, ObjectId, Param, Pose, Scene, SceneObject};
+use haphe_lib::scene::{Material, ObjectId, Param, Pose, Scene, SceneObject, Shape};
 
 use crate::error::{Failure, HapheStatus, guard};
 use crate::shape::{HapheShape, shape};
@@ -77,7 +79,7 @@ fn vec3(p: *const f64, default: DVec3) -> DVec3 {
 
 /// A pose from a position (3 doubles, null: the origin) and a quaternion `x, y, z, w`
 /// (null: the identity), checked by the library's table of domains.
-fn pose(position: *const f64, rotation: *const f64) -> Result<Pose, Failure> {
+pub(crate) fn pose(position: *const f64, rotation: *const f64) -> Result<Pose, Failure> {
     let rotation = if rotation.is_null() {
         DQuat::IDENTITY
     } else {
@@ -154,31 +156,38 @@ pub extern "C" fn haphe_scene_add(
         let sc = scene_mut(scene)?;
         let sh = self::shape(shape)?;
         let pose = pose(position, rotation)?;
-        // SAFETY: a non-null `material` points to a readable HapheMaterial (documented).
-        let material = match unsafe { material.as_ref() } {
-            None => Material::default(),
-            Some(m) => Material::builder()
-                .stiffness(m.stiffness)
-                .damping(m.damping)
-                .friction(m.static_friction, m.dynamic_friction)
-                .build()?,
-        };
-        let object_id = ObjectId(sc.next_id);
-        sc.inner
-            .insert(SceneObject::new(
-                object_id,
-                sh.inner.clone(),
-                pose,
-                material,
-            ))
-            .map_err(|(e, _)| Failure(HapheStatus::Full, e.to_string()))?;
-        sc.next_id += 1;
-        if !id.is_null() {
-            // SAFETY: a non-null `id` points to a writable u32 (documented).
-            unsafe { *id = object_id.0 };
-        }
-        Ok(())
+        insert(sc, sh.inner.clone(), pose, material, id)
     })
+}
+
+/// Inserts `shape` at `pose` with `material` (null: the default) into `sc`, its id
+/// written to `id` (may be null): what `haphe_scene_add` does once the pose is made.
+pub(crate) fn insert(
+    sc: &mut HapheScene,
+    shape: Arc<Shape>,
+    pose: Pose,
+    material: *const HapheMaterial,
+    id: *mut u32,
+) -> Result<(), Failure> {
+    // SAFETY: a non-null `material` points to a readable HapheMaterial (documented).
+    let material = match unsafe { material.as_ref() } {
+        None => Material::default(),
+        Some(m) => Material::builder()
+            .stiffness(m.stiffness)
+            .damping(m.damping)
+            .friction(m.static_friction, m.dynamic_friction)
+            .build()?,
+    };
+    let object_id = ObjectId(sc.next_id);
+    sc.inner
+        .insert(SceneObject::new(object_id, shape, pose, material))
+        .map_err(|(e, _)| Failure(HapheStatus::Full, e.to_string()))?;
+    sc.next_id += 1;
+    if !id.is_null() {
+        // SAFETY: a non-null `id` points to a writable u32 (documented).
+        unsafe { *id = object_id.0 };
+    }
+    Ok(())
 }
 
 /// Checks that a tool of radius `tool_radius` metres fits `scene` as placed now: from 0 to
