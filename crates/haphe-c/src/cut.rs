@@ -56,11 +56,8 @@ pub extern "C" fn haphe_cutter_new(
             return Err(Failure::argument("out is null"));
         }
         let options = CutOptions::new(tool_radius, cut_force)?;
-        let mut inner = Cutter::new("volume", v.inner.clone(), MapOptions::default())
-            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
-        inner
-            .set_options(options)
-            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
+        let mut inner = Cutter::new("volume", v.inner.clone(), MapOptions::default())?;
+        inner.set_options(options)?;
         let handle = Box::into_raw(Box::new(HapheCutter { inner }));
         // SAFETY: `out` is non-null and points to writable storage for a pointer
         // (documented).
@@ -109,9 +106,7 @@ pub extern "C" fn haphe_cutter_set_layers(
             })
             .collect::<Result<Vec<Layer>, Failure>>()?;
         let options = c.inner.options().clone().with_layers(parsed);
-        c.inner
-            .set_options(options)
-            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))
+        Ok(c.inner.set_options(options)?)
     })
 }
 
@@ -236,10 +231,7 @@ pub extern "C" fn haphe_cutter_refresh(
         if out.is_null() {
             return Err(Failure::argument("out is null"));
         }
-        let shape = c
-            .inner
-            .refresh()
-            .map_err(|e| Failure(HapheStatus::Format, e.to_string()))?;
+        let shape = c.inner.refresh()?;
         give_shape(out, shape.map(|inner| HapheShape { inner }));
         Ok(())
     })

@@ -49,6 +49,14 @@ impl From<ParamError> for Failure {
     }
 }
 
+/// A cut volume whose shape cannot be made (no material left, or its surface cannot be
+/// mapped): [`HapheStatus::Format`], the message naming the volume.
+impl From<haphe_lib::volume::CutError> for Failure {
+    fn from(e: haphe_lib::volume::CutError) -> Failure {
+        Failure(HapheStatus::Format, e.to_string())
+    }
+}
+
 /// Records `message` as this thread's last error.
 fn set_last_error(message: &str) {
     let text = CString::new(message.replace('\0', " ")).unwrap_or_default();

@@ -198,7 +198,7 @@ impl Proxy {
             return self.output(sweep.position, DVec3::ZERO, None, status);
         };
         let object = &scene.objects()[hit.object];
-        let (material, held) = object.felt_on(hit.triangle);
+        let (material, held) = (object.material_on(hit.triangle), object.hold_material());
         // 3. Friction.
         let p = self.friction(
             scene,

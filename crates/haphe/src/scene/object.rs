@@ -58,38 +58,21 @@ pub enum Sides {
 
 impl SceneObject {
     /// How triangle `t` feels: the shape's material there if it has its own, else the
-    /// object's.
+    /// object's ([`Shape::material_on`]).
     ///
     /// # Real-time
     /// No allocation, no lock, no panic.
     #[inline]
-    pub(crate) fn material_on(&self, t: TriId) -> Material {
-        self.shape.material_of(t).copied().unwrap_or(self.material)
-    }
-
-    /// [`SceneObject::material_on`] and [`SceneObject::hold_material`] at once: how
-    /// triangle `t` feels, and the material of a hold's depth.
-    ///
-    /// # Real-time
-    /// No allocation, no lock, no panic.
-    #[inline]
-    pub(crate) fn felt_on(&self, t: TriId) -> (&Material, &Material) {
-        match self.shape.felt_materials(t) {
-            Some((on, softest)) => (on.unwrap_or(&self.material), softest),
-            None => (&self.material, &self.material),
-        }
+    pub(crate) fn material_on(&self, t: TriId) -> &Material {
+        self.shape.material_on(t, &self.material)
     }
 
     /// The material whose saturation depth starts and keeps a hold on the object (see
     /// [`Proxy`](crate::proxy::Proxy)): the object's, or the softest of its shape's own
-    /// materials when it has them, so that a hold begins only where the force saturates
-    /// on every triangle.
+    /// materials when it has them ([`Shape::hold_material`]).
     #[inline]
-    pub(crate) fn hold_material(&self) -> Material {
-        self.shape
-            .softest_material()
-            .copied()
-            .unwrap_or(self.material)
+    pub(crate) fn hold_material(&self) -> &Material {
+        self.shape.hold_material(&self.material)
     }
 
     /// An object at rest at `pose`: one-sided ([`Sides::Front`]) when its shape is a closed

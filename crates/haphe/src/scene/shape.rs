@@ -303,34 +303,26 @@ impl Shape {
         }
     }
 
-    /// The material of triangle `t` when the shape has its own
-    /// ([`Shape::with_triangle_materials`]), else `None` (the object's holds).
+    /// How triangle `t` feels: the shape's own material there
+    /// ([`Shape::with_triangle_materials`]), else `object`'s (the material of the object
+    /// using the shape).
     ///
     /// # Real-time
-    /// Two bounds-checked reads.
+    /// Two bounds-checked reads; no allocation, no panic.
     #[inline]
-    pub(crate) fn material_of(&self, t: TriId) -> Option<&Material> {
-        let materials = self.materials.as_deref()?;
-        let at = *materials.of.get(t.index())?;
-        materials.palette.get(usize::from(at))
+    pub(crate) fn material_on<'a>(&'a self, t: TriId, object: &'a Material) -> &'a Material {
+        self.materials
+            .as_deref()
+            .and_then(|m| m.palette.get(usize::from(*m.of.get(t.index())?)))
+            .unwrap_or(object)
     }
 
-    /// When the shape has its own materials: triangle `t`'s (`None` beyond them) and the
-    /// softest.
+    /// The material whose saturation depth starts and keeps a hold: the softest of the
+    /// shape's own materials (so that a hold begins only where the force saturates on
+    /// every triangle), else `object`'s.
     #[inline]
-    pub(crate) fn felt_materials(&self, t: TriId) -> Option<(Option<&Material>, &Material)> {
-        let materials = self.materials.as_deref()?;
-        let on = materials
-            .of
-            .get(t.index())
-            .and_then(|&at| materials.palette.get(usize::from(at)));
-        Some((on, &materials.softest))
-    }
-
-    /// The softest of the shape's own materials (the least stiffness), if it has them.
-    #[inline]
-    pub(crate) fn softest_material(&self) -> Option<&Material> {
-        self.materials.as_deref().map(|m| &m.softest)
+    pub(crate) fn hold_material<'a>(&'a self, object: &'a Material) -> &'a Material {
+        self.materials.as_deref().map_or(object, |m| &m.softest)
     }
 
     /// Whether this shape was made by [`Shape::replacing`] (other triangles than the

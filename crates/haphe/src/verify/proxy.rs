@@ -44,21 +44,6 @@ struct BruteObject {
     before: Option<Arc<Shape>>,
 }
 
-impl BruteObject {
-    /// How triangle `t` feels (as [`SceneObject`](crate::scene::SceneObject)'s own rule).
-    fn material_on(&self, t: TriId) -> Material {
-        self.shape.material_of(t).copied().unwrap_or(self.material)
-    }
-
-    /// The material of the saturation depth of a hold (as [`SceneObject`](crate::scene::SceneObject)'s own rule).
-    fn hold_material(&self) -> Material {
-        self.shape
-            .softest_material()
-            .copied()
-            .unwrap_or(self.material)
-    }
-}
-
 /// The god-object by brute force: the oracle for [`Proxy`].
 pub struct BruteProxy {
     objects: Vec<BruteObject>,
@@ -409,7 +394,8 @@ impl BruteProxy {
     /// the held object; `None` (and no change) once it is back within that depth.
     fn hold_step(&mut self, mut p: DVec3, hip: DVec3, mut hold: HeldContact) -> Option<DVec3> {
         let o = self.objects.get(hold.object)?;
-        let depth = saturation_depth_of(&o.hold_material(), self.options.max_force)?;
+        let depth =
+            saturation_depth_of(o.shape.hold_material(&o.material), self.options.max_force)?;
         if !hand_deeper_than(p, hip, hold.normal_at(&o.pose), Some(depth)) {
             return None;
         }
@@ -471,8 +457,10 @@ impl BruteProxy {
         let material = step
             .rest
             .filter(|r| r.object == step.object)
-            .map_or(o.material, |r| o.material_on(r.triangle));
-        let softest = o.hold_material();
+            .map_or(o.material, |r| {
+                *o.shape.material_on(r.triangle, &o.material)
+            });
+        let softest = *o.shape.hold_material(&o.material);
         p = self.with_friction(
             p,
             hip,

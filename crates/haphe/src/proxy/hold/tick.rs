@@ -37,7 +37,7 @@ impl Proxy {
             (hand.previous, hand.hip),
         );
         // The same test as the hold's own, so that it goes ahead once begun.
-        let depth = saturation_depth(&object.hold_material(), self.options.max_force);
+        let depth = saturation_depth(object.hold_material(), self.options.max_force);
         if !is_deep(entry, hand.hip, hold.normal(&object.pose), depth) {
             return None;
         }
@@ -67,7 +67,7 @@ impl Proxy {
         let hip = hand.hip;
         let object = scene.objects().get(hold.on.object)?;
         let material = object.material_on(hold.on.triangle);
-        let depth = saturation_depth(&object.hold_material(), self.options.max_force)?;
+        let depth = saturation_depth(object.hold_material(), self.options.max_force)?;
         if !is_deep(p, hip, hold.normal(&object.pose), Some(depth)) {
             return None;
         }
@@ -123,7 +123,7 @@ impl Proxy {
             hip,
             hand.velocity,
             contact.map(|c| (c.normal, c.normal, c.constraints)),
-            (&material, &Relief::FLAT),
+            (material, &Relief::FLAT),
             self.options.max_force,
         );
         status.force_clamped = force_clamped;
