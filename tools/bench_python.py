@@ -3,12 +3,15 @@
 trimesh, in one process, on the same points and segments.
 
     taskset -c 1 python tools/bench_python.py MESH [MESH ...] [--points N] [--repeat R]
+        [--crossing-only]
 
 Needs `pip install . numpy open3d libigl trimesh` (a release build of haphe: `pip install .`
 builds with the release profile). Prints one Markdown table row per method and mesh:
 ns per point (best of R interleaved rounds, each method timed once per round) and the
 disagreements with the winding-number oracle. Points and segments are uniform in the
 mesh's bounding box grown by 5 %; segments join two such points (long random segments).
+With --crossing-only, only the first crossings are timed (haphe and Open3D), for many
+rounds at little cost.
 
 The oracle: where every method agrees, that answer is taken; where any two disagree, the
 exact generalised winding number (igl.winding_number, O(triangles) per point) decides,
@@ -55,6 +58,29 @@ def adversarial(name, shape, scene, o3d, n):
               f"brute force on {haphe_wrong} |")
 
 
+def crossings(name, f, n, rounds, answers, segments):
+    """The first crossings' rows: haphe against Open3D (float32 rays), hits within the
+    segment."""
+    pts, p1, size = segments
+    h = answers["haphe first_crossing"]
+    th = answers["Open3D cast_rays"]["t_hit"].numpy().astype(np.float64)
+    o3d_hit = th <= 1.0
+    haphe_hit = ~np.isnan(h["t"])
+    # A hit/miss difference with the crossing clearly inside or outside the segment
+    # (beyond float32 rounding), or a first hit at a clearly different place.
+    clear = np.abs(np.where(o3d_hit, th, 2.0) - 1.0) > 1e-5
+    hitmiss = int(((o3d_hit != haphe_hit) & clear).sum())
+    both = o3d_hit & haphe_hit
+    seglen = np.linalg.norm(p1 - pts, axis=1)
+    far = int((np.abs(th[both] - h["t"][both]) * seglen[both] > 1e-5 * size.max()).sum())
+    print(f"| {name} | {len(f)} | first crossing | haphe first_crossing "
+          f"| {best_of(rounds, 'haphe first_crossing', n):.0f} "
+          f"| {hitmiss} hit/miss and {far} place differences with Open3D, "
+          f"of {int(haphe_hit.sum())} hits |")
+    print(f"| {name} | {len(f)} | first crossing | Open3D cast_rays "
+          f"| {best_of(rounds, 'Open3D cast_rays', n):.0f} | (float32) |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("meshes", nargs="+")
@@ -63,6 +89,8 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--adversarial", type=int, default=1000,
                     help="segments of each adversarial kind (0: skip)")
+    ap.add_argument("--crossing-only", action="store_true",
+                    help="time only haphe first_crossing and Open3D cast_rays")
     args = ap.parse_args()
 
     import igl
@@ -105,6 +133,8 @@ def main():
             "haphe first_crossing": (lambda: shape.first_crossing(pts, p1), args.points),
             "Open3D cast_rays": (lambda: scene.cast_rays(rays, nthreads=1), args.points),
         }
+        if args.crossing_only:
+            methods = {k: m for k, m in methods.items() if "first_crossing" in k or "cast" in k}
         rounds = {k: [] for k in methods}
         answers = {}
         for _ in range(args.repeat):
@@ -114,6 +144,9 @@ def main():
                 rounds[k].append(time.perf_counter() - t)
                 print(f"  {name}: {k} {rounds[k][-1]:.2f} s", file=sys.stderr, flush=True)
 
+        if args.crossing_only:
+            crossings(name, f, args.points, rounds, answers, (pts, p1, hi - lo))
+            continue
         # Inside: the oracle where the methods disagree.
         inside_keys = ["haphe inside", "Open3D compute_occupancy", "libigl fast_winding_number"]
         a = np.stack([np.asarray(answers[k], dtype=bool) for k in inside_keys])
@@ -135,24 +168,7 @@ def main():
         print(f"| {name} | {len(f)} | inside | trimesh contains "
               f"| {best_of(rounds, 'trimesh contains', len(few)):.0f} | {wrong} of {len(few)} |")
 
-        # Crossings: haphe against Open3D (float32 rays), hits within the segment.
-        h = answers["haphe first_crossing"]
-        th = answers["Open3D cast_rays"]["t_hit"].numpy().astype(np.float64)
-        o3d_hit = th <= 1.0
-        haphe_hit = ~np.isnan(h["t"])
-        # A hit/miss difference with the crossing clearly inside or outside the segment
-        # (beyond float32 rounding), or a first hit at a clearly different place.
-        clear = np.abs(np.where(o3d_hit, th, 2.0) - 1.0) > 1e-5
-        hitmiss = int(((o3d_hit != haphe_hit) & clear).sum())
-        both = o3d_hit & haphe_hit
-        seglen = np.linalg.norm(p1 - pts, axis=1)
-        far = int((np.abs(th[both] - h["t"][both]) * seglen[both] > 1e-5 * (hi - lo).max()).sum())
-        print(f"| {name} | {len(f)} | first crossing | haphe first_crossing "
-              f"| {best_of(rounds, 'haphe first_crossing', args.points):.0f} "
-              f"| {hitmiss} hit/miss and {far} place differences with Open3D, "
-              f"of {int(haphe_hit.sum())} hits |")
-        print(f"| {name} | {len(f)} | first crossing | Open3D cast_rays "
-              f"| {best_of(rounds, 'Open3D cast_rays', args.points):.0f} | (float32) |")
+        crossings(name, f, args.points, rounds, answers, (pts, p1, hi - lo))
         print(f"<!-- {name}: haphe shape built in {build_s:.2f} s -->")
         adversarial(name, shape, scene, o3d, args.adversarial)
 

@@ -10,9 +10,17 @@
 //! ```
 //!
 //! Arguments: triangles (default 1000), shape (default `blob`), segments (default 50000),
-//! rounds (default 1). With more than one round, every segment is answered once per round
-//! and its time is the fastest of its rounds: the cost of the query with the mesh and map
-//! warm in the cache, free of most of a shared machine's noise.
+//! rounds (default 1), grow (default none). With more than one round, every segment is
+//! answered once per round and its time is the fastest of its rounds: the cost of the
+//! query with the mesh and map warm in the cache, free of most of a shared machine's
+//! noise. The shape may also be a mesh file (read in metres, the triangles argument then
+//! ignored). With `grow`, the segments are those of `tools/bench_python.py` instead: both
+//! ends uniform in the mesh's bounding box grown by that fraction of its size along each
+//! axis (the script's 0.05):
+//!
+//! ```sh
+//! cargo run --release --example 07_segment_queries -- 0 ../shared/meshes/models/nefertiti.obj 200000 1 0.05
+//! ```
 //!
 //! For an instruction count that does not depend on the machine's load, run it under
 //! callgrind, counting inside the query only:
@@ -27,20 +35,25 @@ use std::time::Instant;
 use haphe::DVec3;
 use haphe::map::{MapOptions, VoxelMap};
 use haphe::mesh::shapes::Catalog;
-use haphe::mesh::{Surface, SurfaceOptions};
+use haphe::mesh::{Mesh, ReadOptions, Surface, SurfaceOptions, read_mesh};
 use haphe::query::{Crossing, first_crossing};
+use haphe::rng::SplitMix64;
 use haphe::verify::{SegmentKind, segments};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let triangles: usize = args.next().map_or(Ok(1000), |a| a.parse())?;
-    let which: Catalog = args.next().map_or(Ok(Catalog::Blob), |a| a.parse())?;
+    let which = args.next().unwrap_or_else(|| "blob".to_owned());
     let count: usize = args.next().map_or(Ok(50_000), |a| a.parse())?;
     let rounds: usize = args.next().map_or(Ok(1), |a| a.parse())?;
+    let grow: Option<f64> = args.next().map(|a| a.parse()).transpose()?;
 
-    let surface = Surface::new(which.with_triangles(triangles), &SurfaceOptions::default())?;
+    let surface = Surface::new(mesh(&which, triangles)?, &SurfaceOptions::default())?;
     let map = VoxelMap::build(&surface, &MapOptions::default())?;
-    let queries = segments(&surface, SegmentKind::Random, count, 1);
+    let queries = match grow {
+        Some(grow) => in_grown_box(&surface, grow, count),
+        None => segments(&surface, SegmentKind::Random, count, 1),
+    };
     // Query times (ns, clock included) of the segments that cross the surface and of
     // those that do not: two populations, the second mostly cheap (segments that miss
     // the object's box), so the percentiles of all of them mix the two.
@@ -83,6 +96,33 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     Ok(())
+}
+
+/// The mesh of the shape argument: a mesh file when one is there by that name (metres),
+/// else a procedural shape of about `triangles` triangles.
+fn mesh(which: &str, triangles: usize) -> Result<Mesh, Box<dyn std::error::Error>> {
+    if std::path::Path::new(which).is_file() {
+        return Ok(read_mesh(
+            which,
+            &std::fs::read(which)?,
+            &ReadOptions::default(),
+        )?);
+    }
+    Ok(which.parse::<Catalog>()?.with_triangles(triangles))
+}
+
+/// `count` segments whose ends are uniform in the bounding box of `surface` grown by `grow`
+/// times its size along each axis, on both sides (seed 7).
+fn in_grown_box(surface: &Surface, grow: f64, count: usize) -> Vec<(DVec3, DVec3)> {
+    let (lo, hi) = surface.bounds();
+    let pad = grow * (hi - lo);
+    let mut random = SplitMix64::new(7);
+    (0..count)
+        .map(|_| {
+            let p0 = random.point_in(lo - pad, hi + pad);
+            (p0, random.point_in(lo - pad, hi + pad))
+        })
+        .collect()
 }
 
 /// `p50, p99, p99.9 and max` of `times` (ns), sorting them; `None` when empty.

@@ -273,7 +273,7 @@ impl CellWalk {
         }
         if stop < t_leave || stop.is_nan() {
             if stop > self.t {
-                self.reseed(lo, hi, stop, None);
+                self.reseed(lo, hi, stop, NO_AXIS, 0);
             }
             return;
         }
@@ -289,32 +289,24 @@ impl CellWalk {
             self.remaining = 0;
             return;
         }
-        self.reseed(lo, hi, t_leave, Some((leave_axis, beyond)));
+        self.reseed(lo, hi, t_leave, leave_axis, beyond);
     }
 
     /// Moves the walk on to parameter `t`, in the cell of the point there (never behind
     /// the walk nor beyond the box `lo..=hi` or the grid, where rounding could put it);
-    /// with `leave = Some((axis, beyond))`, in cell `beyond` along the axis the segment
-    /// leaves the box by. Seeded as `Grid::walk` seeds a walk (an axis the segment does
-    /// not move on keeps its cell and its infinite exit).
+    /// along axis `leave` (an axis the segment leaves the box by, or [`NO_AXIS`]), in
+    /// cell `beyond`. Seeded as `Grid::walk` seeds a walk (an axis the segment does not
+    /// move on keeps its cell and its infinite exit).
     #[inline]
-    fn reseed(&mut self, lo: [i64; 3], hi: [i64; 3], t: f64, leave: Option<(usize, i64)>) {
+    fn reseed(&mut self, lo: [i64; 3], hi: [i64; 3], t: f64, leave: usize, beyond: i64) {
         for k in 0..3 {
             let s = self.step[k];
             let at = floor_to_int(self.a[k] + t * self.d[k]);
             // Up: not behind the walk, not past the box or the grid; down: the mirror.
             let up = at.max(self.cell[k]).min(hi[k]).min(self.dims[k] - 1);
             let down = at.min(self.cell[k]).max(lo[k]).max(0);
-            let cell = match leave {
-                Some((axis, beyond)) if axis == k => beyond,
-                _ => {
-                    if s > 0 {
-                        up
-                    } else {
-                        down
-                    }
-                }
-            };
+            let cell = if s > 0 { up } else { down };
+            let cell = if k == leave { beyond } else { cell };
             // An axis the segment does not move on keeps its cell and its infinite exit.
             let exit = (cell + i64::from(s > 0)) as f64;
             let t_max = (exit - self.a[k]) * self.inv_d[k];
@@ -324,6 +316,9 @@ impl CellWalk {
         self.t = t;
     }
 }
+
+/// The `leave` argument of [`CellWalk::reseed`] when the segment leaves the box by no axis.
+const NO_AXIS: usize = 3;
 
 #[cfg(test)]
 mod tests;
