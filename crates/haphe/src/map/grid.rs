@@ -279,6 +279,13 @@ pub(crate) fn floor_to_int(x: f64) -> i64 {
     }
 }
 
+/// `⌈x⌉` as an integer, inline, as `x.ceil() as i64` for every input (see
+/// [`floor_to_int`]).
+#[inline(always)]
+pub(crate) fn ceil_to_int(x: f64) -> i64 {
+    floor_to_int(-x).saturating_neg()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -305,6 +312,7 @@ mod tests {
             -f64::MIN_POSITIVE,
         ] {
             assert_eq!(floor_to_int(x), x.floor() as i64, "{x}");
+            assert_eq!(ceil_to_int(x), x.ceil() as i64, "{x}");
         }
     }
 
