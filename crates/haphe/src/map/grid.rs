@@ -283,7 +283,12 @@ pub(crate) fn floor_to_int(x: f64) -> i64 {
 /// [`floor_to_int`]).
 #[inline(always)]
 pub(crate) fn ceil_to_int(x: f64) -> i64 {
-    floor_to_int(-x).saturating_neg()
+    let i = x as i64;
+    if (i as f64) < x {
+        i.saturating_add(1)
+    } else {
+        i
+    }
 }
 
 #[cfg(test)]

@@ -109,7 +109,7 @@ fn encode_direction(n: DVec3) -> u32 {
 #[inline]
 fn round_half_away(x: f64) -> f64 {
     // Below 2⁵² in magnitude the integer part is exact as an `i64` and `x − t` is exact.
-    if !(x.abs() < 4_503_599_627_370_496.0) {
+    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
         return x.round();
     }
     let t = (x as i64) as f64;
