@@ -13,6 +13,16 @@ pub(crate) use rayon::prelude::*;
 #[cfg(not(feature = "parallel"))]
 pub(crate) use sequential::*;
 
+/// The number of threads the parallel steps run on: those of rayon's pool (with
+/// `parallel`), one without it. For splitting work into as many pieces, never for what a
+/// result holds.
+pub(crate) fn threads() -> usize {
+    #[cfg(feature = "parallel")]
+    return rayon::current_num_threads();
+    #[cfg(not(feature = "parallel"))]
+    1
+}
+
 /// Runs `work` on a thread of rayon's pool (with `parallel`), so that the parallel steps
 /// inside do not each wait for the pool to pick them up, which dominates for small
 /// inputs; on the calling thread without it.

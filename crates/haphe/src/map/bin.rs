@@ -4,7 +4,9 @@ use crate::par::*;
 use glam::DVec3;
 
 use super::build::PROGRESS_BINNED;
-use super::grid::{Grid, OVERLAP_TOLERANCE_REL, cell_centre_units, cell_tester};
+use super::grid::{
+    Grid, OVERLAP_TOLERANCE_REL, ceil_to_int, cell_centre_units, cell_tester, floor_to_int,
+};
 use super::voxel_map::{BRICK_CELLS, brick_dims, brick_of, local_of};
 use crate::mesh::Surface;
 
@@ -26,17 +28,18 @@ const BIN_CHUNK: usize = 2048;
 const BIN_BATCHES: usize = 20;
 
 /// Every (cell, triangle) pair as `cell key << 32 | triangle`, where the cell key is
-/// `brick · 512 + local` (brick-major), in no particular order.
+/// `brick · 512 + local` (brick-major), in no particular order, in parts (one per chunk
+/// of triangles: [`sort_by_cell`] reads them where they lie rather than from one copy).
 pub(super) fn bin_triangles(
     surface: &Surface,
     grid: &Grid,
     progress: &(dyn Fn(f64) + Sync),
-) -> Vec<u64> {
+) -> Vec<Vec<u64>> {
     let triangles = surface.triangles();
     let vertices = surface.vertices();
     let bdims = brick_dims(grid.dims());
     let batch = triangles.len().div_ceil(BIN_BATCHES).max(1);
-    let mut keys: Vec<u64> = Vec::new();
+    let mut keys: Vec<Vec<u64>> = Vec::new();
     for (b, batch_tris) in triangles.chunks(batch).enumerate() {
         let first = b * batch;
         let parts: Vec<Vec<u64>> = batch_tris
@@ -52,10 +55,7 @@ pub(super) fn bin_triangles(
                 out
             })
             .collect();
-        keys.reserve(parts.iter().map(Vec::len).sum());
-        for part in parts {
-            keys.extend_from_slice(&part);
-        }
+        keys.extend(parts);
         progress(PROGRESS_BINNED * (first + batch_tris.len()) as f64 / triangles.len() as f64);
     }
     keys
@@ -89,8 +89,8 @@ pub(super) fn bin_triangle(
     let m = OVERLAP_TOLERANCE_REL + CANDIDATE_MARGIN_CELLS;
     // Interior cells whose slab [i − m, i + 1 + m] meets [a, b].
     let span = |axis: usize, a: f64, b: f64| -> (i64, i64) {
-        let first = ((a - 1.0 - m).ceil() as i64).max(1);
-        let last = ((b + m).floor() as i64).min(i64::from(dims[axis]) - 2);
+        let first = ceil_to_int(a - 1.0 - m).max(1);
+        let last = floor_to_int(b + m).min(i64::from(dims[axis]) - 2);
         (first, last)
     };
     let tester = cell_tester(corners);
@@ -144,29 +144,23 @@ pub(super) fn bin_triangle(
 /// their cell.
 const BUCKET_BITS: u32 = 12;
 
-/// Sorts the keys (cell in the upper 32 bits, of which the lower `cell_bits` are used,
-/// triangle below): one sequential pass distributes them into buckets by the top bits of
-/// the cell, then the buckets are sorted in parallel. The result is the keys in increasing
-/// order — by cell, then by triangle — whatever their order on entry, so it does not
-/// depend on the number of threads.
-pub(super) fn sort_by_cell(keys: Vec<u64>, cell_bits: u32) -> Vec<u64> {
+/// Sorts the keys of `parts` (cell in the upper 32 bits, of which the lower `cell_bits`
+/// are used, triangle below) into one array: one sequential pass distributes them into
+/// buckets by the top bits of the cell, then the buckets are sorted in parallel. The
+/// result is the keys in increasing order — by cell, then by triangle — whatever their
+/// order on entry, so it does not depend on the number of threads.
+pub(super) fn sort_by_cell(parts: Vec<Vec<u64>>, cell_bits: u32) -> Vec<u64> {
     let shift = 32 + cell_bits.saturating_sub(BUCKET_BITS);
-    let bucket = |k: u64| ((k >> shift) as usize) & ((1 << BUCKET_BITS) - 1);
+    let bucket = |k: u64| bucket_of(k, shift);
     let mut starts = vec![0usize; (1 << BUCKET_BITS) + 1];
-    for &k in &keys {
+    for &k in parts.iter().flatten() {
         starts[bucket(k) + 1] += 1;
     }
     for i in 1..starts.len() {
         starts[i] += starts[i - 1];
     }
-    let mut sorted = vec![0u64; keys.len()];
-    let mut fill = starts.clone();
-    for &k in &keys {
-        let at = &mut fill[bucket(k)];
-        sorted[*at] = k;
-        *at += 1;
-    }
-    drop(keys);
+    let mut sorted = vec![0u64; starts[starts.len() - 1]];
+    distribute(parts, &starts, shift, &mut sorted);
     let mut buckets: Vec<&mut [u64]> = Vec::with_capacity(1 << BUCKET_BITS);
     let mut rest: &mut [u64] = &mut sorted;
     for w in starts.windows(2) {
@@ -176,6 +170,52 @@ pub(super) fn sort_by_cell(keys: Vec<u64>, cell_bits: u32) -> Vec<u64> {
     }
     buckets.par_iter_mut().for_each(|b| b.sort_unstable());
     sorted
+}
+
+/// The bucket of `key` in [`sort_by_cell`]: the bits of its cell from `shift` on.
+#[inline]
+fn bucket_of(key: u64, shift: u32) -> usize {
+    ((key >> shift) as usize) & ((1 << BUCKET_BITS) - 1)
+}
+
+/// Puts the keys of `parts` into `sorted`, each bucket's ([`bucket_of`]) from
+/// `starts[bucket]` in the order of the parts: one pass with one thread; with more, one
+/// pass per range of buckets, in parallel, each writing its own part of `sorted`.
+fn distribute(parts: Vec<Vec<u64>>, starts: &[usize], shift: u32, sorted: &mut [u64]) {
+    let bucket = |k: u64| bucket_of(k, shift);
+    let groups = threads().clamp(1, 16);
+    if groups == 1 {
+        let mut fill = starts.to_vec();
+        // Each part freed once distributed: the peak holds about one copy of the keys.
+        for part in parts {
+            for k in part {
+                let at = &mut fill[bucket(k)];
+                sorted[*at] = k;
+                *at += 1;
+            }
+        }
+        return;
+    }
+    let buckets = starts.len() - 1;
+    let mut ranges: Vec<(usize, usize, &mut [u64])> = Vec::with_capacity(groups);
+    let mut rest = sorted;
+    for g in 0..groups {
+        let (b0, b1) = (g * buckets / groups, (g + 1) * buckets / groups);
+        let (head, tail) = rest.split_at_mut(starts[b1] - starts[b0]);
+        ranges.push((b0, b1, head));
+        rest = tail;
+    }
+    ranges.par_iter_mut().for_each(|(b0, b1, out)| {
+        let base = starts[*b0];
+        let mut fill: Vec<usize> = starts[*b0..*b1].iter().map(|s| s - base).collect();
+        for &k in parts.iter().flatten() {
+            let b = bucket(k);
+            if (*b0..*b1).contains(&b) {
+                out[fill[b - *b0]] = k;
+                fill[b - *b0] += 1;
+            }
+        }
+    });
 }
 
 /// Capacity of a clipped polygon. A convex polygon gains at most one corner per clipping

@@ -129,7 +129,7 @@ pub(super) fn build_on_grid(
     progress: &(dyn Fn(f64) + Sync),
 ) -> Result<VoxelMap, MapError> {
     let keys = bin_triangles(surface, &grid, progress);
-    let refs = keys.len() as u64;
+    let refs = keys.iter().map(|part| part.len() as u64).sum::<u64>();
     if refs >= u64::from(u32::MAX) {
         return Err(MapError::TooManyTriangleRefs { refs });
     }

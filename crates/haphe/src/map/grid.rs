@@ -279,6 +279,18 @@ pub(crate) fn floor_to_int(x: f64) -> i64 {
     }
 }
 
+/// `⌈x⌉` as an integer, inline, as `x.ceil() as i64` for every input (see
+/// [`floor_to_int`]).
+#[inline(always)]
+pub(crate) fn ceil_to_int(x: f64) -> i64 {
+    let i = x as i64;
+    if (i as f64) < x {
+        i.saturating_add(1)
+    } else {
+        i
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -305,6 +317,7 @@ mod tests {
             -f64::MIN_POSITIVE,
         ] {
             assert_eq!(floor_to_int(x), x.floor() as i64, "{x}");
+            assert_eq!(ceil_to_int(x), x.ceil() as i64, "{x}");
         }
     }
 

@@ -36,6 +36,7 @@ use glam::{DMat3, DVec3};
 
 use super::VoxelMap;
 use super::free_space::{REGION_SIDE, region_dims};
+use super::grid::{ceil_to_int, floor_to_int};
 use super::voxel_map::{BRICK_SIDE, UNIFORM};
 use crate::mesh::{Surface, TriId};
 
@@ -99,8 +100,27 @@ fn encode_direction(n: DVec3) -> u32 {
     } else {
         (n.x, n.y)
     };
-    let byte = |x: f64| ((x + 1.0) * 127.0).round().clamp(0.0, 254.0) as u32;
+    let byte = |x: f64| round_half_away((x + 1.0) * 127.0).clamp(0.0, 254.0) as u32;
     byte(u) | (byte(v) << 8)
+}
+
+/// `x.round()` (half away from zero), inline: `f64::round` is a library call on the
+/// baseline x86-64 target. The same value for every `x`, up to the sign of a zero.
+#[inline]
+fn round_half_away(x: f64) -> f64 {
+    // Below 2⁵² in magnitude the integer part is exact as an `i64` and `x − t` is exact.
+    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
+        return x.round();
+    }
+    let t = (x as i64) as f64;
+    let d = x - t;
+    if d >= 0.5 {
+        t + 1.0
+    } else if d <= -0.5 {
+        t - 1.0
+    } else {
+        t
+    }
 }
 
 /// The bounds `(lo, hi)` of a slab, in sides of its block along its direction from the
@@ -139,6 +159,8 @@ pub(crate) struct SlabScratch {
     corners: Vec<Corners>,
     /// The cell's triangles in the order along its slab, with their keys.
     pub(crate) keyed: Vec<(f64, u32)>,
+    /// A bit per triangle of a block, for [`blocks::sort_unique`].
+    bits: Vec<u64>,
 }
 
 /// The corners of `triangles`, in `out` (emptied first): read once from the surface for
@@ -260,14 +282,7 @@ fn steps_along(
     code: u32,
     levels: f64,
 ) -> Option<(u64, u64)> {
-    let n = direction(code);
-    let (lo, hi) = corners
-        .iter()
-        .flatten()
-        .map(|&corner| n.dot(corner - centre))
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
-            (lo.min(s), hi.max(s))
-        });
+    let (lo, hi) = extent_along(corners, centre, direction(code));
     // In units of `h` after the extremes are found: a division by a positive number
     // keeps the order, so this is the extreme of the quotients, one division for two.
     let (lo, hi) = (lo / h, hi / h);
@@ -275,9 +290,34 @@ fn steps_along(
         return None;
     }
     let step = 2.0 * RANGE / levels;
-    let lo = (((lo + RANGE) / step).floor() - 1.0).clamp(0.0, levels) as u64;
-    let hi = (((hi + RANGE) / step).ceil() + 1.0).clamp(0.0, levels) as u64;
+    // `floor_to_int` and `ceil_to_int`, not `f64::floor`, `f64::ceil` (library calls on the
+    // baseline target): the same steps once clamped.
+    let lo = (floor_to_int((lo + RANGE) / step) as f64 - 1.0).clamp(0.0, levels) as u64;
+    let hi = (ceil_to_int((hi + RANGE) / step) as f64 + 1.0).clamp(0.0, levels) as u64;
     Some((lo, hi))
+}
+
+/// The smallest and largest `n · (x − centre)` over the corners `x` of `corners`
+/// (`(+∞, −∞)` without corners; a NaN product is passed over, as `f64::min` does). Three
+/// running bounds, one per corner of a triangle, so that consecutive comparisons do not
+/// wait on each other: the extremes of a set do not depend on the order they are taken in.
+#[inline]
+fn extent_along(corners: &[Corners], centre: DVec3, n: DVec3) -> (f64, f64) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for triangle in corners {
+        for i in 0..3 {
+            let s = n.dot(triangle[i] - centre);
+            lo[i] = if s < lo[i] { s } else { lo[i] };
+            hi[i] = if s > hi[i] { s } else { hi[i] };
+        }
+    }
+    let lower = |a: f64, b: f64| if b < a { b } else { a };
+    let upper = |a: f64, b: f64| if b > a { b } else { a };
+    (
+        lower(lower(lo[0], lo[1]), lo[2]),
+        upper(upper(hi[0], hi[1]), hi[2]),
+    )
 }
 
 /// The bounds `(lo, hi)` of a slab (in sides of its block of centre `centre` and side
@@ -408,8 +448,7 @@ impl VoxelMap {
                         ordered.extend(scratch.keyed.iter().map(|&(_, t)| t));
                     }
                 }
-                triangles.sort_unstable();
-                triangles.dedup();
+                blocks::sort_unique(&mut triangles, &mut scratch.bits);
                 let brick_slab = self.brick_slab_over(surface, b, &triangles, &mut scratch);
                 (slabs, brick_slab, ordered, triangles)
             })
@@ -417,8 +456,8 @@ impl VoxelMap {
         // The lists follow each other in the same order of surface cells, so the ordered
         // ones replace them whole.
         let refs: Vec<u32> = per_brick
-            .iter()
-            .flat_map(|(_, _, o, _)| o.iter().copied())
+            .par_iter()
+            .flat_map_iter(|(_, _, o, _)| o.iter().copied())
             .collect();
         debug_assert_eq!(refs.len(), self.triangle_refs.len());
         if refs.len() == self.triangle_refs.len() {
@@ -430,8 +469,8 @@ impl VoxelMap {
             .collect::<Vec<_>>()
             .into();
         self.slabs = per_brick
-            .iter()
-            .flat_map(|(slabs, _, _, _)| slabs.iter().copied())
+            .par_iter()
+            .flat_map_iter(|(slabs, _, _, _)| slabs.iter().copied())
             .collect::<Vec<_>>()
             .into();
         let [rx, ry, rz] = region_dims(self.brick_dims).map(|d| d as usize);

@@ -1,5 +1,6 @@
 //! The topology of a mesh: the navigable, validated form every later stage uses.
 
+use crate::par::*;
 use glam::DVec3;
 
 use crate::array::Array;
@@ -111,7 +112,7 @@ impl Surface {
     /// assert_eq!(surface.triangle_count(), 320);
     /// ```
     pub fn new(mesh: Mesh, options: &SurfaceOptions) -> Result<Surface, SurfaceError> {
-        crate::par::on_pool(|| Surface::new_on_pool(mesh, options))
+        on_pool(|| Surface::new_on_pool(mesh, options))
     }
 
     /// [`Surface::new`], on the thread that runs it.
@@ -142,7 +143,7 @@ impl Surface {
         drop(edges);
         let (fan_start, fan_triangles) = build_fans(vertices.len(), &triangles, &neighbours);
         let frames: Vec<TriFrame> = triangles
-            .iter()
+            .par_iter()
             .map(|&[a, b, c]| {
                 TriFrame::new(
                     vertices[a as usize],
@@ -436,19 +437,34 @@ fn build_fans(
             }
         }
     }
-    let mut scratch = FanScratch::default();
-    for v in 0..vertex_count {
-        let range = start[v] as usize..start[v + 1] as usize;
-        order_fan(
-            v as u32,
-            &mut fan[range],
-            triangles,
-            neighbours,
-            &mut scratch,
-        );
+    // In parallel over runs of vertices, whose fans lie one after the other.
+    let mut runs: Vec<(usize, &mut [u32])> = Vec::new();
+    let mut rest: &mut [u32] = &mut fan;
+    for first in (0..vertex_count).step_by(FAN_RUN) {
+        let end = (first + FAN_RUN).min(vertex_count);
+        let (run, tail) = rest.split_at_mut((start[end] - start[first]) as usize);
+        runs.push((first, run));
+        rest = tail;
     }
+    runs.par_iter_mut().for_each(|(first, run)| {
+        let mut scratch = FanScratch::default();
+        let base = start[*first] as usize;
+        for v in *first..(*first + FAN_RUN).min(vertex_count) {
+            let range = start[v] as usize - base..start[v + 1] as usize - base;
+            order_fan(
+                v as u32,
+                &mut run[range],
+                triangles,
+                neighbours,
+                &mut scratch,
+            );
+        }
+    });
     (start, fan)
 }
+
+/// Vertices whose fans [`build_fans`] orders in one parallel task.
+const FAN_RUN: usize = 4096;
 
 /// Puts the triangles around `v` in rotational order: from a triangle at a boundary (if
 /// any), step across the edge at `v` not yet crossed, until the fan closes or ends. What is

@@ -78,12 +78,41 @@ impl VoxelMap {
         if triangles.is_empty() {
             return FULL_FINE_SLAB;
         }
-        triangles.sort_unstable();
-        triangles.dedup();
+        sort_unique(&mut triangles, &mut Vec::new());
         let side = f64::from(REGION_SIDE) * self.grid.cell_size();
         let (lo, _) = self.grid.cell_bounds(region.map(|v| v * REGION_SIDE));
         let mut corners = Vec::new();
         gather(surface, &triangles, &mut corners);
         fine_slab_of(&corners, lo + DVec3::splat(0.5 * side), side)
+    }
+}
+
+/// Sorts `list` and drops its repeats, as `sort_unstable` then `dedup`: through a bit per
+/// index between its smallest and largest (in `bits`, reused) when they lie close
+/// together, as a block's triangles do in a surface put in spatial order; by sorting
+/// otherwise.
+pub(crate) fn sort_unique(list: &mut Vec<u32>, bits: &mut Vec<u64>) {
+    let (lo, hi) = list
+        .iter()
+        .fold((u32::MAX, 0), |(lo, hi), &t| (lo.min(t), hi.max(t)));
+    let span = hi.saturating_sub(lo) as usize + 1;
+    if list.len() < 32 || span > 64 * list.len() {
+        list.sort_unstable();
+        list.dedup();
+        return;
+    }
+    bits.clear();
+    bits.resize(span.div_ceil(64), 0);
+    for &t in list.iter() {
+        let i = (t - lo) as usize;
+        bits[i >> 6] |= 1 << (i & 63);
+    }
+    list.clear();
+    for (w, &word) in bits.iter().enumerate() {
+        let mut rest = word;
+        while rest != 0 {
+            list.push(lo + (w * 64) as u32 + rest.trailing_zeros());
+            rest &= rest - 1;
+        }
     }
 }

@@ -441,3 +441,62 @@ fn a_segment_interval_holds_the_points_in_the_slab() {
     assert!(whole((at(-0.5, 0.49), at(0.5, -0.49)), FULL_SLAB));
     assert!(whole((DVec3::splat(1e308), DVec3::splat(-1e308)), slab));
 }
+
+/// The inline rounding and extremes give what `f64::round` and `f64::min`/`max` give.
+#[test]
+fn inline_round_and_extent_match_the_library() {
+    let mut rng = SplitMix64::new(3);
+    let mut values = vec![
+        0.5,
+        -0.5,
+        1.5,
+        2.5,
+        -2.5,
+        0.499_999_999_999_999_94,
+        253.5,
+        1e17,
+        -1e300,
+    ];
+    values.extend((0..10_000).map(|_| (rng.next_unit() - 0.25) * 300.0));
+    for x in values {
+        assert_eq!(round_half_away(x), x.round(), "{x}");
+    }
+    for len in [0, 1, 2, 7] {
+        let corners: Vec<Corners> = (0..len)
+            .map(|_| [(); 3].map(|_| DVec3::new(rng.next_unit(), rng.next_unit(), rng.next_unit())))
+            .collect();
+        let (centre, n) = (DVec3::new(0.3, 0.5, 0.1), DVec3::new(0.2, -0.7, 0.1));
+        let (lo, hi) = corners
+            .iter()
+            .flatten()
+            .map(|&c| n.dot(c - centre))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+                (lo.min(s), hi.max(s))
+            });
+        assert_eq!(extent_along(&corners, centre, n), (lo, hi));
+    }
+}
+
+/// Sorting through bits gives what sorting and dropping repeats gives.
+#[test]
+fn sort_unique_sorts_and_drops_repeats() {
+    let mut rng = SplitMix64::new(5);
+    let mut bits = Vec::new();
+    for (len, spread) in [
+        (0, 1),
+        (5, 3),
+        (40, 10),
+        (100, 1000),
+        (100, 100_000),
+        (300, 64),
+    ] {
+        let base = rng.index(1 << 20) as u32;
+        let list: Vec<u32> = (0..len).map(|_| base + rng.index(spread) as u32).collect();
+        let mut want = list.clone();
+        want.sort_unstable();
+        want.dedup();
+        let mut got = list;
+        blocks::sort_unique(&mut got, &mut bits);
+        assert_eq!(got, want, "{len} {spread}");
+    }
+}
