@@ -24,7 +24,9 @@ pub const MIN_MAX_FORCE: f64 = 1e-9;
 ///   `k e² / 2`).
 ///
 /// Returns the force and whether it was clamped to `max_force` (newtons). A non-finite
-/// result gives zero.
+/// result gives zero. Always inlined: the tick calls it once, and a call returns the force
+/// through memory.
+#[inline(always)]
 pub fn contact_force(
     proxy: DVec3,
     hip: DVec3,

@@ -358,7 +358,9 @@ impl Scene {
 
     /// The locally nearest surface point to the world point `p` of the object of `start`,
     /// walking from its triangle (see [`walk_to_nearest`]); point and normals in the world
-    /// frame. `None` when the object is out of range.
+    /// frame. `None` when the object is out of range. Always inlined: the tick calls it once,
+    /// and a call returns the surface point through memory.
+    #[inline(always)]
     pub(crate) fn surface_point(
         &self,
         start: SurfaceRef,
