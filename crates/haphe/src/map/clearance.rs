@@ -135,27 +135,43 @@ pub(crate) fn neighbour_slots(slots: &[usize], slot_of: &[u32], bdims: [u32; 3])
 /// set's reach of one, else 0.
 fn near_marks(map: &VoxelMap) -> Vec<u32> {
     let bdims = map.brick_dims;
-    let reach = i64::from((MAX_CLEARANCE.max(1) - 1).div_ceil(BRICK_SIDE as u8)).max(1);
-    let mut mark = vec![0u32; map.bricks.len()];
-    for (b, &entry) in map.bricks.iter().enumerate() {
-        if entry & UNIFORM != 0 {
-            continue;
-        }
-        let bc = brick_coords(b, bdims).map(i64::from);
-        for dz in -reach..=reach {
-            for dy in -reach..=reach {
-                for dx in -reach..=reach {
-                    let n = [bc[0] + dx, bc[1] + dy, bc[2] + dz];
-                    if (0..3).all(|a| n[a] >= 0 && n[a] < i64::from(bdims[a])) {
-                        let nb = brick_of(n.map(|x| (x as u32) << BRICK_BITS), bdims);
-                        let touching = dx.abs().max(dy.abs()).max(dz.abs()) <= 1;
-                        mark[nb] |= if touching { TOUCHING | NEAR } else { NEAR };
-                    }
-                }
-            }
-        }
+    let reach = (MAX_CLEARANCE.max(1) - 1).div_ceil(BRICK_SIDE as u8).max(1) as usize;
+    let detailed: Vec<bool> = (0..map.bricks.len())
+        .into_par_iter()
+        .map(|b| map.bricks[b] & UNIFORM == 0)
+        .collect();
+    let near = box_dilate(&detailed, bdims, reach);
+    let touching = box_dilate(&detailed, bdims, 1);
+    near.par_iter()
+        .zip(touching.par_iter())
+        .map(|(&n, &t)| match (n, t) {
+            (_, true) => TOUCHING | NEAR,
+            (true, false) => NEAR,
+            (false, false) => 0,
+        })
+        .collect()
+}
+
+/// The bricks of a grid of `dims` bricks within `radius` bricks along every axis of a
+/// marked one (a box around each), one axis after the other: parallel over bricks.
+fn box_dilate(marked: &[bool], dims: [u32; 3], radius: usize) -> Vec<bool> {
+    let [nx, ny, _] = dims.map(|d| d as usize);
+    let strides = [1, nx, nx * ny];
+    let mut out = marked.to_vec();
+    for (axis, &stride) in strides.iter().enumerate() {
+        let len = dims[axis] as usize;
+        let src = out;
+        out = (0..src.len())
+            .into_par_iter()
+            .map(|i| {
+                let at = (i / stride) % len;
+                let first = i - at * stride;
+                (at.saturating_sub(radius)..=(at + radius).min(len - 1))
+                    .any(|k| src[first + k * stride])
+            })
+            .collect();
     }
-    mark
+    out
 }
 
 /// The dilation steps' counts: for the detailed and graded slots (`counted`), each cell's
@@ -512,6 +528,28 @@ mod tests {
     /// The chamfer passes give the Chebyshev distance to the nearest detailed brick, as a
     /// brute-force search over all pairs does, on random grids of bricks, with few,
     /// many or no detailed bricks.
+    /// The separable box dilation marks the bricks within `radius` (Chebyshev) of a
+    /// marked one, as a brute-force search over all pairs does.
+    #[test]
+    fn box_dilate_equals_brute_force() {
+        let mut random = SplitMix64::new(11);
+        for case in 0..60 {
+            let dims = [1, 1, 1].map(|m: u32| m + random.index(9) as u32);
+            let count = dims.iter().map(|&d| d as usize).product();
+            let density = [0.0, 0.01, 0.1, 0.5][case % 4];
+            let marked: Vec<bool> = (0..count).map(|_| random.next_unit() < density).collect();
+            let radius = 1 + case % 3;
+            for (b, &near) in box_dilate(&marked, dims, radius).iter().enumerate() {
+                let bc = brick_coords(b, dims).map(i64::from);
+                let brute = (0..count).filter(|&o| marked[o]).any(|o| {
+                    let oc = brick_coords(o, dims).map(i64::from);
+                    (0..3).all(|a| (bc[a] - oc[a]).unsigned_abs() as usize <= radius)
+                });
+                assert_eq!(near, brute, "brick {bc:?} of {dims:?}, radius {radius}");
+            }
+        }
+    }
+
     #[test]
     fn brick_distances_equal_brute_force() {
         let mut random = SplitMix64::new(7);

@@ -3,6 +3,8 @@
 //! Shared by the validation report (which counts defects) and the topology (which links
 //! neighbours), so that both agree on what an edge is.
 
+use crate::par::*;
+
 /// One use of an undirected edge by a triangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct HalfEdge {
@@ -85,9 +87,7 @@ impl EdgeTable {
                 *slot += 1;
             }
         }
-        for v in 0..vertex_count {
-            half_edges[start[v] as usize..start[v + 1] as usize].sort_unstable();
-        }
+        sort_buckets(&mut half_edges, &start);
         EdgeTable { half_edges }
     }
 
@@ -95,6 +95,29 @@ impl EdgeTable {
     pub fn groups(&self) -> impl Iterator<Item = &[HalfEdge]> {
         self.half_edges.chunk_by(|a, b| a.key == b.key)
     }
+}
+
+/// Vertices whose buckets [`sort_buckets`] sorts in one parallel task.
+const BUCKET_RUN: usize = 8192;
+
+/// Sorts each bucket `half_edges[start[v]..start[v + 1]]`, in parallel over runs of
+/// vertices (each bucket on its own, so the result is that of one thread).
+fn sort_buckets(half_edges: &mut [HalfEdge], start: &[u32]) {
+    let vertex_count = start.len() - 1;
+    let mut runs: Vec<(usize, &mut [HalfEdge])> = Vec::new();
+    let mut rest = half_edges;
+    for first in (0..vertex_count).step_by(BUCKET_RUN) {
+        let end = (first + BUCKET_RUN).min(vertex_count);
+        let (run, tail) = rest.split_at_mut((start[end] - start[first]) as usize);
+        runs.push((first, run));
+        rest = tail;
+    }
+    runs.par_iter_mut().for_each(|(first, run)| {
+        let base = start[*first] as usize;
+        for v in *first..(*first + BUCKET_RUN).min(vertex_count) {
+            run[start[v] as usize - base..start[v + 1] as usize - base].sort_unstable();
+        }
+    });
 }
 
 /// Whether the three vertex indices of a triangle differ.

@@ -79,7 +79,8 @@ pub(crate) fn spatial_order(mesh: Mesh) -> (Mesh, Vec<u32>) {
         .collect();
     // Each word holds a key and a distinct index: any sort gives the one order.
     keyed.par_sort_unstable();
-    let source: Vec<u32> = keyed.into_iter().map(|k| k as u32).collect();
+    let source: Vec<u32> = keyed.par_iter().map(|&k| k as u32).collect();
+    drop(keyed);
 
     const UNSEEN: u32 = u32::MAX;
     let mut renumber = vec![UNSEEN; vertices.len()];
@@ -103,7 +104,7 @@ pub(crate) fn spatial_order(mesh: Mesh) -> (Mesh, Vec<u32>) {
             order.push(v as u32);
         }
     }
-    let vertices = order.iter().map(|&v| vertices[v as usize]).collect();
+    let vertices = order.par_iter().map(|&v| vertices[v as usize]).collect();
     (
         Mesh {
             vertices,

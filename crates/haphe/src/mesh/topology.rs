@@ -125,22 +125,22 @@ impl Surface {
             });
         }
         // The report keeps the mesh's own indices; everything from here on uses the
-        // spatial order, with an edge table of its own.
-        let (mesh, source, edges) = if options.spatial_order {
-            drop(edges);
+        // spatial order. Its neighbours are the mesh's, renumbered: the same edges join
+        // the same triangles whatever their numbers.
+        let neighbours = link_neighbours(mesh.triangles.len(), &edges);
+        drop(edges);
+        let (mesh, source, neighbours) = if options.spatial_order {
             let (mesh, source) = super::order::spatial_order(mesh);
-            let edges = EdgeTable::build(&mesh.triangles);
-            (mesh, source, edges)
+            let neighbours = renumber_neighbours(&neighbours, &source);
+            (mesh, source, neighbours)
         } else {
             let source = (0..mesh.triangles.len() as u32).collect();
-            (mesh, source, edges)
+            (mesh, source, neighbours)
         };
         let Mesh {
             vertices,
             triangles,
         } = mesh;
-        let neighbours = link_neighbours(triangles.len(), &edges);
-        drop(edges);
         let (fan_start, fan_triangles) = build_fans(vertices.len(), &triangles, &neighbours);
         let frames: Vec<TriFrame> = triangles
             .par_iter()
@@ -409,6 +409,27 @@ fn link_neighbours(triangle_count: usize, edges: &EdgeTable) -> Vec<[u32; 3]> {
         }
     }
     neighbours
+}
+
+/// `neighbours` of a mesh, for the mesh whose triangle `t` is the mesh's triangle
+/// `source[t]` (with its corners in the same order).
+fn renumber_neighbours(neighbours: &[[u32; 3]], source: &[u32]) -> Vec<[u32; 3]> {
+    let mut new_index = vec![0u32; source.len()];
+    for (t, &s) in source.iter().enumerate() {
+        new_index[s as usize] = t as u32;
+    }
+    source
+        .par_iter()
+        .map(|&s| {
+            neighbours[s as usize].map(|n| {
+                if n == NONE {
+                    NONE
+                } else {
+                    new_index[n as usize]
+                }
+            })
+        })
+        .collect()
 }
 
 /// The fans as compressed rows: triangles around vertex `v` are
