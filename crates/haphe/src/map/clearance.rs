@@ -525,9 +525,6 @@ mod tests {
     use super::*;
     use crate::rng::SplitMix64;
 
-    /// The chamfer passes give the Chebyshev distance to the nearest detailed brick, as a
-    /// brute-force search over all pairs does, on random grids of bricks, with few,
-    /// many or no detailed bricks.
     /// The separable box dilation marks the bricks within `radius` (Chebyshev) of a
     /// marked one, as a brute-force search over all pairs does.
     #[test]
@@ -550,6 +547,9 @@ mod tests {
         }
     }
 
+    /// The chamfer passes give the Chebyshev distance to the nearest detailed brick, as a
+    /// brute-force search over all pairs does, on random grids of bricks, with few,
+    /// many or no detailed bricks.
     #[test]
     fn brick_distances_equal_brute_force() {
         let mut random = SplitMix64::new(7);
